@@ -1,0 +1,147 @@
+//! Reasons a planner-A request is rejected before iterating. The workspace is untouched.
+
+use serde::{Deserialize, Serialize};
+
+/// Which input quantity an error is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[repr(u8)]
+pub enum Quantity {
+    /// The horizon T.
+    Horizon = 0,
+    /// The control bound Umax.
+    MaxControl = 1,
+    /// The keep-out distance d.
+    KeepOut = 2,
+    /// A spacecraft mass.
+    Mass = 3,
+    /// A boundary state component.
+    BoundaryState = 4,
+    /// A settings value.
+    Setting = 5,
+    /// A warm-start value.
+    WarmStart = 6,
+}
+
+/// Which capacity an error is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[repr(u8)]
+pub enum Capacity {
+    /// Spacecraft count M.
+    Spacecraft = 0,
+    /// Polynomial degree N.
+    Degree = 1,
+}
+
+/// Which end of the horizon a boundary error is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[repr(u8)]
+pub enum Boundary {
+    /// t = 0.
+    Initial = 0,
+    /// t = T.
+    Final = 1,
+}
+
+/// A request the planner refuses to iterate on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[repr(u8)]
+pub enum PlanError {
+    /// A number is NaN or infinite.
+    NotFinite {
+        /// Which quantity.
+        what: Quantity,
+        /// Spacecraft index where it applies, else 0.
+        spacecraft: u8,
+    } = 0,
+    /// A quantity that must be positive is zero or negative.
+    NotPositive {
+        /// Which quantity.
+        what: Quantity,
+        /// Spacecraft index where it applies, else 0.
+        spacecraft: u8,
+    } = 1,
+    /// A size is above the compiled capacity.
+    CapacityExceeded {
+        /// Which capacity.
+        what: Capacity,
+        /// Requested size.
+        requested: u16,
+        /// Compiled capacity.
+        capacity: u16,
+    } = 2,
+    /// The degree N is below the minimum (4): no free coefficient would remain.
+    DegreeTooLow {
+        /// Requested degree.
+        requested: u16,
+    } = 3,
+    /// No spacecraft in the request.
+    NoSpacecraft = 4,
+    /// Two spacecraft start or end closer than the keep-out distance.
+    BoundaryTooClose {
+        /// First spacecraft.
+        first: u8,
+        /// Second spacecraft.
+        second: u8,
+        /// Start or end.
+        boundary: Boundary,
+    } = 5,
+    /// Even bang-bang control at Umax cannot meet one axis's boundary conditions in T.
+    ManoeuvreInfeasible {
+        /// Spacecraft index.
+        spacecraft: u8,
+        /// Axis 0 = x, 1 = y, 2 = z.
+        axis: u8,
+    } = 6,
+    /// A setting is out of range.
+    InvalidSettings(SettingsError) = 7,
+    /// The warm start does not match the problem (spacecraft count or degree).
+    WarmStartMismatch = 8,
+}
+
+/// A setting out of its documented range.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[repr(u8)]
+pub enum SettingsError {
+    /// An iteration limit is zero.
+    ZeroIterationLimit = 0,
+    /// A tolerance is not finite and positive.
+    BadTolerance = 1,
+    /// Verification rounds exceed what the check-point capacity can hold.
+    TooManyVerifyRounds = 2,
+}
+
+impl core::fmt::Display for PlanError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::NotFinite { what, spacecraft } => {
+                write!(f, "{what:?} is NaN or infinite (spacecraft {spacecraft})")
+            }
+            Self::NotPositive { what, spacecraft } => {
+                write!(f, "{what:?} must be positive (spacecraft {spacecraft})")
+            }
+            Self::CapacityExceeded {
+                what,
+                requested,
+                capacity,
+            } => write!(f, "{what:?} {requested} exceeds capacity {capacity}"),
+            Self::DegreeTooLow { requested } => {
+                write!(f, "degree N = {requested} is below the minimum of 4")
+            }
+            Self::NoSpacecraft => write!(f, "no spacecraft in the problem"),
+            Self::BoundaryTooClose {
+                first,
+                second,
+                boundary,
+            } => write!(
+                f,
+                "spacecraft {first} and {second} are closer than the keep-out distance at the {boundary:?} boundary"
+            ),
+            Self::ManoeuvreInfeasible { spacecraft, axis } => write!(
+                f,
+                "spacecraft {spacecraft} cannot meet its boundary conditions on axis {axis} within Umax in T"
+            ),
+            Self::InvalidSettings(e) => write!(f, "invalid settings: {e:?}"),
+            Self::WarmStartMismatch => write!(f, "warm start does not match the problem"),
+        }
+    }
+}

@@ -1,0 +1,84 @@
+//! Planner-A settings: every loop bound and tolerance of a solve.
+
+use super::error::SettingsError;
+use crate::capacity::MAX_VERIFY_POINTS_PER_PAIR;
+use serde::{Deserialize, Serialize};
+
+/// Loop bounds and tolerances. Plain `Copy` data; all fields take effect per solve.
+///
+/// The worst case of a solve is bounded by
+/// `(verify_max_rounds + 1) * sqp_max_iter * qp_max_iter` QP steps, each
+/// `O(MAX_ACTIVE^2 + M N (N - 3))` flops; see the README for measured figures.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Settings {
+    /// Most convex subproblems (SQP / convex-concave iterations) per verification round.
+    pub sqp_max_iter: u16,
+    /// Stop when the cost changes by less than this, relative, between iterations.
+    pub sqp_tol_cost: f64,
+    /// Stop when the largest node-position change is below this, in LU.
+    pub sqp_tol_step_lu: f64,
+    /// Most active-set changes per QP. Worst case: every candidate constraint enters once per
+    /// drop, bounded by this number.
+    pub qp_max_iter: u16,
+    /// Constraint violation a QP accepts as satisfied, in the constraint's units (LU or FU).
+    pub qp_tol_feas: f64,
+    /// Rounds of continuous verification: each finds the true minimum separation of every pair
+    /// and adds keep-out points where it is below d, then re-solves. At most
+    /// `MAX_VERIFY_POINTS_PER_PAIR` points are added per pair over all rounds.
+    pub verify_max_rounds: u8,
+    /// Continuous separation accepted as meeting the keep-out: `>= d - verify_tol_lu`.
+    pub verify_tol_lu: f64,
+    /// Enlarge the keep-out used in the constraints by this, in LU, so that the continuous
+    /// minimum between check points stays at or above d.
+    pub keep_out_margin_lu: f64,
+    /// Newton iterations for LGL nodes and for the root-finds of the Pontryagin guess.
+    pub newton_max_iter: u16,
+    /// Bisection / Newton steps when refining a separation minimum between check points.
+    pub refine_max_iter: u16,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self {
+            sqp_max_iter: 40,
+            sqp_tol_cost: 1e-12,
+            sqp_tol_step_lu: 1e-10,
+            qp_max_iter: 400,
+            qp_tol_feas: 1e-12,
+            verify_max_rounds: 4,
+            verify_tol_lu: 1e-9,
+            keep_out_margin_lu: 0.0,
+            newton_max_iter: 60,
+            refine_max_iter: 80,
+        }
+    }
+}
+
+impl Settings {
+    /// Check every field against its documented range.
+    ///
+    /// # Errors
+    /// [`SettingsError`] naming the first field class out of range.
+    pub fn validate(&self) -> Result<(), SettingsError> {
+        if self.sqp_max_iter == 0
+            || self.qp_max_iter == 0
+            || self.newton_max_iter == 0
+            || self.refine_max_iter == 0
+        {
+            return Err(SettingsError::ZeroIterationLimit);
+        }
+        let positive = |v: f64| v.is_finite() && v > 0.0;
+        if !positive(self.sqp_tol_cost)
+            || !positive(self.sqp_tol_step_lu)
+            || !positive(self.qp_tol_feas)
+            || !positive(self.verify_tol_lu)
+            || !(self.keep_out_margin_lu.is_finite() && self.keep_out_margin_lu >= 0.0)
+        {
+            return Err(SettingsError::BadTolerance);
+        }
+        if usize::from(self.verify_max_rounds) > MAX_VERIFY_POINTS_PER_PAIR {
+            return Err(SettingsError::TooManyVerifyRounds);
+        }
+        Ok(())
+    }
+}

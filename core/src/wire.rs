@@ -1,0 +1,1 @@
+//! Fixed-size wire types shared by the flight service, the feeder and the firmware.

@@ -1,0 +1,5 @@
+//! reconfig-host: the std side of reconfig. Fixture parsing, reports, the CLI's commands, the
+//! iceoryx2 flight service and feeder, timing and plots.
+
+pub mod cli;
+pub mod fixture;

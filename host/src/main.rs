@@ -1,0 +1,34 @@
+//! `reconfig`: the command-line entry point.
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(name = "reconfig", version, about = "On-board formation reconfiguration planner: host tools")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Solve one fixture and print a report (or JSON).
+    Solve(reconfig_host::cli::solve::Args),
+    /// Reproduce Huang 2012 Table 2: random initial guesses, with and without test points.
+    Montecarlo(reconfig_host::cli::montecarlo::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Solve(args) => reconfig_host::cli::solve::run(&args),
+        Command::Montecarlo(args) => reconfig_host::cli::montecarlo::run(&args),
+    };
+    match result {
+        Ok(code) => code,
+        Err(err) => {
+            eprintln!("error: {err:#}");
+            ExitCode::from(2)
+        }
+    }
+}
