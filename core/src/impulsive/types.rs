@@ -1,0 +1,76 @@
+//! Planner-B public types. (Contract shared with the host harness and the firmware: field names
+//! here are relied on outside the core.)
+
+use crate::capacity::MAX_IMPULSES;
+use serde::{Deserialize, Serialize};
+
+/// Mean classical orbital elements.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MeanElements {
+    /// Semi-major axis a, km.
+    pub sma_km: f64,
+    /// Eccentricity e (dimensionless), 0 < e < 1.
+    pub ecc: f64,
+    /// Inclination i, rad.
+    pub inc_rad: f64,
+    /// Right ascension of the ascending node, rad.
+    pub raan_rad: f64,
+    /// Argument of perigee, rad.
+    pub argp_rad: f64,
+    /// Mean anomaly, rad.
+    pub mean_anomaly_rad: f64,
+}
+
+/// Deputy-minus-chief mean elements, same order and units as [`MeanElements`].
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RelativeElements {
+    /// Delta a, km.
+    pub dsma_km: f64,
+    /// Delta e.
+    pub decc: f64,
+    /// Delta i, rad.
+    pub dinc_rad: f64,
+    /// Delta RAAN, rad.
+    pub draan_rad: f64,
+    /// Delta argument of perigee, rad.
+    pub dargp_rad: f64,
+    /// Delta mean anomaly, rad.
+    pub dmean_anomaly_rad: f64,
+}
+
+/// Where one impulse is applied: mean argument of latitude and whole revolutions since the
+/// previous impulse (Wang 2018, eq. 7).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ImpulsePoint {
+    /// Mean argument of latitude u_k = omega + M at the impulse, rad.
+    pub arg_latitude_rad: f64,
+    /// Whole revolutions dN_k added to the phase from the previous impulse (negative is an error).
+    pub revolutions: i32,
+}
+
+/// Fixed impulse points, or a bounded search over them.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum ImpulsePlan {
+    /// Impulses at these points.
+    Fixed(heapless::Vec<ImpulsePoint, MAX_IMPULSES>),
+    /// Search the points for the least total dv.
+    Search {
+        /// Number of impulses.
+        impulses: u8,
+        /// Limit on the sum of revolution counts.
+        max_revolutions: i32,
+    },
+}
+
+/// A reconfiguration request.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Problem {
+    /// The chief's mean elements at the initial epoch.
+    pub chief: MeanElements,
+    /// Deputy minus chief at the initial epoch.
+    pub initial: RelativeElements,
+    /// Deputy minus chief wanted after the last impulse.
+    pub target: RelativeElements,
+    /// Impulse points or a search.
+    pub plan: ImpulsePlan,
+}
