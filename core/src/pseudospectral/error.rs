@@ -108,6 +108,8 @@ pub enum SettingsError {
     BadTolerance = 1,
     /// Verification rounds exceed what the check-point capacity can hold.
     TooManyVerifyRounds = 2,
+    /// The acceleration memory exceeds its capacity (4).
+    AccelerationMemory = 3,
 }
 
 impl core::fmt::Display for PlanError {

@@ -34,8 +34,7 @@ pub fn solve(
     workspace: &mut Workspace,
     out: &mut Solution,
 ) -> Result<(), PlanError> {
-    let _ = (problem, settings, workspace, out);
-    Err(PlanError::NoSpacecraft)
+    solver::solve(problem, settings, workspace, None, out)
 }
 
 /// Solve starting from a previous solution of a problem with the same spacecraft count and
@@ -51,6 +50,17 @@ pub fn solve_warm(
     previous: &Solution,
     out: &mut Solution,
 ) -> Result<(), PlanError> {
-    let _ = previous;
-    solve(problem, settings, workspace, out)
+    solver::solve(problem, settings, workspace, Some(previous), out)
 }
+
+mod anderson;
+mod basis;
+mod collision;
+mod guess;
+mod lgl;
+mod linalg;
+mod qp;
+mod solver;
+mod transcription;
+mod validate;
+mod verify;

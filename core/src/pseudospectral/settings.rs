@@ -13,10 +13,18 @@ use serde::{Deserialize, Serialize};
 pub struct Settings {
     /// Most convex subproblems (SQP / convex-concave iterations) per verification round.
     pub sqp_max_iter: u16,
-    /// Stop when the cost changes by less than this, relative, between iterations.
+    /// Stop when the cost decreases by less than this, relative (`|dJ| <= tol (1 + J)`), between
+    /// iterations.
     pub sqp_tol_cost: f64,
-    /// Stop when the largest node-position change is below this, in LU.
+    /// Or stop when the largest coefficient change (position scale) is below this, in LU.
     pub sqp_tol_step_lu: f64,
+    /// Anderson-acceleration memory of the convex-concave iteration (0 = plain iteration, at
+    /// most 4).
+    pub acceleration_memory: u8,
+    /// Follow each near-contact pair's continuous separation minimum with a moving check, and
+    /// run the verification rounds. Off, the solver enforces keep-out only at the nodes and
+    /// test points, as the paper does (the continuous minimum is still measured and reported).
+    pub continuous_verification: bool,
     /// Most active-set changes per QP. Worst case: every candidate constraint enters once per
     /// drop, bounded by this number.
     pub qp_max_iter: u16,
@@ -41,8 +49,10 @@ impl Default for Settings {
     fn default() -> Self {
         Self {
             sqp_max_iter: 40,
-            sqp_tol_cost: 1e-12,
+            sqp_tol_cost: 1e-8,
             sqp_tol_step_lu: 1e-10,
+            acceleration_memory: 3,
+            continuous_verification: true,
             qp_max_iter: 400,
             qp_tol_feas: 1e-12,
             verify_max_rounds: 4,
@@ -72,9 +82,13 @@ impl Settings {
             || !positive(self.sqp_tol_step_lu)
             || !positive(self.qp_tol_feas)
             || !positive(self.verify_tol_lu)
-            || !(self.keep_out_margin_lu.is_finite() && self.keep_out_margin_lu >= 0.0)
+            || !self.keep_out_margin_lu.is_finite()
+            || self.keep_out_margin_lu < 0.0
         {
             return Err(SettingsError::BadTolerance);
+        }
+        if usize::from(self.acceleration_memory) > super::anderson::MAX_MEMORY {
+            return Err(SettingsError::AccelerationMemory);
         }
         if usize::from(self.verify_max_rounds) > MAX_VERIFY_POINTS_PER_PAIR {
             return Err(SettingsError::TooManyVerifyRounds);

@@ -1,15 +1,65 @@
 //! Planner-A workspace: every scratch buffer of a solve, sized by the capacities.
 
-/// Scratch memory for planner A. Build once (it can live in a `static`), reuse for every solve.
+use super::anderson::Anderson;
+use super::guess::AxisLaw;
+use super::qp::QpState;
+use super::transcription::{Coefficients, Transcription, MAX_BLOCKS};
+use super::verify::Bernstein;
+use crate::capacity::{MAX_FREE_PER_AXIS, MAX_PAIRS, MAX_SPACECRAFT, TEST_POINTS_PER_PAIR};
+
+const NO_LAW: AxisLaw = AxisLaw {
+    alpha: 0.0,
+    beta: 0.0,
+    boundary: super::guess::AxisBoundary {
+        p0: 0.0,
+        v0: 0.0,
+        p1: 0.0,
+        v1: 0.0,
+        horizon: 1.0,
+        mass: 1.0,
+        max_control: 1.0,
+    },
+    saturated: false,
+};
+
+/// Scratch memory for planner A. Build once (it can live in a `static`: `new` is `const`),
+/// reuse for every solve; a solve overwrites all of it. Its size is fixed by
+/// [`crate::capacity`]; see the README for `size_of::<Workspace>()`.
 #[derive(Clone, Debug)]
 pub struct Workspace {
-    _private: (),
+    pub(crate) transcription: Transcription,
+    pub(crate) qp: QpState,
+    pub(crate) bernstein: Bernstein,
+    pub(crate) laws: [[AxisLaw; 3]; MAX_SPACECRAFT],
+    /// The current iterate (and linearisation point).
+    pub(crate) iterate: Coefficients,
+    /// The QP's output.
+    pub(crate) trial: Coefficients,
+    pub(crate) anderson: Anderson,
+    /// The last QP solution (the feasible iterate).
+    pub(crate) accepted: Coefficients,
+    pub(crate) basis_scratch: [[f64; MAX_FREE_PER_AXIS]; MAX_FREE_PER_AXIS],
+    pub(crate) test_times: [[f64; TEST_POINTS_PER_PAIR]; MAX_PAIRS],
+    /// Direction used for a pair's linearisation where the spacecraft coincide.
+    pub(crate) fallback_normal: [[f64; 3]; MAX_PAIRS],
 }
 
 impl Workspace {
     /// A fresh workspace.
     pub const fn new() -> Self {
-        Self { _private: () }
+        Self {
+            transcription: Transcription::new(),
+            qp: QpState::new(),
+            bernstein: Bernstein::new(),
+            laws: [[NO_LAW; 3]; MAX_SPACECRAFT],
+            iterate: [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS],
+            trial: [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS],
+            anderson: Anderson::new(),
+            accepted: [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS],
+            basis_scratch: [[0.0; MAX_FREE_PER_AXIS]; MAX_FREE_PER_AXIS],
+            test_times: [[0.0; TEST_POINTS_PER_PAIR]; MAX_PAIRS],
+            fallback_normal: [[1.0, 0.0, 0.0]; MAX_PAIRS],
+        }
     }
 }
 

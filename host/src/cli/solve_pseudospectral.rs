@@ -1,10 +1,120 @@
-//! `reconfig solve` for planner-A fixtures.
+//! `reconfig solve` for planner-A fixtures: a readable report or one JSON object.
 
 use crate::fixture::pseudospectral::PseudospectralFixture;
-use anyhow::{bail, Result};
+use anyhow::{anyhow, Result};
+use reconfig_core::pseudospectral::{self, Settings, Solution, Workspace};
+use serde_json::json;
 use std::process::ExitCode;
+use std::time::Instant;
+
+/// The outcome of one timed solve.
+pub struct Timed {
+    /// The solution (boxed: it is large).
+    pub solution: Box<Solution>,
+    /// Wall time of the core's solve alone, seconds.
+    pub solve_time_s: f64,
+}
+
+/// Solve a planner-A problem with default settings in a fresh boxed workspace, timed.
+///
+/// # Errors
+/// The core's `PlanError`, as a message.
+pub fn solve_timed(problem: &pseudospectral::Problem, settings: &Settings) -> Result<Timed> {
+    let mut workspace = Box::new(Workspace::new());
+    let mut solution = Box::new(Solution::new());
+    let start = Instant::now();
+    pseudospectral::solve(problem, settings, &mut workspace, &mut solution)
+        .map_err(|e| anyhow!("the planner rejected the problem: {e}"))?;
+    Ok(Timed {
+        solution,
+        solve_time_s: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// The JSON object `reconfig solve --json` prints for planner A.
+pub fn to_json(name: &str, timed: &Timed) -> serde_json::Value {
+    let s = &timed.solution;
+    let m = usize::from(s.spacecraft_count);
+    let nodes = usize::from(s.degree) + 1;
+    let states: Vec<Vec<[f64; 6]>> = s
+        .states
+        .iter()
+        .take(m)
+        .map(|sc| sc[..nodes].to_vec())
+        .collect();
+    let controls: Vec<Vec<[f64; 3]>> = s
+        .controls_fu
+        .iter()
+        .take(m)
+        .map(|sc| sc[..nodes].to_vec())
+        .collect();
+    json!({
+        "name": name,
+        "planner": "pseudospectral",
+        "status": format!("{:?}", s.info.status),
+        "cost": s.cost,
+        "min_separation": s.min_separation_lu,
+        "min_separation_pair": [s.min_separation_pair.0 + 1, s.min_separation_pair.1 + 1],
+        "min_separation_time": s.min_separation_time_tu,
+        "iterations": s.info.sqp_iterations,
+        "qp_iterations": s.info.qp_iterations,
+        "verify_rounds": s.info.verify_rounds,
+        "verify_points_added": s.info.verify_points_added,
+        "keep_out_checks": s.info.keep_out_checks,
+        "warm_start_used": s.info.warm_start_used,
+        "max_violation": s.info.max_violation,
+        "max_dynamics_error": s.max_dynamics_error,
+        "solve_time_s": timed.solve_time_s,
+        "node_times": &s.node_times_tu[..nodes],
+        "states": states,
+        "controls": controls,
+    })
+}
 
 /// Solve and report a planner-A fixture.
-pub fn run(_fixture: &PseudospectralFixture, _json: bool) -> Result<ExitCode> {
-    bail!("planner \"pseudospectral\" is not built yet")
+pub fn run(fixture: &PseudospectralFixture, json_output: bool) -> Result<ExitCode> {
+    let timed = solve_timed(&fixture.problem, &Settings::default())?;
+    if json_output {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&to_json(&fixture.name, &timed))?
+        );
+    } else {
+        let s = &timed.solution;
+        let p = &fixture.problem;
+        println!("{} (planner A, pseudospectral)", fixture.name);
+        println!(
+            "  M = {} spacecraft, N = {} ({} LGL nodes), T = {}, Umax = {}, d = {}, test points {}",
+            p.spacecraft.len(),
+            p.degree,
+            p.degree + 1,
+            p.horizon_tu,
+            p.max_control_fu,
+            p.keep_out_lu,
+            if p.test_points { "on" } else { "off" }
+        );
+        println!("  status               {:?}", s.info.status);
+        println!("  cost J               {:.6}", s.cost);
+        println!(
+            "  min separation       {:.6} (spacecraft {} and {}, t = {:.4}), continuous",
+            s.min_separation_lu,
+            s.min_separation_pair.0 + 1,
+            s.min_separation_pair.1 + 1,
+            s.min_separation_time_tu
+        );
+        println!(
+            "  dynamics error       {:.3e} (eq. 29)",
+            s.max_dynamics_error
+        );
+        println!(
+            "  iterations           {} convex subproblems, {} active-set steps, {} verification rounds (+{} points)",
+            s.info.sqp_iterations, s.info.qp_iterations, s.info.verify_rounds, s.info.verify_points_added
+        );
+        println!("  solve time           {:.3} ms", timed.solve_time_s * 1e3);
+    }
+    Ok(if timed.solution.info.status.is_usable() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
 }

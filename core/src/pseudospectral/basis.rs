@@ -1,0 +1,207 @@
+//! The free coefficients of one axis's position polynomial.
+//!
+//! With collocation at all N + 1 LGL nodes, each axis of each spacecraft is one polynomial of
+//! degree N; velocity and control at the nodes are its exact derivatives, and the LGL quadrature
+//! of the squared control (degree 2N - 4) is exact. Node positions are written
+//! `x = x_cubic + Zt z`: `x_cubic` is the unconstrained minimum-energy cubic (it meets all four
+//! boundary conditions), and the N - 3 columns of `Zt` span the polynomials `(1 - tau^2)^2 q(tau)`
+//! that vanish with their first derivative at both ends, orthonormalised in the cost metric.
+//! The cubic is optimal on the affine set, so the cross term vanishes and for mass m
+//! `J_axis = m^2 J_cubic + 1/2 |y|^2` with `y = m z`: the QP Hessian is the identity.
+
+use super::lgl::LglGrid;
+use super::linalg::{cholesky_in_place, get, set, solve_lower};
+use crate::capacity::{MAX_FREE_PER_AXIS, MAX_NODES};
+
+/// Per (N, T): the basis and its derivative rows.
+#[derive(Clone, Debug)]
+pub(crate) struct Basis {
+    /// Free coefficients per axis, N - 3.
+    pub free: usize,
+    /// `Zt[h][c]`: node h's position per unit coefficient c (unit mass).
+    pub position: [[f64; MAX_FREE_PER_AXIS]; MAX_NODES],
+    /// `(2/T)^2 (D^2 Zt)[h][c]`: node h's acceleration (LU/TU^2) per unit coefficient.
+    pub accel: [[f64; MAX_FREE_PER_AXIS]; MAX_NODES],
+    /// Euclidean norm of each `accel` row.
+    pub accel_norm: [f64; MAX_NODES],
+}
+
+impl Basis {
+    /// An empty basis.
+    pub const fn new() -> Self {
+        Self {
+            free: 0,
+            position: [[0.0; MAX_FREE_PER_AXIS]; MAX_NODES],
+            accel: [[0.0; MAX_FREE_PER_AXIS]; MAX_NODES],
+            accel_norm: [0.0; MAX_NODES],
+        }
+    }
+
+    /// Build the basis for `grid` and horizon `horizon_tu`. `scratch` is a square work array.
+    /// Returns false when the cost metric is not numerically positive definite.
+    pub fn build(
+        &mut self,
+        grid: &LglGrid,
+        horizon_tu: f64,
+        scratch: &mut [[f64; MAX_FREE_PER_AXIS]; MAX_FREE_PER_AXIS],
+    ) -> bool {
+        *self = Self::new();
+        let n = grid.degree;
+        let nodes = grid.nodes();
+        let Some(free) = n.checked_sub(3) else {
+            return false;
+        };
+        if free == 0 || free > MAX_FREE_PER_AXIS {
+            return false;
+        }
+        self.free = free;
+        // Raw basis: (1 - tau^2)^2 P_c(tau), Legendre P_c keeps the Gram matrix well scaled.
+        let mut raw = [[0.0; MAX_FREE_PER_AXIS]; MAX_NODES];
+        for h in 0..nodes {
+            let tau = grid.at(h);
+            let bubble = (1.0 - tau * tau) * (1.0 - tau * tau);
+            let mut p_prev = 1.0;
+            let mut p = tau;
+            for c in 0..free {
+                let value = if c == 0 {
+                    1.0
+                } else {
+                    p_prev_for(c, &mut p_prev, &mut p, tau)
+                };
+                set(&mut raw, h, c, bubble * value);
+            }
+        }
+        // Accelerations per unit raw coefficient: (2/T)^2 D (D raw).
+        let scale = 4.0 / (horizon_tu * horizon_tu);
+        let mut raw_accel = [[0.0; MAX_FREE_PER_AXIS]; MAX_NODES];
+        for c in 0..free {
+            let mut column = [0.0; MAX_NODES];
+            for (h, slot) in column.iter_mut().enumerate().take(nodes) {
+                *slot = get(&raw, h, c);
+            }
+            let mut first = [0.0; MAX_NODES];
+            grid.differentiate(&column, &mut first);
+            let mut second = [0.0; MAX_NODES];
+            grid.differentiate(&first, &mut second);
+            for (h, value) in second.iter().enumerate().take(nodes) {
+                set(&mut raw_accel, h, c, scale * value);
+            }
+        }
+        // Cost metric: J = T/4 sum_h w_h a_h^2 = 1/2 z^T M z with M = T/2 A^T W A.
+        for a in 0..free {
+            for b in 0..=a {
+                let mut sum = 0.0;
+                for h in 0..nodes {
+                    let w = grid.weight.get(h).copied().unwrap_or(0.0);
+                    sum += w * get(&raw_accel, h, a) * get(&raw_accel, h, b);
+                }
+                let value = 0.5 * horizon_tu * sum;
+                set(scratch, a, b, value);
+                set(scratch, b, a, value);
+            }
+        }
+        if cholesky_in_place(scratch, free).is_some() {
+            return false;
+        }
+        // Orthonormalise: Zt = Z L^{-T}, i.e. each row r of Z gives row L^{-1} r^T.
+        for h in 0..nodes {
+            let mut row = [0.0; MAX_FREE_PER_AXIS];
+            for (c, slot) in row.iter_mut().enumerate().take(free) {
+                *slot = get(&raw, h, c);
+            }
+            solve_lower(scratch, free, &mut row);
+            if let Some(dest) = self.position.get_mut(h) {
+                *dest = row;
+            }
+            let mut accel_row = [0.0; MAX_FREE_PER_AXIS];
+            for (c, slot) in accel_row.iter_mut().enumerate().take(free) {
+                *slot = get(&raw_accel, h, c);
+            }
+            solve_lower(scratch, free, &mut accel_row);
+            let mut norm2 = 0.0;
+            for v in accel_row.iter().take(free) {
+                norm2 += v * v;
+            }
+            if let Some(dest) = self.accel.get_mut(h) {
+                *dest = accel_row;
+            }
+            if let Some(dest) = self.accel_norm.get_mut(h) {
+                *dest = libm::sqrt(norm2);
+            }
+        }
+        true
+    }
+
+    /// `e(tau) = Zt^T l(tau)`: position at `tau` per unit coefficient.
+    pub fn position_row(&self, grid: &LglGrid, tau: f64, out: &mut [f64; MAX_FREE_PER_AXIS]) {
+        let mut lagrange = [0.0; MAX_NODES];
+        grid.lagrange_row(tau, &mut lagrange);
+        *out = [0.0; MAX_FREE_PER_AXIS];
+        for (h, weight) in lagrange.iter().enumerate().take(grid.nodes()) {
+            if let Some(row) = self.position.get(h) {
+                for (slot, value) in out.iter_mut().zip(row.iter()).take(self.free) {
+                    *slot += weight * value;
+                }
+            }
+        }
+    }
+}
+
+/// Legendre recurrence step: on entry `(p_prev, p) = (P_{c-2}, P_{c-1})`... returns `P_c`.
+fn p_prev_for(c: usize, p_prev: &mut f64, p: &mut f64, tau: f64) -> f64 {
+    if c == 1 {
+        return *p;
+    }
+    let k = (c as f64) - 1.0; // computing P_{k+1}
+    let next = ((2.0 * k + 1.0) * tau * *p - k * *p_prev) / (k + 1.0);
+    *p_prev = *p;
+    *p = next;
+    next
+}
+
+#[cfg(test)]
+#[allow(
+    clippy::indexing_slicing,
+    clippy::unwrap_used,
+    clippy::needless_range_loop
+)]
+mod tests {
+    use super::*;
+
+    fn build(n: usize, t: f64) -> (LglGrid, Basis) {
+        let mut g = LglGrid::new();
+        assert!(g.build(n, 60));
+        let mut b = Basis::new();
+        let mut s = [[0.0; MAX_FREE_PER_AXIS]; MAX_FREE_PER_AXIS];
+        assert!(b.build(&g, t, &mut s));
+        (g, b)
+    }
+
+    #[test]
+    fn basis_is_cost_orthonormal_and_meets_homogeneous_boundaries() {
+        for n in [4usize, 9, 10, 16, 24] {
+            let (g, b) = build(n, 10.0);
+            // Orthonormal: T/4 sum w a_i a_j = delta_ij / 2.
+            for i in 0..b.free {
+                for j in 0..b.free {
+                    let s: f64 = (0..=n)
+                        .map(|h| g.weight[h] * b.accel[h][i] * b.accel[h][j])
+                        .sum();
+                    let expected = if i == j { 1.0 } else { 0.0 };
+                    assert!((0.5 * 10.0 * s - expected).abs() < 1e-9, "n={n} {i} {j}");
+                }
+            }
+            // Zero position and velocity at both ends.
+            for c in 0..b.free {
+                let mut col = [0.0; MAX_NODES];
+                for h in 0..=n {
+                    col[h] = b.position[h][c];
+                }
+                let mut d = [0.0; MAX_NODES];
+                g.differentiate(&col, &mut d);
+                assert!(col[0].abs() < 1e-14 && col[n].abs() < 1e-14);
+                assert!(d[0].abs() < 1e-9 && d[n].abs() < 1e-9, "n={n} c={c}");
+            }
+        }
+    }
+}

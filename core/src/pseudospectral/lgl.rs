@@ -1,0 +1,311 @@
+//! Legendre–Gauss–Lobatto nodes, quadrature weights, differentiation matrix and barycentric
+//! interpolation (Huang 2012, eq. 8-15). Computed once per degree N into fixed arrays.
+
+use crate::capacity::MAX_NODES;
+
+/// The LGL grid of one degree N: nodes on [-1, 1], weights, differentiation matrix and
+/// barycentric weights. Only the first `N + 1` entries of each array are meaningful.
+#[derive(Clone, Debug)]
+pub(crate) struct LglGrid {
+    /// Degree N (N + 1 nodes).
+    pub degree: usize,
+    /// Nodes `tau_0 = -1 < ... < tau_N = 1`.
+    pub tau: [f64; MAX_NODES],
+    /// Quadrature weights `w_h = 2 / (N (N + 1) L_N(tau_h)^2)`.
+    pub weight: [f64; MAX_NODES],
+    /// `L_N(tau_h)`.
+    pub legendre_at_node: [f64; MAX_NODES],
+    /// Differentiation matrix `D[h][k]` (eq. 12, with `tau_h - tau_k`).
+    pub diff: [[f64; MAX_NODES]; MAX_NODES],
+    /// Barycentric weights, scaled to unit largest magnitude.
+    pub bary: [f64; MAX_NODES],
+}
+
+/// Legendre polynomials `(L_{n-1}(x), L_n(x))` by the three-term recurrence.
+pub(crate) fn legendre_pair(n: usize, x: f64) -> (f64, f64) {
+    let mut previous = 1.0; // L_0
+    let mut current = x; // L_1
+    if n == 0 {
+        return (0.0, 1.0);
+    }
+    let mut k = 1usize;
+    while k < n {
+        let kf = k as f64;
+        let next = ((2.0 * kf + 1.0) * x * current - kf * previous) / (kf + 1.0);
+        previous = current;
+        current = next;
+        k = k.saturating_add(1);
+    }
+    (previous, current)
+}
+
+impl LglGrid {
+    /// An empty grid.
+    pub const fn new() -> Self {
+        Self {
+            degree: 0,
+            tau: [0.0; MAX_NODES],
+            weight: [0.0; MAX_NODES],
+            legendre_at_node: [0.0; MAX_NODES],
+            diff: [[0.0; MAX_NODES]; MAX_NODES],
+            bary: [0.0; MAX_NODES],
+        }
+    }
+
+    /// Number of nodes, N + 1.
+    pub fn nodes(&self) -> usize {
+        self.degree.saturating_add(1)
+    }
+
+    /// Build the grid for degree `n` (`2 <= n < MAX_NODES`), with at most `max_newton` Newton
+    /// steps per interior node. Returns false if `n` is out of range or Newton did not converge.
+    ///
+    /// Interior nodes are the zeros of `L_N'`; Newton's iteration on `(1 - x^2) L_N'(x)` in the
+    /// form `x <- x - (x L_N - L_{N-1}) / ((N + 1) L_N)` from the Chebyshev–Gauss–Lobatto points
+    /// (which interlace the LGL nodes) converges quadratically; nodes are then symmetrised.
+    pub fn build(&mut self, n: usize, max_newton: u16) -> bool {
+        if !(2..MAX_NODES).contains(&n) {
+            return false;
+        }
+        *self = Self::new();
+        self.degree = n;
+        let nf = n as f64;
+        let mut converged = true;
+        for h in 0..=n {
+            let mut x = -libm::cos(core::f64::consts::PI * (h as f64) / nf);
+            if h > 0 && h < n {
+                let mut done = false;
+                for _ in 0..max_newton {
+                    let (lm1, l) = legendre_pair(n, x);
+                    let step = (x * l - lm1) / ((nf + 1.0) * l);
+                    x -= step;
+                    if libm::fabs(step) <= 4.0 * f64::EPSILON {
+                        done = true;
+                        break;
+                    }
+                }
+                converged &= done;
+            } else if h == 0 {
+                x = -1.0;
+            } else {
+                x = 1.0;
+            }
+            if let Some(slot) = self.tau.get_mut(h) {
+                *slot = x;
+            }
+        }
+        // Symmetrise: tau_{N-h} = -tau_h exactly (the middle node of even N is exactly 0).
+        for h in 0..=n / 2 {
+            let mirror = n.saturating_sub(h);
+            let (a, b) = (self.at(h), self.at(mirror));
+            let symmetric = 0.5 * (a - b);
+            if let Some(slot) = self.tau.get_mut(h) {
+                *slot = symmetric;
+            }
+            if let Some(slot) = self.tau.get_mut(mirror) {
+                *slot = -symmetric;
+            }
+        }
+        if n % 2 == 0 {
+            if let Some(slot) = self.tau.get_mut(n / 2) {
+                *slot = 0.0;
+            }
+        }
+        let scale = 2.0 / (nf * (nf + 1.0));
+        for h in 0..=n {
+            let (_, l) = legendre_pair(n, self.at(h));
+            if let Some(slot) = self.legendre_at_node.get_mut(h) {
+                *slot = l;
+            }
+            if let Some(slot) = self.weight.get_mut(h) {
+                *slot = scale / (l * l);
+            }
+        }
+        for h in 0..=n {
+            for k in 0..=n {
+                let value = if h == k {
+                    if h == 0 {
+                        -nf * (nf + 1.0) / 4.0
+                    } else if h == n {
+                        nf * (nf + 1.0) / 4.0
+                    } else {
+                        0.0
+                    }
+                } else {
+                    let lh = self.legendre_at_node.get(h).copied().unwrap_or(1.0);
+                    let lk = self.legendre_at_node.get(k).copied().unwrap_or(1.0);
+                    lh / (lk * (self.at(h) - self.at(k)))
+                };
+                if let Some(slot) = self.diff.get_mut(h).and_then(|row| row.get_mut(k)) {
+                    *slot = value;
+                }
+            }
+        }
+        let mut largest = 0.0f64;
+        for k in 0..=n {
+            let mut product = 1.0;
+            for j in 0..=n {
+                if j != k {
+                    product *= self.at(k) - self.at(j);
+                }
+            }
+            let value = 1.0 / product;
+            largest = largest.max(libm::fabs(value));
+            if let Some(slot) = self.bary.get_mut(k) {
+                *slot = value;
+            }
+        }
+        if largest > 0.0 {
+            for k in 0..=n {
+                if let Some(slot) = self.bary.get_mut(k) {
+                    *slot /= largest;
+                }
+            }
+        }
+        converged
+    }
+
+    /// Node `h` (0 outside the grid).
+    pub fn at(&self, h: usize) -> f64 {
+        self.tau.get(h).copied().unwrap_or(0.0)
+    }
+
+    /// Lagrange basis values `l_k(tau)` for k = 0..=N, by the barycentric formula.
+    /// Exact (a unit vector) when `tau` coincides with a node.
+    pub fn lagrange_row(&self, tau: f64, out: &mut [f64; MAX_NODES]) {
+        *out = [0.0; MAX_NODES];
+        let n = self.degree;
+        for k in 0..=n {
+            if tau - self.at(k) == 0.0 {
+                if let Some(slot) = out.get_mut(k) {
+                    *slot = 1.0;
+                }
+                return;
+            }
+        }
+        let mut denominator = 0.0;
+        for k in 0..=n {
+            let term = self.bary.get(k).copied().unwrap_or(0.0) / (tau - self.at(k));
+            if let Some(slot) = out.get_mut(k) {
+                *slot = term;
+            }
+            denominator += term;
+        }
+        for k in 0..=n {
+            if let Some(slot) = out.get_mut(k) {
+                *slot /= denominator;
+            }
+        }
+    }
+
+    /// Interpolate nodal values at `tau`.
+    pub fn interpolate(&self, values: &[f64; MAX_NODES], tau: f64) -> f64 {
+        let mut row = [0.0; MAX_NODES];
+        self.lagrange_row(tau, &mut row);
+        dot(&row, values, self.nodes())
+    }
+
+    /// Nodal values of the derivative (in tau) of the interpolant of `values`: `D values`.
+    pub fn differentiate(&self, values: &[f64; MAX_NODES], out: &mut [f64; MAX_NODES]) {
+        *out = [0.0; MAX_NODES];
+        let count = self.nodes();
+        for (h, slot) in out.iter_mut().enumerate().take(count) {
+            if let Some(row) = self.diff.get(h) {
+                *slot = dot(row, values, count);
+            }
+        }
+    }
+}
+
+/// Dot product of the first `count` entries.
+pub(crate) fn dot(a: &[f64], b: &[f64], count: usize) -> f64 {
+    let mut sum = 0.0;
+    for (x, y) in a.iter().zip(b.iter()).take(count) {
+        sum += x * y;
+    }
+    sum
+}
+
+#[cfg(test)]
+#[allow(
+    clippy::indexing_slicing,
+    clippy::unwrap_used,
+    clippy::float_cmp,
+    clippy::needless_range_loop
+)]
+mod tests {
+    use super::*;
+
+    fn grid(n: usize) -> LglGrid {
+        let mut g = LglGrid::new();
+        assert!(g.build(n, 60));
+        g
+    }
+
+    #[test]
+    fn known_nodes_and_weights_n4() {
+        // N = 4: nodes 0, +-sqrt(3/7), +-1; weights 32/45, 49/90, 1/10.
+        let g = grid(4);
+        let s = libm::sqrt(3.0 / 7.0);
+        let expected = [-1.0, -s, 0.0, s, 1.0];
+        for h in 0..5 {
+            assert!((g.tau[h] - expected[h]).abs() < 1e-15, "node {h}");
+        }
+        assert!((g.weight[2] - 32.0 / 45.0).abs() < 1e-14);
+        assert!((g.weight[1] - 49.0 / 90.0).abs() < 1e-14);
+        assert!((g.weight[0] - 0.1).abs() < 1e-14);
+    }
+
+    #[test]
+    fn quadrature_exact_to_degree_2n_minus_1() {
+        for n in [4usize, 9, 10, 16, 24] {
+            let g = grid(n);
+            for p in 0..(2 * n) {
+                let q: f64 = (0..=n).map(|h| g.weight[h] * g.tau[h].powi(p as i32)).sum();
+                let exact = if p % 2 == 1 {
+                    0.0
+                } else {
+                    2.0 / (p as f64 + 1.0)
+                };
+                assert!((q - exact).abs() < 1e-13, "n={n} p={p}: {q} vs {exact}");
+            }
+        }
+    }
+
+    #[test]
+    fn differentiation_exact_for_degree_n() {
+        for n in [4usize, 10, 24] {
+            let g = grid(n);
+            let mut v = [0.0; MAX_NODES];
+            for h in 0..=n {
+                v[h] = g.tau[h].powi(n as i32) - 2.0 * g.tau[h];
+            }
+            let mut d = [0.0; MAX_NODES];
+            g.differentiate(&v, &mut d);
+            for h in 0..=n {
+                let exact = n as f64 * g.tau[h].powi(n as i32 - 1) - 2.0;
+                assert!((d[h] - exact).abs() < 1e-10 * (n * n) as f64, "n={n} h={h}");
+            }
+        }
+    }
+
+    #[test]
+    fn barycentric_interpolation_exact_for_polynomials() {
+        let g = grid(12);
+        let mut v = [0.0; MAX_NODES];
+        let f = |x: f64| 3.0 * x.powi(12) - x.powi(5) + 0.5;
+        for h in 0..=12 {
+            v[h] = f(g.tau[h]);
+        }
+        for x in [-0.99, -0.3, 0.0, 0.123, 0.77, 1.0] {
+            assert!((g.interpolate(&v, x) - f(x)).abs() < 1e-13, "x={x}");
+        }
+    }
+
+    #[test]
+    fn out_of_range_degree_is_refused() {
+        let mut g = LglGrid::new();
+        assert!(!g.build(1, 60));
+        assert!(!g.build(MAX_NODES, 60));
+    }
+}

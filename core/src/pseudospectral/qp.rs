@@ -1,0 +1,341 @@
+//! The convex subproblem: `min 1/2 |y|^2  s.t.  a_k^T y >= b_k`, by the dual active-set method
+//! of Goldfarb and Idnani (1983) specialised to an identity Hessian.
+//!
+//! Why this method: the Hessian is the identity in the cost-orthonormal coefficients, so the
+//! unconstrained optimum is `y = 0` and the method needs only the Cholesky factor of the Gram
+//! matrix of the *active* rows (at most `MAX_ACTIVE` squared numbers), never a matrix in the
+//! number of variables or of candidate constraints. It is exact (no first-order tolerance
+//! games), each step adds the most violated constraint or drops one, the dual objective rises
+//! strictly, and the work per step is bounded by the capacities. Infeasibility is detected
+//! exactly (a violated row dependent on the active rows with no multiplier to release).
+
+use super::linalg::{cholesky_in_place, set, solve_lower, solve_lower_transposed};
+use super::transcription::{
+    block_dot, row_axpy, row_dot, rows_dot, Coefficients, RowId, Transcription, MAX_BLOCKS,
+};
+use crate::capacity::{MAX_ACTIVE, MAX_CHECKS_PER_PAIR, MAX_FREE_PER_AXIS, MAX_NODES, MAX_PAIRS};
+
+/// How a QP ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum QpOutcome {
+    Optimal,
+    Infeasible,
+    IterationLimit,
+    ActiveSetFull,
+    FactorFailure,
+}
+
+/// The active set and its factorisation.
+#[derive(Clone, Debug)]
+pub(crate) struct QpState {
+    pub active: [RowId; MAX_ACTIVE],
+    pub count: usize,
+    pub multiplier: [f64; MAX_ACTIVE],
+    chol: [[f64; MAX_ACTIVE]; MAX_ACTIVE],
+    direction: Coefficients,
+    control_active: [[u8; MAX_NODES]; MAX_BLOCKS],
+    keep_out_active: [[bool; MAX_CHECKS_PER_PAIR]; MAX_PAIRS],
+}
+
+const NO_ROW: RowId = RowId::Control {
+    block: 0,
+    node: 0,
+    upper: true,
+};
+
+impl QpState {
+    pub const fn new() -> Self {
+        Self {
+            active: [NO_ROW; MAX_ACTIVE],
+            count: 0,
+            multiplier: [0.0; MAX_ACTIVE],
+            chol: [[0.0; MAX_ACTIVE]; MAX_ACTIVE],
+            direction: [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS],
+            control_active: [[0; MAX_NODES]; MAX_BLOCKS],
+            keep_out_active: [[false; MAX_CHECKS_PER_PAIR]; MAX_PAIRS],
+        }
+    }
+
+    fn reset(&mut self) {
+        self.count = 0;
+        self.control_active = [[0; MAX_NODES]; MAX_BLOCKS];
+        self.keep_out_active = [[false; MAX_CHECKS_PER_PAIR]; MAX_PAIRS];
+    }
+
+    fn mark(&mut self, id: RowId, on: bool) {
+        match id {
+            RowId::Control { block, node, upper } => {
+                let bit = if upper { 1u8 } else { 2u8 };
+                if let Some(slot) = self
+                    .control_active
+                    .get_mut(usize::from(block))
+                    .and_then(|row| row.get_mut(usize::from(node)))
+                {
+                    *slot = if on { *slot | bit } else { *slot & !bit };
+                }
+            }
+            RowId::KeepOut { pair, check } => {
+                if let Some(slot) = self
+                    .keep_out_active
+                    .get_mut(usize::from(pair))
+                    .and_then(|row| row.get_mut(usize::from(check)))
+                {
+                    *slot = on;
+                }
+            }
+        }
+    }
+
+    /// Refactor the Gram matrix of the active rows. Returns false on a non-positive pivot.
+    fn refactor(&mut self, tr: &Transcription) -> bool {
+        let free = tr.basis.free;
+        for a in 0..self.count {
+            let va = tr.view(self.active.get(a).copied().unwrap_or(NO_ROW));
+            for b in 0..=a {
+                let vb = tr.view(self.active.get(b).copied().unwrap_or(NO_ROW));
+                set(&mut self.chol, a, b, rows_dot(&va, &vb, free));
+            }
+        }
+        cholesky_in_place(&mut self.chol, self.count).is_none()
+    }
+
+    /// Remove active row `index`, keeping the others' order and multipliers.
+    fn drop_row(&mut self, tr: &Transcription, index: usize) -> bool {
+        if index >= self.count {
+            return true;
+        }
+        let id = self.active.get(index).copied().unwrap_or(NO_ROW);
+        self.mark(id, false);
+        for k in index..self.count.saturating_sub(1) {
+            let next = k.saturating_add(1);
+            if let (Some(&row), Some(&mult)) = (self.active.get(next), self.multiplier.get(next)) {
+                if let Some(slot) = self.active.get_mut(k) {
+                    *slot = row;
+                }
+                if let Some(slot) = self.multiplier.get_mut(k) {
+                    *slot = mult;
+                }
+            }
+        }
+        self.count = self.count.saturating_sub(1);
+        self.refactor(tr)
+    }
+}
+
+/// The most violated inactive constraint at `y`, as (row, slack / |row|).
+fn most_violated(tr: &Transcription, state: &QpState, y: &Coefficients) -> Option<(RowId, f64)> {
+    let free = tr.basis.free;
+    let mut best: Option<(RowId, f64)> = None;
+    let mut consider = |id: RowId, value: f64| match best {
+        Some((_, v)) if v <= value => {}
+        _ => best = Some((id, value)),
+    };
+    for block in 0..tr.blocks() {
+        let flags = state
+            .control_active
+            .get(block)
+            .copied()
+            .unwrap_or([0; MAX_NODES]);
+        for node in 0..tr.grid.nodes() {
+            let norm = tr.basis.accel_norm.get(node).copied().unwrap_or(0.0);
+            if norm <= 0.0 {
+                continue;
+            }
+            let Some(row) = tr.basis.accel.get(node) else {
+                continue;
+            };
+            let control = super::transcription::node_value(&tr.base_control, block, node)
+                + block_dot(row, y, block, free);
+            let flag = flags.get(node).copied().unwrap_or(0);
+            let (b, h) = (block as u8, node as u8);
+            if flag & 1 == 0 {
+                let slack = (tr.max_control_fu - control) / norm;
+                consider(
+                    RowId::Control {
+                        block: b,
+                        node: h,
+                        upper: true,
+                    },
+                    slack,
+                );
+            }
+            if flag & 2 == 0 {
+                let slack = (control + tr.max_control_fu) / norm;
+                consider(
+                    RowId::Control {
+                        block: b,
+                        node: h,
+                        upper: false,
+                    },
+                    slack,
+                );
+            }
+        }
+    }
+    for pair in 0..tr.pair_count {
+        let count = tr.check_count.get(pair).copied().unwrap_or(0);
+        let (i, j) = tr.pairs.get(pair).copied().unwrap_or((0, 0));
+        let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
+        let mass_factor = libm::sqrt(1.0 / (mi * mi) + 1.0 / (mj * mj));
+        for c in 0..count {
+            let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)) else {
+                continue;
+            };
+            let active = state
+                .keep_out_active
+                .get(pair)
+                .and_then(|row| row.get(c))
+                .copied()
+                .unwrap_or(true);
+            if check.pruned || active {
+                continue;
+            }
+            let (_, row_norm) = tr.check_row(check.source);
+            let norm = row_norm * mass_factor;
+            if norm <= 0.0 {
+                continue;
+            }
+            let relative = tr.relative(pair, check.source, y);
+            let mut along = 0.0;
+            for (n, r) in check.normal.iter().zip(relative.iter()) {
+                along += n * r;
+            }
+            let slack = (along - tr.keep_out_for(pair)) / norm;
+            consider(
+                RowId::KeepOut {
+                    pair: pair as u8,
+                    check: c as u8,
+                },
+                slack,
+            );
+        }
+    }
+    best
+}
+
+fn dense_norm2(v: &Coefficients, blocks: usize, free: usize) -> f64 {
+    let mut sum = 0.0;
+    for block in v.iter().take(blocks) {
+        for x in block.iter().take(free) {
+            sum += x * x;
+        }
+    }
+    sum
+}
+
+/// Solve the QP from `y = 0`. `y` holds the optimum (or the last iterate) on return;
+/// `iterations` counts active-set changes.
+pub(crate) fn solve(
+    tr: &Transcription,
+    state: &mut QpState,
+    y: &mut Coefficients,
+    max_iter: u16,
+    tol: f64,
+    iterations: &mut u32,
+) -> QpOutcome {
+    let free = tr.basis.free;
+    let blocks = tr.blocks();
+    *y = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
+    state.reset();
+    let mut steps: u16 = 0;
+    let mut g = [0.0; MAX_ACTIVE];
+    let mut r = [0.0; MAX_ACTIVE];
+    loop {
+        let Some((p, violation)) = most_violated(tr, state, y) else {
+            return QpOutcome::Optimal;
+        };
+        if violation >= -tol {
+            return QpOutcome::Optimal;
+        }
+        let vp = tr.view(p);
+        let norm2_p = vp.norm * vp.norm;
+        let mut multiplier_p = 0.0;
+        loop {
+            if steps >= max_iter {
+                return QpOutcome::IterationLimit;
+            }
+            steps = steps.saturating_add(1);
+            *iterations = iterations.saturating_add(1);
+            let k = state.count;
+            for (j, slot) in g.iter_mut().enumerate().take(k) {
+                let vj = tr.view(state.active.get(j).copied().unwrap_or(NO_ROW));
+                *slot = rows_dot(&vj, &vp, free);
+            }
+            // r = G^{-1} g; keep l = L^{-1} g for appending p to the factor.
+            let mut l = g;
+            solve_lower(&state.chol, k, &mut l);
+            r.copy_from_slice(&l);
+            solve_lower_transposed(&state.chol, k, &mut r);
+            // Primal direction z = a_p - A^T r: the part of a_p orthogonal to the active rows.
+            state.direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
+            row_axpy(&vp, 1.0, &mut state.direction, free);
+            for (j, rj) in r.iter().enumerate().take(k) {
+                let vj = tr.view(state.active.get(j).copied().unwrap_or(NO_ROW));
+                row_axpy(&vj, -rj, &mut state.direction, free);
+            }
+            let z2 = dense_norm2(&state.direction, blocks, free);
+            let slack = row_dot(&vp, y, free) - vp.rhs;
+            // A row whose part orthogonal to the active rows is below 1e-7 of its norm counts as
+            // dependent: adding it would make the Gram factor ill-conditioned.
+            let full_step = if z2 > 1e-14 * norm2_p {
+                Some(-slack / z2)
+            } else {
+                None
+            };
+            let mut partial: Option<(usize, f64)> = None;
+            for j in 0..k {
+                let rj = r.get(j).copied().unwrap_or(0.0);
+                if rj > 0.0 {
+                    let ratio = state.multiplier.get(j).copied().unwrap_or(0.0) / rj;
+                    if partial.is_none_or(|(_, best)| ratio < best) {
+                        partial = Some((j, ratio));
+                    }
+                }
+            }
+            let step = match (full_step, partial) {
+                (None, None) => return QpOutcome::Infeasible,
+                (Some(f), None) => f,
+                (None, Some((_, t))) => t,
+                (Some(f), Some((_, t))) => f.min(t),
+            };
+            if full_step.is_some() {
+                for (b, values) in y.iter_mut().enumerate().take(blocks) {
+                    if let Some(dir) = state.direction.get(b) {
+                        for (slot, d) in values.iter_mut().zip(dir.iter()).take(free) {
+                            *slot += step * d;
+                        }
+                    }
+                }
+            }
+            for (j, m) in state.multiplier.iter_mut().enumerate().take(k) {
+                *m -= step * r.get(j).copied().unwrap_or(0.0);
+            }
+            multiplier_p += step;
+            let full = matches!(full_step, Some(f) if f <= step);
+            if full {
+                if k >= MAX_ACTIVE {
+                    return QpOutcome::ActiveSetFull;
+                }
+                for (c, value) in l.iter().enumerate().take(k) {
+                    set(&mut state.chol, k, c, *value);
+                }
+                set(&mut state.chol, k, k, libm::sqrt(z2));
+                if let Some(slot) = state.active.get_mut(k) {
+                    *slot = p;
+                }
+                if let Some(slot) = state.multiplier.get_mut(k) {
+                    *slot = multiplier_p;
+                }
+                state.count = k.saturating_add(1);
+                state.mark(p, true);
+                break;
+            }
+            let Some((drop, _)) = partial else {
+                return QpOutcome::Infeasible;
+            };
+            if !state.drop_row(tr, drop) {
+                return QpOutcome::FactorFailure;
+            }
+        }
+    }
+}

@@ -1,0 +1,291 @@
+//! Continuous verification of the keep-out, and the dynamics check of eq. 29.
+//!
+//! Each axis of `r_i - r_j` is a polynomial of degree N, so the squared separation is a
+//! polynomial of degree 2N. In the Bernstein basis on an interval, a polynomial lies between
+//! the least and the greatest of its coefficients, and subdividing (de Casteljau) tightens those
+//! bounds quadratically. A branch-and-bound over subintervals therefore finds the *global*
+//! minimum of the separation over the whole horizon to a stated tolerance, with no sample grid
+//! that a fast crossing could slip through.
+
+use super::lgl::LglGrid;
+use super::linalg::{get, set};
+use crate::capacity::{MAX_DEGREE, MAX_NODES};
+
+/// Coefficients of a degree-2N polynomial.
+pub(crate) const MAX_PRODUCT: usize = 2 * MAX_DEGREE + 1;
+/// Depth of the branch-and-bound stack.
+const STACK: usize = 56;
+
+/// Converts nodal values to Bernstein coefficients on s = (tau + 1) / 2 in [0, 1].
+#[derive(Clone, Debug)]
+pub(crate) struct Bernstein {
+    degree: usize,
+    to_bernstein: [[f64; MAX_NODES]; MAX_NODES],
+    /// `C(N, i) C(N, j) / C(2N, i + j)` factors via binomials.
+    binomial_n: [f64; MAX_NODES],
+    binomial_2n: [f64; MAX_PRODUCT],
+    stack: [(f64, f64, [f64; MAX_PRODUCT]); STACK],
+}
+
+fn binomials<const C: usize>(n: usize, out: &mut [f64; C]) {
+    *out = [0.0; C];
+    let mut value = 1.0;
+    for k in 0..=n {
+        if let Some(slot) = out.get_mut(k) {
+            *slot = value;
+        }
+        value = value * ((n as f64) - (k as f64)) / ((k as f64) + 1.0);
+    }
+}
+
+/// The global minimum of a separation polynomial.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Minimum {
+    /// Least squared separation found (an upper bound within tolerance of the true minimum).
+    pub value_squared: f64,
+    /// Where, in s in [0, 1].
+    pub at_s: f64,
+    /// The search finished (tolerance met everywhere) within its budget.
+    pub certified: bool,
+}
+
+impl Bernstein {
+    pub const fn new() -> Self {
+        Self {
+            degree: 0,
+            to_bernstein: [[0.0; MAX_NODES]; MAX_NODES],
+            binomial_n: [0.0; MAX_NODES],
+            binomial_2n: [0.0; MAX_PRODUCT],
+            stack: [(0.0, 0.0, [0.0; MAX_PRODUCT]); STACK],
+        }
+    }
+
+    /// Build the nodal-to-Bernstein matrix for the grid (Gauss–Jordan with partial pivoting on
+    /// the Bernstein collocation matrix). Returns false if it is singular.
+    pub fn build(&mut self, grid: &LglGrid) -> bool {
+        let n = grid.degree;
+        let size = grid.nodes();
+        self.degree = n;
+        binomials(n, &mut self.binomial_n);
+        binomials(n.saturating_mul(2), &mut self.binomial_2n);
+        let mut a = [[0.0; MAX_NODES]; MAX_NODES];
+        let mut inv = [[0.0; MAX_NODES]; MAX_NODES];
+        for h in 0..size {
+            let s = 0.5 * (grid.at(h) + 1.0);
+            for k in 0..size {
+                let c = self.binomial_n.get(k).copied().unwrap_or(0.0);
+                let value =
+                    c * libm::pow(s, k as f64) * libm::pow(1.0 - s, n.saturating_sub(k) as f64);
+                set(&mut a, h, k, value);
+            }
+            set(&mut inv, h, h, 1.0);
+        }
+        for col in 0..size {
+            let mut pivot = col;
+            for row in col..size {
+                if libm::fabs(get(&a, row, col)) > libm::fabs(get(&a, pivot, col)) {
+                    pivot = row;
+                }
+            }
+            let p = get(&a, pivot, col);
+            if libm::fabs(p) < 1e-300 {
+                return false;
+            }
+            a.swap(col, pivot.min(MAX_NODES.saturating_sub(1)));
+            inv.swap(col, pivot.min(MAX_NODES.saturating_sub(1)));
+            for k in 0..size {
+                let (va, vi) = (get(&a, col, k) / p, get(&inv, col, k) / p);
+                set(&mut a, col, k, va);
+                set(&mut inv, col, k, vi);
+            }
+            for row in 0..size {
+                if row != col {
+                    let factor = get(&a, row, col);
+                    if factor != 0.0 {
+                        for k in 0..size {
+                            let va = get(&a, row, k) - factor * get(&a, col, k);
+                            let vi = get(&inv, row, k) - factor * get(&inv, col, k);
+                            set(&mut a, row, k, va);
+                            set(&mut inv, row, k, vi);
+                        }
+                    }
+                }
+            }
+        }
+        // a * coeffs = nodal  =>  coeffs = inv * nodal.
+        self.to_bernstein = inv;
+        true
+    }
+
+    /// Bernstein coefficients of the interpolant of `nodal`.
+    pub fn coefficients(&self, nodal: &[f64; MAX_NODES], out: &mut [f64; MAX_NODES]) {
+        let size = self.degree.saturating_add(1);
+        *out = [0.0; MAX_NODES];
+        for (k, slot) in out.iter_mut().enumerate().take(size) {
+            let mut sum = 0.0;
+            for (h, value) in nodal.iter().enumerate().take(size) {
+                sum += get(&self.to_bernstein, k, h) * value;
+            }
+            *slot = sum;
+        }
+    }
+
+    /// Bernstein coefficients (degree 2N) of `sum_axis p_axis^2` from the three axes'
+    /// degree-N coefficients.
+    pub fn squared_norm(&self, axes: &[[f64; MAX_NODES]; 3], out: &mut [f64; MAX_PRODUCT]) {
+        let n = self.degree;
+        *out = [0.0; MAX_PRODUCT];
+        for i in 0..=n {
+            let ci = self.binomial_n.get(i).copied().unwrap_or(0.0);
+            for j in 0..=n {
+                let cj = self.binomial_n.get(j).copied().unwrap_or(0.0);
+                let k = i.saturating_add(j);
+                let c2 = self.binomial_2n.get(k).copied().unwrap_or(1.0);
+                let mut product = 0.0;
+                for axis in axes {
+                    product +=
+                        axis.get(i).copied().unwrap_or(0.0) * axis.get(j).copied().unwrap_or(0.0);
+                }
+                if let Some(slot) = out.get_mut(k) {
+                    *slot += ci * cj / c2 * product;
+                }
+            }
+        }
+    }
+
+    /// Global minimum over s in [0, 1] of the degree-2N polynomial with Bernstein coefficients
+    /// `coeffs`, to absolute tolerance `tol`, with at most `budget` subdivisions.
+    pub fn minimum(&mut self, coeffs: &[f64; MAX_PRODUCT], tol: f64, budget: u32) -> Minimum {
+        let degree = self.degree.saturating_mul(2);
+        let first = coeffs.first().copied().unwrap_or(0.0);
+        let last = coeffs.get(degree).copied().unwrap_or(0.0);
+        let mut best = if first <= last {
+            Minimum {
+                value_squared: first,
+                at_s: 0.0,
+                certified: true,
+            }
+        } else {
+            Minimum {
+                value_squared: last,
+                at_s: 1.0,
+                certified: true,
+            }
+        };
+        let mut top = 0usize;
+        if let Some(slot) = self.stack.get_mut(0) {
+            *slot = (0.0, 1.0, *coeffs);
+            top = 1;
+        }
+        let mut spent = 0u32;
+        while top > 0 {
+            top = top.saturating_sub(1);
+            let Some(&(lo, hi, c)) = self.stack.get(top) else {
+                break;
+            };
+            let mut lower = f64::INFINITY;
+            for v in c.iter().take(degree.saturating_add(1)) {
+                lower = lower.min(*v);
+            }
+            if lower >= best.value_squared - tol {
+                continue;
+            }
+            if spent >= budget || top.saturating_add(2) > STACK || hi - lo < 1e-12 {
+                best.certified = false;
+                continue;
+            }
+            spent = spent.saturating_add(1);
+            // de Casteljau at the midpoint.
+            let mut work = c;
+            let mut left = [0.0; MAX_PRODUCT];
+            let mut right = [0.0; MAX_PRODUCT];
+            for r in 0..=degree {
+                if let Some(slot) = left.get_mut(r) {
+                    *slot = work.first().copied().unwrap_or(0.0);
+                }
+                if let Some(slot) = right.get_mut(degree.saturating_sub(r)) {
+                    *slot = work.get(degree.saturating_sub(r)).copied().unwrap_or(0.0);
+                }
+                for k in 0..degree.saturating_sub(r) {
+                    let a = work.get(k).copied().unwrap_or(0.0);
+                    let b = work.get(k.saturating_add(1)).copied().unwrap_or(0.0);
+                    if let Some(slot) = work.get_mut(k) {
+                        *slot = 0.5 * (a + b);
+                    }
+                }
+            }
+            let mid = 0.5 * (lo + hi);
+            let value_mid = right.first().copied().unwrap_or(f64::INFINITY);
+            if value_mid < best.value_squared {
+                best.value_squared = value_mid;
+                best.at_s = mid;
+            }
+            // Depth first, left half on top.
+            if let Some(slot) = self.stack.get_mut(top) {
+                *slot = (mid, hi, right);
+            }
+            if let Some(slot) = self.stack.get_mut(top.saturating_add(1)) {
+                *slot = (lo, mid, left);
+            }
+            top = top.saturating_add(2);
+        }
+        best
+    }
+}
+
+#[cfg(test)]
+#[allow(
+    clippy::indexing_slicing,
+    clippy::unwrap_used,
+    clippy::needless_range_loop
+)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finds_a_narrow_dip_between_nodes() {
+        let n = 10;
+        let mut g = LglGrid::new();
+        assert!(g.build(n, 60));
+        let mut b = Bernstein::new();
+        assert!(b.build(&g));
+        // x(tau) = tau - 0.033 (a fast crossing), y = 0.001, z = 0: minimum 0.001 at tau = 0.033.
+        let mut axes = [[0.0; MAX_NODES]; 3];
+        let mut nodal = [[0.0; MAX_NODES]; 3];
+        for h in 0..=n {
+            nodal[0][h] = 5.0 * (g.tau[h] - 0.033);
+            nodal[1][h] = 0.001;
+        }
+        for a in 0..3 {
+            b.coefficients(&nodal[a], &mut axes[a]);
+        }
+        let mut f = [0.0; MAX_PRODUCT];
+        b.squared_norm(&axes, &mut f);
+        let m = b.minimum(&f, 1e-16, 10_000);
+        assert!(m.certified);
+        assert!(
+            (m.value_squared.sqrt() - 0.001).abs() < 1e-7,
+            "{}",
+            m.value_squared.sqrt()
+        );
+        assert!((m.at_s - (1.033 / 2.0)).abs() < 1e-4, "{}", m.at_s);
+    }
+
+    #[test]
+    fn coefficients_reproduce_the_polynomial_at_degree_24() {
+        let n = 24;
+        let mut g = LglGrid::new();
+        assert!(g.build(n, 60));
+        let mut b = Bernstein::new();
+        assert!(b.build(&g));
+        let mut nodal = [0.0; MAX_NODES];
+        let f = |t: f64| t.powi(24) - 3.0 * t.powi(7) + 0.25;
+        for h in 0..=n {
+            nodal[h] = f(g.tau[h]);
+        }
+        let mut c = [0.0; MAX_NODES];
+        b.coefficients(&nodal, &mut c);
+        // Endpoint coefficients are the endpoint values.
+        assert!((c[0] - f(-1.0)).abs() < 1e-9 && (c[n] - f(1.0)).abs() < 1e-9);
+    }
+}
