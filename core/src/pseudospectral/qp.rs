@@ -30,6 +30,8 @@ pub(crate) enum QpOutcome {
 pub(crate) struct QpState {
     pub active: [RowId; MAX_ACTIVE],
     pub count: usize,
+    /// Largest `count` reached during the last solve.
+    pub peak: usize,
     pub multiplier: [f64; MAX_ACTIVE],
     chol: [[f64; MAX_ACTIVE]; MAX_ACTIVE],
     direction: Coefficients,
@@ -48,6 +50,7 @@ impl QpState {
         Self {
             active: [NO_ROW; MAX_ACTIVE],
             count: 0,
+            peak: 0,
             multiplier: [0.0; MAX_ACTIVE],
             chol: [[0.0; MAX_ACTIVE]; MAX_ACTIVE],
             direction: [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS],
@@ -58,6 +61,7 @@ impl QpState {
 
     fn reset(&mut self) {
         self.count = 0;
+        self.peak = 0;
         self.control_active = [[0; MAX_NODES]; MAX_BLOCKS];
         self.keep_out_active = [[false; MAX_CHECKS_PER_PAIR]; MAX_PAIRS];
     }
@@ -327,6 +331,7 @@ pub(crate) fn solve(
                     *slot = multiplier_p;
                 }
                 state.count = k.saturating_add(1);
+                state.peak = state.peak.max(state.count);
                 state.mark(p, true);
                 break;
             }

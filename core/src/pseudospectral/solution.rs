@@ -63,6 +63,7 @@ impl Solution {
                 verify_rounds: 0,
                 verify_points_added: 0,
                 keep_out_checks: 0,
+                max_active: 0,
                 warm_start_used: false,
                 max_violation: 0.0,
             },

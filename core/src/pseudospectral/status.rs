@@ -59,6 +59,8 @@ pub struct SolveInfo {
     pub verify_points_added: u16,
     /// Keep-out constraints (node, test and verification points) checked in the last QP.
     pub keep_out_checks: u16,
+    /// Largest active set any QP held (capacity `MAX_ACTIVE`).
+    pub max_active: u16,
     /// The warm start was supplied and accepted as the first linearisation point.
     pub warm_start_used: bool,
     /// Largest violation of a checked constraint at the returned iterate.

@@ -61,6 +61,7 @@ pub fn to_json(name: &str, timed: &Timed) -> serde_json::Value {
         "verify_rounds": s.info.verify_rounds,
         "verify_points_added": s.info.verify_points_added,
         "keep_out_checks": s.info.keep_out_checks,
+        "max_active": s.info.max_active,
         "warm_start_used": s.info.warm_start_used,
         "max_violation": s.info.max_violation,
         "max_dynamics_error": s.max_dynamics_error,

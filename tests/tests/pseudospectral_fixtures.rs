@@ -1,0 +1,114 @@
+//! Planner A over the published cases: cost against an independent oracle, continuous
+//! separation, dynamics error, the paper's failure without test points, determinism.
+
+use reconfig_core::pseudospectral::{Settings, SolveStatus};
+use reconfig_tests::{golden, pseudospectral_fixture, solve_pseudospectral};
+
+fn check_published(stem: &str) {
+    let problem = pseudospectral_fixture(stem);
+    let s = solve_pseudospectral(&problem, &Settings::default()).expect("accepted");
+    let oracle = golden("pseudospectral.toml", stem, "ipopt_cost");
+    assert_eq!(s.info.status, SolveStatus::Solved, "{stem}");
+    // The bar is 0.05 %; we hold 2e-5 relative: a wrong transcription, a wrong cost
+    // scaling or a different local optimum all miss it.
+    let relative = (s.cost - oracle).abs() / oracle;
+    assert!(
+        relative < 2e-5,
+        "{stem}: J = {} vs oracle {oracle} ({relative:e})",
+        s.cost
+    );
+    // Separation verified on the continuous trajectory, not only at check points.
+    assert!(
+        s.min_separation_lu >= 2.0 - 1e-6,
+        "{stem}: {}",
+        s.min_separation_lu
+    );
+    // Eq. 29: the paper reports up to 3.1e-4; the polynomial transcription is exact.
+    assert!(
+        s.max_dynamics_error <= 1e-9,
+        "{stem}: {}",
+        s.max_dynamics_error
+    );
+    // Boundary conditions hold exactly at the ends.
+    for (i, craft) in problem.spacecraft.iter().enumerate() {
+        let n = usize::from(problem.degree);
+        for k in 0..6 {
+            assert!((s.states[i][0][k] - craft.initial_state[k]).abs() < 1e-9);
+            assert!((s.states[i][n][k] - craft.final_state[k]).abs() < 1e-9);
+        }
+    }
+    // Control bounds at every node.
+    for sc in s.controls_fu.iter().take(problem.spacecraft.len()) {
+        for u in sc.iter().take(usize::from(problem.degree) + 1) {
+            assert!(u.iter().all(|c| c.abs() <= 1.0 + 1e-9));
+        }
+    }
+}
+
+#[test]
+fn paper_case_n10_matches_the_independent_optimum() {
+    check_published("huang2012-three-sats-n10");
+}
+
+#[test]
+fn paper_case_n9_matches_the_independent_optimum() {
+    check_published("huang2012-three-sats-n9");
+}
+
+#[test]
+fn paper_case_n20_matches_the_independent_optimum() {
+    check_published("huang2012-three-sats-n20");
+}
+
+#[test]
+fn without_test_points_or_verification_the_spacecraft_pass_through_each_other() {
+    // The paper's Fig. 4: keep-out at nodes only; the trajectory passes between nodes.
+    let problem = pseudospectral_fixture("huang2012-three-sats-n10-no-test-points");
+    assert!(!problem.test_points);
+    let nodes_only = Settings {
+        continuous_verification: false,
+        ..Settings::default()
+    };
+    let s = solve_pseudospectral(&problem, &nodes_only).expect("accepted");
+    assert!(
+        s.min_separation_lu < 1.0,
+        "continuous minimum {}",
+        s.min_separation_lu
+    );
+    assert!(
+        s.info.max_violation <= 1e-9,
+        "the nodes themselves are satisfied"
+    );
+    assert_ne!(
+        s.info.status,
+        SolveStatus::Solved,
+        "must not claim a verified separation"
+    );
+    // Test points plus continuous verification cure it.
+    let with = pseudospectral_fixture("huang2012-three-sats-n10");
+    let cured = solve_pseudospectral(&with, &Settings::default()).expect("accepted");
+    assert_eq!(cured.info.status, SolveStatus::Solved);
+    assert!(cured.min_separation_lu >= 2.0 - 1e-6);
+}
+
+#[test]
+fn the_same_input_gives_bit_identical_output() {
+    for stem in ["huang2012-three-sats-n10", "crossing-8-sats-n16"] {
+        let problem = pseudospectral_fixture(stem);
+        let a = solve_pseudospectral(&problem, &Settings::default()).expect("accepted");
+        let b = solve_pseudospectral(&problem, &Settings::default()).expect("accepted");
+        let ea = postcard::to_stdvec(&*a).expect("encode");
+        let eb = postcard::to_stdvec(&*b).expect("encode");
+        assert_eq!(ea, eb, "{stem}");
+    }
+}
+
+#[test]
+fn eight_spacecraft_crossing_is_solved_with_verified_separation() {
+    let problem = pseudospectral_fixture("crossing-8-sats-n16");
+    let s = solve_pseudospectral(&problem, &Settings::default()).expect("accepted");
+    assert_eq!(s.info.status, SolveStatus::Solved);
+    assert!(s.min_separation_lu >= 2.0 - 1e-6);
+    // Above the no-keep-out optimum (8 rest-to-rest cubics of D = 12: 8 * 6 * 144 / 1000).
+    assert!(s.cost > 6.912 && s.cost < 10.0, "{}", s.cost);
+}
