@@ -147,3 +147,5 @@ impl core::fmt::Display for PlanError {
         }
     }
 }
+
+impl core::error::Error for PlanError {}

@@ -674,6 +674,13 @@ fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -> SqpEnd {
             ws.iterate = ws.accepted;
             return SqpEnd::Converged;
         }
+        // Safeguard: an extrapolation that raised the cost restarts the memory, so the next
+        // step is a plain convex-concave step (which never raises the cost from a feasible
+        // point).
+        if have_solution && cost > previous_cost + settings.sqp_tol_cost * (1.0 + cost) {
+            ws.anderson.reset();
+            ws.iterate = ws.accepted;
+        }
         have_solution = true;
         previous_cost = cost;
         let mut next = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];

@@ -1,17 +1,242 @@
 //! `reconfig montecarlo`: Huang 2012 Table 2 with a fixed seed.
+//!
+//! For each N, R random initial guesses: the analytic Pontryagin controls at the nodes plus
+//! Gaussian noise (the guess is projected onto the polynomials that meet the boundary
+//! conditions), passed to the solver as its starting point. Three configurations per guess:
+//! the paper's transcription without test points (keep-out at nodes only), with the Gaussian
+//! test points, and with test points plus our continuous verification.
 
+use crate::fixture::{self, Fixture};
 use anyhow::{bail, Result};
+use indicatif::{ProgressBar, ProgressStyle};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, Normal};
+use reconfig_core::pseudospectral::{self, Problem, Settings, Solution, SolveStatus, Workspace};
+use std::path::PathBuf;
 use std::process::ExitCode;
+use std::time::Instant;
 
 /// Arguments of `reconfig montecarlo`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
+    /// Planner-A fixture whose boundary conditions are used (N is overridden).
+    #[arg(long, default_value = "fixtures/huang2012-three-sats-n10.toml")]
+    pub fixture: PathBuf,
+    /// Polynomial degrees N to run (the paper: 10, 20, 30; capacity is 24).
+    #[arg(long, value_delimiter = ',', default_values_t = [10u16, 20, 24])]
+    pub degrees: Vec<u16>,
+    /// Random initial guesses per N (the paper: 200).
+    #[arg(long, default_value_t = 200)]
+    pub runs: usize,
+    /// Standard deviation of the control noise added to the analytic guess, in units of Umax.
+    #[arg(long, default_value_t = 0.3)]
+    pub sigma: f64,
     /// Random seed.
     #[arg(long, default_value_t = 2012)]
     pub seed: u64,
+    /// Print one JSON object instead of the table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// One configuration's statistics for one N.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Row {
+    /// Polynomial degree.
+    pub degree: u16,
+    /// Configuration name.
+    pub configuration: &'static str,
+    /// Runs.
+    pub runs: usize,
+    /// Mean continuous minimum separation.
+    pub mean_min_separation: f64,
+    /// Least continuous minimum separation.
+    pub min_min_separation: f64,
+    /// Mean cost J over runs.
+    pub mean_cost: f64,
+    /// Mean solve time, seconds.
+    pub mean_time_s: f64,
+    /// Largest solve time, seconds.
+    pub max_time_s: f64,
+    /// Runs whose continuous separation is below d - 1e-6 or whose status is not usable.
+    pub failures: usize,
+}
+
+const CONFIGURATIONS: [(&str, bool, bool); 3] = [
+    ("nodes only (paper, no test points)", false, false),
+    ("test points (paper's method)", true, false),
+    ("test points + continuous verification", true, true),
+];
+
+/// Run the study and return its rows.
+///
+/// # Errors
+/// A bad fixture or a rejected problem.
+pub fn study(args: &Args, progress: bool) -> Result<Vec<Row>> {
+    let Fixture::Pseudospectral(base) = fixture::load(&args.fixture)? else {
+        bail!("{} is not a planner-A fixture", args.fixture.display());
+    };
+    let normal = Normal::new(0.0, args.sigma * base.problem.max_control_fu)?;
+    let total = args.degrees.len() * args.runs * CONFIGURATIONS.len();
+    let bar = if progress {
+        ProgressBar::new(total as u64)
+    } else {
+        ProgressBar::hidden()
+    };
+    bar.set_style(ProgressStyle::with_template(
+        "{bar:40} {pos}/{len} solves {elapsed_precise}",
+    )?);
+    let mut workspace = Box::new(Workspace::new());
+    let mut solution = Box::new(Solution::new());
+    let mut guess = Box::new(Solution::new());
+    let mut rows = Vec::new();
+    for &degree in &args.degrees {
+        let mut rng = ChaCha8Rng::seed_from_u64(args.seed ^ u64::from(degree));
+        let mut problem: Problem = base.problem.clone();
+        problem.degree = degree;
+        let guesses: Vec<Vec<[f64; 3]>> = (0..args.runs)
+            .map(|_| {
+                (0..problem.spacecraft.len() * (usize::from(degree) + 1))
+                    .map(|_| {
+                        [
+                            normal.sample(&mut rng),
+                            normal.sample(&mut rng),
+                            normal.sample(&mut rng),
+                        ]
+                    })
+                    .collect()
+            })
+            .collect();
+        for (name, test_points, verify) in CONFIGURATIONS {
+            problem.test_points = test_points;
+            let settings = Settings {
+                continuous_verification: verify,
+                ..Settings::default()
+            };
+            let mut stats = Row {
+                degree,
+                configuration: name,
+                runs: args.runs,
+                mean_min_separation: 0.0,
+                min_min_separation: f64::INFINITY,
+                mean_cost: 0.0,
+                mean_time_s: 0.0,
+                max_time_s: 0.0,
+                failures: 0,
+            };
+            for noise in &guesses {
+                analytic_guess(&problem, noise, &mut guess);
+                let start = Instant::now();
+                pseudospectral::solve_warm(
+                    &problem,
+                    &settings,
+                    &mut workspace,
+                    &guess,
+                    &mut solution,
+                )?;
+                let elapsed = start.elapsed().as_secs_f64();
+                stats.mean_min_separation += solution.min_separation_lu / args.runs as f64;
+                stats.min_min_separation = stats.min_min_separation.min(solution.min_separation_lu);
+                stats.mean_cost += solution.cost / args.runs as f64;
+                stats.mean_time_s += elapsed / args.runs as f64;
+                stats.max_time_s = stats.max_time_s.max(elapsed);
+                let separated = solution.min_separation_lu >= problem.keep_out_lu - 1e-6;
+                let usable = matches!(solution.info.status, SolveStatus::Solved)
+                    || (!verify && solution.info.status == SolveStatus::SeparationNotVerified);
+                if !separated || !usable {
+                    stats.failures += 1;
+                }
+                bar.inc(1);
+            }
+            rows.push(stats);
+        }
+    }
+    bar.finish_and_clear();
+    Ok(rows)
+}
+
+/// The analytic minimum-energy (cubic) controls at the LGL nodes plus `noise`, as a warm start.
+fn analytic_guess(problem: &Problem, noise: &[[f64; 3]], out: &mut Solution) {
+    let n = usize::from(problem.degree);
+    let t = problem.horizon_tu;
+    *out = Solution::new();
+    out.degree = problem.degree;
+    out.spacecraft_count = problem.spacecraft.len() as u8;
+    out.horizon_tu = t;
+    let nodes = lgl_nodes(n);
+    for (i, craft) in problem.spacecraft.iter().enumerate() {
+        for (h, tau) in nodes.iter().enumerate() {
+            let time = 0.5 * t * (tau + 1.0);
+            for axis in 0..3 {
+                let (p0, v0) = (craft.initial_state[axis], craft.initial_state[axis + 3]);
+                let (p1, v1) = (craft.final_state[axis], craft.final_state[axis + 3]);
+                // u = alpha + beta (2t/T - 1): int u = m dv, int (T - t) u = m dp.
+                let dv = v1 - v0;
+                let dp = p1 - p0 - v0 * t;
+                let alpha = craft.mass_mu * dv / t;
+                let beta = 6.0 * (alpha * t * t / 2.0 - craft.mass_mu * dp) / (t * t);
+                let u = alpha + beta * (2.0 * time / t - 1.0);
+                out.controls_fu[i][h][axis] = u + noise[i * (n + 1) + h][axis];
+            }
+        }
+    }
+}
+
+/// LGL nodes of degree n (Newton on (1 - x^2) L_n'), host-side for the guesses.
+fn lgl_nodes(n: usize) -> Vec<f64> {
+    (0..=n)
+        .map(|h| {
+            let mut x = -(std::f64::consts::PI * h as f64 / n as f64).cos();
+            if h > 0 && h < n {
+                for _ in 0..100 {
+                    let (mut p0, mut p1) = (1.0, x);
+                    for k in 1..n {
+                        let k = k as f64;
+                        let p2 = ((2.0 * k + 1.0) * x * p1 - k * p0) / (k + 1.0);
+                        p0 = p1;
+                        p1 = p2;
+                    }
+                    let step = (x * p1 - p0) / ((n as f64 + 1.0) * p1);
+                    x -= step;
+                    if step.abs() < 1e-16 {
+                        break;
+                    }
+                }
+            }
+            x
+        })
+        .collect()
 }
 
 /// Run `reconfig montecarlo`.
-pub fn run(_args: &Args) -> Result<ExitCode> {
-    bail!("not built yet")
+pub fn run(args: &Args) -> Result<ExitCode> {
+    let rows = study(args, !args.json)?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&rows)?);
+        return Ok(ExitCode::SUCCESS);
+    }
+    println!(
+        "Huang 2012 Table 2 reproduction: {} random initial guesses per N (analytic guess + N(0, ({} Umax)^2) control noise), seed {}",
+        args.runs, args.sigma, args.seed
+    );
+    println!(
+        "{:>3}  {:<40} {:>9} {:>9} {:>9} {:>10} {:>10} {:>8}",
+        "N", "configuration", "mean sep", "min sep", "mean J", "mean ms", "max ms", "failures"
+    );
+    for r in &rows {
+        println!(
+            "{:>3}  {:<40} {:>9.4} {:>9.4} {:>9.5} {:>10.3} {:>10.3} {:>8}",
+            r.degree,
+            r.configuration,
+            r.mean_min_separation,
+            r.min_min_separation,
+            r.mean_cost,
+            r.mean_time_s * 1e3,
+            r.max_time_s * 1e3,
+            r.failures
+        );
+    }
+    println!("(separations are the continuous minimum over the interpolated trajectory; a failure is a run below d - 1e-6 or without a usable status)");
+    Ok(ExitCode::SUCCESS)
 }
