@@ -168,7 +168,8 @@ fn analytic_guess(problem: &Problem, noise: &[[f64; 3]], out: &mut Solution) {
     for (i, craft) in problem.spacecraft.iter().enumerate() {
         for (h, tau) in nodes.iter().enumerate() {
             let time = 0.5 * t * (tau + 1.0);
-            for axis in 0..3 {
+            let noise_at = noise[i * (n + 1) + h];
+            for (axis, noise_axis) in noise_at.iter().enumerate() {
                 let (p0, v0) = (craft.initial_state[axis], craft.initial_state[axis + 3]);
                 let (p1, v1) = (craft.final_state[axis], craft.final_state[axis + 3]);
                 // u = alpha + beta (2t/T - 1): int u = m dv, int (T - t) u = m dp.
@@ -177,7 +178,7 @@ fn analytic_guess(problem: &Problem, noise: &[[f64; 3]], out: &mut Solution) {
                 let alpha = craft.mass_mu * dv / t;
                 let beta = 6.0 * (alpha * t * t / 2.0 - craft.mass_mu * dp) / (t * t);
                 let u = alpha + beta * (2.0 * time / t - 1.0);
-                out.controls_fu[i][h][axis] = u + noise[i * (n + 1) + h][axis];
+                out.controls_fu[i][h][axis] = u + noise_axis;
             }
         }
     }
