@@ -16,6 +16,7 @@
 
 use core::arch::asm;
 use core::fmt::Write as _;
+use core::hint::black_box;
 use core::ptr::addr_of_mut;
 
 use cortex_m_rt::{entry, exception, ExceptionFrame};
@@ -252,6 +253,8 @@ fn main() -> ! {
     let ps_settings = pseudospectral::Settings::default();
     let im_settings = impulsive::Settings::default();
     for (index, fixture) in FIXTURES.iter().enumerate() {
+        // The inputs pass through `black_box` after the start marker and the result before the stop
+        // marker, so that no part of the solve is folded away or moved out of the measured span.
         let marker = u32::try_from(index).unwrap_or(u32::MAX);
         match fixture.planner {
             Planner::Pseudospectral => {
@@ -264,8 +267,13 @@ fn main() -> ! {
                     Err(_) => panic!("fixture {} does not decode", fixture.name),
                 };
                 reconfig_measure_start(marker);
-                let result =
-                    pseudospectral::solve(&problem, &ps_settings, PS_WORKSPACE, PS_SOLUTION);
+                let result = pseudospectral::solve(
+                    black_box(&problem),
+                    black_box(&ps_settings),
+                    black_box(&mut *PS_WORKSPACE),
+                    black_box(&mut *PS_SOLUTION),
+                );
+                black_box(&result);
                 reconfig_measure_stop(marker);
                 let stack_bytes = stack_high_water();
                 let ok = result.is_ok();
@@ -282,7 +290,13 @@ fn main() -> ! {
                     Err(_) => panic!("fixture {} does not decode", fixture.name),
                 };
                 reconfig_measure_start(marker);
-                let result = impulsive::solve(&problem, &im_settings, IM_WORKSPACE, IM_SOLUTION);
+                let result = impulsive::solve(
+                    black_box(&problem),
+                    black_box(&im_settings),
+                    black_box(&mut *IM_WORKSPACE),
+                    black_box(&mut *IM_SOLUTION),
+                );
+                black_box(&result);
                 reconfig_measure_stop(marker);
                 let stack_bytes = stack_high_water();
                 let ok = result.is_ok();
