@@ -5,6 +5,7 @@
 //! ```text
 //! reconfig-firmware version=0.1.0 fixtures=5
 //! binary text_bytes=.. rodata_bytes=.. data_bytes=.. bss_bytes=.. uninit_bytes=.. static_ram_bytes=..
+//! planners pseudospectral_workspace_bytes=.. pseudospectral_solution_bytes=.. impulsive_workspace_bytes=.. impulsive_solution_bytes=..
 //! fixture index=0 name=.. planner=pseudospectral outcome=ok|error stack_bytes=..
 //! result index=0 hex=..
 //! done fixtures=5
@@ -249,6 +250,16 @@ fn main() -> ! {
             symbol(&_stack_end) - symbol(&_ram_start),
         );
     }
+    // What each planner's static memory costs at the compiled capacities (part of .bss/.data).
+    let _ = writeln!(
+        out,
+        "planners pseudospectral_workspace_bytes={} pseudospectral_solution_bytes={} \
+         impulsive_workspace_bytes={} impulsive_solution_bytes={}",
+        core::mem::size_of::<pseudospectral::Workspace>(),
+        core::mem::size_of::<pseudospectral::Solution>(),
+        core::mem::size_of::<impulsive::Workspace>(),
+        core::mem::size_of::<impulsive::Solution>(),
+    );
 
     let ps_settings = pseudospectral::Settings::default();
     let im_settings = impulsive::Settings::default();
