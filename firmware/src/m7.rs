@@ -61,8 +61,7 @@ extern "C" {
     static __ebss: u8;
     static __suninit: u8;
     static __euninit: u8;
-    static _ram_start: u8;
-    /// Lowest address the stack may reach (just above the statics).
+    /// Lowest address the stack may reach.
     static _stack_end: u8;
     /// Initial stack pointer (the stack grows down from here).
     static _stack_start: u8;
@@ -247,7 +246,7 @@ fn main() -> ! {
             symbol(&__edata) - symbol(&__sdata),
             symbol(&__ebss) - symbol(&__sbss),
             symbol(&__euninit) - symbol(&__suninit),
-            symbol(&_stack_end) - symbol(&_ram_start),
+            symbol(&__euninit) - symbol(&__sdata),
         );
     }
     // What each planner's static memory costs at the compiled capacities (part of .bss/.data).
