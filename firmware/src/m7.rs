@@ -6,14 +6,17 @@
 //! reconfig-firmware version=0.1.0 fixtures=5
 //! binary text_bytes=.. rodata_bytes=.. data_bytes=.. bss_bytes=.. uninit_bytes=.. static_ram_bytes=..
 //! planners pseudospectral_workspace_bytes=.. pseudospectral_solution_bytes=.. impulsive_workspace_bytes=.. impulsive_solution_bytes=..
-//! fixture index=0 name=.. planner=pseudospectral outcome=ok|error stack_bytes=..
+//! fixture index=0 name=.. planner=pseudospectral outcome=ok|error stack_bytes=.. systick_instructions=..
 //! result index=0 hex=..
 //! done fixtures=5
 //! ```
 //! `hex` is the postcard encoding of `Result<Solution, PlanError>`. `stack_bytes` is the stack
 //! high-water mark during that fixture's decode and solve, measured from the top of the stack
 //! (so it includes `main`'s own frame): the stack below the current frame is painted before the
-//! solve and scanned for the lowest overwritten word after it.
+//! solve and scanned for the lowest overwritten word after it. `systick_instructions` is the
+//! solve's SysTick time converted to instructions (40 per tick): meaningful only under
+//! `-icount shift=0` (the runner sets it), and accurate to about 40 instructions; the exact
+//! count comes from the QEMU plugin.
 
 use core::arch::asm;
 use core::fmt::Write as _;
@@ -97,6 +100,60 @@ pub extern "C" fn reconfig_measure_stop(index: u32) {
         addr_of_mut!(MEASURE_STOPPED).write_volatile(index);
         asm!("nop", "nop");
     }
+}
+
+/// SysTick, free-running over its full 24-bit range; wraps are counted by the SysTick exception.
+/// Under the runner's `-icount shift=0` QEMU advances virtual time by 1 ns per instruction and
+/// clocks SysTick at the board's 25 MHz, so one tick is 40 instructions.
+mod systick {
+    use core::ptr::{addr_of, addr_of_mut};
+
+    const CSR: *mut u32 = 0xE000_E010 as *mut u32;
+    const RVR: *mut u32 = 0xE000_E014 as *mut u32;
+    const CVR: *mut u32 = 0xE000_E018 as *mut u32;
+    const RELOAD: u32 = 0x00FF_FFFF;
+    /// Instructions per SysTick tick under `-icount shift=0` (1 ns each) at 25 MHz.
+    pub const INSTRUCTIONS_PER_TICK: u64 = 40;
+
+    static mut WRAPS: u32 = 0;
+
+    /// Start counting: processor clock, exception on wrap.
+    pub fn start() {
+        // SAFETY: the SysTick registers of every ARMv7-M core; nothing else uses SysTick.
+        unsafe {
+            RVR.write_volatile(RELOAD);
+            CVR.write_volatile(0);
+            CSR.write_volatile(0b111);
+        }
+    }
+
+    /// Called from the SysTick exception.
+    pub fn wrapped() {
+        // SAFETY: only the exception writes it; readers re-read until it is stable.
+        unsafe { addr_of_mut!(WRAPS).write_volatile(addr_of!(WRAPS).read_volatile() + 1) };
+    }
+
+    /// Ticks since `start`.
+    pub fn now() -> u64 {
+        loop {
+            // SAFETY: as above; a wrap between the reads shows as a changed count and retries.
+            let (before, current, after) = unsafe {
+                (
+                    addr_of!(WRAPS).read_volatile(),
+                    CVR.read_volatile(),
+                    addr_of!(WRAPS).read_volatile(),
+                )
+            };
+            if before == after {
+                return u64::from(before) * (u64::from(RELOAD) + 1) + u64::from(RELOAD - current);
+            }
+        }
+    }
+}
+
+#[exception]
+fn SysTick() {
+    systick::wrapped();
 }
 
 /// Paint the unused stack (from its lowest address up to a margin below the current stack
@@ -260,6 +317,7 @@ fn main() -> ! {
         core::mem::size_of::<impulsive::Solution>(),
     );
 
+    systick::start();
     let ps_settings = pseudospectral::Settings::default();
     let im_settings = impulsive::Settings::default();
     for (index, fixture) in FIXTURES.iter().enumerate() {
@@ -276,6 +334,7 @@ fn main() -> ! {
                     Ok(p) => p,
                     Err(_) => panic!("fixture {} does not decode", fixture.name),
                 };
+                let ticks_before = systick::now();
                 reconfig_measure_start(marker);
                 let result = pseudospectral::solve(
                     black_box(&problem),
@@ -285,11 +344,20 @@ fn main() -> ! {
                 );
                 black_box(&result);
                 reconfig_measure_stop(marker);
+                let ticks = systick::now() - ticks_before;
                 let stack_bytes = stack_high_water();
                 let ok = result.is_ok();
                 let encoded: Result<&pseudospectral::Solution, pseudospectral::PlanError> =
                     result.map(|()| &*PS_SOLUTION);
-                report(&mut out, index, fixture, "pseudospectral", ok, stack_bytes);
+                report(
+                    &mut out,
+                    index,
+                    fixture,
+                    "pseudospectral",
+                    ok,
+                    stack_bytes,
+                    ticks,
+                );
                 print_result(&mut out, index, &encoded);
             }
             Planner::Impulsive => {
@@ -299,6 +367,7 @@ fn main() -> ! {
                     Ok(p) => p,
                     Err(_) => panic!("fixture {} does not decode", fixture.name),
                 };
+                let ticks_before = systick::now();
                 reconfig_measure_start(marker);
                 let result = impulsive::solve(
                     black_box(&problem),
@@ -308,11 +377,20 @@ fn main() -> ! {
                 );
                 black_box(&result);
                 reconfig_measure_stop(marker);
+                let ticks = systick::now() - ticks_before;
                 let stack_bytes = stack_high_water();
                 let ok = result.is_ok();
                 let encoded: Result<&impulsive::Solution, impulsive::PlanError> =
                     result.map(|()| &*IM_SOLUTION);
-                report(&mut out, index, fixture, "impulsive", ok, stack_bytes);
+                report(
+                    &mut out,
+                    index,
+                    fixture,
+                    "impulsive",
+                    ok,
+                    stack_bytes,
+                    ticks,
+                );
                 print_result(&mut out, index, &encoded);
             }
         }
@@ -330,12 +408,15 @@ fn report(
     planner: &str,
     ok: bool,
     stack_bytes: usize,
+    ticks: u64,
 ) {
     let _ = writeln!(
         out,
-        "fixture index={index} name={} planner={planner} outcome={} stack_bytes={stack_bytes}",
+        "fixture index={index} name={} planner={planner} outcome={} stack_bytes={stack_bytes} \
+         systick_instructions={}",
         fixture.name,
         if ok { "ok" } else { "error" },
+        ticks * systick::INSTRUCTIONS_PER_TICK,
     );
 }
 

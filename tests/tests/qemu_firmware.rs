@@ -120,6 +120,8 @@ struct FixtureReport {
     name: String,
     planner: String,
     stack_bytes: u64,
+    /// The firmware's own SysTick estimate (to within 40 instructions).
+    systick_instructions: u64,
     hex: String,
 }
 
@@ -285,6 +287,8 @@ fn run_firmware(elf: &Path, plugin: Option<&Path>) -> Result<Run, String> {
         "-nographic",
         "-semihosting-config",
         "enable=on,target=native",
+        "-icount",
+        "shift=0",
         "-kernel",
     ]);
     command.arg(elf);
@@ -407,6 +411,7 @@ fn parse_output(elf: &Path, stdout: &str) -> Result<Run, String> {
                         .ok_or("fixture without planner")?
                         .to_string(),
                     stack_bytes: number(&f, "stack_bytes")?,
+                    systick_instructions: number(&f, "systick_instructions")?,
                     hex: String::new(),
                 });
             }
@@ -558,6 +563,16 @@ fn figures_are_within_budget() {
         );
         return;
     };
+    // The plugin's exact count and the firmware's own SysTick estimate (40-instruction ticks,
+    // plus the few instructions of the SysTick reads) measure the same span: they must agree.
+    for (fixture, &exact) in run.fixtures.iter().zip(instructions) {
+        let estimate = fixture.systick_instructions;
+        assert!(
+            estimate.abs_diff(exact) <= 200 + exact / 1000,
+            "{}: the plugin counted {exact} instructions, the firmware's SysTick {estimate}",
+            fixture.name
+        );
+    }
     let path = root().join(FIGURES_FILE);
     let file: toml::Table = match std::fs::read_to_string(&path) {
         Ok(text) => toml::from_str(&text).unwrap_or_else(|e| panic!("{FIGURES_FILE}: {e}")),
