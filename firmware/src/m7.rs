@@ -280,7 +280,8 @@ fn fail() -> ! {
 #[entry]
 fn main() -> ! {
     // cortex-m-rt turns these into `&'static mut` references owned by `main`: the workspaces
-    // and output buffers live in .bss, never on the stack.
+    // and output buffers live in static memory (.bss, or .data when a `new()` is not all zero
+    // bits), never on the stack.
     static mut PS_WORKSPACE: pseudospectral::Workspace = pseudospectral::Workspace::new();
     static mut PS_SOLUTION: pseudospectral::Solution = pseudospectral::Solution::new();
     static mut IM_WORKSPACE: impulsive::Workspace = impulsive::Workspace::new();
