@@ -8,3 +8,6 @@
 mod types;
 
 pub use types::*;
+// Firmware branch only: compile-only placeholder API, replaced at merge by planner B's own.
+mod placeholder;
+pub use placeholder::*;

@@ -1,0 +1,446 @@
+//! The Cortex-M7 program: run every baked-in fixture, print results and figures, exit.
+//!
+//! Output protocol (semihosting stdout, one record per line, `key=value` fields; parsed by
+//! `tests/tests/qemu_firmware.rs`):
+//! ```text
+//! reconfig-firmware version=0.1.0 fixtures=5
+//! binary text_bytes=.. rodata_bytes=.. data_bytes=.. bss_bytes=.. uninit_bytes=.. static_ram_bytes=..
+//! planners pseudospectral_workspace_bytes=.. pseudospectral_solution_bytes=.. impulsive_workspace_bytes=.. impulsive_solution_bytes=..
+//! fixture index=0 name=.. planner=pseudospectral outcome=ok|error stack_bytes=.. systick_instructions=..
+//! result index=0 hex=..
+//! done fixtures=5
+//! ```
+//! `hex` is the postcard encoding of `Result<Solution, PlanError>`. `stack_bytes` is the stack
+//! high-water mark during that fixture's decode and solve, measured from the top of the stack
+//! (so it includes `main`'s own frame): the stack below the current frame is painted before the
+//! solve and scanned for the lowest overwritten word after it. `systick_instructions` is the
+//! solve's SysTick time converted to instructions (40 per tick): meaningful only under
+//! `-icount shift=0` (the runner sets it), and accurate to about 40 instructions; the exact
+//! count comes from the QEMU plugin.
+
+use core::arch::asm;
+use core::fmt::Write as _;
+use core::hint::black_box;
+use core::ptr::addr_of_mut;
+
+use cortex_m_rt::{entry, exception, ExceptionFrame};
+use cortex_m_semihosting::{debug, hio};
+use reconfig_core::{impulsive, pseudospectral};
+
+/// Which planner a baked-in fixture is for.
+#[derive(Clone, Copy)]
+#[allow(dead_code)] // a variant is unused while no fixture is for that planner
+pub enum Planner {
+    /// Planner A.
+    Pseudospectral,
+    /// Planner B.
+    Impulsive,
+}
+
+/// A fixture baked in by `build.rs`: the postcard bytes of the planner's `Problem`.
+pub struct Fixture {
+    /// The fixture's name.
+    pub name: &'static str,
+    /// Which planner.
+    pub planner: Planner,
+    /// postcard encoding of the core `Problem`.
+    pub problem: &'static [u8],
+}
+
+include!(concat!(env!("OUT_DIR"), "/fixtures.rs"));
+
+/// What cortex-m-rt's `paint-stack` feature writes over the stack at reset (its
+/// `STACK_PAINT_VALUE`); repainted below the current frame before each solve.
+const STACK_PAINT: u32 = 0xCCCC_CCCC;
+
+extern "C" {
+    static __stext: u8;
+    static __etext: u8;
+    static __srodata: u8;
+    static __erodata: u8;
+    static __sdata: u8;
+    static __edata: u8;
+    static __sbss: u8;
+    static __ebss: u8;
+    static __suninit: u8;
+    static __euninit: u8;
+    /// Lowest address the stack may reach.
+    static _stack_end: u8;
+    /// Initial stack pointer (the stack grows down from here).
+    static _stack_start: u8;
+}
+
+fn symbol(s: &u8) -> usize {
+    s as *const u8 as usize
+}
+
+/// Written by the markers, so that they have different bodies (identical functions could be
+/// merged into one address) and cannot be optimised away.
+static mut MEASURE_STARTED: u32 = 0;
+static mut MEASURE_STOPPED: u32 = 0;
+
+/// Marks the start of a measured solve for the instruction-counting QEMU plugin.
+#[no_mangle]
+#[inline(never)]
+pub extern "C" fn reconfig_measure_start(index: u32) {
+    // SAFETY: single-threaded, no interrupts touch it. The asm is a compiler barrier (it may
+    // access memory), so the solve's work cannot move across the marker.
+    unsafe {
+        addr_of_mut!(MEASURE_STARTED).write_volatile(index);
+        asm!("nop");
+    }
+}
+
+/// Marks the end of a measured solve for the instruction-counting QEMU plugin.
+#[no_mangle]
+#[inline(never)]
+pub extern "C" fn reconfig_measure_stop(index: u32) {
+    // SAFETY: as in `reconfig_measure_start`.
+    unsafe {
+        addr_of_mut!(MEASURE_STOPPED).write_volatile(index);
+        asm!("nop", "nop");
+    }
+}
+
+/// SysTick, free-running over its full 24-bit range; wraps are counted by the SysTick exception.
+/// Under the runner's `-icount shift=0` QEMU advances virtual time by 1 ns per instruction and
+/// clocks SysTick at the board's 25 MHz, so one tick is 40 instructions.
+mod systick {
+    use core::ptr::{addr_of, addr_of_mut};
+
+    const CSR: *mut u32 = 0xE000_E010 as *mut u32;
+    const RVR: *mut u32 = 0xE000_E014 as *mut u32;
+    const CVR: *mut u32 = 0xE000_E018 as *mut u32;
+    const RELOAD: u32 = 0x00FF_FFFF;
+    /// Instructions per SysTick tick under `-icount shift=0` (1 ns each) at 25 MHz.
+    pub const INSTRUCTIONS_PER_TICK: u64 = 40;
+
+    static mut WRAPS: u32 = 0;
+
+    /// Start counting: processor clock, exception on wrap.
+    pub fn start() {
+        // SAFETY: the SysTick registers of every ARMv7-M core; nothing else uses SysTick.
+        unsafe {
+            RVR.write_volatile(RELOAD);
+            CVR.write_volatile(0);
+            CSR.write_volatile(0b111);
+        }
+    }
+
+    /// Called from the SysTick exception.
+    pub fn wrapped() {
+        // SAFETY: only the exception writes it; readers re-read until it is stable.
+        unsafe { addr_of_mut!(WRAPS).write_volatile(addr_of!(WRAPS).read_volatile() + 1) };
+    }
+
+    /// Ticks since `start`.
+    pub fn now() -> u64 {
+        loop {
+            // SAFETY: as above; a wrap between the reads shows as a changed count and retries.
+            let (before, current, after) = unsafe {
+                (
+                    addr_of!(WRAPS).read_volatile(),
+                    CVR.read_volatile(),
+                    addr_of!(WRAPS).read_volatile(),
+                )
+            };
+            if before == after {
+                return u64::from(before) * (u64::from(RELOAD) + 1) + u64::from(RELOAD - current);
+            }
+        }
+    }
+}
+
+#[exception]
+fn SysTick() {
+    systick::wrapped();
+}
+
+/// Paint the unused stack (from its lowest address up to a margin below the current stack
+/// pointer) so that a later scan finds how deep the next code went.
+#[inline(never)]
+fn repaint_stack() {
+    let sp: usize;
+    // SAFETY: reads the stack pointer only.
+    unsafe { asm!("mov {}, sp", out(reg) sp, options(nomem, nostack, preserves_flags)) };
+    // SAFETY: linker-script symbols; only their addresses are used.
+    let low = unsafe { symbol(&_stack_end) };
+    // This function is a leaf that keeps its locals in registers; 64 bytes of margin cover any
+    // spill, and lie below the frame of every caller.
+    let high = sp.saturating_sub(64) & !3;
+    let mut p = low;
+    while p < high {
+        // SAFETY: [low, high) is stack below the live frames, word aligned, not in use.
+        unsafe { (p as *mut u32).write_volatile(STACK_PAINT) };
+        p += 4;
+    }
+}
+
+/// Bytes of stack used since reset or the last repaint: from the initial stack pointer down to
+/// the lowest word that no longer holds the paint.
+fn stack_high_water() -> usize {
+    // SAFETY: linker-script symbols; only their addresses are used.
+    let (low, top) = unsafe { (symbol(&_stack_end), symbol(&_stack_start)) };
+    let mut p = low;
+    // SAFETY: [low, top) is the stack region, word aligned and readable.
+    while p < top && unsafe { (p as *const u32).read_volatile() } == STACK_PAINT {
+        p += 4;
+    }
+    top - p
+}
+
+/// Semihosting output; a failure to print is fatal (the tests read this output).
+struct Out(hio::HostStream);
+
+impl Out {
+    fn new() -> Self {
+        match hio::hstdout() {
+            Ok(stream) => Self(stream),
+            Err(()) => fail(),
+        }
+    }
+
+    fn bytes(&mut self, bytes: &[u8]) {
+        if self.0.write_all(bytes).is_err() {
+            fail();
+        }
+    }
+}
+
+impl core::fmt::Write for Out {
+    fn write_str(&mut self, s: &str) -> core::fmt::Result {
+        self.bytes(s.as_bytes());
+        Ok(())
+    }
+}
+
+/// A postcard flavor that streams the encoding as lowercase hex, so no buffer the size of a
+/// `Solution` is needed.
+struct HexFlavor<'a> {
+    out: &'a mut Out,
+    buf: [u8; 256],
+    len: usize,
+}
+
+impl<'a> HexFlavor<'a> {
+    fn new(out: &'a mut Out) -> Self {
+        Self {
+            out,
+            buf: [0; 256],
+            len: 0,
+        }
+    }
+
+    fn flush(&mut self) {
+        let len = self.len;
+        self.out.bytes(&self.buf[..len]);
+        self.len = 0;
+    }
+}
+
+impl postcard::ser_flavors::Flavor for HexFlavor<'_> {
+    type Output = ();
+
+    fn try_push(&mut self, byte: u8) -> postcard::Result<()> {
+        const DIGITS: &[u8; 16] = b"0123456789abcdef";
+        if self.len + 2 > self.buf.len() {
+            self.flush();
+        }
+        self.buf[self.len] = DIGITS[usize::from(byte >> 4)];
+        self.buf[self.len + 1] = DIGITS[usize::from(byte & 0xf)];
+        self.len += 2;
+        Ok(())
+    }
+
+    fn finalize(mut self) -> postcard::Result<()> {
+        self.flush();
+        Ok(())
+    }
+}
+
+fn print_result<T: serde::Serialize>(out: &mut Out, index: usize, result: &T) {
+    let _ = write!(out, "result index={index} hex=");
+    if postcard::serialize_with_flavor(result, HexFlavor::new(out)).is_err() {
+        let _ = writeln!(
+            Out::new(),
+            "\nerror: cannot encode the result of fixture {index}"
+        );
+        fail();
+    }
+    out.bytes(b"\n");
+}
+
+/// Exit QEMU with failure.
+fn fail() -> ! {
+    debug::exit(debug::EXIT_FAILURE);
+    #[allow(clippy::empty_loop)]
+    loop {}
+}
+
+#[entry]
+fn main() -> ! {
+    // cortex-m-rt turns these into `&'static mut` references owned by `main`: the workspaces
+    // and output buffers live in static memory (.bss, or .data when a `new()` is not all zero
+    // bits), never on the stack.
+    static mut PS_WORKSPACE: pseudospectral::Workspace = pseudospectral::Workspace::new();
+    static mut PS_SOLUTION: pseudospectral::Solution = pseudospectral::Solution::new();
+    static mut IM_WORKSPACE: impulsive::Workspace = impulsive::Workspace::new();
+    static mut IM_SOLUTION: impulsive::Solution = impulsive::Solution::new();
+
+    let mut out = Out::new();
+    let _ = writeln!(
+        out,
+        "reconfig-firmware version={} fixtures={}",
+        env!("CARGO_PKG_VERSION"),
+        FIXTURES.len()
+    );
+    // SAFETY: linker-script symbols; only their addresses are used.
+    unsafe {
+        let _ = writeln!(
+            out,
+            "binary text_bytes={} rodata_bytes={} data_bytes={} bss_bytes={} uninit_bytes={} static_ram_bytes={}",
+            symbol(&__etext) - symbol(&__stext),
+            symbol(&__erodata) - symbol(&__srodata),
+            symbol(&__edata) - symbol(&__sdata),
+            symbol(&__ebss) - symbol(&__sbss),
+            symbol(&__euninit) - symbol(&__suninit),
+            symbol(&__euninit) - symbol(&__sdata),
+        );
+    }
+    // What each planner's static memory costs at the compiled capacities (part of .bss/.data).
+    let _ = writeln!(
+        out,
+        "planners pseudospectral_workspace_bytes={} pseudospectral_solution_bytes={} \
+         impulsive_workspace_bytes={} impulsive_solution_bytes={}",
+        core::mem::size_of::<pseudospectral::Workspace>(),
+        core::mem::size_of::<pseudospectral::Solution>(),
+        core::mem::size_of::<impulsive::Workspace>(),
+        core::mem::size_of::<impulsive::Solution>(),
+    );
+
+    systick::start();
+    let ps_settings = pseudospectral::Settings::default();
+    let im_settings = impulsive::Settings::default();
+    for (index, fixture) in FIXTURES.iter().enumerate() {
+        // The inputs pass through `black_box` after the start marker and the result before the stop
+        // marker, so that no part of the solve is folded away or moved out of the measured span.
+        let marker = u32::try_from(index).unwrap_or(u32::MAX);
+        match fixture.planner {
+            Planner::Pseudospectral => {
+                // A fresh output buffer, as the host gets; the workspace is reused on purpose
+                // (no result may depend on what an earlier solve left in it).
+                *PS_SOLUTION = pseudospectral::Solution::new();
+                repaint_stack();
+                let problem: pseudospectral::Problem = match postcard::from_bytes(fixture.problem) {
+                    Ok(p) => p,
+                    Err(_) => panic!("fixture {} does not decode", fixture.name),
+                };
+                let ticks_before = systick::now();
+                reconfig_measure_start(marker);
+                let result = pseudospectral::solve(
+                    black_box(&problem),
+                    black_box(&ps_settings),
+                    black_box(&mut *PS_WORKSPACE),
+                    black_box(&mut *PS_SOLUTION),
+                );
+                black_box(&result);
+                reconfig_measure_stop(marker);
+                let ticks = systick::now() - ticks_before;
+                let stack_bytes = stack_high_water();
+                let ok = result.is_ok();
+                let encoded: Result<&pseudospectral::Solution, pseudospectral::PlanError> =
+                    result.map(|()| &*PS_SOLUTION);
+                report(
+                    &mut out,
+                    index,
+                    fixture,
+                    "pseudospectral",
+                    ok,
+                    stack_bytes,
+                    ticks,
+                );
+                print_result(&mut out, index, &encoded);
+            }
+            Planner::Impulsive => {
+                *IM_SOLUTION = impulsive::Solution::new();
+                repaint_stack();
+                let problem: impulsive::Problem = match postcard::from_bytes(fixture.problem) {
+                    Ok(p) => p,
+                    Err(_) => panic!("fixture {} does not decode", fixture.name),
+                };
+                let ticks_before = systick::now();
+                reconfig_measure_start(marker);
+                let result = impulsive::solve(
+                    black_box(&problem),
+                    black_box(&im_settings),
+                    black_box(&mut *IM_WORKSPACE),
+                    black_box(&mut *IM_SOLUTION),
+                );
+                black_box(&result);
+                reconfig_measure_stop(marker);
+                let ticks = systick::now() - ticks_before;
+                let stack_bytes = stack_high_water();
+                let ok = result.is_ok();
+                let encoded: Result<&impulsive::Solution, impulsive::PlanError> =
+                    result.map(|()| &*IM_SOLUTION);
+                report(
+                    &mut out,
+                    index,
+                    fixture,
+                    "impulsive",
+                    ok,
+                    stack_bytes,
+                    ticks,
+                );
+                print_result(&mut out, index, &encoded);
+            }
+        }
+    }
+    let _ = writeln!(out, "done fixtures={}", FIXTURES.len());
+    debug::exit(debug::EXIT_SUCCESS);
+    #[allow(clippy::empty_loop)]
+    loop {}
+}
+
+fn report(
+    out: &mut Out,
+    index: usize,
+    fixture: &Fixture,
+    planner: &str,
+    ok: bool,
+    stack_bytes: usize,
+    ticks: u64,
+) {
+    let _ = writeln!(
+        out,
+        "fixture index={index} name={} planner={planner} outcome={} stack_bytes={stack_bytes} \
+         systick_instructions={}",
+        fixture.name,
+        if ok { "ok" } else { "error" },
+        ticks * systick::INSTRUCTIONS_PER_TICK,
+    );
+}
+
+#[panic_handler]
+fn panic(info: &core::panic::PanicInfo) -> ! {
+    if let Ok(mut stream) = hio::hstdout() {
+        let _ = writeln!(stream, "\npanic: {info}");
+    }
+    fail()
+}
+
+#[exception]
+unsafe fn HardFault(frame: &ExceptionFrame) -> ! {
+    if let Ok(mut stream) = hio::hstdout() {
+        let _ = writeln!(stream, "\nHardFault: {frame:?}");
+    }
+    fail()
+}
+
+#[exception]
+unsafe fn DefaultHandler(irqn: i16) {
+    if let Ok(mut stream) = hio::hstdout() {
+        let _ = writeln!(stream, "\nunexpected exception or interrupt {irqn}");
+    }
+    fail()
+}
