@@ -7,16 +7,27 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 struct Counting;
 static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
 
+thread_local! {
+    // Only the thread under test counts: the harness runs other tests in parallel.
+    static COUNTING: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+fn count() {
+    if COUNTING.with(|c| c.get()) {
+        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+    }
+}
+
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        count();
         unsafe { System.alloc(layout) }
     }
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
         unsafe { System.dealloc(ptr, layout) }
     }
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        count();
         unsafe { System.realloc(ptr, layout, new_size) }
     }
 }
@@ -26,6 +37,15 @@ static GLOBAL: Counting = Counting;
 
 #[test]
 fn a_solve_does_not_allocate() {
+    // The counter itself works: a Vec on this thread is counted.
+    COUNTING.with(|c| c.set(true));
+    let probe = ALLOCATIONS.load(Ordering::SeqCst);
+    drop(std::hint::black_box(vec![1u8; 16]));
+    assert!(
+        ALLOCATIONS.load(Ordering::SeqCst) > probe,
+        "counting allocator inactive"
+    );
+    COUNTING.with(|c| c.set(false));
     let problems: Vec<_> = ["huang2012-three-sats-n10", "crossing-8-sats-n16"]
         .iter()
         .map(|stem| reconfig_tests::pseudospectral_fixture(stem))
@@ -35,9 +55,25 @@ fn a_solve_does_not_allocate() {
     let settings = Settings::default();
     for problem in &problems {
         let before = ALLOCATIONS.load(Ordering::SeqCst);
-        pseudospectral::solve(problem, &settings, &mut workspace, &mut solution).expect("solve");
+        COUNTING.with(|c| c.set(true));
+        let result = pseudospectral::solve(problem, &settings, &mut workspace, &mut solution);
+        COUNTING.with(|c| c.set(false));
         let after = ALLOCATIONS.load(Ordering::SeqCst);
+        result.expect("solve");
         assert_eq!(after - before, 0, "allocations during a solve");
         assert!(solution.info.status.is_usable());
     }
+}
+
+#[test]
+fn workspace_size_is_reported() {
+    // Printed for the README (`cargo test -p reconfig-tests --test pseudospectral_alloc -- --nocapture`).
+    let bytes = std::mem::size_of::<Workspace>();
+    println!("size_of::<pseudospectral::Workspace>() = {bytes} bytes");
+    println!(
+        "size_of::<pseudospectral::Solution>() = {} bytes",
+        std::mem::size_of::<Solution>()
+    );
+    // The on-board RAM budget is 256 KiB for static memory plus stack, both planners.
+    assert!(bytes < 200 * 1024, "{bytes}");
 }

@@ -13,7 +13,7 @@ use super::transcription::{Coefficients, MAX_BLOCKS};
 use crate::capacity::MAX_FREE_PER_AXIS;
 
 /// Most residual differences kept.
-pub(crate) const MAX_MEMORY: usize = 4;
+pub(crate) const MAX_MEMORY: usize = 1;
 
 const ZERO: Coefficients = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
 

@@ -45,7 +45,11 @@ impl Basis {
         horizon_tu: f64,
         scratch: &mut [[f64; MAX_FREE_PER_AXIS]; MAX_FREE_PER_AXIS],
     ) -> bool {
-        *self = Self::new();
+        self.free = 0;
+        for row in self.position.iter_mut().chain(self.accel.iter_mut()) {
+            row.fill(0.0);
+        }
+        self.accel_norm.fill(0.0);
         let n = grid.degree;
         let nodes = grid.nodes();
         let Some(free) = n.checked_sub(3) else {

@@ -108,7 +108,7 @@ pub enum SettingsError {
     BadTolerance = 1,
     /// Verification rounds exceed what the check-point capacity can hold.
     TooManyVerifyRounds = 2,
-    /// The acceleration memory exceeds its capacity (4).
+    /// The acceleration memory exceeds its capacity (1).
     AccelerationMemory = 3,
 }
 

@@ -67,7 +67,14 @@ impl LglGrid {
         if !(2..MAX_NODES).contains(&n) {
             return false;
         }
-        *self = Self::new();
+        // Reset in place: a `Self::new()` temporary would cost its size in stack.
+        self.tau.fill(0.0);
+        self.weight.fill(0.0);
+        self.legendre_at_node.fill(0.0);
+        for row in self.diff.iter_mut() {
+            row.fill(0.0);
+        }
+        self.bary.fill(0.0);
         self.degree = n;
         let nf = n as f64;
         let mut converged = true;

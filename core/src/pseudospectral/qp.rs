@@ -42,7 +42,7 @@ pub(crate) struct QpState {
 const NO_ROW: RowId = RowId::Control {
     block: 0,
     node: 0,
-    upper: true,
+    upper: false,
 };
 
 impl QpState {

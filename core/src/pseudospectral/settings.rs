@@ -19,7 +19,7 @@ pub struct Settings {
     /// Or stop when the largest coefficient change (position scale) is below this, in LU.
     pub sqp_tol_step_lu: f64,
     /// Anderson-acceleration memory of the convex-concave iteration (0 = plain iteration, at
-    /// most 4).
+    /// most 1).
     pub acceleration_memory: u8,
     /// Follow each near-contact pair's continuous separation minimum with a moving check, and
     /// run the verification rounds. Off, the solver enforces keep-out only at the nodes and
@@ -32,7 +32,7 @@ pub struct Settings {
     pub qp_tol_feas: f64,
     /// Rounds of continuous verification: each finds the true minimum separation of every pair
     /// and adds keep-out points where it is below d, then re-solves. At most
-    /// `MAX_VERIFY_POINTS_PER_PAIR` points are added per pair over all rounds.
+    /// `MAX_VERIFY_POINTS_PER_PAIR - 1` rounds (one point per pair is the moving check).
     pub verify_max_rounds: u8,
     /// Continuous separation accepted as meeting the keep-out: `>= d - verify_tol_lu`.
     pub verify_tol_lu: f64,
@@ -51,12 +51,12 @@ impl Default for Settings {
             sqp_max_iter: 40,
             sqp_tol_cost: 1e-8,
             sqp_tol_step_lu: 1e-10,
-            acceleration_memory: 3,
+            acceleration_memory: 1,
             continuous_verification: true,
             qp_max_iter: 400,
             qp_tol_feas: 1e-12,
-            verify_max_rounds: 4,
-            verify_tol_lu: 1e-9,
+            verify_max_rounds: 2,
+            verify_tol_lu: 1e-7,
             keep_out_margin_lu: 0.0,
             newton_max_iter: 60,
             refine_max_iter: 80,
@@ -90,7 +90,8 @@ impl Settings {
         if usize::from(self.acceleration_memory) > super::anderson::MAX_MEMORY {
             return Err(SettingsError::AccelerationMemory);
         }
-        if usize::from(self.verify_max_rounds) > MAX_VERIFY_POINTS_PER_PAIR {
+        // One verification point per pair is the moving check; the rest are for rounds.
+        if usize::from(self.verify_max_rounds) >= MAX_VERIFY_POINTS_PER_PAIR {
             return Err(SettingsError::TooManyVerifyRounds);
         }
         Ok(())

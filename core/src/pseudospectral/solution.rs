@@ -71,6 +71,31 @@ impl Solution {
     }
 }
 
+impl Solution {
+    /// Reset to the empty state in place (no large temporary on the stack).
+    pub fn reset(&mut self) {
+        self.degree = 0;
+        self.spacecraft_count = 0;
+        self.horizon_tu = 0.0;
+        self.node_times_tu.fill(0.0);
+        for sc in self.states.iter_mut() {
+            sc.fill([0.0; 6]);
+        }
+        for sc in self.controls_fu.iter_mut() {
+            sc.fill([0.0; 3]);
+        }
+        self.cost = 0.0;
+        self.min_separation_lu = 0.0;
+        self.min_separation_pair = (0, 0);
+        self.min_separation_time_tu = 0.0;
+        self.max_dynamics_error = 0.0;
+        for pair in self.test_point_times_tu.iter_mut() {
+            pair.fill(0.0);
+        }
+        self.info = SolveInfo::default();
+    }
+}
+
 impl Default for Solution {
     fn default() -> Self {
         Self::new()

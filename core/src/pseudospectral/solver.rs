@@ -100,7 +100,7 @@ pub(crate) fn solve(
         }
     }
     ws.laws = laws;
-    *out = Solution::new();
+    out.reset();
     out.degree = problem.degree;
     out.spacecraft_count = u8_of(m);
     out.horizon_tu = problem.horizon_tu;

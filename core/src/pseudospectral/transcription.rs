@@ -42,11 +42,12 @@ pub(crate) struct Check {
 }
 
 impl Check {
+    // All zero bits, so a workspace built from it can live in `.bss`.
     const EMPTY: Self = Self {
         tau: 0.0,
         source: Source::Node(0),
-        pruned: true,
-        normal: [1.0, 0.0, 0.0],
+        pruned: false,
+        normal: [0.0, 0.0, 0.0],
     };
 }
 

@@ -14,7 +14,7 @@ use crate::capacity::{MAX_DEGREE, MAX_NODES};
 /// Coefficients of a degree-2N polynomial.
 pub(crate) const MAX_PRODUCT: usize = 2 * MAX_DEGREE + 1;
 /// Depth of the branch-and-bound stack.
-const STACK: usize = 56;
+const STACK: usize = 32;
 
 /// Converts nodal values to Bernstein coefficients on s = (tau + 1) / 2 in [0, 1].
 #[derive(Clone, Debug)]
@@ -69,7 +69,11 @@ impl Bernstein {
         binomials(n, &mut self.binomial_n);
         binomials(n.saturating_mul(2), &mut self.binomial_2n);
         let mut a = [[0.0; MAX_NODES]; MAX_NODES];
-        let mut inv = [[0.0; MAX_NODES]; MAX_NODES];
+        // The inverse is built in place in `to_bernstein` (no second matrix on the stack).
+        let inv = &mut self.to_bernstein;
+        for row in inv.iter_mut() {
+            row.fill(0.0);
+        }
         for h in 0..size {
             let s = 0.5 * (grid.at(h) + 1.0);
             for k in 0..size {
@@ -78,7 +82,7 @@ impl Bernstein {
                     c * libm::pow(s, k as f64) * libm::pow(1.0 - s, n.saturating_sub(k) as f64);
                 set(&mut a, h, k, value);
             }
-            set(&mut inv, h, h, 1.0);
+            set(inv, h, h, 1.0);
         }
         for col in 0..size {
             let mut pivot = col;
@@ -94,9 +98,9 @@ impl Bernstein {
             a.swap(col, pivot.min(MAX_NODES.saturating_sub(1)));
             inv.swap(col, pivot.min(MAX_NODES.saturating_sub(1)));
             for k in 0..size {
-                let (va, vi) = (get(&a, col, k) / p, get(&inv, col, k) / p);
+                let (va, vi) = (get(&a, col, k) / p, get(inv, col, k) / p);
                 set(&mut a, col, k, va);
-                set(&mut inv, col, k, vi);
+                set(inv, col, k, vi);
             }
             for row in 0..size {
                 if row != col {
@@ -104,16 +108,15 @@ impl Bernstein {
                     if factor != 0.0 {
                         for k in 0..size {
                             let va = get(&a, row, k) - factor * get(&a, col, k);
-                            let vi = get(&inv, row, k) - factor * get(&inv, col, k);
+                            let vi = get(inv, row, k) - factor * get(inv, col, k);
                             set(&mut a, row, k, va);
-                            set(&mut inv, row, k, vi);
+                            set(inv, row, k, vi);
                         }
                     }
                 }
             }
         }
         // a * coeffs = nodal  =>  coeffs = inv * nodal.
-        self.to_bernstein = inv;
         true
     }
 

@@ -15,14 +15,15 @@ const NO_LAW: AxisLaw = AxisLaw {
         v0: 0.0,
         p1: 0.0,
         v1: 0.0,
-        horizon: 1.0,
-        mass: 1.0,
-        max_control: 1.0,
+        horizon: 0.0,
+        mass: 0.0,
+        max_control: 0.0,
     },
     saturated: false,
 };
 
-/// Scratch memory for planner A. Build once (it can live in a `static`: `new` is `const`),
+/// Scratch memory for planner A. Build once (it can live in a `static`: `new` is `const` and
+/// all zero bits, so a static workspace lands in `.bss` and costs no flash),
 /// reuse for every solve; a solve overwrites all of it. Its size is fixed by
 /// [`crate::capacity`]; see the README for `size_of::<Workspace>()`.
 #[derive(Clone, Debug)]
@@ -58,7 +59,7 @@ impl Workspace {
             accepted: [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS],
             basis_scratch: [[0.0; MAX_FREE_PER_AXIS]; MAX_FREE_PER_AXIS],
             test_times: [[0.0; TEST_POINTS_PER_PAIR]; MAX_PAIRS],
-            fallback_normal: [[1.0, 0.0, 0.0]; MAX_PAIRS],
+            fallback_normal: [[0.0; 3]; MAX_PAIRS],
         }
     }
 }
