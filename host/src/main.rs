@@ -4,7 +4,11 @@ use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "reconfig", version, about = "On-board formation reconfiguration planner: host tools")]
+#[command(
+    name = "reconfig",
+    version,
+    about = "On-board formation reconfiguration planner: host tools"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
