@@ -76,6 +76,9 @@ pub(crate) fn solve_min_norm(
         scale2 = scale2.max(dot(c, c));
     }
     let negligible = 16.0 * f64::EPSILON * f64::EPSILON * scale2;
+    // Off-diagonal test relative to the column norms, scaled with the row count as usual for
+    // one-sided Jacobi (a plain epsilon can cycle on rounding).
+    let orthogonal = f64::EPSILON * (used as f64);
     let mut converged = false;
     for _ in 0..max_sweeps {
         let mut rotated = false;
@@ -93,7 +96,7 @@ pub(crate) fn solve_min_norm(
                 let gamma = dot(wp, wq);
                 if alpha <= negligible
                     || beta <= negligible
-                    || libm::fabs(gamma) <= f64::EPSILON * libm::sqrt(alpha * beta)
+                    || libm::fabs(gamma) <= orthogonal * libm::sqrt(alpha * beta)
                 {
                     continue;
                 }
