@@ -424,7 +424,6 @@ pub(crate) fn write_solution(
     out: &mut Solution,
 ) {
     let mut status = rep.status;
-    // Times and states of the returned plan, from the exact model (the one that is flown).
     let (err, along_m, pos_m) = match nonlinear_error(ctx, pts, &rep.dv, settings, seq) {
         Ok(v) => v,
         Err(stage) => {
@@ -436,6 +435,14 @@ pub(crate) fn write_solution(
             ([f64::NAN; 6], f64::NAN, f64::NAN)
         }
     };
+    // Times and latitudes from the model the impulses were solved for: the exact one when the
+    // correction was applied, else the paper's linear one.
+    if !rep.correction_used
+        && propagate(ctx, pts, &rep.dv, ImpulseModel::Linear, settings, seq).is_err()
+        && status.is_usable()
+    {
+        status = SolveStatus::NumericalFailure(Stage::SingularState);
+    }
     out.impulses.clear();
     for (k, (step, point)) in seq.steps.iter().zip(pts.at.iter()).enumerate().take(pts.n) {
         let c = k.saturating_mul(3);
