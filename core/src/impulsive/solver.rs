@@ -173,7 +173,15 @@ pub(crate) fn fixed_point(
             settings.svd_max_iter,
         )?;
         out.conditioning = cond;
-        let x = if min_fuel && cond.rank == 6 {
+        if cond.rank < 6 {
+            // Rank-deficient F (coincident points, or fewer than two impulses): the
+            // least-squares impulses at the current states are the answer; iterating on them
+            // would chase a target they cannot reach.
+            *dv = x0;
+            out.iterations = out.iterations.saturating_add(1);
+            break;
+        }
+        let x = if min_fuel {
             // Warm start from the previous iterate's magnitudes only if it is a plan already.
             let start = if total(dv) > 0.0 {
                 project(&seq.f, columns, &seq.dy, dv, &x0, settings)?
