@@ -177,7 +177,7 @@ mod tests {
         };
         assert_eq!(s.validate(), Err(SettingsError::BadSearchBudget));
         let s = Settings {
-            search_samples: 12_000,
+            search_samples: 20_000,
             ..Settings::default()
         };
         assert_eq!(s.validate(), Err(SettingsError::BadSearchBudget));
