@@ -10,7 +10,7 @@ use super::error::{Orbit, PlanError, Quantity};
 use super::kepler::true_anomaly;
 use super::min_fuel::{refine, total};
 use super::nonlinear::{relative_position_rtn, state};
-use super::pinv::{solve_min_norm, Conditioning};
+use super::pinv::{solve_full_row_rank, solve_min_norm, Conditioning};
 use super::settings::Settings;
 use super::solution::{Impulse, Solution};
 use super::status::{SolveStatus, Stage};
@@ -162,25 +162,40 @@ pub(crate) fn fixed_point(
         settings.fixed_point_tol_mps
     } / M_PER_KM;
     let mut out = FixedPoint::default();
-    for _ in 0..max_iter {
+    for j in 0..max_iter {
         propagate(ctx, pts, dv, ImpulseModel::Linear, settings, seq)?;
         build_system(ctx, pts, seq);
-        let (x0, cond) = solve_min_norm(
-            &seq.f,
-            columns,
-            &seq.dy,
-            settings.rank_rcond,
-            settings.svd_max_iter,
-        )?;
-        out.conditioning = cond;
-        if cond.rank < 6 {
-            // Rank-deficient F (coincident points, or fewer than two impulses): the
-            // least-squares impulses at the current states are the answer; iterating on them
-            // would chase a target they cannot reach.
-            *dv = x0;
-            out.iterations = out.iterations.saturating_add(1);
-            break;
-        }
+        // The first iteration (and any where the fast path declines) uses the rank-revealing
+        // SVD; later ones the equilibrated Cholesky solve, which gives the same minimum-norm
+        // impulses at full row rank. The returned plan's rank and condition number are
+        // recomputed by the SVD on the final F (see `final_conditioning`).
+        let fast = if j > 0 {
+            solve_full_row_rank(&seq.f, &seq.dy)
+        } else {
+            None
+        };
+        let x0 = match fast {
+            Some(x) => x,
+            None => {
+                let (x, cond) = solve_min_norm(
+                    &seq.f,
+                    columns,
+                    &seq.dy,
+                    settings.rank_rcond,
+                    settings.svd_max_iter,
+                )?;
+                out.conditioning = cond;
+                if cond.rank < 6 {
+                    // Rank-deficient F (coincident points, or fewer than two impulses): the
+                    // least-squares impulses at the current states are the answer; iterating
+                    // on them would chase a target they cannot reach.
+                    *dv = x;
+                    out.iterations = out.iterations.saturating_add(1);
+                    break;
+                }
+                x
+            }
+        };
         let x = if min_fuel {
             // Warm start from the previous iterate's magnitudes only if it is a plan already.
             let start = if total(dv) > 0.0 {
@@ -344,6 +359,9 @@ pub(crate) fn solve_points(
     let mut converged = fp.converged;
     if fp.conditioning.rank < 6 {
         rep.status = SolveStatus::RankDeficient;
+        // Leave the least-squares plan's own propagation in `seq` for the report; if it
+        // leaves the domain the report keeps the last good states (the status says why).
+        let _ = propagate(ctx, pts, &rep.dv, ImpulseModel::Linear, settings, seq);
         return rep;
     }
     if settings.min_fuel {
@@ -382,7 +400,40 @@ pub(crate) fn solve_points(
     } else if !converged {
         rep.status = SolveStatus::MaxIterations;
     }
+    match final_conditioning(ctx, pts, settings, seq, &rep.dv) {
+        Ok(c) => rep.conditioning = c,
+        Err(stage) => {
+            if rep.status.is_usable() {
+                rep.status = SolveStatus::NumericalFailure(stage);
+            }
+        }
+    }
     rep
+}
+
+/// Rank and condition number of F at the returned impulses, by the SVD; leaves the linear
+/// propagation of `dv` in `seq`.
+///
+/// # Errors
+/// The failing [`Stage`].
+fn final_conditioning(
+    ctx: &Context,
+    pts: &Points,
+    settings: &Settings,
+    seq: &mut Sequence,
+    dv: &XVector,
+) -> Result<Conditioning, Stage> {
+    propagate(ctx, pts, dv, ImpulseModel::Linear, settings, seq)?;
+    build_system(ctx, pts, seq);
+    let columns = pts.n.saturating_mul(3);
+    let (_, c) = solve_min_norm(
+        &seq.f,
+        columns,
+        &seq.dy,
+        settings.rank_rcond,
+        settings.svd_max_iter,
+    )?;
+    Ok(c)
 }
 
 /// Defect correction: `dv <- dv - F^+ e_nonlinear(dv)` until the nonlinear terminal error is
@@ -432,24 +483,22 @@ pub(crate) fn write_solution(
     out: &mut Solution,
 ) {
     let mut status = rep.status;
+    // Times and latitudes from the model the impulses were solved for: the exact one when the
+    // correction was applied, else the paper's linear one (left in `seq` by the solve).
+    let linear_steps = seq.steps;
+    let linear_final_time_s = seq.final_time_s;
     let (err, along_m, pos_m) = match nonlinear_error(ctx, pts, &rep.dv, settings, seq) {
         Ok(v) => v,
         Err(stage) => {
             if status.is_usable() {
                 status = SolveStatus::NumericalFailure(stage);
             }
-            // Fall back to the linear model for times; errors unknown.
-            let _ = propagate(ctx, pts, &rep.dv, ImpulseModel::Linear, settings, seq);
             ([f64::NAN; 6], f64::NAN, f64::NAN)
         }
     };
-    // Times and latitudes from the model the impulses were solved for: the exact one when the
-    // correction was applied, else the paper's linear one.
-    if !rep.correction_used
-        && propagate(ctx, pts, &rep.dv, ImpulseModel::Linear, settings, seq).is_err()
-        && status.is_usable()
-    {
-        status = SolveStatus::NumericalFailure(Stage::SingularState);
+    if !rep.correction_used {
+        seq.steps = linear_steps;
+        seq.final_time_s = linear_final_time_s;
     }
     out.impulses.clear();
     for (k, (step, point)) in seq.steps.iter().zip(pts.at.iter()).enumerate().take(pts.n) {

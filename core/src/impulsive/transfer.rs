@@ -68,6 +68,8 @@ pub(crate) struct Step {
     pub true_anomaly_rad: f64,
     /// Time of impulse k from the epoch, s.
     pub time_s: f64,
+    /// `B(sigma_{k,0})` at the impulse (eq. 3), kept for building F.
+    pub b: SMatrix<f64, 6, 3>,
 }
 
 /// The propagated sequence and the linear system built on it.
@@ -93,6 +95,7 @@ impl Sequence {
             at: [0.0; 6],
             true_anomaly_rad: 0.0,
             time_s: 0.0,
+            b: SMatrix::from_array_storage(ArrayStorage([[0.0; 6]; 3])),
         };
         Self {
             steps: [STEP; MAX_IMPULSES],
@@ -174,6 +177,8 @@ pub(crate) fn propagate(
         step.at = s;
         step.true_anomaly_rad = f;
         step.time_s = t;
+        let b = impulse_matrix(&s, f);
+        step.b = b;
         let c = k.saturating_mul(3);
         let dv_k = [
             dv.get(c).copied().unwrap_or(0.0),
@@ -182,7 +187,6 @@ pub(crate) fn propagate(
         ];
         s = match model {
             ImpulseModel::Linear => {
-                let b = impulse_matrix(&s, f);
                 let mut db = SVector::<f64, 6>::zeros();
                 db.gemv(1.0, &b, &SVector::<f64, 3>::from(dv_k), 0.0);
                 let mut next = s;
@@ -208,7 +212,7 @@ pub(crate) fn build_system(ctx: &Context, pts: &Points, seq: &mut Sequence) {
     let t_n = seq.final_time_s;
     seq.f.fill(0.0);
     for (k, step) in seq.steps.iter().enumerate().take(pts.n) {
-        let b = impulse_matrix(&step.at, step.true_anomaly_rad);
+        let b = step.b;
         // P_k = I_6 + dD(sigma_{k-1}) (t_N - t_k); dD depends on (a, e, i) only, which do not
         // drift, so sigma_{k-1} and sigma_{k,0} give the same P.
         let mut p_b = b;
