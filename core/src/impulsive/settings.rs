@@ -75,7 +75,7 @@ impl Default for Settings {
     fn default() -> Self {
         Self {
             fixed_point_max_iter: 60,
-            fixed_point_tol_mps: 1e-9,
+            fixed_point_tol_mps: 1e-7,
             min_fuel: true,
             min_fuel_max_iter: 40,
             min_fuel_step_tol_mps: 1e-9,

@@ -162,20 +162,24 @@ pub(crate) fn fixed_point(
         settings.fixed_point_tol_mps
     } / M_PER_KM;
     let mut out = FixedPoint::default();
-    for j in 0..max_iter {
+    for _ in 0..max_iter {
         propagate(ctx, pts, dv, ImpulseModel::Linear, settings, seq)?;
         build_system(ctx, pts, seq);
-        // The first iteration (and any where the fast path declines) uses the rank-revealing
-        // SVD; later ones the equilibrated Cholesky solve, which gives the same minimum-norm
-        // impulses at full row rank. The returned plan's rank and condition number are
-        // recomputed by the SVD on the final F (see `final_conditioning`).
-        let fast = if j > 0 {
-            solve_full_row_rank(&seq.f, &seq.dy)
-        } else {
-            None
-        };
+        // The equilibrated Cholesky solve gives the minimum-norm impulses at full row rank;
+        // when it declines (near rank deficiency) the rank-revealing SVD decides. The returned
+        // plan's rank and condition number come from the SVD of the last F built (see
+        // `final_conditioning`).
+        let fast = solve_full_row_rank(&seq.f, &seq.dy);
         let x0 = match fast {
-            Some(x) => x,
+            Some(x) => {
+                // Full row rank (Cholesky pivots bounded away from zero); the condition number
+                // is measured by the SVD at the end.
+                out.conditioning = Conditioning {
+                    rank: 6,
+                    condition_number: f64::NAN,
+                };
+                x
+            }
             None => {
                 let (x, cond) = solve_min_norm(
                     &seq.f,
@@ -400,7 +404,7 @@ pub(crate) fn solve_points(
     } else if !converged {
         rep.status = SolveStatus::MaxIterations;
     }
-    match final_conditioning(ctx, pts, settings, seq, &rep.dv) {
+    match final_conditioning(pts, settings, seq) {
         Ok(c) => rep.conditioning = c,
         Err(stage) => {
             if rep.status.is_usable() {
@@ -411,20 +415,17 @@ pub(crate) fn solve_points(
     rep
 }
 
-/// Rank and condition number of F at the returned impulses, by the SVD; leaves the linear
-/// propagation of `dv` in `seq`.
+/// Rank and condition number, by the SVD, of the last F built: at the last fixed-point or
+/// correction iterate, whose impulses differ from the returned ones by less than the
+/// tolerances.
 ///
 /// # Errors
 /// The failing [`Stage`].
 fn final_conditioning(
-    ctx: &Context,
     pts: &Points,
     settings: &Settings,
-    seq: &mut Sequence,
-    dv: &XVector,
+    seq: &Sequence,
 ) -> Result<Conditioning, Stage> {
-    propagate(ctx, pts, dv, ImpulseModel::Linear, settings, seq)?;
-    build_system(ctx, pts, seq);
     let columns = pts.n.saturating_mul(3);
     let (_, c) = solve_min_norm(
         &seq.f,
