@@ -214,3 +214,12 @@ fn fixed_solve_is_bit_identical_and_workspace_reuse_is_clean() {
     assert_eq!(bits(&first), bits(&again));
     assert_eq!(first.total_dv_mps.to_bits(), again.total_dv_mps.to_bits());
 }
+
+#[test]
+fn buffers_are_small_and_fixed() {
+    let ws = std::mem::size_of::<Workspace>();
+    let sol = std::mem::size_of::<Solution>();
+    println!("Workspace {ws} B, Solution {sol} B");
+    assert!(ws < 8 * 1024, "{ws}");
+    assert!(sol < 1024, "{sol}");
+}
