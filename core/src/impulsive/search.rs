@@ -11,7 +11,7 @@
 //! them (moves of `+-2 pi` shift one revolution between neighbouring gaps, moves of `+-step`
 //! slide one point; the step halves when no move improves). Every evaluation counts against
 //! `search_max_evaluations`, so the work is bounded by the settings alone, and the same input
-//! gives the same answer on every run.
+//! gives the same answer on every run (fixed seed, no clock, no data-dependent budget).
 
 use super::elements::{mean_arg_latitude_rad, wrap_two_pi, TWO_PI};
 use super::min_fuel::total;

@@ -9,11 +9,20 @@ pub const MAX_SEARCH_STARTS: usize = 16;
 /// Loop bounds, tolerances and thresholds. Plain `Copy` data; every field takes effect per
 /// solve (there is no set-up step).
 ///
-/// Worst case of a fixed-point solve, in SVDs of the 6 x 18 matrix F:
-/// `fixed_point_max_iter * (1 + [min_fuel] (1 + min_fuel_max_iter)) + 2 correction_max_iter`,
-/// each with `MAX_IMPULSES * kepler_max_iter` Kepler steps. A search runs exactly
-/// `search_max_evaluations` evaluations of at most `search_fixed_point_max_iter` SVDs each,
-/// then one full fixed-point solve.
+/// Worst case of a fixed-point solve (`N <= MAX_IMPULSES` impulses; a "propagation" is N
+/// Kepler solves of at most `kepler_max_iter` Newton steps; an "SVD" is at most
+/// `svd_max_iter` Jacobi sweeps of 15 rotations on the 6 x 3N matrix F):
+/// * minimum-norm phase: `fixed_point_max_iter` x (propagation + F + one Cholesky, or one SVD
+///   when Cholesky declines);
+/// * min-fuel phase (`min_fuel`): `fixed_point_max_iter` x (propagation + F + Cholesky/SVD +
+///   SVD + `min_fuel_max_iter` SVDs);
+/// * correction (`nonlinear_correction`): `correction_max_iter` x (two propagations + SVD),
+///   plus one exact propagation;
+/// * report: one SVD and one exact propagation.
+///
+/// A search runs at most `search_max_evaluations` evaluations, each at most
+/// `search_fixed_point_max_iter` fixed-point iterations (`search_min_fuel` adds the min-fuel
+/// SVDs per iteration), then one full fixed-point solve as above.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Settings {
     /// Most fixed-point iterations (Wang 2018, section 2), per phase (minimum norm, min fuel).
@@ -56,8 +65,9 @@ pub struct Settings {
     pub search_samples: u32,
     /// Local pattern searches, started from the best samples (at most [`MAX_SEARCH_STARTS`]).
     pub search_starts: u8,
-    /// Total evaluations of a search (samples plus local searches); the search always uses
-    /// exactly this many, so its time does not depend on the data.
+    /// Most evaluations of a search (samples plus local searches). A local search that
+    /// converges early hands its unused budget to the next start, so a search uses between
+    /// `search_samples` and this many; the bound depends on the settings alone.
     pub search_max_evaluations: u32,
     /// Seed of the search's xorshift generator.
     pub search_seed: u64,
