@@ -223,3 +223,55 @@ fn buffers_are_small_and_fixed() {
     assert!(ws < 8 * 1024, "{ws}");
     assert!(sol < 1024, "{sol}");
 }
+
+#[test]
+fn six_impulses_at_capacity() {
+    use reconfig_core::impulsive::{ImpulsePlan, ImpulsePoint};
+    let mut p = problem("wang2018-gco-to-pco-3imp");
+    let pts = [
+        (270.0, 1),
+        (90.0, 2),
+        (250.0, 3),
+        (60.0, 2),
+        (280.0, 3),
+        (100.0, 1),
+    ];
+    p.plan = ImpulsePlan::Fixed(
+        pts.iter()
+            .map(|(u, n): &(f64, i32)| ImpulsePoint {
+                arg_latitude_rad: u.to_radians(),
+                revolutions: *n,
+            })
+            .collect(),
+    );
+    let s = run(&p, &Settings::default());
+    assert_eq!(s.info.status, SolveStatus::Solved);
+    assert_eq!(s.impulses.len(), 6);
+    assert_eq!(s.info.rank, 6);
+    assert!(s.linear_total_dv_mps <= s.min_norm_total_dv_mps + 1e-12);
+    assert!(s.terminal_position_error_m < 1e-3);
+    // Times increase and revolutions are carried through.
+    for w in s.impulses.windows(2) {
+        assert!(w[1].time_s > w[0].time_s);
+    }
+    assert_eq!(s.impulses[5].revolutions, 1);
+}
+
+#[test]
+fn search_respects_a_small_budget() {
+    let p = problem("wang2018-gco-to-pco-search-3imp");
+    let settings = Settings {
+        search_samples: 50,
+        search_starts: 3,
+        search_max_evaluations: 300,
+        ..Settings::default()
+    };
+    let s = run(&p, &settings);
+    assert!(
+        s.info.evaluations <= 301 && s.info.evaluations >= 51,
+        "{}",
+        s.info.evaluations
+    );
+    assert_eq!(s.info.status, SolveStatus::Solved);
+    assert!(s.total_dv_mps.is_finite() && s.total_dv_mps < 20.0);
+}
