@@ -6,11 +6,29 @@
 //! step for the sum of norms, so the total never increases (up to the floor); it starts from
 //! the minimum-norm solution. Bounded by `Settings::min_fuel_max_iter`.
 
-use super::pinv::{solve_min_norm, Conditioning};
+use super::pinv::{solve_full_row_rank, solve_min_norm};
 use super::settings::Settings;
 use super::status::Stage;
 use super::transfer::{FMatrix, XVector};
 use nalgebra::SVector;
+
+/// `F^+ y` by the equilibrated Cholesky fast path, or the SVD when it declines.
+///
+/// # Errors
+/// [`Stage::Svd`] from the SVD.
+pub(crate) fn min_norm(
+    f: &FMatrix,
+    columns: usize,
+    y: &SVector<f64, 6>,
+    settings: &Settings,
+) -> Result<XVector, Stage> {
+    match solve_full_row_rank(f, y) {
+        Some(x) => Ok(x),
+        None => {
+            solve_min_norm(f, columns, y, settings.rank_rcond, settings.svd_max_iter).map(|r| r.0)
+        }
+    }
+}
 
 /// Euclidean norm of one impulse block.
 fn norm3(b: &[f64]) -> f64 {
@@ -61,8 +79,7 @@ pub(crate) fn refine(
         for (mut col, s) in g.column_iter_mut().zip(scale.iter()) {
             col.scale_mut(*s);
         }
-        let (z, _c): (XVector, Conditioning) =
-            solve_min_norm(&g, columns, y, settings.rank_rcond, settings.svd_max_iter)?;
+        let z = min_norm(&g, columns, y, settings)?;
         let next = z.component_mul(&scale);
         let next_cost = total(&next);
         steps = steps.saturating_add(1);

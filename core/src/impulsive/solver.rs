@@ -8,7 +8,7 @@ use super::elements::{
 };
 use super::error::{Orbit, PlanError, Quantity};
 use super::kepler::true_anomaly;
-use super::min_fuel::{refine, total};
+use super::min_fuel::{min_norm, refine, total};
 use super::nonlinear::{relative_position_rtn, state};
 use super::pinv::{solve_full_row_rank, solve_min_norm, Conditioning};
 use super::settings::Settings;
@@ -250,7 +250,7 @@ fn project(
 ) -> Result<XVector, Stage> {
     let mut r = *y;
     r.gemv(-1.0, f, prev, 1.0);
-    let (d, _) = solve_min_norm(f, columns, &r, settings.rank_rcond, settings.svd_max_iter)?;
+    let d = min_norm(f, columns, &r, settings)?;
     let mut x = *prev;
     x.axpy(1.0, &d, 1.0);
     Ok(if total(&x) < total(x0) { x } else { *x0 })
@@ -457,13 +457,7 @@ fn correct(
         propagate(ctx, pts, &dv, ImpulseModel::Linear, settings, seq)?;
         build_system(ctx, pts, seq);
         let e = nalgebra::SVector::<f64, 6>::from(err);
-        let (d, _) = solve_min_norm(
-            &seq.f,
-            columns,
-            &e,
-            settings.rank_rcond,
-            settings.svd_max_iter,
-        )?;
+        let d = min_norm(&seq.f, columns, &e, settings)?;
         dv.axpy(-1.0, &d, 1.0);
         rep.correction_steps = rep.correction_steps.saturating_add(1);
         rep.correction_used = true;
