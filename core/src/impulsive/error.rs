@@ -139,3 +139,65 @@ impl core::fmt::Display for PlanError {
         }
     }
 }
+
+#[cfg(test)]
+#[allow(
+    clippy::unwrap_used,
+    clippy::indexing_slicing,
+    clippy::float_cmp,
+    clippy::arithmetic_side_effects
+)]
+mod tests {
+    use super::*;
+    use core::fmt::Write;
+
+    struct Buf {
+        text: [u8; 160],
+        len: usize,
+    }
+
+    impl Write for Buf {
+        fn write_str(&mut self, s: &str) -> core::fmt::Result {
+            for b in s.bytes() {
+                if self.len < self.text.len() {
+                    self.text[self.len] = b;
+                    self.len += 1;
+                }
+            }
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn display_names_the_problem() {
+        let mut buf = Buf {
+            text: [0; 160],
+            len: 0,
+        };
+        write!(
+            buf,
+            "{}",
+            PlanError::InclinationSingular {
+                orbit: Orbit::Chief
+            }
+        )
+        .unwrap();
+        let s = core::str::from_utf8(&buf.text[..buf.len]).unwrap();
+        assert!(s.contains("Chief") && s.contains("sin i"), "{s}");
+        let mut buf = Buf {
+            text: [0; 160],
+            len: 0,
+        };
+        write!(
+            buf,
+            "{}",
+            PlanError::CapacityExceeded {
+                requested: 7,
+                capacity: 6
+            }
+        )
+        .unwrap();
+        let s = core::str::from_utf8(&buf.text[..buf.len]).unwrap();
+        assert!(s.contains('7') && s.contains('6'), "{s}");
+    }
+}

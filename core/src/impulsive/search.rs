@@ -143,7 +143,7 @@ fn cost_of(
         settings.search_fixed_point_max_iter,
     ) {
         Ok(fp) if fp.conditioning.rank == 6 => {
-            let t = total(&dv) * 1000.0;
+            let t = total(&dv) * super::elements::M_PER_KM;
             if t.is_finite() {
                 t
             } else {

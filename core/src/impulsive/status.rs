@@ -68,3 +68,25 @@ pub struct SolveInfo {
     /// Fixed-point solves evaluated (1 for fixed points; the search's count otherwise).
     pub evaluations: u32,
 }
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_is_unsolved_and_only_solved_is_usable() {
+        assert_eq!(SolveStatus::default(), SolveStatus::Unsolved);
+        assert!(SolveStatus::Solved.is_usable());
+        for s in [
+            SolveStatus::Unsolved,
+            SolveStatus::RankDeficient,
+            SolveStatus::MaxIterations,
+            SolveStatus::CorrectionNotConverged,
+            SolveStatus::NumericalFailure(Stage::Svd),
+        ] {
+            assert!(!s.is_usable(), "{s:?}");
+        }
+        assert_eq!(SolveInfo::default().status, SolveStatus::Unsolved);
+    }
+}
