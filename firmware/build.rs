@@ -46,6 +46,7 @@ fn main() {
         let planner = match f.planner {
             fixture_set::Planner::Pseudospectral => "Planner::Pseudospectral",
             fixture_set::Planner::Impulsive => "Planner::Impulsive",
+            fixture_set::Planner::ImpulsiveFixedPoint => "Planner::ImpulsiveFixedPoint",
         };
         writeln!(
             code,

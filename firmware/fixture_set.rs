@@ -16,8 +16,11 @@ use std::path::{Path, PathBuf};
 pub enum Planner {
     /// Planner A, `reconfig_core::pseudospectral`.
     Pseudospectral,
-    /// Planner B, `reconfig_core::impulsive`.
+    /// Planner B, `reconfig_core::impulsive`, default settings.
     Impulsive,
+    /// Planner B with `Settings::fixed_point_only()`: the fixed-point plan the 2 M instruction
+    /// budget is for. Every fixed-point planner-B fixture also runs as `<name>+fixed-point`.
+    ImpulsiveFixedPoint,
 }
 
 impl Planner {
@@ -25,7 +28,7 @@ impl Planner {
     pub fn key(self) -> &'static str {
         match self {
             Self::Pseudospectral => "pseudospectral",
-            Self::Impulsive => "impulsive",
+            Self::Impulsive | Self::ImpulsiveFixedPoint => "impulsive",
         }
     }
 }
@@ -84,19 +87,25 @@ pub fn encode_all(dir: &Path) -> Result<Vec<EncodedFixture>, String> {
                 postcard::to_stdvec(&f.problem).map_err(|e| format!("{name}: {e}"))?,
             ),
             Fixture::Impulsive(f) => {
-                let problem = impulsive_problem(f).ok_or_else(|| {
-                    format!(
-                        "{}: planner-B fixtures are not wired into the firmware yet: make \
-                         `impulsive_problem` in firmware/fixture_set.rs return Some(&f.problem)",
-                        file.display()
-                    )
-                })?;
+                let problem = &f.problem;
                 (
                     Planner::Impulsive,
                     postcard::to_stdvec(problem).map_err(|e| format!("{name}: {e}"))?,
                 )
             }
         };
+        let fixed_point = matches!(
+            &fixture,
+            Fixture::Impulsive(f) if matches!(f.problem.plan, reconfig_core::impulsive::ImpulsePlan::Fixed(_))
+        );
+        if fixed_point {
+            out.push(EncodedFixture {
+                name: format!("{name}+fixed-point"),
+                file: file.clone(),
+                planner: Planner::ImpulsiveFixedPoint,
+                problem: problem.clone(),
+            });
+        }
         out.push(EncodedFixture {
             name,
             file,
@@ -105,17 +114,4 @@ pub fn encode_all(dir: &Path) -> Result<Vec<EncodedFixture>, String> {
         });
     }
     Ok(out)
-}
-
-/// The core problem of a planner-B fixture.
-///
-/// MERGE NOTE: on this branch `ImpulsiveFixture` has no `problem` field yet (planner B's host
-/// parser lands from its own branch, and no planner-B fixture exists). When it lands, replace the
-/// body with `Some(&fixture.problem)`; until then a planner-B fixture stops the build with a
-/// message pointing here, rather than being skipped.
-fn impulsive_problem(
-    fixture: &reconfig_host::fixture::impulsive::ImpulsiveFixture,
-) -> Option<&reconfig_core::impulsive::Problem> {
-    let _ = fixture;
-    None
 }

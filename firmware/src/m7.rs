@@ -33,8 +33,10 @@ use reconfig_core::{impulsive, pseudospectral};
 pub enum Planner {
     /// Planner A.
     Pseudospectral,
-    /// Planner B.
+    /// Planner B, default settings.
     Impulsive,
+    /// Planner B, `Settings::fixed_point_only()`.
+    ImpulsiveFixedPoint,
 }
 
 /// A fixture baked in by `build.rs`: the postcard bytes of the planner's `Problem`.
@@ -321,6 +323,7 @@ fn main() -> ! {
     systick::start();
     let ps_settings = pseudospectral::Settings::default();
     let im_settings = impulsive::Settings::default();
+    let im_fixed_point_settings = impulsive::Settings::fixed_point_only();
     for (index, fixture) in FIXTURES.iter().enumerate() {
         // The inputs pass through `black_box` after the start marker and the result before the stop
         // marker, so that no part of the solve is folded away or moved out of the measured span.
@@ -361,7 +364,12 @@ fn main() -> ! {
                 );
                 print_result(&mut out, index, &encoded);
             }
-            Planner::Impulsive => {
+            Planner::Impulsive | Planner::ImpulsiveFixedPoint => {
+                let im_settings = if matches!(fixture.planner, Planner::ImpulsiveFixedPoint) {
+                    im_fixed_point_settings
+                } else {
+                    im_settings
+                };
                 *IM_SOLUTION = impulsive::Solution::new();
                 repaint_stack();
                 let problem: impulsive::Problem = match postcard::from_bytes(fixture.problem) {

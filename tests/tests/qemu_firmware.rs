@@ -491,17 +491,17 @@ fn host_result(planner: Planner, problem: &[u8]) -> Vec<u8> {
                 result.map(|()| &*solution);
             postcard::to_stdvec(&encoded).expect("encode")
         }
-        Planner::Impulsive => {
+        Planner::Impulsive | Planner::ImpulsiveFixedPoint => {
+            let settings = if planner == Planner::ImpulsiveFixedPoint {
+                impulsive::Settings::fixed_point_only()
+            } else {
+                impulsive::Settings::default()
+            };
             let problem: impulsive::Problem =
                 postcard::from_bytes(problem).expect("the baked problem decodes");
             let mut workspace = Box::new(impulsive::Workspace::new());
             let mut solution = Box::new(impulsive::Solution::new());
-            let result = impulsive::solve(
-                &problem,
-                &impulsive::Settings::default(),
-                &mut workspace,
-                &mut solution,
-            );
+            let result = impulsive::solve(&problem, &settings, &mut workspace, &mut solution);
             let encoded: Result<&impulsive::Solution, impulsive::PlanError> =
                 result.map(|()| &*solution);
             postcard::to_stdvec(&encoded).expect("encode")

@@ -1,13 +1,105 @@
-//! Planner B: multi-impulse reconfiguration under J2 at fixed impulse points (Wang et al. 2018).
+//! Planner B: multi-impulse reconfiguration under J2 at fixed impulse points (Wang et al. 2018),
+//! with a least-fuel refinement, a nonlinear check with defect correction, and a bounded
+//! deterministic search over the impulse points.
 //!
-//! ## Units
-//! Lengths in km, times in s, angles in rad, impulses in m/s (`dv_rtn_mps`: radial,
-//! along-track, normal in the deputy's local frame at the impulse). Degrees appear only at the
-//! host's I/O edge.
+//! ## Problem
+//! A deputy changes its mean elements relative to a non-manoeuvring chief,
+//! `Delta sigma = sigma_deputy - sigma_chief`, `sigma = [a, e, i, Omega, omega, M]`, from
+//! `Delta sigma_0` at the epoch to `Delta sigma_N` at the last of N impulses. Impulse k happens
+//! at mean argument of latitude `u_k` after `dN_k` whole revolutions (eq. 7). Between impulses
+//! the mean elements drift with J2 (eq. 4); an impulse changes them by `B(sigma) dv` (eq. 3).
+//! Linearising the drift gives `F dX = dY` (eq. 11-12); `dX = F^+ dY` (eq. 14) iterated to a
+//! fixed point, since F depends on the impulses.
+//!
+//! ## Units and frame
+//! Lengths in km, times in s, angles in rad inside the core; impulses in m/s
+//! (`dv_rtn_mps`: radial, along-track, normal in the deputy's local frame at the impulse).
+//! Degrees appear only at the host's I/O edge.
+//!
+//! ## Bounds
+//! Every loop is bounded by a field of [`Settings`]; see its docs for the worst case.
 
+mod elements;
+mod error;
+mod gve;
+mod kepler;
+mod min_fuel;
+mod nonlinear;
+mod pinv;
+mod search;
+mod secular;
+mod settings;
+mod solution;
+mod solver;
+mod status;
+mod transfer;
 mod types;
+mod workspace;
 
+pub use elements::{
+    wrap_pi, wrap_two_pi, EARTH_J2, EARTH_MU_KM3_S2, EARTH_RADIUS_KM, M_PER_KM, TWO_PI,
+};
+pub use error::{Orbit, PlanError, Quantity, SettingsError};
+pub use settings::{Settings, MAX_SEARCH_STARTS};
+pub use solution::{Impulse, Solution};
+pub use status::{SolveInfo, SolveStatus, Stage};
 pub use types::*;
-// Firmware branch only: compile-only placeholder API, replaced at merge by planner B's own.
-mod placeholder;
-pub use placeholder::*;
+pub use workspace::Workspace;
+
+/// Plan the impulses of `problem`: at its fixed impulse points, or by a bounded search over
+/// them (`ImpulsePlan::Search`).
+///
+/// Writes the plan (or the best so far, with a status saying why) into `out`. Time is bounded
+/// by `settings` alone (see [`Settings`]); no heap, no panics, bit-identical on every run.
+///
+/// # Errors
+/// A [`PlanError`] when the request is rejected before iterating (bad settings, NaN or
+/// infinite input, an orbit that is not a valid ellipse above Earth's surface, eccentricity or
+/// `sin i` below the singularity thresholds, negative or excessive revolution counts, no
+/// impulses or more than [`crate::capacity::MAX_IMPULSES`]); `out` and `workspace` are then
+/// untouched.
+pub fn solve(
+    problem: &Problem,
+    settings: &Settings,
+    workspace: &mut Workspace,
+    out: &mut Solution,
+) -> Result<(), PlanError> {
+    settings.validate().map_err(PlanError::InvalidSettings)?;
+    let ctx = solver::validate(problem, settings)?;
+    let evaluations = match &problem.plan {
+        ImpulsePlan::Fixed(points) => {
+            workspace.points = transfer::Points::new();
+            for (slot, p) in workspace.points.at.iter_mut().zip(points.iter()) {
+                *slot = *p;
+            }
+            workspace.points.n = points.len();
+            1
+        }
+        ImpulsePlan::Search {
+            impulses,
+            max_revolutions,
+        } => {
+            let used = search::search(
+                &ctx,
+                usize::from(*impulses),
+                *max_revolutions,
+                settings,
+                &mut workspace.seq,
+                &mut workspace.points,
+                &mut workspace.search,
+            );
+            used.saturating_add(1)
+        }
+    };
+    let report = solver::solve_points(&ctx, &workspace.points, settings, &mut workspace.seq);
+    solver::write_solution(
+        &ctx,
+        &workspace.points,
+        settings,
+        &mut workspace.seq,
+        &report,
+        evaluations,
+        out,
+    );
+    Ok(())
+}

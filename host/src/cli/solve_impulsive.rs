@@ -1,10 +1,124 @@
-//! `reconfig solve` for planner-B fixtures.
+//! `reconfig solve` for planner-B fixtures: a readable report, or `--json`.
 
 use crate::fixture::impulsive::ImpulsiveFixture;
-use anyhow::{bail, Result};
+use anyhow::Result;
+use reconfig_core::impulsive::{solve, ImpulsePlan, Settings, Solution, Workspace};
+use serde_json::json;
 use std::process::ExitCode;
+use std::time::Instant;
 
-/// Solve and report a planner-B fixture.
-pub fn run(_fixture: &ImpulsiveFixture, _json: bool) -> Result<ExitCode> {
-    bail!("planner \"impulsive\" is not built yet")
+/// Solve and report a planner-B fixture. Exit code 0 when the plan is usable, 1 otherwise.
+pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
+    let settings = Settings::default();
+    let mut workspace = Box::new(Workspace::new());
+    let mut solution = Box::new(Solution::new());
+    let started = Instant::now();
+    let result = solve(&fixture.problem, &settings, &mut workspace, &mut solution);
+    let solve_time_s = started.elapsed().as_secs_f64();
+    if let Err(err) = result {
+        if json {
+            println!(
+                "{}",
+                json!({ "name": fixture.name, "status": "Rejected", "error": format!("{err:?}"), "message": err.to_string() })
+            );
+        } else {
+            println!("{}: rejected: {err}", fixture.name);
+        }
+        return Ok(ExitCode::from(1));
+    }
+    let s = &solution;
+    if json {
+        let impulses: Vec<_> = s
+            .impulses
+            .iter()
+            .map(|i| {
+                json!({
+                    "time_s": i.time_s,
+                    "arg_latitude_deg": i.arg_latitude_rad.to_degrees(),
+                    "true_arg_latitude_deg": i.true_arg_latitude_rad.to_degrees(),
+                    "revolutions": i.revolutions,
+                    "dv_rtn_mps": i.dv_rtn_mps,
+                })
+            })
+            .collect();
+        let e = &s.terminal_error_elements;
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&json!({
+                "name": fixture.name,
+                "status": format!("{:?}", s.info.status),
+                "total_dv_mps": s.total_dv_mps,
+                "min_norm_total_dv_mps": s.min_norm_total_dv_mps,
+                "linear_total_dv_mps": s.linear_total_dv_mps,
+                "impulses": impulses,
+                "final_time_s": s.final_time_s,
+                "terminal_error_m": s.terminal_error_m,
+                "terminal_position_error_m": s.terminal_position_error_m,
+                "terminal_error_elements": [e.dsma_km, e.decc, e.dinc_rad, e.draan_rad, e.dargp_rad, e.dmean_anomaly_rad],
+                "iterations": s.info.iterations,
+                "min_fuel_iterations": s.info.min_fuel_iterations,
+                "correction_iterations": s.info.correction_iterations,
+                "rank": s.info.rank,
+                "condition_number": s.info.condition_number,
+                "min_fuel_used": s.info.min_fuel_used,
+                "correction_used": s.info.correction_used,
+                "evaluations": s.info.evaluations,
+                "solve_time_s": solve_time_s,
+            }))?
+        );
+    } else {
+        let plan = match &fixture.problem.plan {
+            ImpulsePlan::Fixed(p) => format!("{} impulses at fixed points", p.len()),
+            ImpulsePlan::Search {
+                impulses,
+                max_revolutions,
+            } => {
+                format!("search: {impulses} impulses, at most {max_revolutions} revolutions")
+            }
+        };
+        println!("{} ({plan})", fixture.name);
+        println!("status {:?}", s.info.status);
+        println!("  k      t [s]   u mean [deg]  u true [deg]  dN   dv radial   along-track      normal [m/s]   |dv|");
+        for (k, i) in s.impulses.iter().enumerate() {
+            let d = i.dv_rtn_mps;
+            println!(
+                "  {:<2} {:>10.3} {:>12.4} {:>13.4} {:>4} {:>11.5} {:>13.5} {:>11.5} {:>12.5}",
+                k + 1,
+                i.time_s,
+                i.arg_latitude_rad.to_degrees(),
+                i.true_arg_latitude_rad.to_degrees(),
+                i.revolutions,
+                d[0],
+                d[1],
+                d[2],
+                (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
+            );
+        }
+        println!(
+            "total dv            {:.5} m/s (linear model: minimum norm {:.5}, returned plan {:.5} m/s)",
+            s.total_dv_mps, s.min_norm_total_dv_mps, s.linear_total_dv_mps
+        );
+        println!(
+            "terminal error      {:.3e} m along-track, {:.3e} m position (nonlinear check)",
+            s.terminal_error_m, s.terminal_position_error_m
+        );
+        println!(
+            "iterations          {} fixed point, {} min-fuel, {} correction; rank {}, cond {:.3e}",
+            s.info.iterations,
+            s.info.min_fuel_iterations,
+            s.info.correction_iterations,
+            s.info.rank,
+            s.info.condition_number
+        );
+        println!(
+            "min fuel used {}, nonlinear correction used {}, evaluations {}, solve time {:.6} s",
+            s.info.min_fuel_used, s.info.correction_used, s.info.evaluations, solve_time_s
+        );
+        println!("frame: dv in the deputy's local frame (radial, along-track, normal)");
+    }
+    Ok(if s.info.status.is_usable() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
 }

@@ -1,0 +1,145 @@
+//! Mean orbital elements as a working 6-vector, the Earth constants, and angle wrapping.
+//!
+//! Internal units (stated once for planner B): lengths in km, times in s, angles in rad,
+//! velocities in km/s. Impulses leave the core in m/s (`*_mps`).
+
+use super::types::{MeanElements, RelativeElements};
+
+/// Earth's gravitational parameter mu, km^3/s^2 (Wang 2018, section 1.2).
+pub const EARTH_MU_KM3_S2: f64 = 398_600.441_8;
+/// Earth's equatorial radius Re, km (Wang 2018, eq. 4).
+pub const EARTH_RADIUS_KM: f64 = 6378.137;
+/// Earth's second zonal harmonic J2 (dimensionless).
+pub const EARTH_J2: f64 = 1.082_63e-3;
+/// Metres per kilometre (for km/s to m/s and km to m).
+pub const M_PER_KM: f64 = 1000.0;
+/// 2 pi.
+pub const TWO_PI: f64 = core::f64::consts::TAU;
+
+/// Index of a in an element 6-vector.
+pub(crate) const A: usize = 0;
+/// Index of e.
+pub(crate) const E: usize = 1;
+/// Index of i.
+pub(crate) const I: usize = 2;
+/// Index of Omega (RAAN).
+pub(crate) const RAAN: usize = 3;
+/// Index of omega (argument of perigee).
+pub(crate) const ARGP: usize = 4;
+/// Index of M (mean anomaly).
+pub(crate) const MA: usize = 5;
+
+/// Elements `[a_km, e, i_rad, raan_rad, argp_rad, mean_anomaly_rad]` (Wang 2018's sigma).
+pub(crate) type Elements = [f64; 6];
+
+/// The 6-vector of mean elements.
+pub(crate) fn from_mean(el: &MeanElements) -> Elements {
+    [
+        el.sma_km,
+        el.ecc,
+        el.inc_rad,
+        el.raan_rad,
+        el.argp_rad,
+        el.mean_anomaly_rad,
+    ]
+}
+
+/// The 6-vector of a relative-element difference.
+pub(crate) fn from_relative(el: &RelativeElements) -> Elements {
+    [
+        el.dsma_km,
+        el.decc,
+        el.dinc_rad,
+        el.draan_rad,
+        el.dargp_rad,
+        el.dmean_anomaly_rad,
+    ]
+}
+
+/// The typed relative elements of a 6-vector.
+pub(crate) fn to_relative(v: &Elements) -> RelativeElements {
+    RelativeElements {
+        dsma_km: v[A],
+        decc: v[E],
+        dinc_rad: v[I],
+        draan_rad: v[RAAN],
+        dargp_rad: v[ARGP],
+        dmean_anomaly_rad: v[MA],
+    }
+}
+
+/// `a + b` componentwise.
+pub(crate) fn add(a: &Elements, b: &Elements) -> Elements {
+    let mut out = *a;
+    for (o, x) in out.iter_mut().zip(b.iter()) {
+        *o += *x;
+    }
+    out
+}
+
+/// `a - b` componentwise.
+pub(crate) fn sub(a: &Elements, b: &Elements) -> Elements {
+    let mut out = *a;
+    for (o, x) in out.iter_mut().zip(b.iter()) {
+        *o -= *x;
+    }
+    out
+}
+
+/// `x` wrapped into `[0, 2 pi)`.
+pub fn wrap_two_pi(x: f64) -> f64 {
+    let r = libm::fmod(x, TWO_PI);
+    let r = if r < 0.0 { r + TWO_PI } else { r };
+    // fmod of a tiny negative value plus 2 pi can round up to exactly 2 pi.
+    if r >= TWO_PI {
+        0.0
+    } else {
+        r
+    }
+}
+
+/// `x` wrapped into `[-pi, pi]` (IEEE remainder).
+pub fn wrap_pi(x: f64) -> f64 {
+    libm::remainder(x, TWO_PI)
+}
+
+/// Mean motion `n = sqrt(mu / a^3)`, rad/s.
+pub(crate) fn mean_motion_rad_s(sma_km: f64) -> f64 {
+    libm::sqrt(EARTH_MU_KM3_S2 / (sma_km * sma_km * sma_km))
+}
+
+/// Mean argument of latitude `u = omega + M`, rad (not wrapped).
+pub(crate) fn mean_arg_latitude_rad(el: &Elements) -> f64 {
+    el[ARGP] + el[MA]
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wrapping() {
+        assert_eq!(wrap_two_pi(0.0), 0.0);
+        assert!((wrap_two_pi(-0.5) - (TWO_PI - 0.5)).abs() < 1e-15);
+        assert!((wrap_two_pi(7.0) - (7.0 - TWO_PI)).abs() < 1e-15);
+        assert!(wrap_two_pi(-1e-300) < TWO_PI);
+        assert!((wrap_pi(3.5) - (3.5 - TWO_PI)).abs() < 1e-15);
+        assert!((wrap_pi(-3.5) - (TWO_PI - 3.5)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn constants_and_mean_motion() {
+        // 800 km altitude: period about 6052 s.
+        let n = mean_motion_rad_s(7178.137);
+        assert!((TWO_PI / n - 6052.0).abs() < 2.0);
+        assert_eq!(M_PER_KM * 1.0e-3, 1.0);
+    }
+
+    #[test]
+    fn round_trip_relative() {
+        let v = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
+        assert_eq!(from_relative(&to_relative(&v)), v);
+        assert_eq!(sub(&add(&v, &v), &v), v);
+    }
+}

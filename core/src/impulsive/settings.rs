@@ -1,0 +1,208 @@
+//! Planner-B settings: every loop bound, tolerance and threshold of a solve.
+
+use super::error::SettingsError;
+use serde::{Deserialize, Serialize};
+
+/// Most local searches the impulse-point search runs (workspace capacity).
+pub const MAX_SEARCH_STARTS: usize = 16;
+
+/// Loop bounds, tolerances and thresholds. Plain `Copy` data; every field takes effect per
+/// solve (there is no set-up step).
+///
+/// Worst case of a fixed-point solve (`N <= MAX_IMPULSES` impulses; a "propagation" is N
+/// Kepler solves of at most `kepler_max_iter` Newton steps; an "SVD" is at most
+/// `svd_max_iter` Jacobi sweeps of 15 rotations on the 6 x 3N matrix F):
+/// * minimum-norm phase: `fixed_point_max_iter` x (propagation + F + one Cholesky, or one SVD
+///   when Cholesky declines);
+/// * min-fuel phase (`min_fuel`): `fixed_point_max_iter` x (propagation + F + Cholesky/SVD +
+///   SVD + `min_fuel_max_iter` SVDs);
+/// * correction (`nonlinear_correction`): `correction_max_iter` x (two propagations + SVD),
+///   plus one exact propagation;
+/// * report: one SVD and one exact propagation.
+///
+/// A search runs at most `search_max_evaluations` evaluations, each at most
+/// `search_fixed_point_max_iter` fixed-point iterations (`search_min_fuel` adds the min-fuel
+/// SVDs per iteration), then one full fixed-point solve as above.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Settings {
+    /// Most fixed-point iterations (Wang 2018, section 2), per phase (minimum norm, min fuel).
+    pub fixed_point_max_iter: u16,
+    /// The fixed point has converged when no impulse component changes by more than this, m/s.
+    pub fixed_point_tol_mps: f64,
+    /// Refine the minimum-norm impulses to least `sum_k |dv_k|` over the null space of F
+    /// (eq. 13), iterated jointly with the fixed point.
+    pub min_fuel: bool,
+    /// Most reweighting steps of the min-fuel refinement per fixed-point iteration.
+    pub min_fuel_max_iter: u16,
+    /// The joint min-fuel fixed point has converged when the total changes by less than this
+    /// between fixed-point iterations, m/s.
+    pub min_fuel_step_tol_mps: f64,
+    /// The refinement stops when the total changes by less than this, m/s.
+    pub min_fuel_tol_mps: f64,
+    /// Impulse magnitude below which reweighting treats an impulse as zero, m/s.
+    pub min_fuel_floor_mps: f64,
+    /// Drive the terminal error of the nonlinear model (exact impulses, J2 secular drift) to
+    /// `correction_tol` by defect correction with the linear map.
+    pub nonlinear_correction: bool,
+    /// Most defect-correction steps.
+    pub correction_max_iter: u16,
+    /// Accepted terminal error: largest of `|da|/a`, `|de|`, `|di|`, `|dOmega|`, `|domega|`,
+    /// `|dM|` (dimensionless / rad).
+    pub correction_tol: f64,
+    /// Most Newton steps for Kepler's equation.
+    pub kepler_max_iter: u16,
+    /// Most implicit-shift QR steps of one SVD.
+    pub svd_max_iter: u16,
+    /// Singular values below `rank_rcond * sigma_max` count as zero (rank, pseudo-inverse).
+    pub rank_rcond: f64,
+    /// Reject (and stop at) eccentricities below this: the GVE's `1/e` terms.
+    pub min_eccentricity: f64,
+    /// Reject (and stop at) `|sin i|` below this: the GVE's `1/sin i` terms.
+    pub min_sin_inclination: f64,
+    /// Largest sum of revolution counts accepted, for fixed points and a search's limit.
+    pub max_total_revolutions: i32,
+    /// Random impulse-point samples the search evaluates before its local searches.
+    pub search_samples: u32,
+    /// Local pattern searches, started from the best samples (at most [`MAX_SEARCH_STARTS`]).
+    pub search_starts: u8,
+    /// Most evaluations of a search (samples plus local searches). A local search that
+    /// converges early hands its unused budget to the next start, so a search uses between
+    /// `search_samples` and this many; the bound depends on the settings alone.
+    pub search_max_evaluations: u32,
+    /// Seed of the search's xorshift generator.
+    pub search_seed: u64,
+    /// First pattern step of a local search, rad of argument of latitude.
+    pub search_step_rad: f64,
+    /// A local search ends when its step falls below this, rad.
+    pub search_min_step_rad: f64,
+    /// Fixed-point iterations per search evaluation.
+    pub search_fixed_point_max_iter: u16,
+    /// Score search evaluations by the min-fuel total (else the minimum-norm total).
+    pub search_min_fuel: bool,
+}
+
+impl Settings {
+    /// The fixed-point plan alone: the defaults without the least-fuel refinement and without
+    /// the nonlinear defect correction (Wang 2018's eq. 14 iterated to its fixed point). This is
+    /// the plan the on-board instruction budget (2 M) is set for.
+    pub fn fixed_point_only() -> Self {
+        Self {
+            min_fuel: false,
+            nonlinear_correction: false,
+            ..Self::default()
+        }
+    }
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self {
+            fixed_point_max_iter: 60,
+            fixed_point_tol_mps: 1e-7,
+            min_fuel: true,
+            min_fuel_max_iter: 40,
+            min_fuel_step_tol_mps: 1e-9,
+            min_fuel_tol_mps: 1e-11,
+            min_fuel_floor_mps: 1e-9,
+            nonlinear_correction: true,
+            correction_max_iter: 12,
+            correction_tol: 1e-12,
+            kepler_max_iter: 30,
+            svd_max_iter: 200,
+            rank_rcond: 1e-10,
+            min_eccentricity: 1e-4,
+            min_sin_inclination: 1e-3,
+            max_total_revolutions: 100,
+            search_samples: 3000,
+            search_starts: 12,
+            search_max_evaluations: 20_000,
+            search_seed: 0x5741_4e47_2018_0006,
+            search_step_rad: 0.25,
+            search_min_step_rad: 1e-7,
+            search_fixed_point_max_iter: 12,
+            search_min_fuel: false,
+        }
+    }
+}
+
+impl Settings {
+    /// Check every field against its documented range.
+    ///
+    /// # Errors
+    /// [`SettingsError`] naming the first class of field out of range.
+    pub fn validate(&self) -> Result<(), SettingsError> {
+        if self.fixed_point_max_iter == 0
+            || self.min_fuel_max_iter == 0
+            || self.correction_max_iter == 0
+            || self.kepler_max_iter == 0
+            || self.svd_max_iter == 0
+            || self.search_fixed_point_max_iter == 0
+            || self.search_max_evaluations == 0
+        {
+            return Err(SettingsError::ZeroIterationLimit);
+        }
+        let positive = |v: f64| v.is_finite() && v > 0.0;
+        if !positive(self.fixed_point_tol_mps)
+            || !positive(self.min_fuel_tol_mps)
+            || !positive(self.min_fuel_step_tol_mps)
+            || !positive(self.min_fuel_floor_mps)
+            || !positive(self.correction_tol)
+            || !positive(self.search_step_rad)
+            || !positive(self.search_min_step_rad)
+            || !(self.rank_rcond.is_finite() && self.rank_rcond > 0.0 && self.rank_rcond < 1.0)
+        {
+            return Err(SettingsError::BadTolerance);
+        }
+        let in_unit = |v: f64| v.is_finite() && v > 0.0 && v < 1.0;
+        if !in_unit(self.min_eccentricity)
+            || !in_unit(self.min_sin_inclination)
+            || self.max_total_revolutions < 0
+        {
+            return Err(SettingsError::BadThreshold);
+        }
+        if self.search_starts == 0
+            || usize::from(self.search_starts) > MAX_SEARCH_STARTS
+            || self.search_samples < u32::from(self.search_starts)
+            || self.search_samples >= self.search_max_evaluations
+        {
+            return Err(SettingsError::BadSearchBudget);
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_is_valid_and_each_class_is_caught() {
+        assert_eq!(Settings::default().validate(), Ok(()));
+        let s = Settings {
+            kepler_max_iter: 0,
+            ..Settings::default()
+        };
+        assert_eq!(s.validate(), Err(SettingsError::ZeroIterationLimit));
+        let s = Settings {
+            correction_tol: f64::NAN,
+            ..Settings::default()
+        };
+        assert_eq!(s.validate(), Err(SettingsError::BadTolerance));
+        let s = Settings {
+            min_eccentricity: 0.0,
+            ..Settings::default()
+        };
+        assert_eq!(s.validate(), Err(SettingsError::BadThreshold));
+        let s = Settings {
+            search_starts: 200,
+            ..Settings::default()
+        };
+        assert_eq!(s.validate(), Err(SettingsError::BadSearchBudget));
+        let s = Settings {
+            search_samples: 20_000,
+            ..Settings::default()
+        };
+        assert_eq!(s.validate(), Err(SettingsError::BadSearchBudget));
+    }
+}

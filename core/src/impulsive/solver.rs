@@ -1,0 +1,598 @@
+//! The fixed-point solve at given impulse points: validation, the minimum-norm fixed point
+//! (Wang 2018, section 2), the min-fuel refinement, and the nonlinear check and defect
+//! correction.
+
+use super::elements::{
+    from_mean, from_relative, sub, to_relative, wrap_pi, wrap_two_pi, Elements, A, ARGP, E,
+    EARTH_RADIUS_KM, I, M_PER_KM, RAAN,
+};
+use super::error::{Orbit, PlanError, Quantity};
+use super::kepler::true_anomaly;
+use super::min_fuel::{min_norm, refine, total};
+use super::nonlinear::{relative_position_rtn, state};
+use super::pinv::{solve_full_row_rank, solve_min_norm, Conditioning};
+use super::settings::Settings;
+use super::solution::{Impulse, Solution};
+use super::status::{SolveStatus, Stage};
+use super::transfer::{
+    build_system, chief_at, propagate, Context, ImpulseModel, Points, Sequence, XVector,
+};
+use super::types::{ImpulsePlan, Problem};
+use crate::capacity::MAX_IMPULSES;
+
+fn index_u8(k: usize) -> u8 {
+    u8::try_from(k).unwrap_or(u8::MAX)
+}
+
+fn check_finite(v: &Elements, what: Quantity) -> Result<(), PlanError> {
+    match v.iter().position(|x| !x.is_finite()) {
+        Some(k) => Err(PlanError::NotFinite {
+            what,
+            index: index_u8(k),
+        }),
+        None => Ok(()),
+    }
+}
+
+fn check_orbit(el: &Elements, orbit: Orbit, settings: &Settings) -> Result<(), PlanError> {
+    if !(el[E] >= 0.0 && el[E] < 1.0) {
+        return Err(PlanError::NotElliptic { orbit });
+    }
+    if el[A] <= EARTH_RADIUS_KM {
+        return Err(PlanError::BelowEarthRadius { orbit });
+    }
+    if el[E] < settings.min_eccentricity {
+        return Err(PlanError::EccentricityTooSmall { orbit });
+    }
+    if libm::fabs(libm::sin(el[I])) < settings.min_sin_inclination {
+        return Err(PlanError::InclinationSingular { orbit });
+    }
+    Ok(())
+}
+
+/// Check the request; on success the working context.
+///
+/// # Errors
+/// Every [`PlanError`] class except `InvalidSettings` (checked by the caller first).
+pub(crate) fn validate(problem: &Problem, settings: &Settings) -> Result<Context, PlanError> {
+    let chief0 = from_mean(&problem.chief);
+    let initial = from_relative(&problem.initial);
+    let target = from_relative(&problem.target);
+    check_finite(&chief0, Quantity::Chief)?;
+    check_finite(&initial, Quantity::Initial)?;
+    check_finite(&target, Quantity::Target)?;
+    let deputy0 = super::elements::add(&chief0, &initial);
+    let deputy_target = super::elements::add(&chief0, &target);
+    check_orbit(&chief0, Orbit::Chief, settings)?;
+    check_orbit(&deputy0, Orbit::DeputyInitial, settings)?;
+    check_orbit(&deputy_target, Orbit::DeputyTarget, settings)?;
+    match &problem.plan {
+        ImpulsePlan::Fixed(points) => {
+            if points.is_empty() {
+                return Err(PlanError::NoImpulses);
+            }
+            let mut sum: i64 = 0;
+            for (k, p) in points.iter().enumerate() {
+                if !p.arg_latitude_rad.is_finite() {
+                    return Err(PlanError::NotFinite {
+                        what: Quantity::ImpulsePoint,
+                        index: index_u8(k),
+                    });
+                }
+                if p.revolutions < 0 {
+                    return Err(PlanError::NegativeRevolutions {
+                        impulse: index_u8(k),
+                    });
+                }
+                sum = sum.saturating_add(i64::from(p.revolutions));
+            }
+            if sum > i64::from(settings.max_total_revolutions) {
+                return Err(PlanError::RevolutionsOverLimit {
+                    requested: i32::try_from(sum).unwrap_or(i32::MAX),
+                    limit: settings.max_total_revolutions,
+                });
+            }
+        }
+        ImpulsePlan::Search {
+            impulses,
+            max_revolutions,
+        } => {
+            if *impulses == 0 {
+                return Err(PlanError::NoImpulses);
+            }
+            if usize::from(*impulses) > MAX_IMPULSES {
+                return Err(PlanError::CapacityExceeded {
+                    requested: u16::from(*impulses),
+                    capacity: u16::try_from(MAX_IMPULSES).unwrap_or(u16::MAX),
+                });
+            }
+            if *max_revolutions < 0 {
+                return Err(PlanError::NegativeRevolutions { impulse: 0 });
+            }
+            if *max_revolutions > settings.max_total_revolutions {
+                return Err(PlanError::RevolutionsOverLimit {
+                    requested: *max_revolutions,
+                    limit: settings.max_total_revolutions,
+                });
+            }
+        }
+    }
+    Ok(Context {
+        chief0,
+        deputy0,
+        initial,
+        target,
+    })
+}
+
+/// Result of a fixed-point run.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct FixedPoint {
+    /// Iterations used.
+    pub iterations: u16,
+    /// Met `fixed_point_tol_mps`.
+    pub converged: bool,
+    /// Reweighting steps used (min-fuel phase).
+    pub min_fuel_steps: u16,
+    /// Rank and condition of F at the last iteration.
+    pub conditioning: Conditioning,
+}
+
+/// Iterate `dv <- solve(F(dv), dY(dv))` (minimum norm, or min fuel when `min_fuel`) from `dv`,
+/// at most `max_iter` times.
+///
+/// # Errors
+/// The failing [`Stage`]; `dv` then holds the last good iterate.
+pub(crate) fn fixed_point(
+    ctx: &Context,
+    pts: &Points,
+    settings: &Settings,
+    seq: &mut Sequence,
+    dv: &mut XVector,
+    min_fuel: bool,
+    max_iter: u16,
+) -> Result<FixedPoint, Stage> {
+    let columns = pts.n.saturating_mul(3);
+    // Reweighting converges linearly and the sum of norms is flat along its valley, so the joint
+    // min-fuel fixed point is judged by the change of its total; the nonlinear correction
+    // afterwards fixes the terminal error either way.
+    let tol = if min_fuel {
+        settings.min_fuel_step_tol_mps
+    } else {
+        settings.fixed_point_tol_mps
+    } / M_PER_KM;
+    let mut out = FixedPoint::default();
+    for _ in 0..max_iter {
+        propagate(ctx, pts, dv, ImpulseModel::Linear, settings, seq)?;
+        build_system(ctx, pts, seq);
+        // The equilibrated Cholesky solve gives the minimum-norm impulses at full row rank;
+        // when it declines (near rank deficiency) the rank-revealing SVD decides. The returned
+        // plan's rank and condition number come from the SVD of the last F built (see
+        // `final_conditioning`).
+        let fast = solve_full_row_rank(&seq.f, &seq.dy);
+        let x0 = match fast {
+            Some(x) => {
+                // Full row rank (Cholesky pivots bounded away from zero); the condition number
+                // is measured by the SVD at the end.
+                out.conditioning = Conditioning {
+                    rank: 6,
+                    condition_number: f64::NAN,
+                };
+                x
+            }
+            None => {
+                let (x, cond) = solve_min_norm(
+                    &seq.f,
+                    columns,
+                    &seq.dy,
+                    settings.rank_rcond,
+                    settings.svd_max_iter,
+                )?;
+                out.conditioning = cond;
+                if cond.rank < 6 {
+                    // Rank-deficient F (coincident points, or fewer than two impulses): the
+                    // least-squares impulses at the current states are the answer; iterating
+                    // on them would chase a target they cannot reach.
+                    *dv = x;
+                    out.iterations = out.iterations.saturating_add(1);
+                    break;
+                }
+                x
+            }
+        };
+        let x = if min_fuel {
+            // Warm start from the previous iterate's magnitudes only if it is a plan already.
+            let start = if total(dv) > 0.0 {
+                project(&seq.f, columns, &seq.dy, dv, &x0, settings)?
+            } else {
+                x0
+            };
+            let (x, steps) = refine(&seq.f, columns, &seq.dy, &start, settings)?;
+            out.min_fuel_steps = out.min_fuel_steps.saturating_add(steps);
+            x
+        } else {
+            x0
+        };
+        // The sum of norms is flat along its valley: judge the min-fuel phase by its total.
+        let change = if min_fuel {
+            libm::fabs(total(&x) - total(dv))
+        } else {
+            max_abs_diff(&x, dv)
+        };
+        *dv = x;
+        out.iterations = out.iterations.saturating_add(1);
+        if change <= tol {
+            out.converged = true;
+            break;
+        }
+    }
+    Ok(out)
+}
+
+/// `max_i |a_i - b_i|`.
+fn max_abs_diff(a: &XVector, b: &XVector) -> f64 {
+    let mut m = 0.0f64;
+    for (x, y) in a.iter().zip(b.iter()) {
+        m = m.max(libm::fabs(*x - *y));
+    }
+    m
+}
+
+/// The previous iterate moved onto the current constraint `F x = y` (minimum-norm correction),
+/// falling back to `x0` when that is cheaper.
+fn project(
+    f: &super::transfer::FMatrix,
+    columns: usize,
+    y: &nalgebra::SVector<f64, 6>,
+    prev: &XVector,
+    x0: &XVector,
+    settings: &Settings,
+) -> Result<XVector, Stage> {
+    let mut r = *y;
+    r.gemv(-1.0, f, prev, 1.0);
+    let d = min_norm(f, columns, &r, settings)?;
+    let mut x = *prev;
+    x.axpy(1.0, &d, 1.0);
+    Ok(if total(&x) < total(x0) { x } else { *x0 })
+}
+
+/// Nonlinear check: propagate with exact impulses and compare with the target at the last
+/// impulse. Returns (element error with wrapped angles, along-track error m, position error m).
+///
+/// # Errors
+/// The failing [`Stage`].
+pub(crate) fn nonlinear_error(
+    ctx: &Context,
+    pts: &Points,
+    dv: &XVector,
+    settings: &Settings,
+    seq: &mut Sequence,
+) -> Result<(Elements, f64, f64), Stage> {
+    propagate(ctx, pts, dv, ImpulseModel::Exact, settings, seq)?;
+    let chief = chief_at(ctx, seq.final_time_s);
+    let achieved = sub(&seq.end, &chief);
+    let mut err = sub(&achieved, &ctx.target);
+    for k in [RAAN, ARGP, super::elements::MA] {
+        if let Some(x) = err.get_mut(k) {
+            *x = wrap_pi(*x);
+        }
+    }
+    let wanted = super::elements::add(&chief, &ctx.target);
+    let (f_w, ok_w) = true_anomaly(
+        wanted[super::elements::MA],
+        wanted[E],
+        settings.kepler_max_iter,
+    );
+    let (f_a, ok_a) = true_anomaly(
+        seq.end[super::elements::MA],
+        seq.end[E],
+        settings.kepler_max_iter,
+    );
+    if !(ok_w && ok_a) {
+        return Err(Stage::Kepler);
+    }
+    let d = relative_position_rtn(&state(&wanted, f_w), &state(&seq.end, f_a));
+    let along_m = d[1] * M_PER_KM;
+    let pos_m = libm::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * M_PER_KM;
+    Ok((err, along_m, pos_m))
+}
+
+/// Largest of `|da|/a, |de|, |di|, |dOmega|, |domega|, |dM|`.
+fn scaled_error(err: &Elements, sma_km: f64) -> f64 {
+    let mut m = libm::fabs(err[A]) / sma_km;
+    for x in err.iter().skip(1) {
+        m = m.max(libm::fabs(*x));
+    }
+    m
+}
+
+/// Everything a fixed-point solve found, before it is written out.
+pub(crate) struct Report {
+    pub dv: XVector,
+    pub status: SolveStatus,
+    pub iterations: u16,
+    pub min_fuel_steps: u16,
+    pub correction_steps: u16,
+    pub min_norm_total_km_s: f64,
+    pub linear_total_km_s: f64,
+    pub min_fuel_used: bool,
+    pub correction_used: bool,
+    pub conditioning: Conditioning,
+}
+
+/// The full fixed-point solve at the points in `pts`.
+pub(crate) fn solve_points(
+    ctx: &Context,
+    pts: &Points,
+    settings: &Settings,
+    seq: &mut Sequence,
+) -> Report {
+    let mut rep = Report {
+        dv: XVector::zeros(),
+        status: SolveStatus::Solved,
+        iterations: 0,
+        min_fuel_steps: 0,
+        correction_steps: 0,
+        min_norm_total_km_s: 0.0,
+        linear_total_km_s: 0.0,
+        min_fuel_used: false,
+        correction_used: false,
+        conditioning: Conditioning::default(),
+    };
+    let mut dv = XVector::zeros();
+    let fp = match fixed_point(
+        ctx,
+        pts,
+        settings,
+        seq,
+        &mut dv,
+        false,
+        settings.fixed_point_max_iter,
+    ) {
+        Ok(fp) => fp,
+        Err(stage) => {
+            rep.status = SolveStatus::NumericalFailure(stage);
+            rep.dv = dv;
+            return rep;
+        }
+    };
+    rep.iterations = fp.iterations;
+    rep.conditioning = fp.conditioning;
+    rep.min_norm_total_km_s = total(&dv);
+    rep.dv = dv;
+    let mut converged = fp.converged;
+    if fp.conditioning.rank < 6 {
+        rep.status = SolveStatus::RankDeficient;
+        // Leave the least-squares plan's own propagation in `seq` for the report; if it
+        // leaves the domain the report keeps the last good states (the status says why).
+        let _ = propagate(ctx, pts, &rep.dv, ImpulseModel::Linear, settings, seq);
+        return rep;
+    }
+    if settings.min_fuel {
+        let mut fuel_dv = dv;
+        match fixed_point(
+            ctx,
+            pts,
+            settings,
+            seq,
+            &mut fuel_dv,
+            true,
+            settings.fixed_point_max_iter,
+        ) {
+            Ok(fp2) => {
+                rep.iterations = rep.iterations.saturating_add(fp2.iterations);
+                rep.min_fuel_steps = fp2.min_fuel_steps;
+                if total(&fuel_dv) <= rep.min_norm_total_km_s && fp2.conditioning.rank == 6 {
+                    rep.dv = fuel_dv;
+                    rep.min_fuel_used = true;
+                    converged = fp2.converged;
+                }
+            }
+            Err(stage) => {
+                rep.status = SolveStatus::NumericalFailure(stage);
+                return rep;
+            }
+        }
+    }
+    rep.linear_total_km_s = total(&rep.dv);
+    if settings.nonlinear_correction {
+        match correct(ctx, pts, settings, seq, &mut rep) {
+            Ok(true) => {}
+            Ok(false) => rep.status = SolveStatus::CorrectionNotConverged,
+            Err(stage) => rep.status = SolveStatus::NumericalFailure(stage),
+        }
+    } else if !converged {
+        rep.status = SolveStatus::MaxIterations;
+    }
+    match final_conditioning(pts, settings, seq) {
+        Ok(c) => rep.conditioning = c,
+        Err(stage) => {
+            if rep.status.is_usable() {
+                rep.status = SolveStatus::NumericalFailure(stage);
+            }
+        }
+    }
+    rep
+}
+
+/// Rank and condition number, by the SVD, of the last F built: at the last fixed-point or
+/// correction iterate, whose impulses differ from the returned ones by less than the
+/// tolerances.
+///
+/// # Errors
+/// The failing [`Stage`].
+fn final_conditioning(
+    pts: &Points,
+    settings: &Settings,
+    seq: &Sequence,
+) -> Result<Conditioning, Stage> {
+    let columns = pts.n.saturating_mul(3);
+    let (_, c) = solve_min_norm(
+        &seq.f,
+        columns,
+        &seq.dy,
+        settings.rank_rcond,
+        settings.svd_max_iter,
+    )?;
+    Ok(c)
+}
+
+/// Defect correction: `dv <- dv - F^+ e_nonlinear(dv)` until the nonlinear terminal error is
+/// below `correction_tol`. Returns whether it converged.
+fn correct(
+    ctx: &Context,
+    pts: &Points,
+    settings: &Settings,
+    seq: &mut Sequence,
+    rep: &mut Report,
+) -> Result<bool, Stage> {
+    let columns = pts.n.saturating_mul(3);
+    let mut dv = rep.dv;
+    for _ in 0..settings.correction_max_iter {
+        let (err, _, _) = nonlinear_error(ctx, pts, &dv, settings, seq)?;
+        if scaled_error(&err, ctx.chief0[A]) <= settings.correction_tol {
+            rep.dv = dv;
+            return Ok(true);
+        }
+        propagate(ctx, pts, &dv, ImpulseModel::Linear, settings, seq)?;
+        build_system(ctx, pts, seq);
+        let e = nalgebra::SVector::<f64, 6>::from(err);
+        let d = min_norm(&seq.f, columns, &e, settings)?;
+        dv.axpy(-1.0, &d, 1.0);
+        rep.correction_steps = rep.correction_steps.saturating_add(1);
+        rep.correction_used = true;
+        rep.dv = dv;
+    }
+    let (err, _, _) = nonlinear_error(ctx, pts, &dv, settings, seq)?;
+    Ok(scaled_error(&err, ctx.chief0[A]) <= settings.correction_tol)
+}
+
+/// Write a report into `out`: impulses (m/s, RTN), totals, nonlinear terminal errors.
+pub(crate) fn write_solution(
+    ctx: &Context,
+    pts: &Points,
+    settings: &Settings,
+    seq: &mut Sequence,
+    rep: &Report,
+    evaluations: u32,
+    out: &mut Solution,
+) {
+    let mut status = rep.status;
+    // Times and latitudes from the model the impulses were solved for: the exact one when the
+    // correction was applied, else the paper's linear one (left in `seq` by the solve).
+    let linear_steps = seq.steps;
+    let linear_final_time_s = seq.final_time_s;
+    let (err, along_m, pos_m) = match nonlinear_error(ctx, pts, &rep.dv, settings, seq) {
+        Ok(v) => v,
+        Err(stage) => {
+            if status.is_usable() {
+                status = SolveStatus::NumericalFailure(stage);
+            }
+            ([f64::NAN; 6], f64::NAN, f64::NAN)
+        }
+    };
+    if !rep.correction_used {
+        seq.steps = linear_steps;
+        seq.final_time_s = linear_final_time_s;
+    }
+    out.impulses.clear();
+    for (k, (step, point)) in seq.steps.iter().zip(pts.at.iter()).enumerate().take(pts.n) {
+        let c = k.saturating_mul(3);
+        let comp = |j: usize| rep.dv.get(c.saturating_add(j)).copied().unwrap_or(0.0) * M_PER_KM;
+        let imp = Impulse {
+            time_s: step.time_s,
+            arg_latitude_rad: wrap_two_pi(step.at[ARGP] + step.at[super::elements::MA]),
+            true_arg_latitude_rad: wrap_two_pi(step.at[ARGP] + step.true_anomaly_rad),
+            revolutions: point.revolutions,
+            dv_rtn_mps: [comp(0), comp(1), comp(2)],
+        };
+        // Capacity equals MAX_IMPULSES and pts.n <= MAX_IMPULSES, so this cannot fail.
+        let _ = out.impulses.push(imp);
+    }
+    out.total_dv_mps = total(&rep.dv) * M_PER_KM;
+    out.min_norm_total_dv_mps = rep.min_norm_total_km_s * M_PER_KM;
+    out.linear_total_dv_mps = rep.linear_total_km_s * M_PER_KM;
+    out.final_time_s = seq.final_time_s;
+    out.terminal_error_m = along_m;
+    out.terminal_position_error_m = pos_m;
+    out.terminal_error_elements = to_relative(&err);
+    out.info.status = status;
+    out.info.iterations = rep.iterations;
+    out.info.min_fuel_iterations = rep.min_fuel_steps;
+    out.info.correction_iterations = rep.correction_steps;
+    out.info.rank = rep.conditioning.rank;
+    out.info.condition_number = rep.conditioning.condition_number;
+    out.info.min_fuel_used = rep.min_fuel_used;
+    out.info.correction_used = rep.correction_used;
+    out.info.evaluations = evaluations;
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
+mod tests {
+    use super::*;
+    use crate::impulsive::types::{ImpulsePoint, MeanElements, RelativeElements};
+
+    fn deg(x: f64) -> f64 {
+        x.to_radians()
+    }
+
+    pub(crate) fn paper_context() -> Context {
+        let chief = MeanElements {
+            sma_km: 7178.137,
+            ecc: 0.0678,
+            inc_rad: deg(63.4349),
+            raan_rad: deg(112.0),
+            argp_rad: 0.0,
+            mean_anomaly_rad: 0.0,
+        };
+        let rel = |v: [f64; 6]| RelativeElements {
+            dsma_km: v[0],
+            decc: v[1],
+            dinc_rad: deg(v[2]),
+            draan_rad: deg(v[3]),
+            dargp_rad: deg(v[4]),
+            dmean_anomaly_rad: deg(v[5]),
+        };
+        let chief0 = from_mean(&chief);
+        let initial = from_relative(&rel([
+            4.0940e-4, -1.3888e-4, -1.0831e-3, 1.5409e-2, -1.6134e-2, 9.2428e-3,
+        ]));
+        let target = from_relative(&rel([
+            -1.6389e-4, 5.5597e-4, 4.3361e-3, 7.1228e-2, -6.3572e-2, 3.1718e-2,
+        ]));
+        Context {
+            chief0,
+            deputy0: super::super::elements::add(&chief0, &initial),
+            initial,
+            target,
+        }
+    }
+
+    #[test]
+    fn fixed_point_converges_quickly_on_table_2() {
+        let ctx = paper_context();
+        let mut pts = Points::new();
+        for (k, (u, n)) in [(274.155, 2), (238.864, 10), (285.649, 2)]
+            .iter()
+            .enumerate()
+        {
+            pts.at[k] = ImpulsePoint {
+                arg_latitude_rad: deg(*u),
+                revolutions: *n,
+            };
+        }
+        pts.n = 3;
+        let settings = Settings::default();
+        let mut seq = Sequence::new();
+        let mut dv = XVector::zeros();
+        let mut changes = [0.0; 12];
+        for c in changes.iter_mut() {
+            let before = dv;
+            fixed_point(&ctx, &pts, &settings, &mut seq, &mut dv, false, 1).unwrap();
+            *c = (dv - before).amax() * 1000.0;
+        }
+        assert!(changes[6] < 1e-9, "{changes:?}");
+        assert!((total(&dv) * 1000.0 - 8.2207).abs() < 1e-3);
+    }
+}

@@ -1,0 +1,92 @@
+//! What a planner-B solve produced: status and counters.
+
+use serde::{Deserialize, Serialize};
+
+/// The state of the returned plan. Checked in this order: numerical failure, rank deficiency,
+/// nonlinear correction not converged, fixed point not converged, solved.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[repr(u8)]
+pub enum SolveStatus {
+    /// No solve has written this solution.
+    #[default]
+    Unsolved = 0,
+    /// Converged: the fixed point (and, when enabled, the nonlinear correction) met its
+    /// tolerance.
+    Solved = 1,
+    /// `F` has rank below 6 (for example coincident impulse points): the least-squares
+    /// minimum-norm impulses are returned; they do not reach the target.
+    RankDeficient = 2,
+    /// The fixed-point iteration hit `fixed_point_max_iter` (correction disabled); the last
+    /// iterate is returned.
+    MaxIterations = 3,
+    /// The nonlinear defect correction hit `correction_max_iter` above `correction_tol`.
+    CorrectionNotConverged = 4,
+    /// A numerical step failed; the stage says where. The best plan so far is returned.
+    NumericalFailure(Stage) = 5,
+}
+
+/// Where a numerical failure happened.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[repr(u8)]
+pub enum Stage {
+    /// Kepler's equation did not converge within `kepler_max_iter`.
+    #[default]
+    Kepler = 0,
+    /// The SVD did not converge within `svd_max_iter`, or produced a non-finite value.
+    Svd = 1,
+    /// An iterate left the valid domain (e or sin i under threshold, e >= 1, a <= Re).
+    SingularState = 2,
+}
+
+impl SolveStatus {
+    /// The plan reaches the target and may be flown.
+    pub fn is_usable(&self) -> bool {
+        matches!(self, Self::Solved)
+    }
+}
+
+/// Counters and measures of one solve.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SolveInfo {
+    /// Outcome.
+    pub status: SolveStatus,
+    /// Fixed-point iterations (minimum-norm phase plus min-fuel phase) of the returned plan.
+    pub iterations: u16,
+    /// Iteratively-reweighted least-squares steps of the min-fuel refinement, all told.
+    pub min_fuel_iterations: u16,
+    /// Nonlinear defect-correction steps.
+    pub correction_iterations: u16,
+    /// Numerical rank of `F` at the returned plan (6 when full).
+    pub rank: u8,
+    /// 2-norm condition number of `F` (ratio of extreme singular values; infinite when
+    /// rank-deficient).
+    pub condition_number: f64,
+    /// The min-fuel refinement was run and lowered the total (else the minimum-norm plan).
+    pub min_fuel_used: bool,
+    /// The nonlinear defect correction was applied to the returned impulses.
+    pub correction_used: bool,
+    /// Fixed-point solves evaluated (1 for fixed points; the search's count otherwise).
+    pub evaluations: u32,
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_is_unsolved_and_only_solved_is_usable() {
+        assert_eq!(SolveStatus::default(), SolveStatus::Unsolved);
+        assert!(SolveStatus::Solved.is_usable());
+        for s in [
+            SolveStatus::Unsolved,
+            SolveStatus::RankDeficient,
+            SolveStatus::MaxIterations,
+            SolveStatus::CorrectionNotConverged,
+            SolveStatus::NumericalFailure(Stage::Svd),
+        ] {
+            assert!(!s.is_usable(), "{s:?}");
+        }
+        assert_eq!(SolveInfo::default().status, SolveStatus::Unsolved);
+    }
+}

@@ -1,0 +1,275 @@
+//! Impulse timing (Wang 2018, eq. 7), the propagated impulse sequence (eq. 6), and the linear
+//! end condition `F dX = dY` (eq. 9-12, with the paper's `I_3` read as `I_6`).
+
+use super::elements::{
+    mean_arg_latitude_rad, sub, wrap_pi, wrap_two_pi, Elements, A, E, EARTH_RADIUS_KM, I, MA,
+    TWO_PI,
+};
+use super::gve::impulse_matrix;
+use super::kepler::true_anomaly;
+use super::nonlinear::apply_impulse;
+use super::secular::{arg_latitude_rate_rad_s, rates, rates_jacobian};
+use super::settings::Settings;
+use super::status::Stage;
+use super::types::ImpulsePoint;
+use crate::capacity::MAX_IMPULSES;
+use nalgebra::{ArrayStorage, SMatrix, SVector};
+
+/// Unknowns at capacity: three impulse components per impulse.
+pub(crate) const MAX_UNKNOWNS: usize = 3 * MAX_IMPULSES;
+/// The end-condition matrix F, zero-padded to capacity.
+pub(crate) type FMatrix = SMatrix<f64, 6, MAX_UNKNOWNS>;
+/// All impulses stacked (km/s, RTN per impulse), zero-padded to capacity.
+pub(crate) type XVector = SVector<f64, MAX_UNKNOWNS>;
+
+/// The validated request in working units.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Context {
+    /// Chief at the initial epoch.
+    pub chief0: Elements,
+    /// Deputy at the initial epoch (chief + initial).
+    pub deputy0: Elements,
+    /// Initial relative elements.
+    pub initial: Elements,
+    /// Target relative elements (at the last impulse).
+    pub target: Elements,
+}
+
+/// The impulse points of one solve.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Points {
+    /// Number of impulses in use.
+    pub n: usize,
+    /// Points; only the first `n` are used.
+    pub at: [ImpulsePoint; MAX_IMPULSES],
+}
+
+impl Points {
+    /// No points.
+    pub const fn new() -> Self {
+        Self {
+            n: 0,
+            at: [ImpulsePoint {
+                arg_latitude_rad: 0.0,
+                revolutions: 0,
+            }; MAX_IMPULSES],
+        }
+    }
+}
+
+/// One step of the propagated sequence.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Step {
+    /// `sigma_{k-1}`: the deputy after the previous impulse (or at the epoch).
+    pub before: Elements,
+    /// `sigma_{k,0}`: the deputy just before impulse k.
+    pub at: Elements,
+    /// True anomaly at impulse k, rad.
+    pub true_anomaly_rad: f64,
+    /// Time of impulse k from the epoch, s.
+    pub time_s: f64,
+    /// `B(sigma_{k,0})` at the impulse (eq. 3), kept for building F.
+    pub b: SMatrix<f64, 6, 3>,
+}
+
+/// The propagated sequence and the linear system built on it.
+#[derive(Clone, Debug)]
+pub(crate) struct Sequence {
+    /// Per impulse.
+    pub steps: [Step; MAX_IMPULSES],
+    /// The deputy after the last impulse.
+    pub end: Elements,
+    /// Time of the last impulse, s.
+    pub final_time_s: f64,
+    /// F, columns `3k..3k+3` for impulse k (radial, along-track, normal).
+    pub f: FMatrix,
+    /// dY.
+    pub dy: SVector<f64, 6>,
+}
+
+impl Sequence {
+    /// Zeroed.
+    pub const fn new() -> Self {
+        const STEP: Step = Step {
+            before: [0.0; 6],
+            at: [0.0; 6],
+            true_anomaly_rad: 0.0,
+            time_s: 0.0,
+            b: SMatrix::from_array_storage(ArrayStorage([[0.0; 6]; 3])),
+        };
+        Self {
+            steps: [STEP; MAX_IMPULSES],
+            end: [0.0; 6],
+            final_time_s: 0.0,
+            f: SMatrix::from_array_storage(ArrayStorage([[0.0; 6]; MAX_UNKNOWNS])),
+            dy: SMatrix::from_array_storage(ArrayStorage([[0.0; 6]; 1])),
+        }
+    }
+}
+
+/// How impulses change the elements while propagating.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum ImpulseModel {
+    /// `sigma_k = sigma_{k,0} + B(sigma_{k,0}) dv_k` (the paper's eq. 6).
+    Linear,
+    /// Exact two-body impulse (verification).
+    Exact,
+}
+
+/// Time from the deputy's state to the next impulse point, s (Wang 2018, eq. 7):
+/// `dt = (wrap_2pi(u_k - u_{k-1}) + 2 pi dN_k - wrap_pi(u_now - u_{k-1})) / n_J2`.
+///
+/// `u_{k-1}` is the previous *point* and `u_now` the deputy's mean argument of latitude after
+/// the previous impulse; this equals the issue's `(wrap_2pi(u_k - u_now) + 2 pi dN_k) / n_J2`
+/// except that it stays continuous when an impulse's small jump in `u` crosses `u_k` (coincident
+/// points). A negative gap (the jump overshot a coincident point) is clamped to zero.
+pub(crate) fn time_to_point_s(el: &Elements, prev_point_rad: f64, point: &ImpulsePoint) -> f64 {
+    let u_now = mean_arg_latitude_rad(el);
+    let gap = wrap_two_pi(point.arg_latitude_rad - prev_point_rad)
+        + TWO_PI * f64::from(point.revolutions)
+        - wrap_pi(u_now - prev_point_rad);
+    let gap = if gap > 0.0 { gap } else { 0.0 };
+    gap / arg_latitude_rate_rad_s(el)
+}
+
+/// `el` is inside the domain the model is valid on (thresholds from the settings).
+pub(crate) fn in_domain(el: &Elements, settings: &Settings) -> bool {
+    el.iter().all(|x| x.is_finite())
+        && el[A] > EARTH_RADIUS_KM
+        && el[E] >= settings.min_eccentricity
+        && el[E] < 1.0
+        && libm::fabs(libm::sin(el[I])) >= settings.min_sin_inclination
+}
+
+/// Propagate the deputy through the impulse sequence (eq. 6) with impulses `dv` (km/s, RTN).
+///
+/// # Errors
+/// [`Stage::Kepler`] or [`Stage::SingularState`] when a step leaves the model's domain.
+pub(crate) fn propagate(
+    ctx: &Context,
+    pts: &Points,
+    dv: &XVector,
+    model: ImpulseModel,
+    settings: &Settings,
+    seq: &mut Sequence,
+) -> Result<(), Stage> {
+    let mut s = ctx.deputy0;
+    let mut t = 0.0;
+    let mut prev_point = mean_arg_latitude_rad(&s);
+    for (k, (step, point)) in seq
+        .steps
+        .iter_mut()
+        .zip(pts.at.iter())
+        .enumerate()
+        .take(pts.n)
+    {
+        let dt = time_to_point_s(&s, prev_point, point);
+        step.before = s;
+        let d = rates(&s);
+        for (x, r) in s.iter_mut().zip(d.iter()) {
+            *x += *r * dt;
+        }
+        t += dt;
+        let (f, ok) = true_anomaly(s[MA], s[E], settings.kepler_max_iter);
+        if !ok {
+            return Err(Stage::Kepler);
+        }
+        step.at = s;
+        step.true_anomaly_rad = f;
+        step.time_s = t;
+        let b = impulse_matrix(&s, f);
+        step.b = b;
+        let c = k.saturating_mul(3);
+        let dv_k = [
+            dv.get(c).copied().unwrap_or(0.0),
+            dv.get(c.saturating_add(1)).copied().unwrap_or(0.0),
+            dv.get(c.saturating_add(2)).copied().unwrap_or(0.0),
+        ];
+        s = match model {
+            ImpulseModel::Linear => {
+                let mut db = SVector::<f64, 6>::zeros();
+                db.gemv(1.0, &b, &SVector::<f64, 3>::from(dv_k), 0.0);
+                let mut next = s;
+                for (x, d) in next.iter_mut().zip(db.iter()) {
+                    *x += *d;
+                }
+                next
+            }
+            ImpulseModel::Exact => apply_impulse(&s, f, &dv_k).ok_or(Stage::SingularState)?,
+        };
+        if !in_domain(&s, settings) {
+            return Err(Stage::SingularState);
+        }
+        prev_point = point.arg_latitude_rad;
+    }
+    seq.end = s;
+    seq.final_time_s = t;
+    Ok(())
+}
+
+/// Build `F` and `dY` (eq. 11-12) on a propagated sequence.
+pub(crate) fn build_system(ctx: &Context, pts: &Points, seq: &mut Sequence) {
+    let t_n = seq.final_time_s;
+    seq.f.fill(0.0);
+    for (k, step) in seq.steps.iter().enumerate().take(pts.n) {
+        let b = step.b;
+        // P_k = I_6 + dD(sigma_{k-1}) (t_N - t_k); dD depends on (a, e, i) only, which do not
+        // drift, so sigma_{k-1} and sigma_{k,0} give the same P.
+        let mut p_b = b;
+        p_b.gemm(t_n - step.time_s, &rates_jacobian(&step.before), &b, 1.0);
+        let c = k.saturating_mul(3);
+        if c < MAX_UNKNOWNS {
+            seq.f.fixed_view_mut::<6, 3>(0, c).copy_from(&p_b);
+        }
+    }
+    let drift = sub(&rates(&ctx.deputy0), &rates(&ctx.chief0));
+    let dy = sub(
+        &sub(&ctx.target, &ctx.initial),
+        &[
+            drift[0] * t_n,
+            drift[1] * t_n,
+            drift[2] * t_n,
+            drift[3] * t_n,
+            drift[4] * t_n,
+            drift[5] * t_n,
+        ],
+    );
+    seq.dy = SVector::<f64, 6>::from(dy);
+}
+
+/// The chief at time `t_s` (J2 secular drift only).
+pub(crate) fn chief_at(ctx: &Context, t_s: f64) -> Elements {
+    let d = rates(&ctx.chief0);
+    let mut c = ctx.chief0;
+    for (x, r) in c.iter_mut().zip(d.iter()) {
+        *x += *r * t_s;
+    }
+    c
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn timing_counts_revolutions_and_wraps() {
+        let el = [7178.137, 0.0678, 1.1071, 1.95, 0.0, 0.0];
+        let n = arg_latitude_rate_rad_s(&el);
+        let p = ImpulsePoint {
+            arg_latitude_rad: 1.0,
+            revolutions: 2,
+        };
+        assert!((time_to_point_s(&el, 0.0, &p) - (1.0 + 2.0 * TWO_PI) / n).abs() < 1e-9);
+        // Point behind the current u: wraps forward.
+        let el2 = [7178.137, 0.0678, 1.1071, 1.95, 0.0, 2.0];
+        let p = ImpulsePoint {
+            arg_latitude_rad: 1.0,
+            revolutions: 0,
+        };
+        assert!((time_to_point_s(&el2, 2.0, &p) - (TWO_PI - 1.0) / n).abs() < 1e-9);
+        // Coincident point just overshot by the impulse: zero, not a revolution.
+        let el3 = [7178.137, 0.0678, 1.1071, 1.95, 0.0, 1.0 + 1e-9];
+        assert_eq!(time_to_point_s(&el3, 1.0, &p), 0.0);
+    }
+}

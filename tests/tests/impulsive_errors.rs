@@ -1,0 +1,355 @@
+//! One test per rejected-input class of planner B, each asserting the exact `PlanError`, plus
+//! the singular-geometry statuses (rank deficiency) that are solved and reported.
+
+use reconfig_core::capacity::MAX_IMPULSES;
+use reconfig_core::impulsive::{
+    solve, ImpulsePlan, ImpulsePoint, MeanElements, Orbit, PlanError, Problem, Quantity,
+    RelativeElements, Settings, SettingsError, Solution, SolveStatus, Workspace, EARTH_RADIUS_KM,
+};
+
+fn points(list: &[(f64, i32)]) -> heapless::Vec<ImpulsePoint, MAX_IMPULSES> {
+    list.iter()
+        .map(|(u, n)| ImpulsePoint {
+            arg_latitude_rad: u.to_radians(),
+            revolutions: *n,
+        })
+        .collect()
+}
+
+fn rel(v: [f64; 6]) -> RelativeElements {
+    RelativeElements {
+        dsma_km: v[0],
+        decc: v[1],
+        dinc_rad: v[2].to_radians(),
+        draan_rad: v[3].to_radians(),
+        dargp_rad: v[4].to_radians(),
+        dmean_anomaly_rad: v[5].to_radians(),
+    }
+}
+
+/// Wang 2018's case (Table 2 points).
+fn paper() -> Problem {
+    Problem {
+        chief: MeanElements {
+            sma_km: 7178.137,
+            ecc: 0.0678,
+            inc_rad: 63.4349f64.to_radians(),
+            raan_rad: 112f64.to_radians(),
+            argp_rad: 0.0,
+            mean_anomaly_rad: 0.0,
+        },
+        initial: rel([
+            4.0940e-4, -1.3888e-4, -1.0831e-3, 1.5409e-2, -1.6134e-2, 9.2428e-3,
+        ]),
+        target: rel([
+            -1.6389e-4, 5.5597e-4, 4.3361e-3, 7.1228e-2, -6.3572e-2, 3.1718e-2,
+        ]),
+        plan: ImpulsePlan::Fixed(points(&[(274.155, 2), (238.864, 10), (285.649, 2)])),
+    }
+}
+
+fn reject(p: &Problem, settings: &Settings) -> PlanError {
+    let mut ws = Workspace::new();
+    let mut out = Solution::new();
+    let err = solve(p, settings, &mut ws, &mut out).unwrap_err();
+    // Rejected before iterating: the output buffer is untouched.
+    assert_eq!(out, Solution::new());
+    assert!(!err.to_string().is_empty());
+    err
+}
+
+fn rejected(p: &Problem) -> PlanError {
+    reject(p, &Settings::default())
+}
+
+#[test]
+fn nan_and_inf_anywhere() {
+    let mut p = paper();
+    p.chief.raan_rad = f64::NAN;
+    assert_eq!(
+        rejected(&p),
+        PlanError::NotFinite {
+            what: Quantity::Chief,
+            index: 3
+        }
+    );
+    let mut p = paper();
+    p.initial.dsma_km = f64::INFINITY;
+    assert_eq!(
+        rejected(&p),
+        PlanError::NotFinite {
+            what: Quantity::Initial,
+            index: 0
+        }
+    );
+    let mut p = paper();
+    p.target.dmean_anomaly_rad = f64::NEG_INFINITY;
+    assert_eq!(
+        rejected(&p),
+        PlanError::NotFinite {
+            what: Quantity::Target,
+            index: 5
+        }
+    );
+    let mut p = paper();
+    p.plan = ImpulsePlan::Fixed(points(&[(10.0, 0), (f64::NAN, 1)]));
+    assert_eq!(
+        rejected(&p),
+        PlanError::NotFinite {
+            what: Quantity::ImpulsePoint,
+            index: 1
+        }
+    );
+}
+
+#[test]
+fn eccentricity_below_threshold_is_reported_not_divided_through() {
+    let mut p = paper();
+    p.chief.ecc = 1e-6;
+    assert_eq!(
+        rejected(&p),
+        PlanError::EccentricityTooSmall {
+            orbit: Orbit::Chief
+        }
+    );
+    let mut p = paper();
+    p.chief.ecc = 0.0;
+    assert_eq!(
+        rejected(&p),
+        PlanError::EccentricityTooSmall {
+            orbit: Orbit::Chief
+        }
+    );
+    // The deputy's own eccentricity counts too.
+    let mut p = paper();
+    p.chief.ecc = 2e-4;
+    p.initial.decc = 0.0;
+    p.target.decc = -1.5e-4;
+    assert_eq!(
+        rejected(&p),
+        PlanError::EccentricityTooSmall {
+            orbit: Orbit::DeputyTarget
+        }
+    );
+}
+
+#[test]
+fn sin_inclination_below_threshold_is_reported() {
+    let mut p = paper();
+    p.chief.inc_rad = 0.0;
+    assert_eq!(
+        rejected(&p),
+        PlanError::InclinationSingular {
+            orbit: Orbit::Chief
+        }
+    );
+    let mut p = paper();
+    p.chief.inc_rad = std::f64::consts::PI - 1e-5;
+    assert_eq!(
+        rejected(&p),
+        PlanError::InclinationSingular {
+            orbit: Orbit::Chief
+        }
+    );
+}
+
+#[test]
+fn eccentricity_at_or_above_one() {
+    let mut p = paper();
+    p.chief.ecc = 1.0;
+    assert_eq!(
+        rejected(&p),
+        PlanError::NotElliptic {
+            orbit: Orbit::Chief
+        }
+    );
+    let mut p = paper();
+    p.initial.decc = 1.5;
+    assert_eq!(
+        rejected(&p),
+        PlanError::NotElliptic {
+            orbit: Orbit::DeputyInitial
+        }
+    );
+    let mut p = paper();
+    p.chief.ecc = -0.1;
+    assert_eq!(
+        rejected(&p),
+        PlanError::NotElliptic {
+            orbit: Orbit::Chief
+        }
+    );
+}
+
+#[test]
+fn semi_major_axis_at_or_below_earth_radius() {
+    let mut p = paper();
+    p.chief.sma_km = EARTH_RADIUS_KM;
+    assert_eq!(
+        rejected(&p),
+        PlanError::BelowEarthRadius {
+            orbit: Orbit::Chief
+        }
+    );
+    let mut p = paper();
+    p.chief.sma_km = -7000.0;
+    assert_eq!(
+        rejected(&p),
+        PlanError::BelowEarthRadius {
+            orbit: Orbit::Chief
+        }
+    );
+}
+
+#[test]
+fn negative_revolutions() {
+    let mut p = paper();
+    p.plan = ImpulsePlan::Fixed(points(&[(10.0, 1), (20.0, -1)]));
+    assert_eq!(rejected(&p), PlanError::NegativeRevolutions { impulse: 1 });
+    p.plan = ImpulsePlan::Search {
+        impulses: 3,
+        max_revolutions: -1,
+    };
+    assert_eq!(rejected(&p), PlanError::NegativeRevolutions { impulse: 0 });
+}
+
+#[test]
+fn revolutions_over_the_limit() {
+    let mut p = paper();
+    p.plan = ImpulsePlan::Fixed(points(&[(10.0, 60), (20.0, 41)]));
+    assert_eq!(
+        rejected(&p),
+        PlanError::RevolutionsOverLimit {
+            requested: 101,
+            limit: 100
+        }
+    );
+    p.plan = ImpulsePlan::Fixed(points(&[(10.0, i32::MAX), (20.0, i32::MAX)]));
+    assert_eq!(
+        rejected(&p),
+        PlanError::RevolutionsOverLimit {
+            requested: i32::MAX,
+            limit: 100
+        }
+    );
+    p.plan = ImpulsePlan::Search {
+        impulses: 3,
+        max_revolutions: 15,
+    };
+    let tight = Settings {
+        max_total_revolutions: 14,
+        ..Settings::default()
+    };
+    assert_eq!(
+        reject(&p, &tight),
+        PlanError::RevolutionsOverLimit {
+            requested: 15,
+            limit: 14
+        }
+    );
+}
+
+#[test]
+fn more_impulses_than_capacity_and_none() {
+    let mut p = paper();
+    p.plan = ImpulsePlan::Search {
+        impulses: 7,
+        max_revolutions: 14,
+    };
+    assert_eq!(
+        rejected(&p),
+        PlanError::CapacityExceeded {
+            requested: 7,
+            capacity: 6
+        }
+    );
+    p.plan = ImpulsePlan::Search {
+        impulses: 0,
+        max_revolutions: 14,
+    };
+    assert_eq!(rejected(&p), PlanError::NoImpulses);
+    p.plan = ImpulsePlan::Fixed(heapless::Vec::new());
+    assert_eq!(rejected(&p), PlanError::NoImpulses);
+}
+
+#[test]
+fn invalid_settings() {
+    let p = paper();
+    let s = Settings {
+        fixed_point_max_iter: 0,
+        ..Settings::default()
+    };
+    assert_eq!(
+        reject(&p, &s),
+        PlanError::InvalidSettings(SettingsError::ZeroIterationLimit)
+    );
+    let s = Settings {
+        fixed_point_tol_mps: -1.0,
+        ..Settings::default()
+    };
+    assert_eq!(
+        reject(&p, &s),
+        PlanError::InvalidSettings(SettingsError::BadTolerance)
+    );
+    let s = Settings {
+        min_sin_inclination: 2.0,
+        ..Settings::default()
+    };
+    assert_eq!(
+        reject(&p, &s),
+        PlanError::InvalidSettings(SettingsError::BadThreshold)
+    );
+    let s = Settings {
+        search_starts: 0,
+        ..Settings::default()
+    };
+    assert_eq!(
+        reject(&p, &s),
+        PlanError::InvalidSettings(SettingsError::BadSearchBudget)
+    );
+}
+
+#[test]
+fn coincident_points_are_least_squares_with_their_rank_reported() {
+    // Two impulses at the same point: F = [F1 F1] has rank 3.
+    let mut p = paper();
+    p.plan = ImpulsePlan::Fixed(points(&[(274.155, 2), (274.155, 0)]));
+    let mut ws = Workspace::new();
+    let mut out = Solution::new();
+    solve(&p, &Settings::default(), &mut ws, &mut out).unwrap();
+    assert_eq!(out.info.status, SolveStatus::RankDeficient);
+    assert!(!out.info.status.is_usable());
+    assert_eq!(out.info.rank, 3);
+    assert!(out.info.condition_number.is_infinite());
+    assert_eq!(out.impulses.len(), 2);
+    assert!(out.total_dv_mps.is_finite());
+    // Minimum norm splits the least-squares impulse evenly between the two coincident points.
+    for axis in 0..3 {
+        let (a, b) = (
+            out.impulses[0].dv_rtn_mps[axis],
+            out.impulses[1].dv_rtn_mps[axis],
+        );
+        assert!((a - b).abs() < 1e-9 * a.abs().max(1.0), "{a} vs {b}");
+    }
+    // A single impulse cannot reach six elements either: rank 3 as well.
+    p.plan = ImpulsePlan::Fixed(points(&[(274.155, 2)]));
+    solve(&p, &Settings::default(), &mut ws, &mut out).unwrap();
+    assert_eq!(out.info.status, SolveStatus::RankDeficient);
+    assert_eq!(out.info.rank, 3);
+}
+
+#[test]
+fn errors_round_trip_the_wire() {
+    let e = PlanError::RevolutionsOverLimit {
+        requested: 20,
+        limit: 14,
+    };
+    let bytes = postcard::to_allocvec(&e).unwrap();
+    assert_eq!(postcard::from_bytes::<PlanError>(&bytes).unwrap(), e);
+    let p = paper();
+    let bytes = postcard::to_allocvec(&p).unwrap();
+    assert_eq!(postcard::from_bytes::<Problem>(&bytes).unwrap(), p);
+    let s = Settings::default();
+    let bytes = postcard::to_allocvec(&s).unwrap();
+    assert_eq!(postcard::from_bytes::<Settings>(&bytes).unwrap(), s);
+}
