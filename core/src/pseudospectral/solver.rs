@@ -1031,6 +1031,11 @@ mod tests {
         )
         .unwrap();
         assert!(warm.info.warm_start_used);
+        assert!(
+            warm.info.sqp_iterations <= 4,
+            "warm: {} subproblems",
+            warm.info.sqp_iterations
+        );
         assert_eq!(warm.info.status, SolveStatus::Solved);
         assert!(
             warm.info.sqp_iterations < cold.info.sqp_iterations,

@@ -59,6 +59,10 @@ pub struct Row {
     pub mean_time_s: f64,
     /// Largest solve time, seconds.
     pub max_time_s: f64,
+    /// Largest active set any QP held.
+    pub max_active: u16,
+    /// Largest number of convex subproblems in one solve.
+    pub max_subproblems: u16,
     /// Runs whose continuous separation is below d - 1e-6 or whose status is not usable.
     pub failures: usize,
 }
@@ -123,6 +127,8 @@ pub fn study(args: &Args, progress: bool) -> Result<Vec<Row>> {
                 mean_cost: 0.0,
                 mean_time_s: 0.0,
                 max_time_s: 0.0,
+                max_active: 0,
+                max_subproblems: 0,
                 failures: 0,
             };
             for noise in &guesses {
@@ -141,6 +147,8 @@ pub fn study(args: &Args, progress: bool) -> Result<Vec<Row>> {
                 stats.mean_cost += solution.cost / args.runs as f64;
                 stats.mean_time_s += elapsed / args.runs as f64;
                 stats.max_time_s = stats.max_time_s.max(elapsed);
+                stats.max_active = stats.max_active.max(solution.info.max_active);
+                stats.max_subproblems = stats.max_subproblems.max(solution.info.sqp_iterations);
                 let separated = solution.min_separation_lu >= problem.keep_out_lu - 1e-6;
                 let usable = matches!(solution.info.status, SolveStatus::Solved)
                     || (!verify && solution.info.status == SolveStatus::SeparationNotVerified);
@@ -222,12 +230,21 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         args.runs, args.sigma, args.seed
     );
     println!(
-        "{:>3}  {:<40} {:>9} {:>9} {:>9} {:>10} {:>10} {:>8}",
-        "N", "configuration", "mean sep", "min sep", "mean J", "mean ms", "max ms", "failures"
+        "{:>3}  {:<40} {:>9} {:>9} {:>9} {:>10} {:>10} {:>7} {:>7} {:>8}",
+        "N",
+        "configuration",
+        "mean sep",
+        "min sep",
+        "mean J",
+        "mean ms",
+        "max ms",
+        "max QPs",
+        "max act",
+        "failures"
     );
     for r in &rows {
         println!(
-            "{:>3}  {:<40} {:>9.4} {:>9.4} {:>9.5} {:>10.3} {:>10.3} {:>8}",
+            "{:>3}  {:<40} {:>9.4} {:>9.4} {:>9.5} {:>10.3} {:>10.3} {:>7} {:>7} {:>8}",
             r.degree,
             r.configuration,
             r.mean_min_separation,
@@ -235,6 +252,8 @@ pub fn run(args: &Args) -> Result<ExitCode> {
             r.mean_cost,
             r.mean_time_s * 1e3,
             r.max_time_s * 1e3,
+            r.max_subproblems,
+            r.max_active,
             r.failures
         );
     }
