@@ -76,3 +76,70 @@ proptest! {
         }
     }
 }
+
+/// Valid random reconfigurations: spacecraft on a well-separated grid swap to a shuffled grid,
+/// with random masses, horizons and degrees.
+fn valid_problem() -> impl Strategy<Value = Problem> {
+    (
+        2usize..5,
+        4u16..17,
+        any::<bool>(),
+        prop::collection::vec(0.5f64..2.0, 4),
+        prop::collection::vec(-1.0f64..1.0, 24),
+        Just(()).prop_perturb(|_, mut rng| {
+            let mut order: Vec<usize> = (0..4).collect();
+            for i in (1..order.len()).rev() {
+                let j = (rng.next_u32() as usize) % (i + 1);
+                order.swap(i, j);
+            }
+            order
+        }),
+    )
+        .prop_map(|(m, degree, test_points, masses, jitter, order)| {
+            let slot = |k: usize, j: &[f64]| [6.0 * k as f64 + 0.5 * j[0], 0.5 * j[1], 0.5 * j[2]];
+            let mut spacecraft = heapless::Vec::new();
+            for i in 0..m {
+                let a = slot(i, &jitter[3 * i..]);
+                let b = slot(order[i], &jitter[12 + 3 * i..]);
+                let b = [b[0], b[1] + 4.0, b[2]];
+                let craft = Spacecraft {
+                    mass_mu: masses[i],
+                    initial_state: [a[0], a[1], a[2], 0.0, 0.0, 0.0],
+                    final_state: [b[0], b[1], b[2], 0.0, 0.0, 0.0],
+                };
+                let _ = spacecraft.push(craft);
+            }
+            Problem {
+                horizon_tu: 20.0,
+                max_control_fu: 1.0,
+                keep_out_lu: 2.0,
+                degree,
+                test_points,
+                spacecraft,
+            }
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+    #[test]
+    fn valid_problems_are_solved_or_say_why(problem in valid_problem()) {
+        let solution = solve_pseudospectral(&problem, &Settings::default())
+            .expect("a valid problem is accepted");
+        let status = solution.info.status;
+        if status == reconfig_core::pseudospectral::SolveStatus::Solved {
+            // Solved means verified: continuous separation and boundary conditions hold.
+            prop_assert!(solution.min_separation_lu >= 2.0 - 1e-6, "{}", solution.min_separation_lu);
+            let n = usize::from(problem.degree);
+            for (i, craft) in problem.spacecraft.iter().enumerate() {
+                for k in 0..6 {
+                    prop_assert!((solution.states[i][0][k] - craft.initial_state[k]).abs() < 1e-8);
+                    prop_assert!((solution.states[i][n][k] - craft.final_state[k]).abs() < 1e-8);
+                }
+            }
+        } else {
+            // Anything else must not be flown.
+            prop_assert!(!status.is_usable());
+        }
+    }
+}

@@ -64,15 +64,14 @@ impl Basis {
         for h in 0..nodes {
             let tau = grid.at(h);
             let bubble = (1.0 - tau * tau) * (1.0 - tau * tau);
-            let mut p_prev = 1.0;
-            let mut p = tau;
+            // Legendre P_c(tau) by the three-term recurrence.
+            let (mut previous, mut current) = (0.0, 1.0);
             for c in 0..free {
-                let value = if c == 0 {
-                    1.0
-                } else {
-                    p_prev_for(c, &mut p_prev, &mut p, tau)
-                };
-                set(&mut raw, h, c, bubble * value);
+                set(&mut raw, h, c, bubble * current);
+                let k = c as f64;
+                let next = ((2.0 * k + 1.0) * tau * current - k * previous) / (k + 1.0);
+                previous = current;
+                current = next;
             }
         }
         // Accelerations per unit raw coefficient: (2/T)^2 D (D raw).
@@ -149,18 +148,6 @@ impl Basis {
             }
         }
     }
-}
-
-/// Legendre recurrence step: on entry `(p_prev, p) = (P_{c-2}, P_{c-1})`... returns `P_c`.
-fn p_prev_for(c: usize, p_prev: &mut f64, p: &mut f64, tau: f64) -> f64 {
-    if c == 1 {
-        return *p;
-    }
-    let k = (c as f64) - 1.0; // computing P_{k+1}
-    let next = ((2.0 * k + 1.0) * tau * *p - k * *p_prev) / (k + 1.0);
-    *p_prev = *p;
-    *p = next;
-    next
 }
 
 #[cfg(test)]

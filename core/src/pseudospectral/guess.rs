@@ -7,6 +7,10 @@
 //! boundary-value equations are the gradient of the concave dual of the minimum-energy problem,
 //! so a damped Newton iteration on them converges from the cubic's coefficients.
 
+/// Halvings of a Newton step before the iteration gives up (the step is then below 1e-12 of the
+/// full step).
+const BACKTRACK_STEPS: u16 = 40;
+
 /// One axis's boundary data: positions (LU), velocities (LU/TU), horizon T (TU), mass (MU),
 /// bound Umax (FU).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -247,7 +251,7 @@ pub(crate) fn solve_axis(bd: AxisBoundary, max_newton: u16) -> Result<AxisLaw, G
         // Backtracking on the residual norm (the residual is the dual gradient: monotone).
         let mut step = 1.0;
         let mut accepted = false;
-        for _ in 0..40 {
+        for _ in 0..BACKTRACK_STEPS {
             let trial = AxisLaw {
                 alpha: law.alpha + step * d_alpha,
                 beta: law.beta + step * d_beta,

@@ -9,9 +9,7 @@ use super::qp::{self, QpOutcome};
 use super::settings::Settings;
 use super::solution::Solution;
 use super::status::{SolveStatus, Stage};
-use super::transcription::{
-    block_dot, node_value, Coefficients, Source, Transcription, MAX_BLOCKS,
-};
+use super::transcription::{block_dot, node_value, Coefficients, Transcription, MAX_BLOCKS};
 use super::validate;
 use super::verify::{Minimum, MAX_PRODUCT};
 use super::workspace::Workspace;
@@ -887,7 +885,6 @@ fn write_solution(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
         }
     }
     out.max_dynamics_error = dynamics_error(tr, out);
-    let _ = Source::Node(0);
     verified
 }
 
