@@ -18,7 +18,8 @@ pub const TEST_POINTS_PER_PAIR: usize = 7;
 /// Extra keep-out points per pair that continuous verification may add over all its rounds.
 pub const MAX_VERIFY_POINTS_PER_PAIR: usize = 8;
 /// Keep-out check times per pair: nodes, test points and verification points.
-pub const MAX_CHECKS_PER_PAIR: usize = MAX_NODES + TEST_POINTS_PER_PAIR + MAX_VERIFY_POINTS_PER_PAIR;
+pub const MAX_CHECKS_PER_PAIR: usize =
+    MAX_NODES + TEST_POINTS_PER_PAIR + MAX_VERIFY_POINTS_PER_PAIR;
 /// Constraints the QP may hold active at once (keep-out plus control bounds).
 pub const MAX_ACTIVE: usize = 96;
 
