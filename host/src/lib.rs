@@ -3,3 +3,5 @@
 
 pub mod cli;
 pub mod fixture;
+pub mod harness;
+pub mod scenario;

@@ -4,7 +4,11 @@ use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "reconfig", version, about = "On-board formation reconfiguration planner: host tools")]
+#[command(
+    name = "reconfig",
+    version,
+    about = "On-board formation reconfiguration planner: host tools"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -16,6 +20,13 @@ enum Command {
     Solve(reconfig_host::cli::solve::Args),
     /// Reproduce Huang 2012 Table 2: random initial guesses, with and without test points.
     Montecarlo(reconfig_host::cli::montecarlo::Args),
+    /// The main job: start the flight service, feed it every fixture, the fault set and
+    /// generated scenarios, check every answer, print results and timing, stop the service.
+    Demo(reconfig_host::cli::demo::Args),
+    /// Run the flight service (iceoryx2) until SIGTERM / SIGINT.
+    Serve(reconfig_host::cli::serve::Args),
+    /// Feed a running flight service and report answers and timing.
+    Feed(reconfig_host::cli::feed::Args),
 }
 
 fn main() -> ExitCode {
@@ -23,6 +34,9 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Solve(args) => reconfig_host::cli::solve::run(&args),
         Command::Montecarlo(args) => reconfig_host::cli::montecarlo::run(&args),
+        Command::Demo(args) => reconfig_host::cli::demo::run(&args),
+        Command::Serve(args) => reconfig_host::cli::serve::run(&args),
+        Command::Feed(args) => reconfig_host::cli::feed::run(&args),
     };
     match result {
         Ok(code) => code,
