@@ -31,6 +31,9 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    // iceoryx2 logs warnings such as "no config file was loaded" (none is needed); keep the
+    // output for errors unless RUST_LOG-style IOX2_LOG_LEVEL asks for more.
+    iceoryx2::prelude::set_log_level_from_env_or(iceoryx2::prelude::LogLevel::Error);
     let result = match cli.command {
         Command::Solve(args) => reconfig_host::cli::solve::run(&args),
         Command::Montecarlo(args) => reconfig_host::cli::montecarlo::run(&args),

@@ -58,6 +58,9 @@ pub struct Args {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Print `answered SEQ` / `lost SEQ` lines as they happen.
+    #[arg(long)]
+    pub verbose: bool,
     #[command(flatten)]
     pub instance: Instance,
 }
@@ -222,7 +225,8 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     opts.wait_service = Duration::from_millis(args.wait_service_ms);
     opts.cpu = args.feeder_cpu;
     opts.first_seq = args.first_seq;
-    opts.progress = !args.quiet;
+    opts.progress = !args.quiet && !args.verbose;
+    opts.verbose = args.verbose;
     let run = feeder::run(&items, &opts)?;
     let title = format!(
         "window {}{}, feeder {}",

@@ -55,6 +55,8 @@ pub struct FeedOptions {
     pub first_seq: u64,
     /// Show a progress bar.
     pub progress: bool,
+    /// Print `answered SEQ` / `lost SEQ` lines on stdout as they happen.
+    pub verbose: bool,
 }
 
 impl FeedOptions {
@@ -69,6 +71,7 @@ impl FeedOptions {
             cpu: None,
             first_seq: 1,
             progress: false,
+            verbose: false,
         }
     }
 }
@@ -295,6 +298,10 @@ pub fn run(items: &[Item], opts: &FeedOptions) -> Result<FeedRun> {
                 if let Some(bar) = &bar {
                     bar.inc(1);
                 }
+                if opts.verbose {
+                    println!("answered {}", f.seq);
+                    let _ = std::io::Write::flush(&mut std::io::stdout());
+                }
             }
             if got {
                 let f = in_flight.swap_remove(i);
@@ -320,6 +327,10 @@ pub fn run(items: &[Item], opts: &FeedOptions) -> Result<FeedRun> {
                 records[f.index].fate = Fate::Lost;
                 counters.lost += 1;
                 lost_any = true;
+                if opts.verbose {
+                    println!("lost {}", f.seq);
+                    let _ = std::io::Write::flush(&mut std::io::stdout());
+                }
                 if let Some(bar) = &bar {
                     bar.inc(1);
                 }
