@@ -4,4 +4,5 @@
 pub mod cli;
 pub mod fixture;
 pub mod harness;
+pub mod plot;
 pub mod scenario;

@@ -27,6 +27,8 @@ enum Command {
     Serve(reconfig_host::cli::serve::Args),
     /// Feed a running flight service and report answers and timing.
     Feed(reconfig_host::cli::feed::Args),
+    /// Draw a plan (SVG): trajectories, separations and controls, or relative motion.
+    Plot(reconfig_host::cli::plot::Args),
 }
 
 fn main() -> ExitCode {
@@ -40,6 +42,7 @@ fn main() -> ExitCode {
         Command::Demo(args) => reconfig_host::cli::demo::run(&args),
         Command::Serve(args) => reconfig_host::cli::serve::run(&args),
         Command::Feed(args) => reconfig_host::cli::feed::run(&args),
+        Command::Plot(args) => reconfig_host::cli::plot::run(&args),
     };
     match result {
         Ok(code) => code,

@@ -129,6 +129,21 @@ pub fn wang2018_published() -> impulsive::Problem {
     }
 }
 
+/// The published case with the impulse points of Wang 2018 Table 2 (three impulses).
+pub fn wang2018_table2() -> impulsive::Problem {
+    let mut p = wang2018_published();
+    let deg = PI / 180.0;
+    let mut points = heapless::Vec::new();
+    for (u, n) in [(274.155, 2), (238.864, 10), (285.649, 2)] {
+        let _ = points.push(impulsive::ImpulsePoint {
+            arg_latitude_rad: u * deg,
+            revolutions: n,
+        });
+    }
+    p.plan = impulsive::ImpulsePlan::Fixed(points);
+    p
+}
+
 /// A planner-B scenario: the published case perturbed, with `k` (2..=4) fixed impulse points.
 pub fn perturbed_impulsive(rng: &mut impl Rng, k: usize) -> impulsive::Problem {
     let mut p = wang2018_published();

@@ -3,6 +3,7 @@
 pub mod demo;
 pub mod feed;
 pub mod montecarlo;
+pub mod plot;
 pub mod serve;
 pub mod solve;
 pub mod solve_impulsive;
