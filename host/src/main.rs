@@ -3,6 +3,10 @@
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
+#[global_allocator]
+static ALLOCATOR: reconfig_host::harness::alloc_count::CountingAllocator =
+    reconfig_host::harness::alloc_count::CountingAllocator;
+
 #[derive(Parser)]
 #[command(
     name = "reconfig",

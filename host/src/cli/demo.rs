@@ -21,9 +21,10 @@ pub struct Args {
     /// Seed of the generated scenarios.
     #[arg(long, default_value_t = 2026)]
     pub seed: u64,
-    /// CPUs of the flight service (one pinned worker each).
-    #[arg(long, default_value = "0,1")]
-    pub cpus: String,
+    /// CPUs of the flight service, one pinned worker each (default: the first two CPUs this
+    /// process may use).
+    #[arg(long)]
+    pub cpus: Option<String>,
     /// Do not pin the service's workers.
     #[arg(long)]
     pub no_pin: bool,
@@ -180,8 +181,12 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         args.random
     );
 
-    let service = ServiceChild::start(&instance, &args.cpus, args.no_pin, &[])?;
-    let workers = crate::harness::parse_cpus(&args.cpus)?.len();
+    let cpus = args
+        .cpus
+        .clone()
+        .unwrap_or_else(crate::harness::affinity::default_cpu_list);
+    let workers = crate::harness::parse_cpus(&cpus)?.len();
+    let service = ServiceChild::start(&instance, &cpus, args.no_pin, &[])?;
     let budget = Duration::from_secs_f64(args.budget_ms / 1e3);
 
     let mut opts = FeedOptions::new(instance.clone());

@@ -9,6 +9,7 @@
 //! parallel) never see each other's shared memory.
 
 pub mod affinity;
+pub mod alloc_count;
 pub mod check;
 pub mod faults;
 pub mod feeder;
