@@ -33,6 +33,7 @@ fn bad_frames_and_invalid_problems_get_error_responses_and_the_service_keeps_run
     assert!(status_of("fault: oversized").contains("oversized frame"));
     assert!(status_of("fault: wrong version").contains("wrong protocol version"));
     assert!(status_of("fault: wrong CRC").contains("bad CRC"));
+    assert!(status_of("fault: spacecraft count 9 (over capacity)").contains("malformed body"));
     for label in [
         "invalid: NaN horizon",
         "invalid: degree over capacity",

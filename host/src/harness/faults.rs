@@ -42,7 +42,30 @@ fn request(label: &str, request: Request) -> Item {
     }
 }
 
-/// The fault set: five wire faults and four invalid problems. Labels say what each is.
+/// A frame that is valid except that its spacecraft count says 9, one more than the capacity
+/// (a `Request` cannot hold that, so it is built by hand; a ninth spacecraft's 104 bytes would
+/// also make the frame longer than `REQUEST_MAX_BYTES`, so the count alone is raised). Body
+/// layout: variant (1), three f64 (24), degree varint (1 for N = 10), test_points (1), then the
+/// spacecraft count.
+fn nine_spacecraft(seq: u64) -> Vec<u8> {
+    let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(seq);
+    let request = Request::Pseudospectral {
+        problem: scenario::crossing(&mut rng, 8, 10),
+        settings: pseudospectral::Settings::default(),
+    };
+    let mut buf = vec![0u8; wire::REQUEST_MAX_BYTES];
+    let n = wire::encode_request(seq, &request, &mut buf).unwrap_or(0);
+    buf.truncate(n);
+    let count_at = REQUEST_HEADER_BYTES + 27;
+    if buf.get(count_at) != Some(&8) {
+        return buf;
+    }
+    buf[count_at] = 9;
+    recrc(&mut buf);
+    buf
+}
+
+/// The fault set: six wire faults and four invalid problems. Labels say what each is.
 pub fn items(first_seq: u64) -> Vec<Item> {
     let mut out = Vec::new();
     // Malformed: header and CRC right, body not a Request (an unknown variant).
@@ -68,6 +91,11 @@ pub fn items(first_seq: u64) -> Vec<Item> {
     let last = f.len() - 1;
     f[last] ^= 0x5a;
     out.push(raw("fault: wrong CRC", f));
+
+    out.push(raw(
+        "fault: spacecraft count 9 (over capacity)",
+        nine_spacecraft(first_seq + 5),
+    ));
 
     let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(first_seq);
     let settings = pseudospectral::Settings::default();

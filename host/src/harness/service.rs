@@ -239,7 +239,7 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
                     Ok(job) => {
                         let index = job.worker;
                         if let Some(active) = in_flight.get_mut(index).and_then(Option::take) {
-                            send_response(&active, &job)?;
+                            send_response(&active, &job);
                             answered += 1;
                             let _ = notifier.notify();
                         }
@@ -259,11 +259,14 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
                 if slot.is_none() {
                     continue;
                 }
-                let Some(active) = server
-                    .receive()
-                    .map_err(|e| anyhow!("receive failed: {e:?}"))?
-                else {
-                    break;
+                let active = match server.receive() {
+                    Ok(Some(active)) => active,
+                    Ok(None) => break,
+                    Err(e) => {
+                        // A broken connection to one feeder must not stop the service.
+                        eprintln!("serve: receive failed: {e:?}");
+                        break;
+                    }
                 };
                 let Some(mut job) = slot.take() else { break };
                 let bytes = active.payload();
@@ -279,7 +282,7 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
                     len
                 };
                 if job.request_len > job.request.len() {
-                    oversized_answer(&active, bytes.len())?;
+                    oversized_answer(&active, bytes.len());
                     answered += 1;
                     let _ = notifier.notify();
                     *slot = Some(job);
@@ -319,7 +322,7 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
         let _ = listener.timed_wait(|_| {}, Duration::from_millis(50));
         while let Ok(job) = done_rx.try_recv() {
             if let Some(active) = in_flight.get_mut(job.worker).and_then(Option::take) {
-                send_response(&active, &job)?;
+                send_response(&active, &job);
                 answered += 1;
                 let _ = notifier.notify();
             }
@@ -357,18 +360,25 @@ fn worker_notifier(
     Ok((node, notifier))
 }
 
-fn send_response(active: &Active, job: &Job) -> Result<()> {
-    let bytes = job.response.get(..job.response_len).unwrap_or(&[]);
-    let response = active
-        .loan_slice_uninit(bytes.len())
-        .map_err(|e| anyhow!("cannot loan response: {e:?}"))?;
-    // A feeder that went away cannot receive: that is not the service's failure.
-    let _ = response.write_from_slice(bytes).send();
-    Ok(())
+/// Send a job's response. A failure (a feeder that went away, a full response pool) loses this
+/// one response, which the feeder reports as lost; it must not stop the service.
+fn send_response(active: &Active, job: &Job) {
+    send_bytes(active, job.response.get(..job.response_len).unwrap_or(&[]));
+}
+
+fn send_bytes(active: &Active, bytes: &[u8]) {
+    match active.loan_slice_uninit(bytes.len()) {
+        Ok(response) => {
+            if let Err(e) = response.write_from_slice(bytes).send() {
+                eprintln!("serve: cannot send a response: {e:?}");
+            }
+        }
+        Err(e) => eprintln!("serve: cannot loan a response: {e:?}"),
+    }
 }
 
 /// Answer a request longer than the largest frame without copying it to a worker.
-fn oversized_answer(active: &Active, len: usize) -> Result<()> {
+fn oversized_answer(active: &Active, len: usize) {
     let seq = reconfig_core::wire::peek_request_seq(active.payload()).unwrap_or(0);
     let err = reconfig_core::wire::FrameError::Oversized {
         len: u32::try_from(len).unwrap_or(u32::MAX),
@@ -381,12 +391,6 @@ fn oversized_answer(active: &Active, len: usize) -> Result<()> {
         &reconfig_core::wire::OutcomeRef::BadRequest(err),
         &mut buf,
     )
-    .map_err(|e| anyhow!("encode: {e:?}"))?;
-    let response = active
-        .loan_slice_uninit(n)
-        .map_err(|e| anyhow!("cannot loan response: {e:?}"))?;
-    let _ = response
-        .write_from_slice(buf.get(..n).unwrap_or(&[]))
-        .send();
-    Ok(())
+    .unwrap_or(0);
+    send_bytes(active, buf.get(..n).unwrap_or(&[]));
 }
