@@ -21,13 +21,36 @@ pub struct Verdict {
     pub rtt_us: Option<f64>,
 }
 
-/// Local expected outcomes, one per record of `run` (computed once per distinct frame).
+/// Local expected outcomes, one per record of `run`, solved on up to two threads (each with its
+/// own worker). Any run of the same items gives the same outcomes: the body of a response does
+/// not contain the sequence number.
 pub fn expected(run: &FeedRun) -> Vec<Vec<u8>> {
-    let mut worker = Worker::new();
-    run.records
-        .iter()
-        .map(|r| local_outcome(&mut worker, &r.frame))
-        .collect()
+    let threads = super::affinity::available_cpus().clamp(1, 2);
+    let chunk = run.records.len().div_ceil(threads).max(1);
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = run
+            .records
+            .chunks(chunk)
+            .map(|records| {
+                std::thread::Builder::new()
+                    .stack_size(super::worker::WORKER_STACK_BYTES)
+                    .spawn_scoped(scope, move || {
+                        let mut worker = Worker::new();
+                        records
+                            .iter()
+                            .map(|r| local_outcome(&mut worker, &r.frame))
+                            .collect::<Vec<_>>()
+                    })
+            })
+            .collect();
+        handles
+            .into_iter()
+            .flat_map(|h| match h {
+                Ok(h) => h.join().unwrap_or_default(),
+                Err(_) => Vec::new(),
+            })
+            .collect()
+    })
 }
 
 /// Check every record of `run` against `expected` (from [`expected`] on an equal run).
