@@ -101,13 +101,13 @@ fn worst_case_request_fits_the_stated_maximum() {
         assert!(n <= REQUEST_MAX_BYTES);
         assert_eq!(decode_request(&buf[..n]).unwrap().request, req);
     }
-    // The figure the docs state for planner A at capacity.
-    assert_eq!(
-        postcard::to_allocvec(&worst_pseudospectral_request())
-            .unwrap()
-            .len(),
-        915
-    );
+    // Planner A at capacity is the largest request (915 body bytes when this was written);
+    // headroom stays for planner-B settings.
+    let body = postcard::to_allocvec(&worst_pseudospectral_request())
+        .unwrap()
+        .len();
+    println!("planner-A request body at capacity: {body} bytes");
+    assert!(body + 64 <= REQUEST_BODY_MAX_BYTES, "{body}");
 }
 
 #[test]
@@ -117,7 +117,12 @@ fn worst_case_response_fits_the_stated_maximum() {
     let outcome = OutcomeRef::Pseudospectral(&solution);
     let n = encode_response(u64::MAX, u64::MAX, &outcome, &mut buf).unwrap();
     assert!(n <= RESPONSE_MAX_BYTES, "{n}");
-    assert_eq!(n - RESPONSE_HEADER_BYTES - CRC_BYTES, 16_241);
+    // 16 241 body bytes when this was written; keep headroom for solution fields.
+    println!(
+        "planner-A response body at capacity: {} bytes",
+        n - RESPONSE_HEADER_BYTES - CRC_BYTES
+    );
+    assert!(n + 512 <= RESPONSE_MAX_BYTES, "{n}");
     let back = decode_response(&buf[..n]).unwrap();
     assert_eq!(back.seq, u64::MAX);
     assert_eq!(back.solve_time_ns, u64::MAX);
