@@ -131,7 +131,7 @@ fn worst_case_response_fits_the_stated_maximum() {
     let owned = postcard::to_allocvec(&Outcome::Pseudospectral(solution)).unwrap();
     assert_eq!(owned, &buf[RESPONSE_HEADER_BYTES..n - CRC_BYTES]);
 
-    let imp = impulsive::Solution::default();
+    let imp = impulsive::Solution::new();
     let n = encode_response(1, 2, &OutcomeRef::Impulsive(&imp), &mut buf).unwrap();
     assert!(n <= RESPONSE_MAX_BYTES);
     let worst_error = FrameError::BadCrc {

@@ -8,7 +8,6 @@
 mod types;
 
 pub use types::*;
-
-// Replaced at merge by the real planner B (see placeholder.rs).
+// Firmware branch only: compile-only placeholder API, replaced at merge by planner B's own.
 mod placeholder;
 pub use placeholder::*;

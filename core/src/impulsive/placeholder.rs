@@ -1,28 +1,19 @@
-//! PLACEHOLDER, replaced at merge: a compile-only stand-in for the planner-B solver items that
-//! the host harness compiles against (`Settings`, `Solution`, `SolveInfo`, `SolveStatus`,
-//! `Workspace`, `PlanError`, `solve`). The real planner B (another branch) defines these with the
-//! same names and signatures; at merge this file and its two lines in `mod.rs` are deleted.
-//! Nothing here is planner B's maths: `solve` always rejects.
+//! COMPILE-ONLY PLACEHOLDER, replaced at merge by planner B's real `Settings`, `Solution`,
+//! `Workspace`, `PlanError` and `solve` (same names and signature). It plans nothing.
+//!
+//! Harness branch: a superset of the firmware branch's placeholder (the same items, plus the
+//! fields of the pinned contract the host harness reads: `Solution::total_dv_mps`,
+//! `terminal_error_m`, `info.status`, `info.iterations`, and `Display` for `PlanError`). At a
+//! merge with the firmware branch's version, keep this one.
 
 use super::types::Problem;
 use serde::{Deserialize, Serialize};
 
-/// Placeholder settings.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+/// Placeholder planner-B settings.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Settings {
-    /// Most fixed-point iterations.
+    /// Placeholder bound.
     pub max_iter: u16,
-    /// Stop when the impulses change by less than this, m/s.
-    pub tol_mps: f64,
-}
-
-impl Default for Settings {
-    fn default() -> Self {
-        Self {
-            max_iter: 50,
-            tol_mps: 1e-9,
-        }
-    }
 }
 
 /// Placeholder status.
@@ -45,9 +36,11 @@ pub struct SolveInfo {
     pub iterations: u16,
 }
 
-/// Placeholder solution.
+/// Placeholder planner-B result.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Solution {
+    /// Placeholder count of impulses.
+    pub impulses: u8,
     /// Sum of impulse magnitudes, m/s.
     pub total_dv_mps: f64,
     /// Residual of the end condition, m.
@@ -56,8 +49,23 @@ pub struct Solution {
     pub info: SolveInfo,
 }
 
-/// Placeholder workspace.
-#[derive(Clone, Debug)]
+impl Solution {
+    /// An empty solution.
+    pub const fn new() -> Self {
+        Self {
+            impulses: 0,
+            total_dv_mps: 0.0,
+            terminal_error_m: 0.0,
+            info: SolveInfo {
+                status: SolveStatus::Unsolved,
+                iterations: 0,
+            },
+        }
+    }
+}
+
+/// Placeholder planner-B workspace.
+#[derive(Clone, Debug, Default)]
 pub struct Workspace {
     _private: (),
 }
@@ -69,30 +77,24 @@ impl Workspace {
     }
 }
 
-impl Default for Workspace {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
-/// Placeholder error.
+/// Placeholder planner-B error.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[repr(u8)]
 pub enum PlanError {
-    /// Planner B is not in this build.
-    NotBuilt = 0,
+    /// The placeholder plans nothing.
+    NotImplemented = 0,
 }
 
 impl core::fmt::Display for PlanError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        write!(f, "planner B is not built in this branch")
+        write!(f, "planner B is not built yet (placeholder)")
     }
 }
 
-/// Placeholder solve: always rejects.
+/// Placeholder solve: always [`PlanError::NotImplemented`].
 ///
 /// # Errors
-/// Always [`PlanError::NotBuilt`].
+/// Always.
 pub fn solve(
     problem: &Problem,
     settings: &Settings,
@@ -100,5 +102,5 @@ pub fn solve(
     out: &mut Solution,
 ) -> Result<(), PlanError> {
     let _ = (problem, settings, workspace, out);
-    Err(PlanError::NotBuilt)
+    Err(PlanError::NotImplemented)
 }

@@ -33,7 +33,7 @@ impl Worker {
             ps_workspace: Box::new(pseudospectral::Workspace::new()),
             ps_solution: Box::new(pseudospectral::Solution::new()),
             imp_workspace: Box::new(impulsive::Workspace::new()),
-            imp_solution: Box::default(),
+            imp_solution: Box::new(impulsive::Solution::new()),
             delay: std::time::Duration::ZERO,
         }
     }
@@ -73,7 +73,7 @@ impl Worker {
                 }
             }
             Request::Impulsive { problem, settings } => {
-                *self.imp_solution = impulsive::Solution::default();
+                *self.imp_solution = impulsive::Solution::new();
                 let result = impulsive::solve(
                     problem,
                     settings,
