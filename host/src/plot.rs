@@ -298,6 +298,26 @@ pub fn pseudospectral_svg(
             .map_err(|e| err(&e))?
             .label(format!("keep-out d = {}", problem.keep_out_lu))
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], RED.stroke_width(2)));
+        // Gaussian test points on each pair's separation curve.
+        if problem.test_points && s.info.status != pseudospectral::SolveStatus::Unsolved {
+            let interp = Interpolant::new(&s.node_times_tu[..n]);
+            for (k, ((i, j), _)) in seps.iter().enumerate() {
+                let at = |c: usize, t: f64| -> [f64; 3] {
+                    let mut p = [0.0; 3];
+                    for (a, v) in p.iter_mut().enumerate() {
+                        let vals: Vec<f64> = (0..n).map(|h| s.states[c][h][a]).collect();
+                        *v = interp.eval(&vals, t);
+                    }
+                    p
+                };
+                let times = s.test_point_times_tu.get(k).map_or(&[][..], |v| &v[..]);
+                chart
+                    .draw_series(times.iter().map(|&t| {
+                        Cross::new((t, dist(at(*i, t), at(*j, t))), 4, BLACK.stroke_width(1))
+                    }))
+                    .map_err(|e| err(&e))?;
+            }
+        }
         // Nodes as ticks on the time axis.
         chart
             .draw_series(
