@@ -21,7 +21,7 @@ pub const MAX_VERIFY_POINTS_PER_PAIR: usize = 3;
 pub const MAX_CHECKS_PER_PAIR: usize =
     MAX_NODES + TEST_POINTS_PER_PAIR + MAX_VERIFY_POINTS_PER_PAIR;
 /// Constraints the QP may hold active at once (keep-out plus control bounds).
-pub const MAX_ACTIVE: usize = 40;
+pub const MAX_ACTIVE: usize = 56;
 
 /// Most impulses planner B plans.
 pub const MAX_IMPULSES: usize = 6;

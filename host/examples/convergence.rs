@@ -2,7 +2,7 @@
 //! convex-concave sequence converges. `cargo run --release --example convergence -- FILE`
 use reconfig_core::pseudospectral::{self, Settings, Solution, Workspace};
 fn main() {
-    let path = std::env::args().nth(1).expect("fixture path");
+    let path = std::env::args().nth(1).expect("usage: convergence FIXTURE");
     let reconfig_host::fixture::Fixture::Pseudospectral(f) =
         reconfig_host::fixture::load(path.as_ref()).expect("fixture")
     else {

@@ -3,3 +3,6 @@
 
 pub mod cli;
 pub mod fixture;
+pub mod harness;
+pub mod plot;
+pub mod scenario;

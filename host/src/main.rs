@@ -3,6 +3,10 @@
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
+#[global_allocator]
+static ALLOCATOR: reconfig_host::harness::alloc_count::CountingAllocator =
+    reconfig_host::harness::alloc_count::CountingAllocator;
+
 #[derive(Parser)]
 #[command(
     name = "reconfig",
@@ -20,13 +24,29 @@ enum Command {
     Solve(reconfig_host::cli::solve::Args),
     /// Reproduce Huang 2012 Table 2: random initial guesses, with and without test points.
     Montecarlo(reconfig_host::cli::montecarlo::Args),
+    /// The main job: start the flight service, feed it every fixture, the fault set and
+    /// generated scenarios, check every answer, print results and timing, stop the service.
+    Demo(reconfig_host::cli::demo::Args),
+    /// Run the flight service (iceoryx2) until SIGTERM / SIGINT.
+    Serve(reconfig_host::cli::serve::Args),
+    /// Feed a running flight service and report answers and timing.
+    Feed(reconfig_host::cli::feed::Args),
+    /// Draw a plan (SVG): trajectories, separations and controls, or relative motion.
+    Plot(reconfig_host::cli::plot::Args),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    // iceoryx2 logs warnings such as "no config file was loaded" (none is needed); keep the
+    // output for errors unless RUST_LOG-style IOX2_LOG_LEVEL asks for more.
+    iceoryx2::prelude::set_log_level_from_env_or(iceoryx2::prelude::LogLevel::Error);
     let result = match cli.command {
         Command::Solve(args) => reconfig_host::cli::solve::run(&args),
         Command::Montecarlo(args) => reconfig_host::cli::montecarlo::run(&args),
+        Command::Demo(args) => reconfig_host::cli::demo::run(&args),
+        Command::Serve(args) => reconfig_host::cli::serve::run(&args),
+        Command::Feed(args) => reconfig_host::cli::feed::run(&args),
+        Command::Plot(args) => reconfig_host::cli::plot::run(&args),
     };
     match result {
         Ok(code) => code,

@@ -74,6 +74,12 @@ fn workspace_size_is_reported() {
         "size_of::<pseudospectral::Solution>() = {} bytes",
         std::mem::size_of::<Solution>()
     );
-    // The on-board RAM budget is 256 KiB for static memory plus stack, both planners.
-    assert!(bytes < 200 * 1024, "{bytes}");
+    // The on-board RAM budget is 256 KiB for static memory plus stack, both planners: both
+    // workspaces and solutions must leave 24 KiB for the stack (the M7 high-water is ~20 KiB,
+    // measured by the QEMU test, which checks the whole budget on the target itself).
+    let statics = bytes
+        + std::mem::size_of::<Solution>()
+        + std::mem::size_of::<reconfig_core::impulsive::Workspace>()
+        + std::mem::size_of::<reconfig_core::impulsive::Solution>();
+    assert!(statics + 24 * 1024 <= 256 * 1024, "{statics}");
 }

@@ -1,8 +1,10 @@
 //! Planner-A settings: every loop bound and tolerance of a solve.
 
 use super::error::SettingsError;
-use crate::capacity::MAX_VERIFY_POINTS_PER_PAIR;
 use serde::{Deserialize, Serialize};
+
+/// Most verification rounds a solve may be set to.
+pub const MAX_VERIFY_ROUNDS: u8 = 8;
 
 /// Loop bounds and tolerances. Plain `Copy` data; all fields take effect per solve.
 ///
@@ -31,8 +33,9 @@ pub struct Settings {
     /// Constraint violation a QP accepts as satisfied, in the constraint's units (LU or FU).
     pub qp_tol_feas: f64,
     /// Rounds of continuous verification: each finds the true minimum separation of every pair
-    /// and adds keep-out points where it is below d, then re-solves. At most
-    /// `MAX_VERIFY_POINTS_PER_PAIR - 1` rounds (one point per pair is the moving check).
+    /// and adds a keep-out point where it is below d (while the pair has point capacity left,
+    /// `MAX_VERIFY_POINTS_PER_PAIR - 1`; one is the moving check) or, where a dip persists,
+    /// raises that pair's keep-out by the dip; then re-solves. At most `MAX_VERIFY_ROUNDS` (8).
     pub verify_max_rounds: u8,
     /// Continuous separation accepted as meeting the keep-out: `>= d - verify_tol_lu`.
     pub verify_tol_lu: f64,
@@ -48,14 +51,14 @@ pub struct Settings {
 impl Default for Settings {
     fn default() -> Self {
         Self {
-            sqp_max_iter: 40,
+            sqp_max_iter: 60,
             sqp_tol_cost: 1e-8,
             sqp_tol_step_lu: 1e-10,
             acceleration_memory: 1,
             continuous_verification: true,
             qp_max_iter: 400,
             qp_tol_feas: 1e-12,
-            verify_max_rounds: 2,
+            verify_max_rounds: 4,
             verify_tol_lu: 1e-7,
             keep_out_margin_lu: 0.0,
             newton_max_iter: 60,
@@ -90,8 +93,7 @@ impl Settings {
         if usize::from(self.acceleration_memory) > super::anderson::MAX_MEMORY {
             return Err(SettingsError::AccelerationMemory);
         }
-        // One verification point per pair is the moving check; the rest are for rounds.
-        if usize::from(self.verify_max_rounds) >= MAX_VERIFY_POINTS_PER_PAIR {
+        if self.verify_max_rounds > MAX_VERIFY_ROUNDS {
             return Err(SettingsError::TooManyVerifyRounds);
         }
         Ok(())

@@ -138,8 +138,23 @@ fn run(
             let separation = libm::sqrt(minimum.value_squared.max(0.0));
             if separation < d - settings.verify_tol_lu {
                 // A dip the moving check did not catch (a second local minimum): check it too.
+                // Where the pair already had one and still dips, the dip sits between closely
+                // spaced checks: raise the pair's keep-out by its depth, which lifts the
+                // continuous minimum by about as much (the dips are then ~1e-4 d or less, so the
+                // cost moves by parts per million).
                 let tau = 2.0 * minimum.at_s - 1.0;
-                if ws.transcription.add_check(pair, tau) {
+                let tr = &mut ws.transcription;
+                let refined_before = tr.verify_points.get(pair).copied().unwrap_or(0) > 0;
+                if refined_before {
+                    if let Some(margin) = tr.margin.get_mut(pair) {
+                        *margin += d - separation;
+                    }
+                    added = added.saturating_add(1);
+                }
+                if tr.add_check(pair, tau) {
+                    if let Some(count) = tr.verify_points.get_mut(pair) {
+                        *count = count.saturating_add(1);
+                    }
                     added = added.saturating_add(1);
                 }
             }
@@ -243,6 +258,8 @@ fn setup(problem: &Problem, settings: &Settings, ws: &mut Workspace) -> Result<(
     tr.pair_count = 0;
     tr.point_count = 0;
     tr.moving_check = [None; MAX_PAIRS];
+    tr.margin = [0.0; MAX_PAIRS];
+    tr.verify_points = [0; MAX_PAIRS];
     tr.check_count = [0; MAX_PAIRS];
     for i in 0..m {
         for j in (i.saturating_add(1))..m {

@@ -111,6 +111,11 @@ pub(crate) struct Transcription {
     pub check_count: [usize; MAX_PAIRS],
     pub points: [Point; MAX_POINTS],
     pub point_count: usize,
+    /// Extra keep-out per pair (LU), raised by verification where a dip below d persists after
+    /// the pair already received a verification point.
+    pub margin: [f64; MAX_PAIRS],
+    /// Verification points each pair received.
+    pub verify_points: [u8; MAX_PAIRS],
     /// Index (into the pair's checks) of the pair's moving check, which follows the continuous
     /// separation minimum from one convex subproblem to the next.
     pub moving_check: [Option<u8>; MAX_PAIRS],
@@ -143,6 +148,8 @@ impl Transcription {
             check_count: [0; MAX_PAIRS],
             points: [Point::EMPTY; MAX_POINTS],
             point_count: 0,
+            margin: [0.0; MAX_PAIRS],
+            verify_points: [0; MAX_PAIRS],
             moving_check: [None; MAX_PAIRS],
             base_cost: 0.0,
             window: [(0.0, 0.0); MAX_PAIRS],
@@ -164,9 +171,9 @@ impl Transcription {
         2.0 * t / self.horizon_tu - 1.0
     }
 
-    /// Keep-out enforced at the checks of `pair`: d plus the settings' margin.
-    pub fn keep_out_for(&self, _pair: usize) -> f64 {
-        self.keep_out_active_lu
+    /// Keep-out enforced at the checks of `pair`: d, the settings' margin and the pair's own.
+    pub fn keep_out_for(&self, pair: usize) -> f64 {
+        self.keep_out_active_lu + self.margin.get(pair).copied().unwrap_or(0.0)
     }
 
     pub fn mass_of(&self, sc: usize) -> f64 {

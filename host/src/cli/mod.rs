@@ -1,6 +1,10 @@
 //! One module per subcommand of `reconfig`.
 
+pub mod demo;
+pub mod feed;
 pub mod montecarlo;
+pub mod plot;
+pub mod serve;
 pub mod solve;
 pub mod solve_impulsive;
 pub mod solve_pseudospectral;

@@ -1,0 +1,250 @@
+//! `reconfig demo`: the main job. Starts the flight service as a child process, feeds it the
+//! published cases of both planners, the fault set and a few hundred generated scenarios
+//! (first one at a time, then with every worker busy), prints the results table and the timing
+//! report, stops the service, and exits 0 only if every request was answered correctly.
+
+use crate::cli::feed;
+use crate::harness::feeder::{self, FeedOptions};
+use crate::harness::{faults, report, Instance};
+use anyhow::{anyhow, bail, Context, Result};
+use std::io::{BufRead, BufReader};
+use std::path::PathBuf;
+use std::process::{Child, Command, ExitCode, Stdio};
+use std::time::{Duration, Instant};
+
+/// Arguments of `reconfig demo`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Generated scenarios to send after the fixtures.
+    #[arg(long, default_value_t = 300)]
+    pub random: usize,
+    /// Seed of the generated scenarios.
+    #[arg(long, default_value_t = 2026)]
+    pub seed: u64,
+    /// CPUs of the flight service, one pinned worker each (default: the first two CPUs this
+    /// process may use).
+    #[arg(long)]
+    pub cpus: Option<String>,
+    /// Do not pin the service's workers.
+    #[arg(long)]
+    pub no_pin: bool,
+    /// On-board time budget per request, ms.
+    #[arg(long, default_value_t = report::DEFAULT_BUDGET_MS)]
+    pub budget_ms: f64,
+    /// Per-request timeout, ms.
+    #[arg(long, default_value_t = 10_000)]
+    pub timeout_ms: u64,
+    /// Folder of fixtures (default: `fixtures/` of the repository).
+    #[arg(long)]
+    pub fixtures: Option<PathBuf>,
+    /// Write the report as JSON to this file.
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+    /// Rows of the results table to print.
+    #[arg(long, default_value_t = 30)]
+    pub rows: usize,
+}
+
+/// The repository's fixtures folder: `./fixtures` when run from the repository, else the one
+/// beside this crate's sources.
+pub fn default_fixtures_dir() -> PathBuf {
+    let here = PathBuf::from("fixtures");
+    if here.is_dir() {
+        here
+    } else {
+        PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("..")
+            .join("fixtures")
+    }
+}
+
+/// A flight service child process; stopped with SIGTERM when dropped.
+pub struct ServiceChild {
+    child: Option<Child>,
+}
+
+impl ServiceChild {
+    /// Start `reconfig serve` (this executable) and wait for its `ready` line.
+    pub fn start(instance: &Instance, cpus: &str, no_pin: bool, extra: &[&str]) -> Result<Self> {
+        let exe = std::env::current_exe().context("cannot find this executable")?;
+        let mut cmd = Command::new(exe);
+        cmd.arg("serve")
+            .args([
+                "--cpus",
+                cpus,
+                "--prefix",
+                &instance.prefix,
+                "--service",
+                &instance.service,
+            ])
+            .args(extra)
+            .stdout(Stdio::piped())
+            .stdin(Stdio::null());
+        if no_pin {
+            cmd.arg("--no-pin");
+        }
+        let mut child = cmd.spawn().context("cannot start the flight service")?;
+        let stdout = child.stdout.take().ok_or_else(|| anyhow!("no stdout"))?;
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let mut lines = BufReader::new(stdout).lines();
+            if let Some(Ok(line)) = lines.next() {
+                let _ = tx.send(line);
+            }
+            for _ in lines {}
+        });
+        let mut me = Self { child: Some(child) };
+        match rx.recv_timeout(Duration::from_secs(60)) {
+            Ok(line) if line.starts_with("ready") => {
+                println!("flight service started (pid {}): {line}", me.pid());
+                Ok(me)
+            }
+            Ok(line) => {
+                me.kill();
+                bail!("flight service said {line:?} instead of ready")
+            }
+            Err(_) => {
+                let status = me.child.as_mut().and_then(|c| c.try_wait().ok().flatten());
+                me.kill();
+                bail!("flight service did not become ready (exit status {status:?})")
+            }
+        }
+    }
+
+    /// Process id.
+    pub fn pid(&self) -> u32 {
+        self.child.as_ref().map_or(0, Child::id)
+    }
+
+    /// SIGTERM, then wait (10 s at most, then SIGKILL). True when it exited with status 0.
+    pub fn stop(mut self) -> Result<bool> {
+        let Some(mut child) = self.child.take() else {
+            return Ok(false);
+        };
+        // SAFETY: kill(2) on our own child's pid.
+        unsafe {
+            libc::kill(child.id() as libc::pid_t, libc::SIGTERM);
+        }
+        let start = Instant::now();
+        loop {
+            if let Some(status) = child.try_wait()? {
+                return Ok(status.success());
+            }
+            if start.elapsed() > Duration::from_secs(10) {
+                let _ = child.kill();
+                let _ = child.wait();
+                return Ok(false);
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    }
+
+    fn kill(&mut self) {
+        if let Some(mut child) = self.child.take() {
+            let _ = child.kill();
+            let _ = child.wait();
+        }
+    }
+}
+
+impl Drop for ServiceChild {
+    fn drop(&mut self) {
+        if let Some(child) = &self.child {
+            // SAFETY: kill(2) on our own child's pid.
+            unsafe {
+                libc::kill(child.id() as libc::pid_t, libc::SIGTERM);
+            }
+        }
+        if let Some(mut child) = self.child.take() {
+            let _ = child.wait();
+        }
+    }
+}
+
+/// Run `reconfig demo`.
+pub fn run(args: &Args) -> Result<ExitCode> {
+    let started = Instant::now();
+    let instance = Instance {
+        prefix: format!("reconfig_demo_{}_", std::process::id()),
+        service: "demo".into(),
+    };
+    let dir = args.fixtures.clone().unwrap_or_else(default_fixtures_dir);
+    let mut items = feed::fixture_items(&feed::fixture_files(&dir)?);
+    let published = items.len();
+    items.extend(faults::items(1_000_000));
+    items.extend(crate::scenario::generate(args.random, args.seed));
+    println!(
+        "demo: {} published cases from {}, {} faults, {} generated scenarios",
+        published,
+        dir.display(),
+        items.len() - published - args.random,
+        args.random
+    );
+
+    let cpus = args
+        .cpus
+        .clone()
+        .unwrap_or_else(crate::harness::affinity::default_cpu_list);
+    let workers = crate::harness::parse_cpus(&cpus)?.len();
+    let service = ServiceChild::start(&instance, &cpus, args.no_pin, &[])?;
+    let budget = Duration::from_secs_f64(args.budget_ms / 1e3);
+
+    let mut opts = FeedOptions::new(instance.clone());
+    opts.timeout = Duration::from_millis(args.timeout_ms);
+    opts.progress = true;
+    opts.window = 1;
+    let sequential = feeder::run(&items, &opts);
+    opts.window = 2 * workers;
+    opts.first_seq = 1 + items.len() as u64;
+    let saturated = sequential.as_ref().ok().map(|_| feeder::run(&items, &opts));
+    let stopped_cleanly = service.stop()?;
+    let _ = crate::harness::remove_instance_segment(&instance);
+    let sequential = sequential?;
+    let saturated = saturated.ok_or_else(|| anyhow!("no saturated run"))??;
+
+    let rep1 = report::build(
+        "one request at a time (latency), feeder unpinned",
+        &items,
+        &sequential,
+        budget,
+        None,
+    );
+    let rep2 = report::build(
+        &format!("{} in flight, every worker busy (throughput)", 2 * workers),
+        &items,
+        &saturated,
+        budget,
+        Some(2 * workers),
+    );
+    let ok = feed::conclude(
+        &items,
+        &[(&sequential, rep1), (&saturated, rep2)],
+        args.rows,
+        args.json.as_deref(),
+    )?;
+    println!(
+        "flight service stopped {}",
+        if stopped_cleanly {
+            "cleanly"
+        } else {
+            "UNCLEANLY"
+        }
+    );
+    let ok = ok && stopped_cleanly;
+    println!(
+        "demo {} in {:.1} s: {} requests x 2 runs, {}",
+        if ok { "passed" } else { "FAILED" },
+        started.elapsed().as_secs_f64(),
+        items.len(),
+        if ok {
+            "every answer correct"
+        } else {
+            "NOT every answer correct"
+        }
+    );
+    Ok(if ok {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
+}

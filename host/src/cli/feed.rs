@@ -1,0 +1,247 @@
+//! `reconfig feed`: send fixtures, generated scenarios or faults to a running flight service,
+//! check every answer against a local solve, and report timing against the budget.
+
+use crate::fixture::{self, Fixture};
+use crate::harness::feeder::{self, FeedOptions, FeedRun, Item, Payload};
+use crate::harness::{check, faults, report, Instance};
+use anyhow::{anyhow, Result};
+use reconfig_core::wire::{Planner, Request};
+use reconfig_core::{impulsive, pseudospectral};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Duration;
+
+/// Arguments of `reconfig feed`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Fixture file to send (repeatable).
+    #[arg(long = "fixture", value_name = "FILE")]
+    pub fixtures: Vec<PathBuf>,
+    /// Generated scenarios to send (sizes within capacity).
+    #[arg(long, default_value_t = 0)]
+    pub random: usize,
+    /// Seed of the generated scenarios.
+    #[arg(long, default_value_t = 2026)]
+    pub seed: u64,
+    /// Also send the fault set (malformed, truncated, oversized, wrong-version and wrong-CRC
+    /// frames; NaN, over-capacity and infeasible problems).
+    #[arg(long)]
+    pub faults: bool,
+    /// Requests per second (default: each as soon as the window allows).
+    #[arg(long)]
+    pub rate: Option<f64>,
+    /// Requests kept in flight (1 = sequential).
+    #[arg(long, default_value_t = 1)]
+    pub window: usize,
+    /// Per-request timeout, ms: no answer by then is a lost request.
+    #[arg(long, default_value_t = 5000)]
+    pub timeout_ms: u64,
+    /// How long to wait for a flight service, ms.
+    #[arg(long, default_value_t = 10_000)]
+    pub wait_service_ms: u64,
+    /// On-board time budget per request, ms.
+    #[arg(long, default_value_t = report::DEFAULT_BUDGET_MS)]
+    pub budget_ms: f64,
+    /// Pin the feeder to this CPU.
+    #[arg(long)]
+    pub feeder_cpu: Option<usize>,
+    /// First sequence number.
+    #[arg(long, default_value_t = 1)]
+    pub first_seq: u64,
+    /// Write the report (timing, counters, per-request results) as JSON to this file.
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+    /// Rows of the results table to print.
+    #[arg(long, default_value_t = 40)]
+    pub rows: usize,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
+    /// Print `answered SEQ` / `lost SEQ` lines as they happen.
+    #[arg(long)]
+    pub verbose: bool,
+    #[command(flatten)]
+    pub instance: Instance,
+}
+
+/// Machine-readable feed results.
+#[derive(Serialize)]
+pub struct JsonOut<'a> {
+    /// Timing reports.
+    pub reports: Vec<&'a report::Report>,
+    /// One per request.
+    pub results: Vec<JsonResult>,
+    /// Every answer was correct.
+    pub all_correct: bool,
+}
+
+/// One request's result.
+#[derive(Serialize)]
+pub struct JsonResult {
+    /// Request label.
+    pub label: String,
+    /// Status or error text.
+    pub status: String,
+    /// Correct answer.
+    pub correct: bool,
+    /// Round trip, us.
+    pub rtt_us: Option<f64>,
+}
+
+/// Feed items for every fixture file, either planner. A fixture that does not load is reported
+/// and skipped.
+pub fn fixture_items(paths: &[PathBuf]) -> Vec<Item> {
+    let mut items = Vec::new();
+    for path in paths {
+        match fixture::load(path) {
+            Ok(Fixture::Pseudospectral(f)) => {
+                let size = format!("M{} N{}", f.problem.spacecraft.len(), f.problem.degree);
+                items.push(Item {
+                    label: f.name.clone(),
+                    planner: Some(Planner::Pseudospectral),
+                    size,
+                    payload: Payload::Request(Box::new(Request::Pseudospectral {
+                        problem: f.problem,
+                        settings: pseudospectral::Settings::default(),
+                    })),
+                });
+            }
+            Ok(Fixture::Impulsive(f)) => {
+                let size = match &f.problem.plan {
+                    impulsive::ImpulsePlan::Fixed(points) => format!("K{}", points.len()),
+                    impulsive::ImpulsePlan::Search { impulses, .. } => {
+                        format!("K{impulses} search")
+                    }
+                };
+                items.push(Item {
+                    label: f.name.clone(),
+                    planner: Some(Planner::Impulsive),
+                    size,
+                    payload: Payload::Request(Box::new(Request::Impulsive {
+                        problem: f.problem,
+                        settings: impulsive::Settings::default(),
+                    })),
+                });
+            }
+            Err(e) => eprintln!("skipped {}: {e:#}", path.display()),
+        }
+    }
+    items
+}
+
+/// Every `*.toml` in a folder, sorted.
+pub fn fixture_files(dir: &Path) -> Result<Vec<PathBuf>> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map_err(|e| anyhow!("cannot read {}: {e}", dir.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    files.sort();
+    Ok(files)
+}
+
+/// Check, print and report one run; returns whether every answer was correct.
+pub fn conclude(
+    items: &[Item],
+    runs: &[(&FeedRun, report::Report)],
+    rows: usize,
+    json: Option<&Path>,
+) -> Result<bool> {
+    let mut all_correct = true;
+    let mut results = Vec::new();
+    let mut first = true;
+    // One local solve per item serves every run: frames differ only in their sequence numbers.
+    let expected = runs
+        .first()
+        .map(|(run, _)| check::expected(run))
+        .unwrap_or_default();
+    for (run, _) in runs {
+        let verdicts = check::verify(items, run, &expected);
+        if first {
+            check::print_table(items, &verdicts, rows);
+            first = false;
+        }
+        for v in &verdicts {
+            all_correct &= v.correct;
+            results.push(JsonResult {
+                label: items[v.index].label.clone(),
+                status: v.outcome.as_ref().map_or_else(
+                    || v.reason.clone(),
+                    |o| crate::harness::worker::summarize(o).0,
+                ),
+                correct: v.correct,
+                rtt_us: v.rtt_us,
+            });
+        }
+        let c = &run.counters;
+        all_correct &= c.lost == 0 && c.late == 0 && c.duplicated == 0 && c.malformed == 0;
+    }
+    for (_, r) in runs {
+        report::print(r);
+    }
+    if let Some(path) = json {
+        let out = JsonOut {
+            reports: runs.iter().map(|(_, r)| r).collect(),
+            results,
+            all_correct,
+        };
+        std::fs::write(path, serde_json::to_string_pretty(&out)?)?;
+        println!("report written to {}", path.display());
+    }
+    Ok(all_correct)
+}
+
+/// Run `reconfig feed`.
+pub fn run(args: &Args) -> Result<ExitCode> {
+    let mut items = fixture_items(&args.fixtures);
+    items.extend(crate::scenario::generate(args.random, args.seed));
+    if args.faults {
+        items.extend(faults::items(args.first_seq + 1_000_000));
+    }
+    if items.is_empty() {
+        return Err(anyhow!(
+            "nothing to send: give --fixture, --random N or --faults"
+        ));
+    }
+    let mut opts = FeedOptions::new(args.instance.clone());
+    opts.timeout = Duration::from_millis(args.timeout_ms);
+    opts.window = args.window;
+    opts.rate = args.rate;
+    opts.wait_service = Duration::from_millis(args.wait_service_ms);
+    opts.cpu = args.feeder_cpu;
+    opts.first_seq = args.first_seq;
+    opts.progress = !args.quiet && !args.verbose;
+    opts.verbose = args.verbose;
+    let run = feeder::run(&items, &opts)?;
+    let title = format!(
+        "window {}{}, feeder {}",
+        opts.window,
+        args.rate
+            .map_or(String::new(), |r| format!(", {r} requests/s")),
+        args.feeder_cpu
+            .map_or("unpinned".into(), |c| format!("on CPU {c}"))
+    );
+    let budget = Duration::from_secs_f64(args.budget_ms / 1e3);
+    let rep = report::build(
+        &title,
+        &items,
+        &run,
+        budget,
+        (args.window > 1).then_some(args.window),
+    );
+    let ok = conclude(&items, &[(&run, rep)], args.rows, args.json.as_deref())?;
+    println!(
+        "{}",
+        if ok {
+            "all answers correct"
+        } else {
+            "NOT all answers correct"
+        }
+    );
+    Ok(if ok {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
+}

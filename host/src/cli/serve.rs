@@ -1,0 +1,34 @@
+//! `reconfig serve --cpus 0,1`: the flight service (runs until SIGTERM / SIGINT).
+
+use crate::harness::{self, service, Instance};
+use anyhow::Result;
+use std::process::ExitCode;
+use std::time::Duration;
+
+/// Arguments of `reconfig serve`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// CPUs to run on: one solver worker per CPU, pinned to it (e.g. `0,1` or `0-3`).
+    #[arg(long, default_value = "0,1")]
+    pub cpus: String,
+    /// Do not pin the workers (where affinity is not permitted).
+    #[arg(long)]
+    pub no_pin: bool,
+    #[command(flatten)]
+    pub instance: Instance,
+    /// Test hook: every worker sleeps this long per request (stands in for a long solve).
+    #[arg(long, default_value_t = 0, hide = true)]
+    pub debug_delay_ms: u64,
+}
+
+/// Run `reconfig serve`.
+pub fn run(args: &Args) -> Result<ExitCode> {
+    let opts = service::ServiceOptions {
+        instance: args.instance.clone(),
+        cpus: harness::parse_cpus(&args.cpus)?,
+        no_pin: args.no_pin,
+        delay: Duration::from_millis(args.debug_delay_ms),
+    };
+    service::run(&opts)?;
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,226 @@
+//! Timing against the on-board budget: HDR histograms of the solve alone and of the full
+//! round trip, per planner and per problem size; deadline misses; throughput.
+
+use super::feeder::{Fate, FeedRun, Item};
+use hdrhistogram::Histogram;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::time::Duration;
+
+/// Default on-board time budget per request, ms (reasoning in docs/harness.md).
+pub const DEFAULT_BUDGET_MS: f64 = 100.0;
+
+/// Latency statistics of one group, microseconds.
+#[derive(Clone, Debug, Serialize)]
+pub struct Row {
+    /// Planner name, or `faults` for raw frames.
+    pub planner: String,
+    /// Problem size class (`all` for the planner's total).
+    pub size: String,
+    /// Answered requests.
+    pub count: u64,
+    /// Solve alone: median, us.
+    pub solve_p50_us: f64,
+    /// Solve alone: 99th percentile, us.
+    pub solve_p99_us: f64,
+    /// Solve alone: maximum, us.
+    pub solve_max_us: f64,
+    /// Round trip: median, us.
+    pub rtt_p50_us: f64,
+    /// Round trip: 99th percentile, us.
+    pub rtt_p99_us: f64,
+    /// Round trip: maximum, us.
+    pub rtt_max_us: f64,
+    /// Round trips over the budget.
+    pub deadline_misses: u64,
+    /// Worst round trip minus the budget, us (0 when none missed).
+    pub worst_overrun_us: f64,
+}
+
+/// Throughput of a run that kept every worker busy.
+#[derive(Clone, Debug, Serialize)]
+pub struct Throughput {
+    /// Requests answered.
+    pub requests: u64,
+    /// Wall time, s.
+    pub seconds: f64,
+    /// Requests per second.
+    pub per_second: f64,
+    /// Requests kept in flight.
+    pub window: usize,
+}
+
+/// The timing report of one run.
+#[derive(Clone, Debug, Serialize)]
+pub struct Report {
+    /// What was measured (e.g. "sequential, feeder unpinned").
+    pub title: String,
+    /// Budget per request, ms.
+    pub budget_ms: f64,
+    /// One row per planner and size, then one per planner (`all`).
+    pub rows: Vec<Row>,
+    /// Set for runs that kept the workers busy.
+    pub throughput: Option<Throughput>,
+    /// Counters of the run.
+    pub counters: super::feeder::Counters,
+}
+
+struct Group {
+    solve: Histogram<u64>,
+    rtt: Histogram<u64>,
+    misses: u64,
+    worst_overrun_ns: u64,
+}
+
+impl Group {
+    fn new() -> Self {
+        // 1 ns .. 100 s at 3 significant figures.
+        let h = || {
+            Histogram::<u64>::new_with_bounds(1, 100_000_000_000, 3)
+                .expect("constant bounds are valid")
+        };
+        Self {
+            solve: h(),
+            rtt: h(),
+            misses: 0,
+            worst_overrun_ns: 0,
+        }
+    }
+    fn record(&mut self, solve_ns: u64, rtt_ns: u64, budget_ns: u64) {
+        let _ = self.solve.record(solve_ns.max(1));
+        let _ = self.rtt.record(rtt_ns.max(1));
+        if rtt_ns > budget_ns {
+            self.misses += 1;
+            self.worst_overrun_ns = self.worst_overrun_ns.max(rtt_ns - budget_ns);
+        }
+    }
+    fn row(&self, planner: &str, size: &str) -> Row {
+        let us = |v: u64| v as f64 / 1000.0;
+        Row {
+            planner: planner.into(),
+            size: size.into(),
+            count: self.rtt.len(),
+            solve_p50_us: us(self.solve.value_at_quantile(0.5)),
+            solve_p99_us: us(self.solve.value_at_quantile(0.99)),
+            solve_max_us: us(self.solve.max()),
+            rtt_p50_us: us(self.rtt.value_at_quantile(0.5)),
+            rtt_p99_us: us(self.rtt.value_at_quantile(0.99)),
+            rtt_max_us: us(self.rtt.max()),
+            deadline_misses: self.misses,
+            worst_overrun_us: us(self.worst_overrun_ns),
+        }
+    }
+}
+
+fn planner_name(item: &Item) -> String {
+    match item.planner {
+        Some(reconfig_core::wire::Planner::Pseudospectral) => "pseudospectral".into(),
+        Some(reconfig_core::wire::Planner::Impulsive) => "impulsive".into(),
+        None => "faults".into(),
+    }
+}
+
+/// Build the report of a run.
+pub fn build(
+    title: &str,
+    items: &[Item],
+    run: &FeedRun,
+    budget: Duration,
+    window: Option<usize>,
+) -> Report {
+    let budget_ns = budget.as_nanos() as u64;
+    let mut by_size: BTreeMap<(String, String), Group> = BTreeMap::new();
+    let mut by_planner: BTreeMap<String, Group> = BTreeMap::new();
+    for record in &run.records {
+        let Fate::Answered {
+            rtt_ns, solve_ns, ..
+        } = record.fate
+        else {
+            continue;
+        };
+        let item = &items[record.index];
+        let planner = planner_name(item);
+        by_size
+            .entry((planner.clone(), item.size.clone()))
+            .or_insert_with(Group::new)
+            .record(solve_ns, rtt_ns, budget_ns);
+        by_planner
+            .entry(planner)
+            .or_insert_with(Group::new)
+            .record(solve_ns, rtt_ns, budget_ns);
+    }
+    let mut rows = Vec::new();
+    for (planner, total) in &by_planner {
+        for ((p, size), g) in &by_size {
+            if p == planner {
+                rows.push(g.row(p, size));
+            }
+        }
+        rows.push(total.row(planner, "all"));
+    }
+    let throughput = window.map(|window| {
+        let seconds = run.elapsed.as_secs_f64();
+        Throughput {
+            requests: run.counters.answered,
+            seconds,
+            per_second: run.counters.answered as f64 / seconds.max(1e-9),
+            window,
+        }
+    });
+    Report {
+        title: title.into(),
+        budget_ms: budget.as_secs_f64() * 1e3,
+        rows,
+        throughput,
+        counters: run.counters.clone(),
+    }
+}
+
+/// Print a report as a table.
+pub fn print(report: &Report) {
+    println!(
+        "\n== timing: {} (budget {} ms; times in us)",
+        report.title, report.budget_ms
+    );
+    println!(
+        "{:<15} {:<8} {:>6} | {:>9} {:>9} {:>9} | {:>9} {:>9} {:>9} | {:>6} {:>10}",
+        "planner",
+        "size",
+        "count",
+        "solve p50",
+        "p99",
+        "max",
+        "rtt p50",
+        "p99",
+        "max",
+        "misses",
+        "overrun"
+    );
+    for r in &report.rows {
+        println!(
+            "{:<15} {:<8} {:>6} | {:>9.1} {:>9.1} {:>9.1} | {:>9.1} {:>9.1} {:>9.1} | {:>6} {:>10.1}",
+            r.planner,
+            r.size,
+            r.count,
+            r.solve_p50_us,
+            r.solve_p99_us,
+            r.solve_max_us,
+            r.rtt_p50_us,
+            r.rtt_p99_us,
+            r.rtt_max_us,
+            r.deadline_misses,
+            r.worst_overrun_us
+        );
+    }
+    if let Some(t) = &report.throughput {
+        println!(
+            "throughput: {} requests in {:.3} s = {:.0} requests/s with {} in flight",
+            t.requests, t.seconds, t.per_second, t.window
+        );
+    }
+    let c = &report.counters;
+    println!(
+        "sent {} answered {} lost {} late {} duplicated {} malformed {} not-sent {}",
+        c.sent, c.answered, c.lost, c.late, c.duplicated, c.malformed, c.not_sent
+    );
+}

@@ -1,0 +1,150 @@
+//! Faults the harness survives, with real processes. Each test has its own iceoryx2 prefix and
+//! service names and removes what it creates; every wait is bounded.
+
+mod harness_common;
+
+use harness_common::*;
+use std::time::Duration;
+
+fn counters(report: &serde_json::Value) -> &serde_json::Value {
+    &report["reports"][0]["counters"]
+}
+
+#[test]
+fn bad_frames_and_invalid_problems_get_error_responses_and_the_service_keeps_running() {
+    let inst = instance("frames");
+    let service = serve(&inst, &[]);
+    let json = temp("frames", "report.json");
+    let (code, report) = feed(&inst, &["--faults"], &json);
+    assert_eq!(code, Some(0), "feed --faults failed: {report}");
+    let results = report["results"].as_array().expect("results");
+    let status_of = |label: &str| -> String {
+        results
+            .iter()
+            .find(|r| r["label"] == label)
+            .map(|r| {
+                assert_eq!(r["correct"], true, "{label}: {r}");
+                r["status"].as_str().unwrap_or_default().to_string()
+            })
+            .unwrap_or_else(|| panic!("no result for {label}"))
+    };
+    assert!(status_of("fault: malformed body").contains("malformed body"));
+    assert!(status_of("fault: truncated").contains("truncated frame"));
+    assert!(status_of("fault: oversized").contains("oversized frame"));
+    assert!(status_of("fault: wrong version").contains("wrong protocol version"));
+    assert!(status_of("fault: wrong CRC").contains("bad CRC"));
+    assert!(status_of("fault: spacecraft count 9 (over capacity)").contains("malformed body"));
+    for label in [
+        "invalid: NaN horizon",
+        "invalid: degree over capacity",
+        "invalid: manoeuvre infeasible",
+        "invalid: NaN eccentricity (planner B)",
+    ] {
+        // The core's own error comes back as a response (placeholders reject everything, the
+        // real planners name the NaN, the capacity and the infeasibility).
+        assert!(status_of(label).starts_with("rejected"), "{label}");
+    }
+    assert_eq!(counters(&report)["lost"], 0);
+
+    // Still serving.
+    let (code, report) = feed(&inst, &["--random", "5", "--seed", "3"], &json);
+    assert_eq!(code, Some(0), "{report}");
+    let _ = std::fs::remove_file(&json);
+    stop_and_check_clean(service, &inst);
+}
+
+#[test]
+fn a_killed_feeder_does_not_stop_the_service_and_the_next_feeder_is_served() {
+    let inst = instance("feedkill");
+    let service = serve(&inst, &[]);
+    let mut args: Vec<String> = [
+        "feed",
+        "--quiet",
+        "--verbose",
+        "--random",
+        "400",
+        "--rate",
+        "40",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    args.extend(instance_args(&inst));
+    let first = spawn(&args);
+    assert!(
+        first
+            .wait_line("answered", Duration::from_secs(60))
+            .is_some(),
+        "the first feeder got no answer"
+    );
+    first.signal(libc::SIGKILL);
+    drop(first);
+
+    let json = temp("feedkill", "report.json");
+    let (code, report) = feed(&inst, &["--random", "10", "--seed", "9"], &json);
+    assert_eq!(code, Some(0), "second feeder: {report}");
+    assert_eq!(counters(&report)["answered"], 10);
+    let _ = std::fs::remove_file(&json);
+    stop_and_check_clean(service, &inst);
+}
+
+#[test]
+fn a_killed_service_loses_the_requests_in_flight_and_the_feeder_goes_on_with_a_new_one() {
+    let inst = instance("servkill");
+    // One worker that takes 300 ms per request, so requests are surely in flight at the kill.
+    let mut service = serve(&inst, &["--debug-delay-ms", "300"]);
+    let json = temp("servkill", "report.json");
+    let mut args: Vec<String> = [
+        "feed",
+        "--verbose",
+        "--random",
+        "12",
+        "--window",
+        "2",
+        "--timeout-ms",
+        "1500",
+        "--wait-service-ms",
+        "60000",
+        "--json",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    args.push(json.display().to_string());
+    args.extend(instance_args(&inst));
+    let mut feeder = spawn(&args);
+    assert!(feeder
+        .wait_line("answered", Duration::from_secs(60))
+        .is_some());
+    // Window 2, one slow worker: two requests are in flight now.
+    service.signal(libc::SIGKILL);
+    let _ = service.wait(Duration::from_secs(10));
+    drop(service);
+    assert!(
+        feeder.wait_line("lost", Duration::from_secs(30)).is_some(),
+        "the feeder did not notice the loss"
+    );
+    let service = serve(&inst, &[]);
+    let status = feeder.wait(Duration::from_secs(120));
+    // Not every request was answered, so the feeder reports failure.
+    assert_eq!(status.and_then(|s| s.code()), Some(1));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).expect("report")).expect("json");
+    let c = counters(&report);
+    let lost = c["lost"].as_u64().expect("lost");
+    let answered = c["answered"].as_u64().expect("answered");
+    assert!(lost >= 1, "{c}");
+    assert_eq!(answered + lost, 12, "{c}");
+    assert_eq!(c["sent"], 12, "{c}");
+    assert_eq!(c["duplicated"], 0, "nothing is answered twice: {c}");
+    assert_eq!(c["malformed"], 0, "{c}");
+    // Every answer, before and after the restart, is right.
+    for r in report["results"].as_array().expect("results") {
+        assert!(
+            r["correct"] == true || r["status"] == "lost (timeout)",
+            "{r}"
+        );
+    }
+    let _ = std::fs::remove_file(&json);
+    stop_and_check_clean(service, &inst);
+}
