@@ -34,15 +34,19 @@ fn bad_frames_and_invalid_problems_get_error_responses_and_the_service_keeps_run
     assert!(status_of("fault: wrong version").contains("wrong protocol version"));
     assert!(status_of("fault: wrong CRC").contains("bad CRC"));
     assert!(status_of("fault: spacecraft count 9 (over capacity)").contains("malformed body"));
-    for label in [
-        "invalid: NaN horizon",
-        "invalid: degree over capacity",
-        "invalid: manoeuvre infeasible",
-        "invalid: NaN eccentricity (planner B)",
+    // The core's own error comes back as a response, naming what was wrong.
+    for (label, names) in [
+        ("invalid: NaN horizon", "Horizon is NaN or infinite"),
+        ("invalid: degree over capacity", "exceeds capacity 24"),
+        (
+            "invalid: manoeuvre infeasible",
+            "cannot meet its boundary conditions",
+        ),
+        ("invalid: NaN eccentricity (planner B)", "NaN"),
     ] {
-        // The core's own error comes back as a response (placeholders reject everything, the
-        // real planners name the NaN, the capacity and the infeasibility).
-        assert!(status_of(label).starts_with("rejected"), "{label}");
+        let status = status_of(label);
+        assert!(status.starts_with("rejected"), "{label}: {status}");
+        assert!(status.contains(names), "{label}: {status}");
     }
     assert_eq!(counters(&report)["lost"], 0);
 
