@@ -32,6 +32,7 @@ mod settings;
 mod solution;
 mod solver;
 mod status;
+mod trajectory;
 mod transfer;
 mod types;
 mod workspace;
@@ -43,6 +44,7 @@ pub use error::{Orbit, PlanError, Quantity, SettingsError};
 pub use settings::{Settings, MAX_SEARCH_STARTS};
 pub use solution::{Impulse, Solution};
 pub use status::{SolveInfo, SolveStatus, Stage};
+pub use trajectory::{relative_position_rtn_km, TrajectoryError};
 pub use types::*;
 pub use workspace::Workspace;
 

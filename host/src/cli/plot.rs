@@ -3,7 +3,7 @@
 use crate::fixture::{self, Fixture};
 use crate::plot;
 use anyhow::{bail, Result};
-use reconfig_core::pseudospectral;
+use reconfig_core::{impulsive, pseudospectral};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -25,9 +25,9 @@ pub struct Args {
 pub fn run(args: &Args) -> Result<ExitCode> {
     if args.file.as_os_str() == "wang2018" {
         let p = crate::scenario::wang2018_table2();
-        plot::impulsive_svg(
+        impulsive_plot(
             &p,
-            "Wang 2018 published case (Table 2 impulse points): formations in the chief's RTN frame",
+            "Wang 2018 published case (Table 2 impulse points)",
             &args.output,
         )?;
         println!("wrote {}", args.output.display());
@@ -72,8 +72,29 @@ pub fn run(args: &Args) -> Result<ExitCode> {
             };
             plot::pseudospectral_svg(&f.problem, &solution, &what, &args.output)?;
         }
-        Fixture::Impulsive(f) => plot::impulsive_svg(&f.problem, &f.name, &args.output)?,
+        Fixture::Impulsive(f) => impulsive_plot(&f.problem, &f.name, &args.output)?,
     }
     println!("wrote {}", args.output.display());
     Ok(ExitCode::SUCCESS)
+}
+
+/// Solve a planner-B problem with the default settings and draw the plan.
+fn impulsive_plot(problem: &impulsive::Problem, name: &str, out: &std::path::Path) -> Result<()> {
+    let settings = impulsive::Settings::default();
+    let mut workspace = Box::new(impulsive::Workspace::new());
+    let mut solution = Box::new(impulsive::Solution::new());
+    if let Err(e) = impulsive::solve(problem, &settings, &mut workspace, &mut solution) {
+        bail!("{name}: the planner rejected the problem: {e}");
+    }
+    let period_s =
+        std::f64::consts::TAU * (problem.chief.sma_km.powi(3) / impulsive::EARTH_MU_KM3_S2).sqrt();
+    let title = format!(
+        "{name}: {:?}, total dv {:.4} m/s, {} impulses, last at {:.2} orbits, terminal position error {:.1e} m",
+        solution.info.status,
+        solution.total_dv_mps,
+        solution.impulses.len(),
+        solution.final_time_s / period_s,
+        solution.terminal_position_error_m,
+    );
+    plot::impulsive_svg(problem, &settings, &solution, &title, out)
 }
