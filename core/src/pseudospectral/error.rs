@@ -116,10 +116,12 @@ impl core::fmt::Display for PlanError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
             Self::NotFinite { what, spacecraft } => {
-                write!(f, "{what:?} is NaN or infinite (spacecraft {spacecraft})")
+                write!(f, "{what:?} is NaN or infinite")?;
+                per_spacecraft(f, *what, *spacecraft)
             }
             Self::NotPositive { what, spacecraft } => {
-                write!(f, "{what:?} must be positive (spacecraft {spacecraft})")
+                write!(f, "{what:?} must be positive")?;
+                per_spacecraft(f, *what, *spacecraft)
             }
             Self::CapacityExceeded {
                 what,
@@ -136,15 +138,30 @@ impl core::fmt::Display for PlanError {
                 boundary,
             } => write!(
                 f,
-                "spacecraft {first} and {second} are closer than the keep-out distance at the {boundary:?} boundary"
+                "spacecraft index {first} and {second} are closer than the keep-out distance at the {boundary:?} boundary"
             ),
             Self::ManoeuvreInfeasible { spacecraft, axis } => write!(
                 f,
-                "spacecraft {spacecraft} cannot meet its boundary conditions on axis {axis} within Umax in T"
+                "spacecraft index {spacecraft} cannot meet its boundary conditions on the {} axis within Umax in T",
+                match axis { 0 => "x", 1 => "y", _ => "z" }
             ),
             Self::InvalidSettings(e) => write!(f, "invalid settings: {e:?}"),
             Self::WarmStartMismatch => write!(f, "warm start does not match the problem"),
         }
+    }
+}
+
+/// Name the spacecraft (zero-based index) where the quantity belongs to one.
+fn per_spacecraft(
+    f: &mut core::fmt::Formatter<'_>,
+    what: Quantity,
+    spacecraft: u8,
+) -> core::fmt::Result {
+    match what {
+        Quantity::Mass | Quantity::BoundaryState | Quantity::WarmStart => {
+            write!(f, " (spacecraft index {spacecraft})")
+        }
+        _ => Ok(()),
     }
 }
 
