@@ -232,3 +232,38 @@ fn warm_start_of_another_size_is_refused() {
         Err(PlanError::WarmStartMismatch)
     );
 }
+
+#[test]
+fn magnitudes_beyond_the_planners_range() {
+    // Found by the property test: T = 1e300 underflows (2/T)^2 and states of 1e300 overflow the
+    // cost. Both are refused before iterating.
+    let mut p = paper();
+    p.horizon_tu = 1e300;
+    assert_eq!(
+        rejected(&p),
+        PlanError::OutOfRange {
+            what: Quantity::Horizon,
+            spacecraft: 0
+        }
+    );
+    let mut p = paper();
+    p.max_control_fu = 1e-12;
+    assert_eq!(
+        rejected(&p),
+        PlanError::OutOfRange {
+            what: Quantity::MaxControl,
+            spacecraft: 0
+        }
+    );
+    let mut p = paper();
+    p.spacecraft[0].initial_state[3] = 1e300;
+    assert_eq!(
+        rejected(&p),
+        PlanError::OutOfRange {
+            what: Quantity::BoundaryState,
+            spacecraft: 0
+        }
+    );
+    let message = rejected(&p).to_string();
+    assert!(message.contains("outside the accepted range"), "{message}");
+}

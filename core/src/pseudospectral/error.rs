@@ -96,7 +96,21 @@ pub enum PlanError {
     InvalidSettings(SettingsError) = 7,
     /// The warm start does not match the problem (spacecraft count or degree).
     WarmStartMismatch = 8,
+    /// A number is outside the range the planner is built for: every magnitude at most
+    /// [`MAX_MAGNITUDE`], and T, Umax, d and masses at least [`MIN_POSITIVE`] (normalised
+    /// units keep real problems near 1; beyond this range squares and costs would overflow).
+    OutOfRange {
+        /// Which quantity.
+        what: Quantity,
+        /// Spacecraft index where it applies, else 0.
+        spacecraft: u8,
+    } = 9,
 }
+
+/// Largest magnitude of any input number (normalised units).
+pub const MAX_MAGNITUDE: f64 = 1e9;
+/// Smallest accepted T, Umax, d and mass (normalised units).
+pub const MIN_POSITIVE: f64 = 1e-9;
 
 /// A setting out of its documented range.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -147,6 +161,13 @@ impl core::fmt::Display for PlanError {
             ),
             Self::InvalidSettings(e) => write!(f, "invalid settings: {e:?}"),
             Self::WarmStartMismatch => write!(f, "warm start does not match the problem"),
+            Self::OutOfRange { what, spacecraft } => {
+                write!(
+                    f,
+                    "{what:?} is outside the accepted range (magnitude at most {MAX_MAGNITUDE:e}, positive quantities at least {MIN_POSITIVE:e})"
+                )?;
+                per_spacecraft(f, *what, *spacecraft)
+            }
         }
     }
 }

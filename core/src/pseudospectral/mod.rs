@@ -14,7 +14,9 @@ mod settings;
 mod solution;
 mod status;
 
-pub use error::{Boundary, Capacity, PlanError, Quantity, SettingsError};
+pub use error::{
+    Boundary, Capacity, PlanError, Quantity, SettingsError, MAX_MAGNITUDE, MIN_POSITIVE,
+};
 pub use problem::{Problem, Spacecraft};
 pub use settings::Settings;
 pub use solution::Solution;

@@ -1,6 +1,6 @@
 //! Input checks done before any iteration; each bad input has its own [`PlanError`].
 
-use super::error::{Boundary, Capacity, PlanError, Quantity};
+use super::error::{Boundary, Capacity, PlanError, Quantity, MAX_MAGNITUDE, MIN_POSITIVE};
 use super::problem::Problem;
 use super::settings::Settings;
 use crate::capacity::{MAX_DEGREE, MAX_SPACECRAFT, MIN_DEGREE};
@@ -15,6 +15,9 @@ fn finite_positive(value: f64, what: Quantity, spacecraft: u8) -> Result<(), Pla
     }
     if value <= 0.0 {
         return Err(PlanError::NotPositive { what, spacecraft });
+    }
+    if !(MIN_POSITIVE..=MAX_MAGNITUDE).contains(&value) {
+        return Err(PlanError::OutOfRange { what, spacecraft });
     }
     Ok(())
 }
@@ -59,6 +62,12 @@ pub(crate) fn check(problem: &Problem, settings: &Settings) -> Result<(), PlanEr
         for value in craft.initial_state.iter().chain(craft.final_state.iter()) {
             if !value.is_finite() {
                 return Err(PlanError::NotFinite {
+                    what: Quantity::BoundaryState,
+                    spacecraft: index(i),
+                });
+            }
+            if libm::fabs(*value) > MAX_MAGNITUDE {
+                return Err(PlanError::OutOfRange {
                     what: Quantity::BoundaryState,
                     spacecraft: index(i),
                 });
