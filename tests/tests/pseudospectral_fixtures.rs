@@ -112,3 +112,27 @@ fn eight_spacecraft_crossing_is_solved_with_verified_separation() {
     // Above the no-keep-out optimum (8 rest-to-rest cubics of D = 12: 8 * 6 * 144 / 1000).
     assert!(s.cost > 6.912 && s.cost < 10.0, "{}", s.cost);
 }
+
+#[test]
+fn a_reused_workspace_gives_the_same_bits_as_a_fresh_one() {
+    // The firmware reuses one static workspace for every fixture: a solve must not depend on
+    // what the workspace solved before.
+    use reconfig_core::pseudospectral::{solve, Solution, Workspace};
+    let stems = [
+        "crossing-8-sats-n16",
+        "huang2012-three-sats-n10",
+        "huang2012-three-sats-n9",
+    ];
+    let mut workspace = Box::new(Workspace::new());
+    for stem in stems {
+        let problem = pseudospectral_fixture(stem);
+        let mut reused = Box::new(Solution::new());
+        solve(&problem, &Settings::default(), &mut workspace, &mut reused).expect("solve");
+        let fresh = solve_pseudospectral(&problem, &Settings::default()).expect("solve");
+        assert_eq!(
+            postcard::to_stdvec(&*reused).expect("encode"),
+            postcard::to_stdvec(&*fresh).expect("encode"),
+            "{stem}"
+        );
+    }
+}

@@ -59,6 +59,32 @@ impl QpState {
         }
     }
 
+    /// Forget the active set, so the next QP starts without hints. Called at the start of every
+    /// solve: a solve's result must depend on its input only, never on what the workspace
+    /// solved before.
+    pub fn forget(&mut self) {
+        self.reset();
+    }
+
+    /// Whether a row is in the active set.
+    fn is_active(&self, id: RowId) -> bool {
+        match id {
+            RowId::Control { block, node, upper } => {
+                let bit = if upper { 1u8 } else { 2u8 };
+                self.control_active
+                    .get(usize::from(block))
+                    .and_then(|row| row.get(usize::from(node)))
+                    .is_some_and(|flags| flags & bit != 0)
+            }
+            RowId::KeepOut { pair, check } => self
+                .keep_out_active
+                .get(usize::from(pair))
+                .and_then(|row| row.get(usize::from(check)))
+                .copied()
+                .unwrap_or(false),
+        }
+    }
+
     fn reset(&mut self) {
         self.count = 0;
         self.peak = 0;
@@ -217,6 +243,56 @@ fn most_violated(tr: &Transcription, state: &QpState, y: &Coefficients) -> Optio
     best
 }
 
+/// The row belongs to the current transcription.
+fn exists(tr: &Transcription, id: RowId) -> bool {
+    match id {
+        RowId::Control { block, node, .. } => {
+            usize::from(block) < tr.blocks() && usize::from(node) < tr.grid.nodes()
+        }
+        RowId::KeepOut { pair, check } => {
+            usize::from(pair) < tr.pair_count
+                && usize::from(check) < tr.check_count.get(usize::from(pair)).copied().unwrap_or(0)
+        }
+    }
+}
+
+/// The most violated inactive row among `hint` (the previous QP's active set), if any is
+/// violated by more than `tol`.
+fn most_violated_hint(
+    tr: &Transcription,
+    state: &QpState,
+    y: &Coefficients,
+    hint: &[RowId],
+    tol: f64,
+) -> Option<(RowId, f64)> {
+    let free = tr.basis.free;
+    let mut best: Option<(RowId, f64)> = None;
+    for &id in hint {
+        if state.is_active(id) || !exists(tr, id) {
+            continue;
+        }
+        if let RowId::KeepOut { pair, check } = id {
+            let pruned = tr
+                .checks
+                .get(usize::from(pair))
+                .and_then(|row| row.get(usize::from(check)))
+                .is_none_or(|c| c.pruned);
+            if pruned {
+                continue;
+            }
+        }
+        let view = tr.view(id);
+        if view.norm <= 0.0 {
+            continue;
+        }
+        let slack = (row_dot(&view, y, free) - view.rhs) / view.norm;
+        if slack < -tol && best.is_none_or(|(_, b)| slack < b) {
+            best = Some((id, slack));
+        }
+    }
+    best
+}
+
 fn dense_norm2(v: &Coefficients, blocks: usize, free: usize) -> f64 {
     let mut sum = 0.0;
     for block in v.iter().take(blocks) {
@@ -240,12 +316,18 @@ pub(crate) fn solve(
     let free = tr.basis.free;
     let blocks = tr.blocks();
     *y = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
+    // Warm start: the previous QP's active set (the convex subproblems change little from one
+    // to the next) is tried first as the entering rows; any violated row is a valid choice for
+    // the dual method, and the full scan still certifies optimality at the end.
+    let hint = state.active;
+    let hint_count = state.count.min(MAX_ACTIVE);
     state.reset();
     let mut steps: u16 = 0;
     let mut g = [0.0; MAX_ACTIVE];
     let mut r = [0.0; MAX_ACTIVE];
     loop {
-        let Some((p, violation)) = most_violated(tr, state, y) else {
+        let hinted = most_violated_hint(tr, state, y, hint.get(..hint_count).unwrap_or(&[]), tol);
+        let Some((p, violation)) = hinted.or_else(|| most_violated(tr, state, y)) else {
             return QpOutcome::Optimal;
         };
         if violation >= -tol {

@@ -115,6 +115,7 @@ fn run(
     warm: Option<&Solution>,
     out: &mut Solution,
 ) -> SolveStatus {
+    ws.qp.forget();
     if let Err(stage) = setup(problem, settings, ws) {
         return SolveStatus::NumericalFailure(stage);
     }
