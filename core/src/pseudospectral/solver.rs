@@ -499,6 +499,34 @@ fn perpendicular_direction(
     }
 }
 
+/// Node values of `r_i - r_j` on one axis for the coefficients `y`.
+fn relative_nodes(
+    tr: &Transcription,
+    y: &Coefficients,
+    (i, j): (u8, u8),
+    axis: usize,
+) -> [f64; MAX_NODES] {
+    let mut pi = [0.0; MAX_NODES];
+    let mut pj = [0.0; MAX_NODES];
+    block_positions(
+        tr,
+        y,
+        usize::from(i).saturating_mul(3).saturating_add(axis),
+        &mut pi,
+    );
+    block_positions(
+        tr,
+        y,
+        usize::from(j).saturating_mul(3).saturating_add(axis),
+        &mut pj,
+    );
+    let mut relative = [0.0; MAX_NODES];
+    for ((slot, a), b) in relative.iter_mut().zip(pi.iter()).zip(pj.iter()) {
+        *slot = a - b;
+    }
+    relative
+}
+
 /// Relative position and velocity of a pair at `tau` on the current iterate.
 fn relative_state(ws: &Workspace, pair: usize, tau: f64) -> ([f64; 3], [f64; 3]) {
     let tr = &ws.transcription;
@@ -506,24 +534,7 @@ fn relative_state(ws: &Workspace, pair: usize, tau: f64) -> ([f64; 3], [f64; 3])
     let mut position = [0.0; 3];
     let mut velocity = [0.0; 3];
     for axis in 0..3 {
-        let mut pi = [0.0; MAX_NODES];
-        let mut pj = [0.0; MAX_NODES];
-        block_positions(
-            tr,
-            &ws.iterate,
-            usize::from(i).saturating_mul(3).saturating_add(axis),
-            &mut pi,
-        );
-        block_positions(
-            tr,
-            &ws.iterate,
-            usize::from(j).saturating_mul(3).saturating_add(axis),
-            &mut pj,
-        );
-        let mut relative = [0.0; MAX_NODES];
-        for ((slot, a), b) in relative.iter_mut().zip(pi.iter()).zip(pj.iter()) {
-            *slot = a - b;
-        }
+        let relative = relative_nodes(tr, &ws.iterate, (i, j), axis);
         let mut derivative = [0.0; MAX_NODES];
         tr.grid.differentiate(&relative, &mut derivative);
         if let Some(slot) = position.get_mut(axis) {
@@ -775,24 +786,7 @@ fn pair_minimum(ws: &mut Workspace, pair: usize, settings: &Settings) -> Minimum
     let (i, j) = tr.pairs.get(pair).copied().unwrap_or((0, 0));
     let mut axes = [[0.0; MAX_NODES]; 3];
     for (axis, coeffs) in axes.iter_mut().enumerate() {
-        let mut pi = [0.0; MAX_NODES];
-        let mut pj = [0.0; MAX_NODES];
-        block_positions(
-            tr,
-            &ws.iterate,
-            usize::from(i).saturating_mul(3).saturating_add(axis),
-            &mut pi,
-        );
-        block_positions(
-            tr,
-            &ws.iterate,
-            usize::from(j).saturating_mul(3).saturating_add(axis),
-            &mut pj,
-        );
-        let mut relative = [0.0; MAX_NODES];
-        for ((slot, a), b) in relative.iter_mut().zip(pi.iter()).zip(pj.iter()) {
-            *slot = a - b;
-        }
+        let relative = relative_nodes(tr, &ws.iterate, (i, j), axis);
         ws.bernstein.coefficients(&relative, coeffs);
     }
     let mut product = [0.0; MAX_PRODUCT];
