@@ -425,9 +425,33 @@ pub fn lgl_nodes(n: usize) -> Vec<f64> {
 
 /// The minimum-energy trajectory without keep-out and without control bounds (a cubic per
 /// axis through the boundary states, Huang 2012 eq. 24 with the bound inactive), written as a
-/// solution at the LGL nodes of degree `problem.degree`. Used by `reconfig plot --guess` to
-/// draw a problem when no solver result is at hand; its status stays `Unsolved`.
+/// solution at the LGL nodes of degree `problem.degree`, with its least separation (sampled).
+/// Used by `reconfig plot --guess` to draw a problem when no solver result is at hand (the
+/// solver may have rejected it); its status stays `Unsolved`.
 pub fn unconstrained_guess(problem: &pseudospectral::Problem) -> pseudospectral::Solution {
+    let mut s = cubic_at_nodes(problem);
+    // Least separation on a fine grid.
+    let sm = sample(&s, 2000);
+    let mut best = (f64::INFINITY, (0u8, 0u8), 0.0);
+    for i in 0..sm.pos.len() {
+        for j in i + 1..sm.pos.len() {
+            for (k, &t) in sm.t.iter().enumerate() {
+                let d = dist(sm.pos[i][k], sm.pos[j][k]);
+                if d < best.0 {
+                    best = (d, (i as u8, j as u8), t);
+                }
+            }
+        }
+    }
+    s.min_separation_lu = best.0;
+    s.min_separation_pair = best.1;
+    s.min_separation_time_tu = best.2;
+    s
+}
+
+/// The unconstrained cubics' states, controls and cost at the LGL nodes of degree
+/// `problem.degree` (no separation search). Also the Monte Carlo's unperturbed guess.
+pub fn cubic_at_nodes(problem: &pseudospectral::Problem) -> pseudospectral::Solution {
     let mut s = pseudospectral::Solution::new();
     let n = usize::from(problem.degree).clamp(2, reconfig_core::capacity::MAX_DEGREE);
     let t_end = problem.horizon_tu;
@@ -464,22 +488,6 @@ pub fn unconstrained_guess(problem: &pseudospectral::Problem) -> pseudospectral:
         }
     }
     s.cost = cost;
-    // Least separation on a fine grid.
-    let sm = sample(&s, 2000);
-    let mut best = (f64::INFINITY, (0u8, 0u8), 0.0);
-    for i in 0..sm.pos.len() {
-        for j in i + 1..sm.pos.len() {
-            for (k, &t) in sm.t.iter().enumerate() {
-                let d = dist(sm.pos[i][k], sm.pos[j][k]);
-                if d < best.0 {
-                    best = (d, (i as u8, j as u8), t);
-                }
-            }
-        }
-    }
-    s.min_separation_lu = best.0;
-    s.min_separation_pair = best.1;
-    s.min_separation_time_tu = best.2;
     s
 }
 

@@ -166,56 +166,20 @@ pub fn study(args: &Args, progress: bool) -> Result<Vec<Row>> {
 
 /// The analytic minimum-energy (cubic) controls at the LGL nodes plus `noise`, as a warm start.
 fn analytic_guess(problem: &Problem, noise: &[[f64; 3]], out: &mut Solution) {
-    let n = usize::from(problem.degree);
-    let t = problem.horizon_tu;
-    *out = Solution::new();
-    out.degree = problem.degree;
-    out.spacecraft_count = problem.spacecraft.len() as u8;
-    out.horizon_tu = t;
-    let nodes = lgl_nodes(n);
-    for (i, craft) in problem.spacecraft.iter().enumerate() {
-        for (h, tau) in nodes.iter().enumerate() {
-            let time = 0.5 * t * (tau + 1.0);
-            let noise_at = noise[i * (n + 1) + h];
-            for (axis, noise_axis) in noise_at.iter().enumerate() {
-                let (p0, v0) = (craft.initial_state[axis], craft.initial_state[axis + 3]);
-                let (p1, v1) = (craft.final_state[axis], craft.final_state[axis + 3]);
-                // u = alpha + beta (2t/T - 1): int u = m dv, int (T - t) u = m dp.
-                let dv = v1 - v0;
-                let dp = p1 - p0 - v0 * t;
-                let alpha = craft.mass_mu * dv / t;
-                let beta = 6.0 * (alpha * t * t / 2.0 - craft.mass_mu * dp) / (t * t);
-                let u = alpha + beta * (2.0 * time / t - 1.0);
-                out.controls_fu[i][h][axis] = u + noise_axis;
+    *out = crate::plot::cubic_at_nodes(problem);
+    let nodes = usize::from(problem.degree) + 1;
+    for (i, controls) in out
+        .controls_fu
+        .iter_mut()
+        .take(problem.spacecraft.len())
+        .enumerate()
+    {
+        for (h, node) in controls.iter_mut().take(nodes).enumerate() {
+            for (u, n) in node.iter_mut().zip(noise[i * nodes + h]) {
+                *u += n;
             }
         }
     }
-}
-
-/// LGL nodes of degree n (Newton on (1 - x^2) L_n'), host-side for the guesses.
-fn lgl_nodes(n: usize) -> Vec<f64> {
-    (0..=n)
-        .map(|h| {
-            let mut x = -(std::f64::consts::PI * h as f64 / n as f64).cos();
-            if h > 0 && h < n {
-                for _ in 0..100 {
-                    let (mut p0, mut p1) = (1.0, x);
-                    for k in 1..n {
-                        let k = k as f64;
-                        let p2 = ((2.0 * k + 1.0) * x * p1 - k * p0) / (k + 1.0);
-                        p0 = p1;
-                        p1 = p2;
-                    }
-                    let step = (x * p1 - p0) / ((n as f64 + 1.0) * p1);
-                    x -= step;
-                    if step.abs() < 1e-16 {
-                        break;
-                    }
-                }
-            }
-            x
-        })
-        .collect()
 }
 
 /// Run `reconfig montecarlo`.
