@@ -48,3 +48,76 @@ pub fn golden(file: &str, name: &str, key: &str) -> f64 {
     let table: toml::Table = toml::from_str(&text).expect("golden toml");
     table[name][key].as_float().expect("float")
 }
+
+/// Load a planner-B fixture by file stem.
+pub fn impulsive_fixture(stem: &str) -> reconfig_core::impulsive::Problem {
+    let path = fixtures_dir().join(format!("{stem}.toml"));
+    match fixture::load(&path).expect("fixture loads") {
+        Fixture::Impulsive(f) => f.problem,
+        Fixture::Pseudospectral(_) => panic!("{stem} is not a planner-B fixture"),
+    }
+}
+
+/// A global allocator that counts the allocations made on threads that opted in, for the
+/// zero-allocation tests. Each test binary installs it with
+/// `#[global_allocator] static GLOBAL: CountingAllocator = CountingAllocator;`; counting only
+/// opted-in threads keeps the harness's other test threads out of the count.
+pub mod alloc_count {
+    use std::alloc::{GlobalAlloc, Layout, System};
+    use std::cell::Cell;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+    thread_local! {
+        static COUNTING: Cell<bool> = const { Cell::new(false) };
+    }
+
+    /// The system allocator with a counter for opted-in threads.
+    pub struct CountingAllocator;
+
+    fn note() {
+        // `try_with`: no count (and no panic) while a thread's locals are being torn down.
+        if COUNTING.try_with(Cell::get).unwrap_or(false) {
+            ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        }
+    }
+
+    // SAFETY: forwards every call to the system allocator unchanged; only counts.
+    unsafe impl GlobalAlloc for CountingAllocator {
+        unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+            note();
+            unsafe { System.alloc(layout) }
+        }
+        unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+            unsafe { System.dealloc(ptr, layout) }
+        }
+        unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+            note();
+            unsafe { System.alloc_zeroed(layout) }
+        }
+        unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+            note();
+            unsafe { System.realloc(ptr, layout, new_size) }
+        }
+    }
+
+    /// Count (or stop counting) this thread's allocations.
+    pub fn set_counting(on: bool) {
+        COUNTING.with(|c| c.set(on));
+    }
+
+    /// Allocations counted so far, over all opted-in threads.
+    pub fn allocations() -> usize {
+        ALLOCATIONS.load(Ordering::SeqCst)
+    }
+
+    /// Run `f` counting this thread's allocations; returns its result and how many it made.
+    pub fn count<R>(f: impl FnOnce() -> R) -> (R, usize) {
+        let before = allocations();
+        set_counting(true);
+        let result = f();
+        set_counting(false);
+        (result, allocations().saturating_sub(before))
+    }
+}

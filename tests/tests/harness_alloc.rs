@@ -10,51 +10,12 @@ use reconfig_host::harness::feeder::frame_of;
 use reconfig_host::harness::service::{warm_up, worker_loop, Job};
 use reconfig_host::harness::worker::Worker;
 use reconfig_host::scenario;
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use reconfig_tests::alloc_count::{allocations, set_counting, CountingAllocator};
 use std::sync::mpsc::sync_channel;
 
-struct Counting;
-
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
-thread_local! {
-    // Count only on threads that opted in (the worker and the feeding side of this test).
-    static COUNTING: Cell<bool> = const { Cell::new(false) };
-}
-
-fn counting() -> bool {
-    COUNTING.try_with(Cell::get).unwrap_or(false)
-}
-
-// SAFETY: forwards to the system allocator; only adds a counter.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if counting() {
-            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        }
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if counting() {
-            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        }
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        if counting() {
-            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        }
-        unsafe { System.alloc_zeroed(layout) }
-    }
-}
-
+// Counts only on threads that opted in: the worker and the feeding side of this test.
 #[global_allocator]
-static GLOBAL: Counting = Counting;
+static GLOBAL: CountingAllocator = CountingAllocator;
 
 #[test]
 fn the_worker_loop_allocates_nothing_after_start_up() {
@@ -77,9 +38,9 @@ fn the_worker_loop_allocates_nothing_after_start_up() {
             let mut wakes = 0u64;
             warm_up(&job_rx);
             ready_tx.send(()).unwrap();
-            COUNTING.with(|c| c.set(true));
+            set_counting(true);
             worker_loop(&mut worker, &job_rx, &done_tx, || wakes += 1);
-            COUNTING.with(|c| c.set(false));
+            set_counting(false);
             wakes
         })
         .unwrap();
@@ -87,7 +48,7 @@ fn the_worker_loop_allocates_nothing_after_start_up() {
     let mut job = Some(Job::boxed(0));
     let mut answered = 0usize;
 
-    COUNTING.with(|c| c.set(true));
+    set_counting(true);
     for round in 0..3 {
         for frame in &frames {
             let mut j = job.take().unwrap();
@@ -101,12 +62,12 @@ fn the_worker_loop_allocates_nothing_after_start_up() {
             job = Some(back);
         }
     }
-    COUNTING.with(|c| c.set(false));
+    set_counting(false);
 
     drop(job_tx);
     let wakes = worker.join().unwrap();
     assert_eq!(wakes as usize, answered);
-    let count = ALLOCATIONS.load(Ordering::Relaxed);
+    let count = allocations();
     println!("allocations on the request path over {answered} requests: {count}");
     assert_eq!(count, 0, "the request path allocated {count} times");
 }

@@ -3,8 +3,8 @@
 
 use reconfig_core::capacity::MAX_IMPULSES;
 use reconfig_core::impulsive::{
-    solve, ImpulsePlan, ImpulsePoint, MeanElements, Orbit, PlanError, Problem, Quantity,
-    RelativeElements, Settings, SettingsError, Solution, SolveStatus, Workspace, EARTH_RADIUS_KM,
+    solve, ImpulsePlan, ImpulsePoint, Orbit, PlanError, Problem, Quantity, Settings, SettingsError,
+    Solution, SolveStatus, Workspace, EARTH_RADIUS_KM,
 };
 
 fn points(list: &[(f64, i32)]) -> heapless::Vec<ImpulsePoint, MAX_IMPULSES> {
@@ -16,36 +16,9 @@ fn points(list: &[(f64, i32)]) -> heapless::Vec<ImpulsePoint, MAX_IMPULSES> {
         .collect()
 }
 
-fn rel(v: [f64; 6]) -> RelativeElements {
-    RelativeElements {
-        dsma_km: v[0],
-        decc: v[1],
-        dinc_rad: v[2].to_radians(),
-        draan_rad: v[3].to_radians(),
-        dargp_rad: v[4].to_radians(),
-        dmean_anomaly_rad: v[5].to_radians(),
-    }
-}
-
-/// Wang 2018's case (Table 2 points).
+/// Wang 2018's case (Table 2 points), from its fixture.
 fn paper() -> Problem {
-    Problem {
-        chief: MeanElements {
-            sma_km: 7178.137,
-            ecc: 0.0678,
-            inc_rad: 63.4349f64.to_radians(),
-            raan_rad: 112f64.to_radians(),
-            argp_rad: 0.0,
-            mean_anomaly_rad: 0.0,
-        },
-        initial: rel([
-            4.0940e-4, -1.3888e-4, -1.0831e-3, 1.5409e-2, -1.6134e-2, 9.2428e-3,
-        ]),
-        target: rel([
-            -1.6389e-4, 5.5597e-4, 4.3361e-3, 7.1228e-2, -6.3572e-2, 3.1718e-2,
-        ]),
-        plan: ImpulsePlan::Fixed(points(&[(274.155, 2), (238.864, 10), (285.649, 2)])),
-    }
+    reconfig_tests::impulsive_fixture("wang2018-gco-to-pco-3imp")
 }
 
 fn reject(p: &Problem, settings: &Settings) -> PlanError {
