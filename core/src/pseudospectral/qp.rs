@@ -59,13 +59,6 @@ impl QpState {
         }
     }
 
-    /// Forget the active set, so the next QP starts without hints. Called at the start of every
-    /// solve: a solve's result must depend on its input only, never on what the workspace
-    /// solved before.
-    pub fn forget(&mut self) {
-        self.reset();
-    }
-
     /// Whether a row is in the active set.
     fn is_active(&self, id: RowId) -> bool {
         match id {
@@ -85,7 +78,10 @@ impl QpState {
         }
     }
 
-    fn reset(&mut self) {
+    /// Empty the active set, so the next QP starts without hints. Called at the start of every
+    /// solve: a solve's result must depend on its input only, never on what the workspace
+    /// solved before.
+    pub fn reset(&mut self) {
         self.count = 0;
         self.peak = 0;
         self.control_active = [[0; MAX_NODES]; MAX_BLOCKS];

@@ -115,7 +115,7 @@ fn run(
     warm: Option<&Solution>,
     out: &mut Solution,
 ) -> SolveStatus {
-    ws.qp.forget();
+    ws.qp.reset();
     if let Err(stage) = setup(problem, settings, ws) {
         return SolveStatus::NumericalFailure(stage);
     }
