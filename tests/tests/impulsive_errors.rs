@@ -4,7 +4,7 @@
 use reconfig_core::capacity::MAX_IMPULSES;
 use reconfig_core::impulsive::{
     solve, ImpulsePlan, ImpulsePoint, Orbit, PlanError, Problem, Quantity, Settings, SettingsError,
-    Solution, SolveStatus, Workspace, EARTH_RADIUS_KM,
+    Solution, SolveStatus, Workspace, EARTH_RADIUS_KM, MAX_ANGLE_RAD, MAX_SMA_KM,
 };
 
 fn points(list: &[(f64, i32)]) -> heapless::Vec<ImpulsePoint, MAX_IMPULSES> {
@@ -82,7 +82,9 @@ fn eccentricity_below_threshold_is_reported_not_divided_through() {
     assert_eq!(
         rejected(&p),
         PlanError::EccentricityTooSmall {
-            orbit: Orbit::Chief
+            orbit: Orbit::Chief,
+            ecc: 1e-6,
+            min: 1e-4
         }
     );
     let mut p = paper();
@@ -90,7 +92,9 @@ fn eccentricity_below_threshold_is_reported_not_divided_through() {
     assert_eq!(
         rejected(&p),
         PlanError::EccentricityTooSmall {
-            orbit: Orbit::Chief
+            orbit: Orbit::Chief,
+            ecc: 0.0,
+            min: 1e-4
         }
     );
     // The deputy's own eccentricity counts too.
@@ -101,7 +105,9 @@ fn eccentricity_below_threshold_is_reported_not_divided_through() {
     assert_eq!(
         rejected(&p),
         PlanError::EccentricityTooSmall {
-            orbit: Orbit::DeputyTarget
+            orbit: Orbit::DeputyTarget,
+            ecc: 2e-4 - 1.5e-4,
+            min: 1e-4
         }
     );
 }
@@ -113,17 +119,24 @@ fn sin_inclination_below_threshold_is_reported() {
     assert_eq!(
         rejected(&p),
         PlanError::InclinationSingular {
-            orbit: Orbit::Chief
+            orbit: Orbit::Chief,
+            sin_inc: 0.0,
+            min: 1e-3
         }
     );
     let mut p = paper();
     p.chief.inc_rad = std::f64::consts::PI - 1e-5;
-    assert_eq!(
-        rejected(&p),
+    match rejected(&p) {
         PlanError::InclinationSingular {
-            orbit: Orbit::Chief
+            orbit: Orbit::Chief,
+            sin_inc,
+            min,
+        } => {
+            assert!((sin_inc - 1e-5).abs() < 1e-12, "{sin_inc}");
+            assert_eq!(min, 1e-3);
         }
-    );
+        e => panic!("{e:?}"),
+    }
 }
 
 #[test]
@@ -133,7 +146,8 @@ fn eccentricity_at_or_above_one() {
     assert_eq!(
         rejected(&p),
         PlanError::NotElliptic {
-            orbit: Orbit::Chief
+            orbit: Orbit::Chief,
+            ecc: 1.0
         }
     );
     let mut p = paper();
@@ -141,7 +155,8 @@ fn eccentricity_at_or_above_one() {
     assert_eq!(
         rejected(&p),
         PlanError::NotElliptic {
-            orbit: Orbit::DeputyInitial
+            orbit: Orbit::DeputyInitial,
+            ecc: 0.0678 + 1.5
         }
     );
     let mut p = paper();
@@ -149,27 +164,164 @@ fn eccentricity_at_or_above_one() {
     assert_eq!(
         rejected(&p),
         PlanError::NotElliptic {
-            orbit: Orbit::Chief
+            orbit: Orbit::Chief,
+            ecc: -0.1
+        }
+    );
+}
+
+/// The lower limit of a: Re plus the minimum perigee altitude (100 km by default).
+const MIN_SMA_KM: f64 = EARTH_RADIUS_KM + 100.0;
+
+#[test]
+fn semi_major_axis_out_of_range() {
+    for (sma_km, orbit_dsma) in [
+        (EARTH_RADIUS_KM, 0.0),
+        (-7000.0, 0.0),
+        (MAX_SMA_KM * 1.0001, 0.0),
+        (1e10, 0.0),
+        (1e308, 0.0),
+    ] {
+        let mut p = paper();
+        p.chief.sma_km = sma_km;
+        p.initial.dsma_km = orbit_dsma;
+        assert_eq!(
+            rejected(&p),
+            PlanError::SemiMajorAxisOutOfRange {
+                orbit: Orbit::Chief,
+                sma_km,
+                min_km: MIN_SMA_KM,
+                max_km: MAX_SMA_KM
+            },
+            "{sma_km}"
+        );
+    }
+    // A deputy pushed out of range by its difference.
+    let mut p = paper();
+    p.target.dsma_km = 1e300;
+    assert!(matches!(
+        rejected(&p),
+        PlanError::SemiMajorAxisOutOfRange {
+            orbit: Orbit::DeputyTarget,
+            ..
+        }
+    ));
+    // The lower limit follows the perigee setting.
+    let mut p = paper();
+    p.chief.sma_km = EARTH_RADIUS_KM + 150.0;
+    p.chief.ecc = 0.001;
+    let settings = Settings {
+        min_perigee_altitude_km: 200.0,
+        ..Settings::default()
+    };
+    assert_eq!(
+        reject(&p, &settings),
+        PlanError::SemiMajorAxisOutOfRange {
+            orbit: Orbit::Chief,
+            sma_km: EARTH_RADIUS_KM + 150.0,
+            min_km: EARTH_RADIUS_KM + 200.0,
+            max_km: MAX_SMA_KM
         }
     );
 }
 
 #[test]
-fn semi_major_axis_at_or_below_earth_radius() {
+fn perigee_below_the_minimum_altitude() {
+    // e = 0.9 at the paper's a: perigee inside the Earth.
     let mut p = paper();
-    p.chief.sma_km = EARTH_RADIUS_KM;
+    p.chief.ecc = 0.9;
+    match rejected(&p) {
+        PlanError::PerigeeTooLow {
+            orbit: Orbit::Chief,
+            perigee_altitude_km,
+            min_km,
+        } => {
+            let want = 7178.137 * 0.1 - EARTH_RADIUS_KM;
+            assert!(
+                (perigee_altitude_km - want).abs() < 1e-9,
+                "{perigee_altitude_km}"
+            );
+            assert_eq!(min_km, 100.0);
+        }
+        e => panic!("{e:?}"),
+    }
+    // The paper's chief has a 313 km perigee: a deputy eccentricity that lowers it to ~60 km.
+    let mut p = paper();
+    p.target.decc = 0.0358;
+    assert!(matches!(
+        rejected(&p),
+        PlanError::PerigeeTooLow {
+            orbit: Orbit::DeputyTarget,
+            ..
+        }
+    ));
+    let mut p = paper();
+    p.initial.decc = 0.0358;
+    assert!(matches!(
+        rejected(&p),
+        PlanError::PerigeeTooLow {
+            orbit: Orbit::DeputyInitial,
+            ..
+        }
+    ));
+    // A lower setting accepts it.
+    let settings = Settings {
+        min_perigee_altitude_km: 50.0,
+        ..Settings::default()
+    };
+    let mut ws = Workspace::new();
+    let mut out = Solution::new();
+    assert!(solve(&p, &settings, &mut ws, &mut out).is_ok());
+}
+
+#[test]
+fn inclination_outside_zero_to_pi() {
+    for inc_rad in [-0.5, 3.5] {
+        let mut p = paper();
+        p.chief.inc_rad = inc_rad;
+        assert_eq!(
+            rejected(&p),
+            PlanError::InclinationOutOfRange {
+                orbit: Orbit::Chief,
+                inc_rad
+            }
+        );
+    }
+}
+
+#[test]
+fn angles_beyond_the_limit() {
+    let mut p = paper();
+    p.chief.mean_anomaly_rad = 1e300;
     assert_eq!(
         rejected(&p),
-        PlanError::BelowEarthRadius {
-            orbit: Orbit::Chief
+        PlanError::AngleOutOfRange {
+            what: Quantity::Chief,
+            index: 5,
+            value_rad: 1e300,
+            limit_rad: MAX_ANGLE_RAD
         }
     );
     let mut p = paper();
-    p.chief.sma_km = -7000.0;
+    p.target.draan_rad = -2e4;
     assert_eq!(
         rejected(&p),
-        PlanError::BelowEarthRadius {
-            orbit: Orbit::Chief
+        PlanError::AngleOutOfRange {
+            what: Quantity::Target,
+            index: 3,
+            value_rad: -2e4,
+            limit_rad: MAX_ANGLE_RAD
+        }
+    );
+    let mut p = paper();
+    p.plan = ImpulsePlan::Fixed(points(&[(10.0, 0), (1e7, 1)]));
+    assert_eq!(
+        rejected(&p),
+        PlanError::AngleOutOfRange {
+            what: Quantity::ImpulsePoint,
+            index: 1,
+            value_rad: 1e7_f64.to_radians(),
+            limit_rad: MAX_ANGLE_RAD
         }
     );
 }
@@ -178,12 +330,24 @@ fn semi_major_axis_at_or_below_earth_radius() {
 fn negative_revolutions() {
     let mut p = paper();
     p.plan = ImpulsePlan::Fixed(points(&[(10.0, 1), (20.0, -1)]));
-    assert_eq!(rejected(&p), PlanError::NegativeRevolutions { impulse: 1 });
+    assert_eq!(
+        rejected(&p),
+        PlanError::NegativeRevolutions {
+            impulse: 1,
+            revolutions: -1
+        }
+    );
     p.plan = ImpulsePlan::Search {
         impulses: 3,
         max_revolutions: -1,
     };
-    assert_eq!(rejected(&p), PlanError::NegativeRevolutions { impulse: 0 });
+    assert_eq!(
+        rejected(&p),
+        PlanError::NegativeRevolutions {
+            impulse: 0,
+            revolutions: -1
+        }
+    );
 }
 
 #[test]
@@ -293,7 +457,7 @@ fn coincident_points_are_least_squares_with_their_rank_reported() {
     assert_eq!(out.info.status, SolveStatus::RankDeficient);
     assert!(!out.info.status.is_usable());
     assert_eq!(out.info.rank, 3);
-    assert!(out.info.condition_number.is_infinite());
+    assert_eq!(out.info.condition_number, f64::MAX);
     assert_eq!(out.impulses.len(), 2);
     assert!(out.total_dv_mps.is_finite());
     // Minimum norm splits the least-squares impulse evenly between the two coincident points.

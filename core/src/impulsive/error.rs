@@ -29,8 +29,19 @@ pub enum Orbit {
     DeputyTarget = 2,
 }
 
-/// A request the planner refuses to iterate on.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+/// Largest semi-major axis accepted, km. Beyond 100 000 km (about 2.4 GEO radii) the Moon's and
+/// the Sun's gravity exceed J2 by orders of magnitude and the J2-only model no longer describes
+/// the motion; the limit also keeps `a^7` (the J2 rate) far from overflow.
+pub const MAX_SMA_KM: f64 = 100_000.0;
+
+/// Largest magnitude of an input angle (Omega, omega, M, their differences, impulse points),
+/// rad. At 1e4 rad an f64 still resolves 2e-12 rad (15 um on a GEO orbit); beyond it the phase
+/// loses the precision the millimetre terminal check needs.
+pub const MAX_ANGLE_RAD: f64 = 10_000.0;
+
+/// A request the planner refuses to iterate on. Every variant names the field, the value and the
+/// limit it broke (limits in the units of the field's name).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[repr(u8)]
 pub enum PlanError {
     /// A number is NaN or infinite.
@@ -45,27 +56,46 @@ pub enum PlanError {
     EccentricityTooSmall {
         /// Which orbit.
         orbit: Orbit,
+        /// Its eccentricity.
+        ecc: f64,
+        /// The threshold (`Settings::min_eccentricity`).
+        min: f64,
     } = 1,
     /// Eccentricity not in `[0, 1)`: not an ellipse.
     NotElliptic {
         /// Which orbit.
         orbit: Orbit,
+        /// Its eccentricity.
+        ecc: f64,
     } = 2,
-    /// Semi-major axis at or below Earth's radius.
-    BelowEarthRadius {
+    /// Semi-major axis not in `(min_km, max_km]`: `min_km` is Earth's radius plus
+    /// `Settings::min_perigee_altitude_km`, `max_km` is [`MAX_SMA_KM`].
+    SemiMajorAxisOutOfRange {
         /// Which orbit.
         orbit: Orbit,
+        /// Its semi-major axis, km.
+        sma_km: f64,
+        /// Lower limit (exclusive), km.
+        min_km: f64,
+        /// Upper limit (inclusive), km.
+        max_km: f64,
     } = 3,
     /// `|sin i|` below `Settings::min_sin_inclination`: B's `1/sin i` terms are singular
     /// (equatorial orbits).
     InclinationSingular {
         /// Which orbit.
         orbit: Orbit,
+        /// Its `|sin i|`.
+        sin_inc: f64,
+        /// The threshold (`Settings::min_sin_inclination`).
+        min: f64,
     } = 4,
     /// A revolution count is negative (impulse index; for a search, index 0 is its limit).
     NegativeRevolutions {
         /// Impulse index.
         impulse: u8,
+        /// The count given.
+        revolutions: i32,
     } = 5,
     /// The revolution counts (or a search's limit) sum above `Settings::max_total_revolutions`.
     RevolutionsOverLimit {
@@ -85,6 +115,34 @@ pub enum PlanError {
     NoImpulses = 8,
     /// A setting is out of range.
     InvalidSettings(SettingsError) = 9,
+    /// Perigee altitude `a (1 - e) - Re` below `Settings::min_perigee_altitude_km`: the orbit
+    /// enters the atmosphere (or the Earth).
+    PerigeeTooLow {
+        /// Which orbit.
+        orbit: Orbit,
+        /// Its perigee altitude, km.
+        perigee_altitude_km: f64,
+        /// The limit, km.
+        min_km: f64,
+    } = 10,
+    /// Inclination not in `[0, pi]` (classical elements).
+    InclinationOutOfRange {
+        /// Which orbit.
+        orbit: Orbit,
+        /// Its inclination, rad.
+        inc_rad: f64,
+    } = 11,
+    /// An angle (or angle difference, or impulse point) above [`MAX_ANGLE_RAD`] in magnitude.
+    AngleOutOfRange {
+        /// Which part of the request.
+        what: Quantity,
+        /// Element index 0..6 (a, e, i, Omega, omega, M) or impulse index.
+        index: u8,
+        /// The angle given, rad.
+        value_rad: f64,
+        /// The limit on its magnitude, rad ([`MAX_ANGLE_RAD`]).
+        limit_rad: f64,
+    } = 12,
 }
 
 /// A setting out of its documented range.
@@ -107,20 +165,38 @@ impl core::fmt::Display for PlanError {
             Self::NotFinite { what, index } => {
                 write!(f, "{what:?} value {index} is NaN or infinite")
             }
-            Self::EccentricityTooSmall { orbit } => write!(
+            Self::EccentricityTooSmall { orbit, ecc, min } => write!(
                 f,
-                "{orbit:?} eccentricity is below the threshold (1/e terms of the GVE are singular)"
+                "{orbit:?} eccentricity {ecc:e} is below the threshold {min:e} (1/e terms of the GVE are singular)"
             ),
-            Self::NotElliptic { orbit } => write!(f, "{orbit:?} eccentricity is not in [0, 1)"),
-            Self::BelowEarthRadius { orbit } => {
-                write!(f, "{orbit:?} semi-major axis is at or below Earth's radius")
+            Self::NotElliptic { orbit, ecc } => {
+                write!(f, "{orbit:?} eccentricity {ecc} is not in [0, 1)")
             }
-            Self::InclinationSingular { orbit } => write!(
+            Self::SemiMajorAxisOutOfRange {
+                orbit,
+                sma_km,
+                min_km,
+                max_km,
+            } => write!(
                 f,
-                "{orbit:?} |sin i| is below the threshold (1/sin i terms of the GVE are singular)"
+                "{orbit:?} semi-major axis {sma_km} km is not in ({min_km}, {max_km}] km"
             ),
-            Self::NegativeRevolutions { impulse } => {
-                write!(f, "revolution count of impulse {impulse} is negative")
+            Self::InclinationSingular {
+                orbit,
+                sin_inc,
+                min,
+            } => write!(
+                f,
+                "{orbit:?} |sin i| = {sin_inc:e} is below the threshold {min:e} (1/sin i terms of the GVE are singular)"
+            ),
+            Self::NegativeRevolutions {
+                impulse,
+                revolutions,
+            } => {
+                write!(
+                    f,
+                    "revolution count {revolutions} of impulse {impulse} is negative"
+                )
             }
             Self::RevolutionsOverLimit { requested, limit } => {
                 write!(
@@ -136,6 +212,26 @@ impl core::fmt::Display for PlanError {
             }
             Self::NoImpulses => write!(f, "the plan has no impulses"),
             Self::InvalidSettings(e) => write!(f, "invalid settings: {e:?}"),
+            Self::PerigeeTooLow {
+                orbit,
+                perigee_altitude_km,
+                min_km,
+            } => write!(
+                f,
+                "{orbit:?} perigee altitude {perigee_altitude_km} km is below the minimum of {min_km} km"
+            ),
+            Self::InclinationOutOfRange { orbit, inc_rad } => {
+                write!(f, "{orbit:?} inclination {inc_rad} rad is not in [0, pi]")
+            }
+            Self::AngleOutOfRange {
+                what,
+                index,
+                value_rad,
+                limit_rad,
+            } => write!(
+                f,
+                "{what:?} angle {index} = {value_rad} rad exceeds {limit_rad} rad in magnitude"
+            ),
         }
     }
 }
@@ -178,7 +274,9 @@ mod tests {
             buf,
             "{}",
             PlanError::InclinationSingular {
-                orbit: Orbit::Chief
+                orbit: Orbit::Chief,
+                sin_inc: 1e-4,
+                min: 1e-3,
             }
         )
         .unwrap();

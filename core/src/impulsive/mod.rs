@@ -40,7 +40,7 @@ mod workspace;
 pub use elements::{
     wrap_pi, wrap_two_pi, EARTH_J2, EARTH_MU_KM3_S2, EARTH_RADIUS_KM, M_PER_KM, TWO_PI,
 };
-pub use error::{Orbit, PlanError, Quantity, SettingsError};
+pub use error::{Orbit, PlanError, Quantity, SettingsError, MAX_ANGLE_RAD, MAX_SMA_KM};
 pub use settings::{Settings, MAX_SEARCH_STARTS};
 pub use solution::{Impulse, Solution};
 pub use status::{SolveInfo, SolveStatus, Stage};
@@ -56,10 +56,12 @@ pub use workspace::Workspace;
 ///
 /// # Errors
 /// A [`PlanError`] when the request is rejected before iterating (bad settings, NaN or
-/// infinite input, an orbit that is not a valid ellipse above Earth's surface, eccentricity or
-/// `sin i` below the singularity thresholds, negative or excessive revolution counts, no
-/// impulses or more than [`crate::capacity::MAX_IMPULSES`]); `out` and `workspace` are then
-/// untouched.
+/// infinite input, angles beyond [`MAX_ANGLE_RAD`], an orbit that is not an ellipse, a
+/// semi-major axis outside `(Re + min_perigee_altitude_km, MAX_SMA_KM]`, an inclination outside
+/// `[0, pi]`, a perigee below `min_perigee_altitude_km`, eccentricity or `sin i` below the
+/// singularity thresholds, negative or excessive revolution counts, no impulses or more than
+/// [`crate::capacity::MAX_IMPULSES`]); `out` and `workspace` are then untouched. Once accepted,
+/// every number written to `out` is finite (see [`SolveStatus`]).
 pub fn solve(
     problem: &Problem,
     settings: &Settings,

@@ -1,6 +1,7 @@
 //! Planner-B settings: every loop bound, tolerance and threshold of a solve.
 
-use super::error::SettingsError;
+use super::elements::EARTH_RADIUS_KM;
+use super::error::{SettingsError, MAX_SMA_KM};
 use serde::{Deserialize, Serialize};
 
 /// Most local searches the impulse-point search runs (workspace capacity).
@@ -16,9 +17,11 @@ pub const MAX_SEARCH_STARTS: usize = 16;
 ///   when Cholesky declines);
 /// * min-fuel phase (`min_fuel`): `fixed_point_max_iter` x (propagation + F + Cholesky/SVD +
 ///   SVD + `min_fuel_max_iter` SVDs);
-/// * correction (`nonlinear_correction`): `correction_max_iter` x (two propagations + SVD),
-///   plus one exact propagation;
-/// * report: one SVD and one exact propagation.
+/// * correction (`nonlinear_correction`): one exact propagation, `3N` exact propagations for
+///   the finite-difference Jacobian, then `correction_max_iter` x (Cholesky/SVD + exact
+///   propagation + rank-one update);
+/// * report: one linear propagation and one SVD (rank and condition at the returned plan), one
+///   exact propagation (the nonlinear re-check and the transfer arcs' perigees).
 ///
 /// A search runs at most `search_max_evaluations` evaluations, each at most
 /// `search_fixed_point_max_iter` fixed-point iterations (`search_min_fuel` adds the min-fuel
@@ -42,9 +45,11 @@ pub struct Settings {
     /// Impulse magnitude below which reweighting treats an impulse as zero, m/s.
     pub min_fuel_floor_mps: f64,
     /// Drive the terminal error of the nonlinear model (exact impulses, J2 secular drift) to
-    /// `correction_tol` by defect correction with the linear map.
+    /// `correction_tol` by Broyden's method started from a finite-difference Jacobian. Off,
+    /// the plan is the linear model's fixed point and its status `Linearised { miss_m }`.
     pub nonlinear_correction: bool,
-    /// Most defect-correction steps.
+    /// Most nonlinear-correction (Broyden) steps. The paper's points need 2; near-circular
+    /// orbits (e = 1e-3) 4-5.
     pub correction_max_iter: u16,
     /// Accepted terminal error: largest of `|da|/a`, `|de|`, `|di|`, `|dOmega|`, `|domega|`,
     /// `|dM|` (dimensionless / rad).
@@ -61,6 +66,11 @@ pub struct Settings {
     pub min_sin_inclination: f64,
     /// Largest sum of revolution counts accepted, for fixed points and a search's limit.
     pub max_total_revolutions: i32,
+    /// Lowest perigee altitude `a (1 - e) - Re` accepted, km: for the chief, the deputy's
+    /// initial and target orbits (rejected with `PlanError::PerigeeTooLow`) and every transfer
+    /// arc of the returned plan (`SolveStatus::UnsafePerigee`). Also sets the smallest
+    /// semi-major axis, `Re + min_perigee_altitude_km`. In `[0, MAX_SMA_KM - Re)`.
+    pub min_perigee_altitude_km: f64,
     /// Random impulse-point samples the search evaluates before its local searches.
     pub search_samples: u32,
     /// Local pattern searches, started from the best samples (at most [`MAX_SEARCH_STARTS`]).
@@ -113,6 +123,7 @@ impl Default for Settings {
             min_eccentricity: 1e-4,
             min_sin_inclination: 1e-3,
             max_total_revolutions: 100,
+            min_perigee_altitude_km: 100.0,
             search_samples: 3000,
             search_starts: 12,
             search_max_evaluations: 20_000,
@@ -157,6 +168,7 @@ impl Settings {
         if !in_unit(self.min_eccentricity)
             || !in_unit(self.min_sin_inclination)
             || self.max_total_revolutions < 0
+            || !(0.0..MAX_SMA_KM - EARTH_RADIUS_KM).contains(&self.min_perigee_altitude_km)
         {
             return Err(SettingsError::BadThreshold);
         }
@@ -194,6 +206,13 @@ mod tests {
             ..Settings::default()
         };
         assert_eq!(s.validate(), Err(SettingsError::BadThreshold));
+        for bad in [-1.0, f64::NAN, f64::INFINITY, 1e6] {
+            let s = Settings {
+                min_perigee_altitude_km: bad,
+                ..Settings::default()
+            };
+            assert_eq!(s.validate(), Err(SettingsError::BadThreshold), "{bad}");
+        }
         let s = Settings {
             search_starts: 200,
             ..Settings::default()

@@ -2,16 +2,23 @@
 
 use serde::{Deserialize, Serialize};
 
-/// The state of the returned plan. Checked in this order: numerical failure, rank deficiency,
-/// nonlinear correction not converged, fixed point not converged, solved.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+/// The state of the returned plan. Checked in this order: numerical failure, unsafe perigee,
+/// rank deficiency (at the returned plan), nonlinear correction not converged, fixed point not
+/// converged, linearised (correction off), solved. Every number in a returned [`Solution`] is
+/// finite whatever the status: a number a failed stage could not compute is written as 0 and
+/// the status is `NumericalFailure`.
+///
+/// [`Solution`]: super::Solution
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[repr(u8)]
 pub enum SolveStatus {
     /// No solve has written this solution.
     #[default]
     Unsolved = 0,
-    /// Converged: the fixed point (and, when enabled, the nonlinear correction) met its
-    /// tolerance.
+    /// The returned impulses, flown with the exact impulse model and J2 secular drift, reach the
+    /// target within `correction_tol` (re-checked on the returned plan), F has full rank there,
+    /// and every transfer arc's perigee is above `min_perigee_altitude_km`. Needs
+    /// `nonlinear_correction`.
     Solved = 1,
     /// `F` has rank below 6 (for example coincident impulse points): the least-squares
     /// minimum-norm impulses are returned; they do not reach the target.
@@ -23,6 +30,21 @@ pub enum SolveStatus {
     CorrectionNotConverged = 4,
     /// A numerical step failed; the stage says where. The best plan so far is returned.
     NumericalFailure(Stage) = 5,
+    /// The plan's transfer arc `arc` (1-based: arc k follows impulse k, arc N is the final
+    /// orbit) has its perigee below `Settings::min_perigee_altitude_km`: not flyable.
+    UnsafePerigee {
+        /// The arc, 1..=N.
+        arc: u8,
+        /// Its perigee altitude `a (1 - e) - Re`, km (exact impulse model).
+        perigee_altitude_km: f64,
+    } = 6,
+    /// The linear-model fixed point (Wang 2018, eq. 14) converged, full rank, safe perigees, but
+    /// the nonlinear correction was off: flown with exact impulses the plan misses the target by
+    /// `miss_m` (deputy position at the last impulse). Not usable as a plan to fly.
+    Linearised {
+        /// Position miss of the nonlinear check, m.
+        miss_m: f64,
+    } = 7,
 }
 
 /// Where a numerical failure happened.
@@ -36,6 +58,8 @@ pub enum Stage {
     Svd = 1,
     /// An iterate left the valid domain (e or sin i under threshold, e >= 1, a <= Re).
     SingularState = 2,
+    /// A number of the returned solution came out NaN or infinite (it is written as 0).
+    NonFinite = 3,
 }
 
 impl SolveStatus {
@@ -56,10 +80,10 @@ pub struct SolveInfo {
     pub min_fuel_iterations: u16,
     /// Nonlinear defect-correction steps.
     pub correction_iterations: u16,
-    /// Numerical rank of `F` at the returned plan (6 when full).
+    /// Numerical rank of `F` at the returned plan (6 when full), from an SVD of F rebuilt there.
     pub rank: u8,
-    /// 2-norm condition number of `F` (ratio of extreme singular values; infinite when
-    /// rank-deficient).
+    /// 2-norm condition number of `F` at the returned plan (ratio of extreme singular values;
+    /// `f64::MAX` when rank-deficient, the smallest singular value being zero).
     pub condition_number: f64,
     /// The min-fuel refinement was run and lowered the total (else the minimum-norm plan).
     pub min_fuel_used: bool,
@@ -84,6 +108,11 @@ mod tests {
             SolveStatus::MaxIterations,
             SolveStatus::CorrectionNotConverged,
             SolveStatus::NumericalFailure(Stage::Svd),
+            SolveStatus::UnsafePerigee {
+                arc: 1,
+                perigee_altitude_km: 50.0,
+            },
+            SolveStatus::Linearised { miss_m: 150.0 },
         ] {
             assert!(!s.is_usable(), "{s:?}");
         }

@@ -15,7 +15,7 @@ use super::transfer::{chief_at, propagate, ImpulseModel, Points, Sequence, XVect
 use super::types::{ImpulsePlan, Problem};
 
 /// Why [`relative_position_rtn_km`] could not place the deputy.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum TrajectoryError {
     /// The problem (or the settings) is rejected, as by [`super::solve`].
     Plan(PlanError),
