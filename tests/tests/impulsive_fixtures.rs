@@ -286,3 +286,25 @@ fn search_respects_a_small_budget() {
     assert_eq!(s.info.status, SolveStatus::Solved);
     assert!(s.total_dv_mps.is_finite() && s.total_dv_mps < 20.0);
 }
+
+#[test]
+fn the_correction_converges_in_a_few_broyden_steps() {
+    // The paper's points: 2 steps. A near-circular chief (e = 1e-3, where the linear-F defect
+    // correction needed 10-11 steps): at most 5.
+    for (name, _) in PAPER_POINTS {
+        for (ecc, most) in [(None, 2), (Some(1e-3), 5)] {
+            let mut p = problem(name);
+            if let Some(e) = ecc {
+                p.chief.ecc = e;
+            }
+            let s = run(&p, &Settings::default());
+            assert_eq!(s.info.status, SolveStatus::Solved, "{name} {ecc:?}");
+            assert!(
+                s.info.correction_iterations <= most,
+                "{name} {ecc:?}: {} steps",
+                s.info.correction_iterations
+            );
+            assert!(s.terminal_position_error_m < 1e-3, "{name} {ecc:?}");
+        }
+    }
+}

@@ -836,4 +836,94 @@ mod tests {
         assert!(changes[6] < 1e-9, "{changes:?}");
         assert!((total(&dv) * 1000.0 - 8.2207).abs() < 1e-3);
     }
+
+    fn table_2_points() -> Points {
+        let mut pts = Points::new();
+        for (k, (u, n)) in [(274.155, 2), (238.864, 10), (285.649, 2)]
+            .iter()
+            .enumerate()
+        {
+            pts.at[k] = ImpulsePoint {
+                arg_latitude_rad: deg(*u),
+                revolutions: *n,
+            };
+        }
+        pts.n = 3;
+        pts
+    }
+
+    #[test]
+    fn a_transfer_arc_below_the_perigee_limit_is_unsafe_and_named() {
+        let ctx = paper_context();
+        let pts = table_2_points();
+        let settings = Settings::default();
+        let mut seq = Sequence::new();
+        let rep = solve_points(&ctx, &pts, &settings, &mut seq);
+        let mut out = Solution::new();
+        write_solution(&ctx, &pts, &settings, &mut seq, &rep, 1, &mut out);
+        assert_eq!(out.info.status, SolveStatus::Solved);
+        // The exact propagation of the returned plan is left in `seq`: the arcs' perigees.
+        nonlinear_error(&ctx, &pts, &rep.dv, &settings, &mut seq).unwrap();
+        let arcs = [
+            perigee_altitude_km(&seq.steps[1].before),
+            perigee_altitude_km(&seq.steps[2].before),
+            perigee_altitude_km(&seq.end),
+        ];
+        let start = perigee_altitude_km(&ctx.deputy0);
+        // A limit between the lowest arc and everything the validation sees makes that arc
+        // (and only the transfer) unsafe.
+        let (lowest, value) = arcs
+            .iter()
+            .enumerate()
+            .min_by(|a, b| a.1.partial_cmp(b.1).unwrap())
+            .unwrap();
+        assert!(*value < start, "{arcs:?} vs {start}");
+        let strict = Settings {
+            min_perigee_altitude_km: *value + 1e-6,
+            ..settings
+        };
+        write_solution(&ctx, &pts, &strict, &mut seq, &rep, 1, &mut out);
+        assert_eq!(
+            out.info.status,
+            SolveStatus::UnsafePerigee {
+                arc: u8::try_from(lowest + 1).unwrap(),
+                perigee_altitude_km: *value
+            },
+            "{arcs:?}"
+        );
+        assert!(!out.info.status.is_usable());
+    }
+
+    #[test]
+    fn non_finite_numbers_never_leave_and_say_numerical_failure() {
+        let ctx = paper_context();
+        let pts = table_2_points();
+        let settings = Settings::default();
+        let mut seq = Sequence::new();
+        let mut rep = solve_points(&ctx, &pts, &settings, &mut seq);
+        rep.min_norm_total_km_s = f64::NAN;
+        let mut out = Solution::new();
+        write_solution(&ctx, &pts, &settings, &mut seq, &rep, 1, &mut out);
+        assert_eq!(
+            out.info.status,
+            SolveStatus::NumericalFailure(Stage::NonFinite)
+        );
+        assert_eq!(out.min_norm_total_dv_mps, 0.0);
+        assert!(out.total_dv_mps > 8.0);
+    }
+
+    #[test]
+    fn solved_is_rechecked_on_the_returned_impulses() {
+        let ctx = paper_context();
+        let pts = table_2_points();
+        let settings = Settings::default();
+        let mut seq = Sequence::new();
+        let mut rep = solve_points(&ctx, &pts, &settings, &mut seq);
+        assert_eq!(rep.status, SolveStatus::Solved);
+        // 1 mm/s off on one component: the report must not keep `Solved`.
+        rep.dv[1] += 1e-6;
+        let mut out = Solution::new();
+        write_solution(&ctx, &pts, &settings, &mut seq, &rep, 1, &mut out);
+        assert_eq!(out.info.status, SolveStatus::CorrectionNotConverged);
+    }
 }

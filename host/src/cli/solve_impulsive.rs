@@ -1,5 +1,6 @@
 //! `reconfig solve` for planner-B fixtures: a readable report, or `--json`.
 
+use crate::cli::solve::{EXIT_NOT_USABLE, EXIT_REJECTED, EXIT_USABLE};
 use crate::fixture::impulsive::ImpulsiveFixture;
 use anyhow::Result;
 use reconfig_core::impulsive::{solve, ImpulsePlan, Settings, Solution, Workspace};
@@ -7,7 +8,8 @@ use serde_json::json;
 use std::process::ExitCode;
 use std::time::Instant;
 
-/// Solve and report a planner-B fixture. Exit code 0 when the plan is usable, 1 otherwise.
+/// Solve and report a planner-B fixture. Exit code 0 when the plan is usable, 1 when it is not,
+/// 2 when the planner rejects the input.
 pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
     let settings = Settings::default();
     let mut workspace = Box::new(Workspace::new());
@@ -24,7 +26,7 @@ pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
         } else {
             println!("{}: rejected: {err}", fixture.name);
         }
-        return Ok(ExitCode::from(1));
+        return Ok(ExitCode::from(EXIT_REJECTED));
     }
     let s = &solution;
     if json {
@@ -116,9 +118,9 @@ pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
         );
         println!("frame: dv in the deputy's local frame (radial, along-track, normal)");
     }
-    Ok(if s.info.status.is_usable() {
-        ExitCode::SUCCESS
+    Ok(ExitCode::from(if s.info.status.is_usable() {
+        EXIT_USABLE
     } else {
-        ExitCode::from(1)
-    })
+        EXIT_NOT_USABLE
+    }))
 }

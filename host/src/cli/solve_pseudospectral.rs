@@ -1,5 +1,6 @@
 //! `reconfig solve` for planner-A fixtures: a readable report or one JSON object.
 
+use crate::cli::solve::{EXIT_NOT_USABLE, EXIT_REJECTED, EXIT_USABLE};
 use crate::fixture::pseudospectral::PseudospectralFixture;
 use anyhow::{anyhow, Result};
 use reconfig_core::pseudospectral::{self, Settings, Solution, Workspace};
@@ -20,11 +21,18 @@ pub struct Timed {
 /// # Errors
 /// The core's `PlanError`, as a message.
 pub fn solve_timed(problem: &pseudospectral::Problem, settings: &Settings) -> Result<Timed> {
+    solve_or_reject(problem, settings).map_err(|e| anyhow!("the planner rejected the problem: {e}"))
+}
+
+/// [`solve_timed`] with the core's error kept as such.
+fn solve_or_reject(
+    problem: &pseudospectral::Problem,
+    settings: &Settings,
+) -> std::result::Result<Timed, pseudospectral::PlanError> {
     let mut workspace = Box::new(Workspace::new());
     let mut solution = Box::new(Solution::new());
     let start = Instant::now();
-    pseudospectral::solve(problem, settings, &mut workspace, &mut solution)
-        .map_err(|e| anyhow!("the planner rejected the problem: {e}"))?;
+    pseudospectral::solve(problem, settings, &mut workspace, &mut solution)?;
     Ok(Timed {
         solution,
         solve_time_s: start.elapsed().as_secs_f64(),
@@ -72,9 +80,24 @@ pub fn to_json(name: &str, timed: &Timed) -> serde_json::Value {
     })
 }
 
-/// Solve and report a planner-A fixture.
+/// Solve and report a planner-A fixture. Exit code 0 when the plan is usable, 1 when it is not,
+/// 2 when the planner rejects the input.
 pub fn run(fixture: &PseudospectralFixture, json_output: bool) -> Result<ExitCode> {
-    let timed = solve_timed(&fixture.problem, &Settings::default())?;
+    let timed = match solve_or_reject(&fixture.problem, &Settings::default()) {
+        Ok(t) => t,
+        Err(err) => {
+            // Same shape and exit code as planner B's rejection.
+            if json_output {
+                println!(
+                    "{}",
+                    json!({ "name": fixture.name, "status": "Rejected", "error": format!("{err:?}"), "message": err.to_string() })
+                );
+            } else {
+                println!("{}: rejected: {err}", fixture.name);
+            }
+            return Ok(ExitCode::from(EXIT_REJECTED));
+        }
+    };
     if json_output {
         println!(
             "{}",
@@ -113,9 +136,9 @@ pub fn run(fixture: &PseudospectralFixture, json_output: bool) -> Result<ExitCod
         );
         println!("  solve time           {:.3} ms", timed.solve_time_s * 1e3);
     }
-    Ok(if timed.solution.info.status.is_usable() {
-        ExitCode::SUCCESS
+    Ok(ExitCode::from(if timed.solution.info.status.is_usable() {
+        EXIT_USABLE
     } else {
-        ExitCode::from(1)
-    })
+        EXIT_NOT_USABLE
+    }))
 }

@@ -1,0 +1,101 @@
+//! `reconfig solve`'s exit codes, the same for both planners: 0 the plan is usable, 1 the
+//! planner ran and the plan is not usable, 2 the input was rejected.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+/// Run `reconfig solve FILE --json`: exit code and stdout.
+fn solve(file: &Path) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_reconfig"))
+        .arg("solve")
+        .arg(file)
+        .arg("--json")
+        .output()
+        .expect("run reconfig solve");
+    (
+        out.status.code().expect("exit code"),
+        String::from_utf8_lossy(&out.stdout).to_string(),
+    )
+}
+
+/// A fixture derived from one in `fixtures/` by text replacements, in a temporary directory.
+fn variant(stem: &str, edits: &[(&str, &str)], tag: &str) -> PathBuf {
+    let mut text =
+        std::fs::read_to_string(root().join(format!("fixtures/{stem}.toml"))).expect("test io");
+    for (from, to) in edits {
+        assert!(text.contains(from), "{stem} has no {from:?}");
+        text = text.replacen(from, to, 1);
+    }
+    let dir = std::env::temp_dir().join(format!("reconfig-exit-codes-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("test io");
+    let path = dir.join(format!("{stem}-{tag}.toml"));
+    std::fs::write(&path, text).expect("test io");
+    path
+}
+
+#[test]
+fn usable_plans_exit_0() {
+    for stem in ["wang2018-gco-to-pco-3imp", "huang2012-three-sats-n10"] {
+        let (code, out) = solve(&root().join(format!("fixtures/{stem}.toml")));
+        assert_eq!(code, 0, "{stem}: {out}");
+        assert!(out.contains("\"Solved\""), "{stem}: {out}");
+    }
+}
+
+#[test]
+fn plans_that_are_not_usable_exit_1() {
+    // Planner B: two impulses at one point reach only rank 3.
+    let p = variant(
+        "wang2018-gco-to-pco-2imp",
+        &[("arg_latitude_deg = 223.964", "arg_latitude_deg = 274.787")],
+        "coincident",
+    );
+    let (code, out) = solve(&p);
+    assert_eq!(code, 1, "{out}");
+    assert!(out.contains("RankDeficient"), "{out}");
+}
+
+#[test]
+fn rejected_inputs_exit_2_in_both_planners() {
+    // Planner B: e = 0.9 puts the perigee inside the Earth.
+    let p = variant(
+        "wang2018-gco-to-pco-3imp",
+        &[("eccentricity = 0.0678", "eccentricity = 0.9")],
+        "low-perigee",
+    );
+    let (code, out) = solve(&p);
+    assert_eq!(code, 2, "{out}");
+    assert!(
+        out.contains("\"Rejected\"") && out.contains("PerigeeTooLow"),
+        "{out}"
+    );
+    // Planner A: a negative horizon.
+    let p = variant(
+        "huang2012-three-sats-n10",
+        &[("horizon = 10.0", "horizon = -10.0")],
+        "negative-horizon",
+    );
+    let (code, out) = solve(&p);
+    assert_eq!(code, 2, "{out}");
+    assert!(out.contains("\"Rejected\""), "{out}");
+    // A file that does not load.
+    let (code, _) = solve(&root().join("fixtures/no-such-fixture.toml"));
+    assert_eq!(code, 2);
+}
+
+#[test]
+fn help_states_the_exit_codes() {
+    let out = Command::new(env!("CARGO_BIN_EXE_reconfig"))
+        .args(["solve", "--help"])
+        .output()
+        .expect("test io");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("Exit codes") && text.contains("2 the input was rejected"),
+        "{text}"
+    );
+}
