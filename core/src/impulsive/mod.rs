@@ -44,7 +44,7 @@ pub use error::{Orbit, PlanError, Quantity, SettingsError, MAX_ANGLE_RAD, MAX_SM
 pub use settings::{Settings, MAX_SEARCH_STARTS};
 pub use solution::{Impulse, Solution};
 pub use status::{SolveInfo, SolveStatus, Stage};
-pub use trajectory::{relative_position_rtn_km, TrajectoryError};
+pub use trajectory::{formation_position_rtn_km, relative_position_rtn_km, TrajectoryError};
 pub use types::*;
 pub use workspace::Workspace;
 

@@ -2,7 +2,9 @@
 //! nonlinear check (J2 secular drift of mean elements between impulses, exact two-body impulse
 //! updates), sampled at any time.
 
-use super::elements::{Elements, E, MA, M_PER_KM};
+use super::elements::{
+    add, from_mean, from_relative, Elements, A, E, EARTH_RADIUS_KM, MA, M_PER_KM,
+};
 use super::error::PlanError;
 use super::kepler::true_anomaly;
 use super::nonlinear::{relative_position_rtn, state};
@@ -12,7 +14,7 @@ use super::solution::Solution;
 use super::solver;
 use super::status::Stage;
 use super::transfer::{chief_at, propagate, ImpulseModel, Points, Sequence, XVector};
-use super::types::{ImpulsePlan, Problem};
+use super::types::{ImpulsePlan, MeanElements, Problem, RelativeElements};
 
 /// Why [`relative_position_rtn_km`] could not place the deputy.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -128,12 +130,53 @@ pub fn relative_position_rtn_km(
     ))
 }
 
+/// The position of a free-flying deputy relative to the chief at `t_s` seconds from the epoch,
+/// in the chief's local frame (radial, along-track, normal), km: the deputy has relative mean
+/// elements `rel` at `formed_s` (the chief drifted to that time plus `rel`), and from there both
+/// drift with their own J2 secular rates, without impulses. The model of
+/// [`relative_position_rtn_km`] (mean elements taken as two-body elements at each instant), so
+/// a formation drawn with this and a planned trajectory agree.
+///
+/// Bounded: two Kepler solves of at most `settings.kepler_max_iter` steps; no heap.
+///
+/// # Errors
+/// [`TrajectoryError::Numerical`]: `Kepler` when Kepler's equation does not converge,
+/// `NonFinite` when a number is not finite (for example a non-finite time), `SingularState`
+/// when the chief or the deputy is not an ellipse above Earth's radius.
+pub fn formation_position_rtn_km(
+    chief: &MeanElements,
+    rel: &RelativeElements,
+    formed_s: f64,
+    t_s: f64,
+    settings: &Settings,
+) -> Result<[f64; 3], TrajectoryError> {
+    let chief0 = from_mean(chief);
+    let formed = drift(&chief0, formed_s);
+    let deputy_formed = add(&formed, &from_relative(rel));
+    // a and e do not drift: check the ellipses before the rates use sqrt(1 - e^2).
+    let ellipse = |el: &Elements| (0.0..1.0).contains(&el[E]) && el[A] > EARTH_RADIUS_KM;
+    if !(ellipse(&formed) && ellipse(&deputy_formed)) {
+        return Err(TrajectoryError::Numerical(Stage::SingularState));
+    }
+    let c = drift(&formed, t_s - formed_s);
+    let d = drift(&deputy_formed, t_s - formed_s);
+    if !c.iter().chain(d.iter()).all(|x| x.is_finite()) {
+        return Err(TrajectoryError::Numerical(Stage::NonFinite));
+    }
+    let (f_d, ok_d) = true_anomaly(d[MA], d[E], settings.kepler_max_iter);
+    let (f_c, ok_c) = true_anomaly(c[MA], c[E], settings.kepler_max_iter);
+    if !(ok_d && ok_c) {
+        return Err(TrajectoryError::Numerical(Stage::Kepler));
+    }
+    Ok(relative_position_rtn(&state(&c, f_c), &state(&d, f_d)))
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
 mod tests {
     use super::*;
-    use crate::impulsive::elements::{add, from_mean, from_relative, TWO_PI};
-    use crate::impulsive::types::{ImpulsePoint, MeanElements, RelativeElements};
+    use crate::impulsive::elements::TWO_PI;
+    use crate::impulsive::types::ImpulsePoint;
     use crate::impulsive::{solve, SolveStatus, Workspace};
 
     fn paper(plan: ImpulsePlan) -> Problem {
@@ -179,18 +222,24 @@ mod tests {
     /// The formation with relative elements `rel` at `t0_s`, seen at `t_s` (both spacecraft
     /// drifting with their own J2 rates, no impulses), m.
     fn formation_m(p: &Problem, rel: &RelativeElements, t0_s: f64, t_s: f64) -> [f64; 3] {
-        let chief0 = from_mean(&p.chief);
-        let ctx = super::super::transfer::Context {
-            chief0,
-            deputy0: add(&chief0, &from_relative(rel)),
-            initial: from_relative(rel),
-            target: from_relative(rel),
-        };
-        let c = chief_at(&ctx, t_s);
-        let d = drift(&add(&chief_at(&ctx, t0_s), &from_relative(rel)), t_s - t0_s);
-        let (fc, _) = true_anomaly(c[MA], c[E], 50);
-        let (fd, _) = true_anomaly(d[MA], d[E], 50);
-        relative_position_rtn(&state(&c, fc), &state(&d, fd)).map(|x| x * M_PER_KM)
+        formation_position_rtn_km(&p.chief, rel, t0_s, t_s, &Settings::default())
+            .unwrap()
+            .map(|x| x * M_PER_KM)
+    }
+
+    #[test]
+    fn a_formation_that_cannot_be_placed_is_an_error() {
+        let p = table2();
+        assert_eq!(
+            formation_position_rtn_km(&p.chief, &p.initial, 0.0, f64::NAN, &Settings::default()),
+            Err(TrajectoryError::Numerical(Stage::NonFinite))
+        );
+        let mut hyperbolic = p.initial;
+        hyperbolic.decc = 1.5;
+        assert_eq!(
+            formation_position_rtn_km(&p.chief, &hyperbolic, 0.0, 0.0, &Settings::default()),
+            Err(TrajectoryError::Numerical(Stage::SingularState))
+        );
     }
 
     fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
