@@ -308,3 +308,36 @@ fn the_correction_converges_in_a_few_broyden_steps() {
         }
     }
 }
+
+#[test]
+fn corrected_two_impulse_plans_match_the_exact_model_oracle() {
+    // Two impulses: the corrected plan is the unique root of the exact end condition, computed
+    // independently by tests/oracle/planner_b_corrected.py (numpy Newton).
+    let text =
+        std::fs::read_to_string(fixtures_dir().join("golden/planner-b-corrected.json")).unwrap();
+    let g: serde_json::Value = serde_json::from_str(&text).unwrap();
+    for name in ["sso-leo-pair-e1e-3-2imp", "wang2018-gco-to-pco-2imp"] {
+        let s = run(&problem(name), &Settings::default());
+        assert_eq!(s.info.status, SolveStatus::Solved, "{name}");
+        assert!(s.terminal_position_error_m <= 1e-3, "{name}");
+        let o = &g[name];
+        let total = o["total_dv_mps"].as_f64().unwrap();
+        assert!(
+            (s.total_dv_mps - total).abs() < 1e-8,
+            "{name}: {} vs oracle {total}",
+            s.total_dv_mps
+        );
+        for (k, imp) in s.impulses.iter().enumerate() {
+            let t = o["times_s"][k].as_f64().unwrap();
+            assert!((imp.time_s - t).abs() < 1e-5, "{name} {k}: {}", imp.time_s);
+            for axis in 0..3 {
+                let v = o["dv_rtn_mps"][k][axis].as_f64().unwrap();
+                assert!(
+                    (imp.dv_rtn_mps[axis] - v).abs() < 1e-8,
+                    "{name} impulse {k} axis {axis}: {} vs {v}",
+                    imp.dv_rtn_mps[axis]
+                );
+            }
+        }
+    }
+}
