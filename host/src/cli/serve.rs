@@ -16,6 +16,12 @@ pub struct Args {
     pub no_pin: bool,
     #[command(flatten)]
     pub instance: Instance,
+    #[command(flatten)]
+    pub limits: crate::limits::LimitsArg,
+    /// Deadline of a request that carries none, ms after the service receives it: a request
+    /// still queued then is answered `Expired` without being solved.
+    #[arg(long, default_value_t = 5000)]
+    pub deadline_ms: u64,
     /// Test hook: every worker sleeps this long per request (stands in for a long solve).
     #[arg(long, default_value_t = 0, hide = true)]
     pub debug_delay_ms: u64,
@@ -28,6 +34,8 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         cpus: harness::parse_cpus(&args.cpus)?,
         no_pin: args.no_pin,
         delay: Duration::from_millis(args.debug_delay_ms),
+        limits: args.limits.load()?,
+        default_deadline: Duration::from_millis(args.deadline_ms),
     };
     service::run(&opts)?;
     Ok(ExitCode::SUCCESS)

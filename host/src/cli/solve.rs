@@ -1,9 +1,19 @@
-//! `reconfig solve FILE [--json]`: solve one fixture of either planner and report.
+//! `reconfig solve FILE [--json] [--limits FILE]`: solve one fixture of either planner and
+//! report. The fixture's `[settings]` (over the defaults) are checked against the same limits
+//! as the flight service's (`reconfig_core::limits`) before anything is solved.
 
 use crate::fixture::{self, Fixture};
+use crate::limits::LimitsArg;
 use anyhow::Result;
+use reconfig_core::limits::LimitViolation;
+use reconfig_core::wire::Request;
+use serde_json::json;
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::time::Instant;
+
+/// Exit code of a request refused by the limits (1 is an unusable plan, 2 an error).
+pub const EXIT_LIMIT_EXCEEDED: u8 = 3;
 
 /// Arguments of `reconfig solve`.
 #[derive(clap::Args, Debug)]
@@ -13,12 +23,58 @@ pub struct Args {
     /// Print one JSON object instead of the readable report.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub limits: LimitsArg,
 }
 
 /// Run `reconfig solve`.
 pub fn run(args: &Args) -> Result<ExitCode> {
-    match fixture::load(&args.file)? {
+    let limits = args.limits.load()?;
+    let fixture = fixture::load(&args.file)?;
+    // The very check the service's workers run, on the request the service would receive.
+    let request = match &fixture {
+        Fixture::Pseudospectral(f) => Request::Pseudospectral {
+            problem: f.problem.clone(),
+            settings: f.settings,
+        },
+        Fixture::Impulsive(f) => Request::Impulsive {
+            problem: f.problem.clone(),
+            settings: f.settings,
+        },
+    };
+    let started = Instant::now();
+    let checked = limits.check(&request);
+    let check_time_s = started.elapsed().as_secs_f64();
+    if let Err(violation) = checked {
+        report_refusal(fixture.name(), &violation, check_time_s, args.json);
+        return Ok(ExitCode::from(EXIT_LIMIT_EXCEEDED));
+    }
+    match fixture {
         Fixture::Pseudospectral(f) => crate::cli::solve_pseudospectral::run(&f, args.json),
         Fixture::Impulsive(f) => crate::cli::solve_impulsive::run(&f, args.json),
+    }
+}
+
+fn report_refusal(name: &str, v: &LimitViolation, check_time_s: f64, json_output: bool) {
+    if json_output {
+        println!(
+            "{}",
+            json!({
+                "name": name,
+                "status": "LimitExceeded",
+                "setting": v.setting.name(),
+                "value": v.value,
+                "limit": v.limit,
+                "rule": format!("{:?}", v.rule),
+                "message": v.to_string(),
+                "check_time_s": check_time_s,
+            })
+        );
+    } else {
+        println!("{name}: refused, limit exceeded: {v}");
+        println!(
+            "  nothing was solved; limit check took {:.1} us",
+            check_time_s * 1e6
+        );
     }
 }

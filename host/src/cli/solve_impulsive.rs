@@ -2,14 +2,14 @@
 
 use crate::fixture::impulsive::ImpulsiveFixture;
 use anyhow::Result;
-use reconfig_core::impulsive::{solve, ImpulsePlan, Settings, Solution, Workspace};
+use reconfig_core::impulsive::{solve, ImpulsePlan, Solution, Workspace};
 use serde_json::json;
 use std::process::ExitCode;
 use std::time::Instant;
 
 /// Solve and report a planner-B fixture. Exit code 0 when the plan is usable, 1 otherwise.
 pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
-    let settings = Settings::default();
+    let settings = fixture.settings;
     let mut workspace = Box::new(Workspace::new());
     let mut solution = Box::new(Solution::new());
     let started = Instant::now();

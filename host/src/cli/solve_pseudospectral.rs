@@ -74,7 +74,7 @@ pub fn to_json(name: &str, timed: &Timed) -> serde_json::Value {
 
 /// Solve and report a planner-A fixture.
 pub fn run(fixture: &PseudospectralFixture, json_output: bool) -> Result<ExitCode> {
-    let timed = solve_timed(&fixture.problem, &Settings::default())?;
+    let timed = solve_timed(&fixture.problem, &fixture.settings)?;
     if json_output {
         println!(
             "{}",
