@@ -22,6 +22,10 @@ pub struct Args {
     /// still queued then is answered `Expired` without being solved.
     #[arg(long, default_value_t = 5000)]
     pub deadline_ms: u64,
+    /// Print the limits in force (the built-in ones, or `--limits FILE` over them) as a limits
+    /// file and exit.
+    #[arg(long)]
+    pub print_limits: bool,
     /// Test hook: every worker sleeps this long per request (stands in for a long solve).
     #[arg(long, default_value_t = 0, hide = true)]
     pub debug_delay_ms: u64,
@@ -29,6 +33,10 @@ pub struct Args {
 
 /// Run `reconfig serve`.
 pub fn run(args: &Args) -> Result<ExitCode> {
+    if args.print_limits {
+        print!("{}", toml::to_string(&args.limits.load()?)?);
+        return Ok(ExitCode::SUCCESS);
+    }
     let opts = service::ServiceOptions {
         instance: args.instance.clone(),
         cpus: harness::parse_cpus(&args.cpus)?,
