@@ -100,6 +100,29 @@ mod tests {
     }
 
     #[test]
+    fn limit_names_are_the_settings_names() {
+        // Every limit but the problem sizes and the search switch is named after its setting,
+        // so a limits file and a fixture's [settings] use one vocabulary.
+        let keys = |v: toml::Table| v.keys().cloned().collect::<std::collections::BTreeSet<_>>();
+        let limits = toml::Table::try_from(Limits::default()).unwrap();
+        let table = |k: &str| limits[k].as_table().unwrap().clone();
+        let a = keys(toml::Table::try_from(pseudospectral::Settings::default()).unwrap());
+        for k in keys(table("pseudospectral")) {
+            assert!(
+                a.contains(&k) || ["spacecraft", "nodes"].contains(&k.as_str()),
+                "{k}"
+            );
+        }
+        let b = keys(toml::Table::try_from(impulsive::Settings::default()).unwrap());
+        for k in keys(table("impulsive")) {
+            assert!(
+                b.contains(&k) || ["impulses", "search"].contains(&k.as_str()),
+                "{k}"
+            );
+        }
+    }
+
+    #[test]
     fn settings_tables_overlay_the_defaults() {
         let t: toml::Table = toml::from_str("search_samples = 2000000\nmin_fuel = false").unwrap();
         let s = overlay(&impulsive::Settings::default(), &t).unwrap();
