@@ -27,5 +27,6 @@
 
 pub mod capacity;
 pub mod impulsive;
+pub mod limits;
 pub mod pseudospectral;
 pub mod wire;

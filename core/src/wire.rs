@@ -101,6 +101,20 @@ pub enum Outcome {
     ImpulsiveRejected(impulsive::PlanError),
     /// The request frame could not be decoded; says what was wrong.
     BadRequest(FrameError),
+    /// The request asks for more work or less safety than the service's limits allow; nothing
+    /// was solved (see [`crate::limits`]).
+    LimitExceeded(crate::limits::LimitViolation),
+    /// The request waited in the service's queue past its deadline; nothing was solved.
+    Expired(Expiry),
+}
+
+/// How long an expired request waited and the deadline it had, in microseconds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Expiry {
+    /// Time from the service's receipt of the request to its answer, us.
+    pub queued_us: u64,
+    /// The request's deadline, counted from its receipt, us.
+    pub deadline_us: u64,
 }
 
 /// A borrowed [`Outcome`]: encodes to the same bytes without copying a solution.
@@ -116,6 +130,10 @@ pub enum OutcomeRef<'a> {
     ImpulsiveRejected(impulsive::PlanError),
     /// See [`Outcome::BadRequest`].
     BadRequest(FrameError),
+    /// See [`Outcome::LimitExceeded`].
+    LimitExceeded(crate::limits::LimitViolation),
+    /// See [`Outcome::Expired`].
+    Expired(Expiry),
 }
 
 /// Why a frame was refused. Sizes in bytes.
@@ -514,6 +532,8 @@ impl Outcome {
             Self::Impulsive(s) => OutcomeRef::Impulsive(s),
             Self::ImpulsiveRejected(e) => OutcomeRef::ImpulsiveRejected(*e),
             Self::BadRequest(e) => OutcomeRef::BadRequest(*e),
+            Self::LimitExceeded(v) => OutcomeRef::LimitExceeded(*v),
+            Self::Expired(x) => OutcomeRef::Expired(*x),
         }
     }
 }

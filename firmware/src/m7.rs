@@ -284,9 +284,14 @@ fn main() -> ! {
     // cortex-m-rt turns these into `&'static mut` references owned by `main`: the workspaces
     // and output buffers live in static memory (.bss, or .data when a `new()` is not all zero
     // bits), never on the stack.
+    // A one-planner image (cargo feature) carries only its planner's statics.
+    #[cfg(feature = "pseudospectral")]
     static mut PS_WORKSPACE: pseudospectral::Workspace = pseudospectral::Workspace::new();
+    #[cfg(feature = "pseudospectral")]
     static mut PS_SOLUTION: pseudospectral::Solution = pseudospectral::Solution::new();
+    #[cfg(feature = "impulsive")]
     static mut IM_WORKSPACE: impulsive::Workspace = impulsive::Workspace::new();
+    #[cfg(feature = "impulsive")]
     static mut IM_SOLUTION: impulsive::Solution = impulsive::Solution::new();
 
     let mut out = Out::new();
@@ -321,14 +326,18 @@ fn main() -> ! {
     );
 
     systick::start();
+    #[cfg(feature = "pseudospectral")]
     let ps_settings = pseudospectral::Settings::default();
+    #[cfg(feature = "impulsive")]
     let im_settings = impulsive::Settings::default();
+    #[cfg(feature = "impulsive")]
     let im_fixed_point_settings = impulsive::Settings::fixed_point_only();
     for (index, fixture) in FIXTURES.iter().enumerate() {
         // The inputs pass through `black_box` after the start marker and the result before the stop
         // marker, so that no part of the solve is folded away or moved out of the measured span.
         let marker = u32::try_from(index).unwrap_or(u32::MAX);
         match fixture.planner {
+            #[cfg(feature = "pseudospectral")]
             Planner::Pseudospectral => {
                 // A fresh output buffer, as the host gets; the workspace is reused on purpose
                 // (no result may depend on what an earlier solve left in it).
@@ -364,6 +373,7 @@ fn main() -> ! {
                 );
                 print_result(&mut out, index, &encoded);
             }
+            #[cfg(feature = "impulsive")]
             Planner::Impulsive | Planner::ImpulsiveFixedPoint => {
                 let im_settings = if matches!(fixture.planner, Planner::ImpulsiveFixedPoint) {
                     im_fixed_point_settings
@@ -402,6 +412,12 @@ fn main() -> ! {
                 );
                 print_result(&mut out, index, &encoded);
             }
+            // build.rs bakes only the fixtures of the planners this image carries.
+            #[allow(unreachable_patterns)]
+            _ => panic!(
+                "fixture {} is for a planner this image does not carry",
+                fixture.name
+            ),
         }
     }
     let _ = writeln!(out, "done fixtures={}", FIXTURES.len());

@@ -4,5 +4,6 @@
 pub mod cli;
 pub mod fixture;
 pub mod harness;
+pub mod limits;
 pub mod plot;
 pub mod scenario;

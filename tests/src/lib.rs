@@ -121,3 +121,4 @@ pub mod alloc_count {
         (result, allocations().saturating_sub(before))
     }
 }
+pub mod m7_record;

@@ -8,7 +8,8 @@
 //!   problem bytes the firmware baked in;
 //! * `figures_are_within_budget` checks the instructions per solve, stack high-water, RAM and
 //!   section sizes against the budgets in `fixtures/golden/m7-figures.toml`.
-//!   Regenerate the measured figures (budgets are kept) with
+//!   Every measured figure must also be within 1 % of the record (drift check); accept a new
+//!   record (budgets are kept, the docs' tables are regenerated from it) with
 //!   `RECONFIG_UPDATE_FIGURES=1 cargo test -p reconfig-tests --test qemu_firmware`.
 //! * `no_fused_multiply_add_in_the_firmware` disassembles the firmware and rejects `vfma`-family
 //!   instructions, which would break bit-identity with the host.
@@ -35,6 +36,8 @@ const TARGET: &str = "thumbv7em-none-eabihf";
 const FIGURES_FILE: &str = "fixtures/golden/m7-figures.toml";
 const UPDATE_COMMAND: &str =
     "RECONFIG_UPDATE_FIGURES=1 cargo test -p reconfig-tests --test qemu_firmware";
+/// A measured figure further than this (relative) from the record fails the drift check.
+const DRIFT_TOLERANCE: f64 = 0.01;
 
 /// Default budgets for a figure with no entry in the figures file (the on-board budgets of
 /// docs/firmware.md; a fixture's entry may set its own).
@@ -677,16 +680,51 @@ fn figures_are_within_budget() {
         );
     }
     println!("{report}");
-    if std::env::var("RECONFIG_UPDATE_FIGURES").as_deref() == Ok("1") {
+    // Every run writes what it measured beside the firmware; the record is that file accepted.
+    let measured_path = run.elf.with_file_name("m7-figures-measured.toml");
+    let _ = std::fs::write(&measured_path, &text);
+    let updating = std::env::var("RECONFIG_UPDATE_FIGURES").as_deref() == Ok("1");
+    if updating {
         std::fs::create_dir_all(path.parent().expect("has a parent")).expect("create folder");
         std::fs::write(&path, &text).unwrap_or_else(|e| panic!("{FIGURES_FILE}: {e}"));
         notice(&format!("wrote the measured figures to {FIGURES_FILE}"));
-    } else if figures.iter().any(|f| f.recorded != Some(f.measured)) {
-        notice(&format!(
-            "note: {FIGURES_FILE} does not hold the figures measured now (new fixture or changed \
-             code); regenerate with\n  {UPDATE_COMMAND}"
-        ));
+        let changed = reconfig_tests::m7_record::update_docs().expect("regenerate the docs");
+        if changed {
+            notice("regenerated the tables of docs/firmware.md from the record");
+        }
     }
+    // Drift: a figure more than 1 % away from the record (or not in it) fails, so a change
+    // toward a budget is seen when it happens, not when the budget breaks.
+    let drifted: Vec<String> = figures
+        .iter()
+        // Accepting a new record is exactly what the update run does.
+        .filter(|_| !updating)
+        .filter_map(|f| match f.recorded {
+            None => Some(format!(
+                "{}: measured {}, not in the record",
+                f.what, f.measured
+            )),
+            Some(r) if (f.measured as f64 - r as f64).abs() > DRIFT_TOLERANCE * r as f64 => {
+                Some(format!(
+                    "{}: measured {}, recorded {} ({:+.2} %)",
+                    f.what,
+                    f.measured,
+                    r,
+                    100.0 * (f.measured as f64 - r as f64) / (r as f64).max(1.0)
+                ))
+            }
+            Some(_) => None,
+        })
+        .collect();
+    assert!(
+        drifted.is_empty(),
+        "M7 figures drifted more than {:.0} % from {FIGURES_FILE}:\n{}\nIf the change is \
+         intended, accept the new record (and say why in the commit message):\n  {UPDATE_COMMAND}\n\
+         (the measured figures are in {})",
+        DRIFT_TOLERANCE * 100.0,
+        drifted.join("\n"),
+        measured_path.display()
+    );
     let over: Vec<&Figure> = figures.iter().filter(|f| f.measured > f.budget).collect();
     assert!(
         over.is_empty(),

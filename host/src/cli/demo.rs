@@ -221,6 +221,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         &[(&sequential, rep1), (&saturated, rep2)],
         args.rows,
         args.json.as_deref(),
+        &reconfig_core::limits::Limits::default(),
     )?;
     println!(
         "flight service stopped {}",

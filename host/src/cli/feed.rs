@@ -5,8 +5,8 @@ use crate::fixture::{self, Fixture};
 use crate::harness::feeder::{self, FeedOptions, FeedRun, Item, Payload};
 use crate::harness::{check, faults, report, Instance};
 use anyhow::{anyhow, Result};
+use reconfig_core::impulsive;
 use reconfig_core::wire::{Planner, Request};
-use reconfig_core::{impulsive, pseudospectral};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -61,6 +61,13 @@ pub struct Args {
     /// Print `answered SEQ` / `lost SEQ` lines as they happen.
     #[arg(long)]
     pub verbose: bool,
+    /// Deadline of each request in the service's queue, ms (default: the service's own): a
+    /// request still queued then is answered `Expired`, unsolved.
+    #[arg(long)]
+    pub deadline_ms: Option<u64>,
+    /// The service's limits file, for checking its answers locally.
+    #[command(flatten)]
+    pub limits: crate::limits::LimitsArg,
     #[command(flatten)]
     pub instance: Instance,
 }
@@ -103,7 +110,7 @@ pub fn fixture_items(paths: &[PathBuf]) -> Vec<Item> {
                     size,
                     payload: Payload::Request(Box::new(Request::Pseudospectral {
                         problem: f.problem,
-                        settings: pseudospectral::Settings::default(),
+                        settings: f.settings,
                     })),
                 });
             }
@@ -120,7 +127,7 @@ pub fn fixture_items(paths: &[PathBuf]) -> Vec<Item> {
                     size,
                     payload: Payload::Request(Box::new(Request::Impulsive {
                         problem: f.problem,
-                        settings: impulsive::Settings::default(),
+                        settings: f.settings,
                     })),
                 });
             }
@@ -147,6 +154,7 @@ pub fn conclude(
     runs: &[(&FeedRun, report::Report)],
     rows: usize,
     json: Option<&Path>,
+    limits: &reconfig_core::limits::Limits,
 ) -> Result<bool> {
     let mut all_correct = true;
     let mut results = Vec::new();
@@ -154,7 +162,7 @@ pub fn conclude(
     // One local solve per item serves every run: frames differ only in their sequence numbers.
     let expected = runs
         .first()
-        .map(|(run, _)| check::expected(run))
+        .map(|(run, _)| check::expected(run, limits))
         .unwrap_or_default();
     for (run, _) in runs {
         let verdicts = check::verify(items, run, &expected);
@@ -213,6 +221,8 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     opts.first_seq = args.first_seq;
     opts.progress = !args.quiet && !args.verbose;
     opts.verbose = args.verbose;
+    opts.deadline = args.deadline_ms.map(Duration::from_millis);
+    let limits = args.limits.load()?;
     let run = feeder::run(&items, &opts)?;
     let title = format!(
         "window {}{}, feeder {}",
@@ -230,7 +240,13 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         budget,
         (args.window > 1).then_some(args.window),
     );
-    let ok = conclude(&items, &[(&run, rep)], args.rows, args.json.as_deref())?;
+    let ok = conclude(
+        &items,
+        &[(&run, rep)],
+        args.rows,
+        args.json.as_deref(),
+        &limits,
+    )?;
     println!(
         "{}",
         if ok {

@@ -1,6 +1,7 @@
 //! One module per subcommand of `reconfig`.
 
 pub mod demo;
+pub mod fairness;
 pub mod feed;
 pub mod montecarlo;
 pub mod plot;

@@ -16,6 +16,16 @@ pub struct Args {
     pub no_pin: bool,
     #[command(flatten)]
     pub instance: Instance,
+    #[command(flatten)]
+    pub limits: crate::limits::LimitsArg,
+    /// Deadline of a request that carries none, ms after the service receives it: a request
+    /// still queued then is answered `Expired` without being solved.
+    #[arg(long, default_value_t = 5000)]
+    pub deadline_ms: u64,
+    /// Print the limits in force (the built-in ones, or `--limits FILE` over them) as a limits
+    /// file and exit.
+    #[arg(long)]
+    pub print_limits: bool,
     /// Test hook: every worker sleeps this long per request (stands in for a long solve).
     #[arg(long, default_value_t = 0, hide = true)]
     pub debug_delay_ms: u64,
@@ -23,11 +33,17 @@ pub struct Args {
 
 /// Run `reconfig serve`.
 pub fn run(args: &Args) -> Result<ExitCode> {
+    if args.print_limits {
+        print!("{}", toml::to_string(&args.limits.load()?)?);
+        return Ok(ExitCode::SUCCESS);
+    }
     let opts = service::ServiceOptions {
         instance: args.instance.clone(),
         cpus: harness::parse_cpus(&args.cpus)?,
         no_pin: args.no_pin,
         delay: Duration::from_millis(args.debug_delay_ms),
+        limits: args.limits.load()?,
+        default_deadline: Duration::from_millis(args.deadline_ms),
     };
     service::run(&opts)?;
     Ok(ExitCode::SUCCESS)

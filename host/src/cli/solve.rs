@@ -1,9 +1,16 @@
-//! `reconfig solve FILE [--json]`: solve one fixture of either planner and report.
+//! `reconfig solve FILE [--json] [--limits FILE]`: solve one fixture of either planner and
+//! report. The fixture's `[settings]` (over the defaults) are checked against the same limits
+//! as the flight service's (`reconfig_core::limits`) before anything is solved.
 
 use crate::fixture::{self, Fixture};
+use crate::limits::LimitsArg;
 use anyhow::Result;
+use reconfig_core::limits::LimitViolation;
+use reconfig_core::wire::Request;
+use serde_json::json;
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::time::Instant;
 
 /// Exit code: the plan is usable (its status is `Solved`).
 pub const EXIT_USABLE: u8 = 0;
@@ -17,7 +24,8 @@ pub const EXIT_REJECTED: u8 = 2;
 #[command(
     after_help = "Exit codes (both planners): 0 the plan is usable (status Solved); \
 1 the planner ran and the plan is not usable (any other status: it is still printed); \
-2 the input was rejected (fixture unreadable or invalid, or the planner's PlanError)."
+2 the input was rejected (fixture unreadable or invalid, the planner's PlanError, or a setting \
+outside the limits, which is named)."
 )]
 pub struct Args {
     /// Fixture file (TOML).
@@ -25,13 +33,60 @@ pub struct Args {
     /// Print one JSON object instead of the readable report.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub limits: LimitsArg,
 }
 
 /// Run `reconfig solve`. Exit codes [`EXIT_USABLE`], [`EXIT_NOT_USABLE`], [`EXIT_REJECTED`]
 /// (a fixture that does not load is an error, which `main` turns into 2 as well).
 pub fn run(args: &Args) -> Result<ExitCode> {
-    match fixture::load(&args.file)? {
+    let limits = args.limits.load()?;
+    let fixture = fixture::load(&args.file)?;
+    // The very check the service's workers run, on the request the service would receive.
+    let request = match &fixture {
+        Fixture::Pseudospectral(f) => Request::Pseudospectral {
+            problem: f.problem.clone(),
+            settings: f.settings,
+        },
+        Fixture::Impulsive(f) => Request::Impulsive {
+            problem: f.problem.clone(),
+            settings: f.settings,
+        },
+    };
+    let started = Instant::now();
+    let checked = limits.check(&request);
+    let check_time_s = started.elapsed().as_secs_f64();
+    if let Err(violation) = checked {
+        report_refusal(fixture.name(), &violation, check_time_s, args.json);
+        // A refusal by the limits is a rejected input: the one convention of both planners.
+        return Ok(ExitCode::from(EXIT_REJECTED));
+    }
+    match fixture {
         Fixture::Pseudospectral(f) => crate::cli::solve_pseudospectral::run(&f, args.json),
         Fixture::Impulsive(f) => crate::cli::solve_impulsive::run(&f, args.json),
+    }
+}
+
+fn report_refusal(name: &str, v: &LimitViolation, check_time_s: f64, json_output: bool) {
+    if json_output {
+        println!(
+            "{}",
+            json!({
+                "name": name,
+                "status": "LimitExceeded",
+                "setting": v.setting.name(),
+                "value": v.value,
+                "limit": v.limit,
+                "rule": format!("{:?}", v.rule),
+                "message": v.to_string(),
+                "check_time_s": check_time_s,
+            })
+        );
+    } else {
+        println!("{name}: refused, limit exceeded: {v}");
+        println!(
+            "  nothing was solved; limit check took {:.1} us",
+            check_time_s * 1e6
+        );
     }
 }

@@ -3,7 +3,7 @@
 use crate::cli::solve::{EXIT_NOT_USABLE, EXIT_REJECTED, EXIT_USABLE};
 use crate::fixture::impulsive::ImpulsiveFixture;
 use anyhow::Result;
-use reconfig_core::impulsive::{solve, ImpulsePlan, Settings, Solution, Workspace};
+use reconfig_core::impulsive::{solve, ImpulsePlan, Solution, Workspace};
 use serde_json::json;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -11,7 +11,7 @@ use std::time::Instant;
 /// Solve and report a planner-B fixture. Exit code 0 when the plan is usable, 1 when it is not,
 /// 2 when the planner rejects the input.
 pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
-    let settings = Settings::default();
+    let settings = fixture.settings;
     let mut workspace = Box::new(Workspace::new());
     let mut solution = Box::new(Solution::new());
     let started = Instant::now();

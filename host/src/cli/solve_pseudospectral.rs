@@ -83,7 +83,7 @@ pub fn to_json(name: &str, timed: &Timed) -> serde_json::Value {
 /// Solve and report a planner-A fixture. Exit code 0 when the plan is usable, 1 when it is not,
 /// 2 when the planner rejects the input.
 pub fn run(fixture: &PseudospectralFixture, json_output: bool) -> Result<ExitCode> {
-    let timed = match solve_or_reject(&fixture.problem, &Settings::default()) {
+    let timed = match solve_or_reject(&fixture.problem, &fixture.settings) {
         Ok(t) => t,
         Err(err) => {
             // Same shape and exit code as planner B's rejection.

@@ -4,6 +4,7 @@
 
 use super::feeder::{Fate, FeedRun, Item};
 use super::worker::{local_outcome, Worker};
+use reconfig_core::limits::Limits;
 use reconfig_core::wire::{self, Outcome};
 
 /// The verdict on one item.
@@ -22,9 +23,10 @@ pub struct Verdict {
 }
 
 /// Local expected outcomes, one per record of `run`, solved on up to two threads (each with its
-/// own worker). Any run of the same items gives the same outcomes: the body of a response does
-/// not contain the sequence number.
-pub fn expected(run: &FeedRun) -> Vec<Vec<u8>> {
+/// own worker, checking the service's `limits`). Any run of the same items gives the same
+/// outcomes: the body of a response does not contain the sequence number.
+pub fn expected(run: &FeedRun, limits: &Limits) -> Vec<Vec<u8>> {
+    let limits = *limits;
     let threads = super::affinity::available_cpus().clamp(1, 2);
     let chunk = run.records.len().div_ceil(threads).max(1);
     std::thread::scope(|scope| {
@@ -36,6 +38,7 @@ pub fn expected(run: &FeedRun) -> Vec<Vec<u8>> {
                     .stack_size(super::worker::WORKER_STACK_BYTES)
                     .spawn_scoped(scope, move || {
                         let mut worker = Worker::new();
+                        worker.limits = limits;
                         records
                             .iter()
                             .map(|r| local_outcome(&mut worker, &r.frame))
@@ -77,7 +80,14 @@ pub fn verify(items: &[Item], run: &FeedRun, expected: &[Vec<u8>]) -> Vec<Verdic
                         Err(e) => v.reason = format!("undecodable outcome: {e}"),
                     }
                     let want = expected.get(record.index).map(Vec::as_slice);
-                    if v.outcome.is_some() && want == Some(body.as_slice()) {
+                    if let Some(Outcome::Expired(x)) = &v.outcome {
+                        // Truthful, but not a plan: the request waited past its deadline.
+                        v.reason = format!(
+                            "expired in the service's queue after {:.1} ms (deadline {:.1} ms), not solved",
+                            x.queued_us as f64 / 1e3,
+                            x.deadline_us as f64 / 1e3
+                        );
+                    } else if v.outcome.is_some() && want == Some(body.as_slice()) {
                         v.correct = true;
                     } else if v.outcome.is_some() {
                         v.reason = "differs from a local solve of the same request".into();

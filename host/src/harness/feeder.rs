@@ -57,6 +57,11 @@ pub struct FeedOptions {
     pub progress: bool,
     /// Print `answered SEQ` / `lost SEQ` lines on stdout as they happen.
     pub verbose: bool,
+    /// Each request's deadline in the service's queue (None: the service's default).
+    pub deadline: Option<Duration>,
+    /// Send nothing new after this long; items not sent by then are dropped from the run (for
+    /// runs of a fixed duration over a long list of items).
+    pub stop_after: Option<Duration>,
 }
 
 impl FeedOptions {
@@ -72,6 +77,8 @@ impl FeedOptions {
             first_seq: 1,
             progress: false,
             verbose: false,
+            deadline: None,
+            stop_after: None,
         }
     }
 }
@@ -141,7 +148,7 @@ pub struct FeedRun {
     pub elapsed: Duration,
 }
 
-type Pending = PendingResponse<ipc::Service, [u8], (), [u8], ()>;
+type Pending = PendingResponse<ipc::Service, [u8], super::service::RequestHeader, [u8], ()>;
 
 struct InFlight {
     index: usize,
@@ -192,6 +199,7 @@ pub fn run(items: &[Item], opts: &FeedOptions) -> Result<FeedRun> {
     let rpc = wait_for(opts.wait_service, || {
         node.service_builder(&inst.service_name("rpc")?)
             .request_response::<[u8], [u8]>()
+            .request_user_header::<super::service::RequestHeader>()
             .open()
             .map_err(|e| anyhow!("{e:?}"))
     })
@@ -354,6 +362,11 @@ pub fn run(items: &[Item], opts: &FeedOptions) -> Result<FeedRun> {
             }
         }
         // 3. Send.
+        if opts.stop_after.is_some_and(|d| started.elapsed() >= d) && next < items.len() {
+            // Items are sent in order, so the unsent ones are the tail.
+            records.truncate(next);
+            next = items.len();
+        }
         while in_flight.len() < window && next < items.len() {
             let now = Instant::now();
             if period.is_some() && now < next_send {
@@ -378,9 +391,13 @@ pub fn run(items: &[Item], opts: &FeedOptions) -> Result<FeedRun> {
                 }
             }
             let record = &records[next];
-            let request = client
+            let mut request = client
                 .loan_slice_uninit(record.frame.len())
                 .map_err(|e| anyhow!("cannot loan request: {e:?}"))?;
+            // 0 asks for the service's default deadline.
+            *request.user_header_mut() = opts.deadline.map_or(0, |d| {
+                u64::try_from(d.as_micros()).unwrap_or(u64::MAX).max(1)
+            });
             let sent_at = Instant::now();
             let pending = request
                 .write_from_slice(&record.frame)

@@ -14,6 +14,7 @@ pub mod check;
 pub mod faults;
 pub mod feeder;
 pub mod report;
+pub mod schedule;
 pub mod service;
 pub mod worker;
 

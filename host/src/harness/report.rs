@@ -63,7 +63,23 @@ pub struct Report {
     pub throughput: Option<Throughput>,
     /// Counters of the run.
     pub counters: super::feeder::Counters,
+    /// Every request whose round trip exceeded the budget, by name, in the order sent.
+    pub over_budget: Vec<OverBudget>,
 }
+
+/// A request over the budget.
+#[derive(Clone, Debug, Serialize)]
+pub struct OverBudget {
+    /// The item's label (fixture or scenario name).
+    pub label: String,
+    /// Round trip, us.
+    pub rtt_us: f64,
+    /// The solve alone, us.
+    pub solve_us: f64,
+}
+
+/// Most over-budget requests [`print`] names (the JSON holds all).
+const OVER_BUDGET_PRINTED: usize = 20;
 
 struct Group {
     solve: Histogram<u64>,
@@ -131,6 +147,7 @@ pub fn build(
     let budget_ns = budget.as_nanos() as u64;
     let mut by_size: BTreeMap<(String, String), Group> = BTreeMap::new();
     let mut by_planner: BTreeMap<String, Group> = BTreeMap::new();
+    let mut over_budget = Vec::new();
     for record in &run.records {
         let Fate::Answered {
             rtt_ns, solve_ns, ..
@@ -139,6 +156,13 @@ pub fn build(
             continue;
         };
         let item = &items[record.index];
+        if rtt_ns > budget_ns {
+            over_budget.push(OverBudget {
+                label: item.label.clone(),
+                rtt_us: rtt_ns as f64 / 1e3,
+                solve_us: solve_ns as f64 / 1e3,
+            });
+        }
         let planner = planner_name(item);
         by_size
             .entry((planner.clone(), item.size.clone()))
@@ -173,6 +197,7 @@ pub fn build(
         rows,
         throughput,
         counters: run.counters.clone(),
+        over_budget,
     }
 }
 
@@ -218,9 +243,76 @@ pub fn print(report: &Report) {
             t.requests, t.seconds, t.per_second, t.window
         );
     }
+    if !report.over_budget.is_empty() {
+        println!(
+            "over the {} ms budget ({} requests):",
+            report.budget_ms,
+            report.over_budget.len()
+        );
+        for o in report.over_budget.iter().take(OVER_BUDGET_PRINTED) {
+            println!(
+                "    {}: rtt {:.1} ms (solve {:.1} ms)",
+                o.label,
+                o.rtt_us / 1e3,
+                o.solve_us / 1e3
+            );
+        }
+        if report.over_budget.len() > OVER_BUDGET_PRINTED {
+            println!(
+                "    ... and {} more (all in the JSON report)",
+                report.over_budget.len() - OVER_BUDGET_PRINTED
+            );
+        }
+    }
     let c = &report.counters;
     println!(
         "sent {} answered {} lost {} late {} duplicated {} malformed {} not-sent {}",
         c.sent, c.answered, c.lost, c.late, c.duplicated, c.malformed, c.not_sent
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::harness::feeder::{Counters, Payload, Record};
+
+    #[test]
+    fn requests_over_the_budget_are_named() {
+        let item = |label: &str| Item {
+            label: label.into(),
+            planner: None,
+            size: "x".into(),
+            payload: Payload::Raw(Vec::new()),
+        };
+        let items = [item("fast"), item("slow"), item("lost")];
+        let answered = |index: usize, ms: u64| Record {
+            index,
+            seq: index as u64,
+            frame: Vec::new(),
+            fate: Fate::Answered {
+                rtt_ns: ms * 1_000_000,
+                solve_ns: ms * 900_000,
+                body: Vec::new(),
+            },
+        };
+        let run = FeedRun {
+            records: vec![
+                answered(0, 5),
+                answered(1, 150),
+                Record {
+                    index: 2,
+                    seq: 2,
+                    frame: Vec::new(),
+                    fate: Fate::Lost,
+                },
+            ],
+            counters: Counters::default(),
+            elapsed: Duration::from_secs(1),
+        };
+        let r = build("t", &items, &run, Duration::from_millis(100), None);
+        assert_eq!(r.over_budget.len(), 1);
+        assert_eq!(r.over_budget[0].label, "slow");
+        assert!((r.over_budget[0].rtt_us - 150_000.0).abs() < 1e-6);
+        assert!((r.over_budget[0].solve_us - 135_000.0).abs() < 1e-6);
+    }
 }

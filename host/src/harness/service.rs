@@ -1,9 +1,10 @@
 //! `reconfig serve`: the flight service.
 //!
 //! One dispatcher thread owns every iceoryx2 port. It blocks in a `WaitSet` on the
-//! `to-service` event (no busy spinning). On a wake-up it hands finished jobs' responses back
-//! over iceoryx2, then takes new requests from the server port only while a worker is free, so
-//! a request waits in iceoryx2's queue, not in ours, and each is dispatched to a free worker.
+//! `to-service` event (no busy spinning), or until the earliest queued deadline. On a wake-up it
+//! hands finished jobs' responses back over iceoryx2, moves every new request into its
+//! per-client queues ([`Scheduler`]), answers the requests past their deadline `Expired`
+//! unsolved, and hands the next requests to the free workers, clients in turn (round-robin).
 //!
 //! Each worker is a thread pinned to one CPU of the set, with its own [`Worker`] (workspaces)
 //! and one job buffer that travels dispatcher -> worker -> dispatcher over bounded channels;
@@ -13,14 +14,20 @@
 //! SIGTERM / SIGINT end the `WaitSet` wait; the service then finishes jobs in progress, answers
 //! them, drops its ports and node (which removes its shared memory) and exits 0.
 
+use super::schedule::Scheduler;
 use super::worker::{Worker, WORKER_STACK_BYTES};
 use super::{affinity, Instance, MAX_CLIENTS, MAX_IN_FLIGHT};
 use anyhow::{anyhow, Context, Result};
 use iceoryx2::active_request::ActiveRequest;
+use iceoryx2::identifiers::UniqueClientId;
 use iceoryx2::prelude::*;
+use iceoryx2::waitset::WaitSetRunResult;
+use reconfig_core::limits::Limits;
+use reconfig_core::wire::{Expiry, OutcomeRef};
 use reconfig_core::wire::{REQUEST_MAX_BYTES, RESPONSE_MAX_BYTES};
 use std::sync::mpsc::{sync_channel, Receiver, SyncSender, TryRecvError};
 use std::time::Duration;
+use std::time::Instant;
 
 /// Options of the flight service.
 #[derive(Clone, Debug)]
@@ -33,6 +40,10 @@ pub struct ServiceOptions {
     pub no_pin: bool,
     /// Test hook: each worker sleeps this long per request.
     pub delay: Duration,
+    /// Limits every request is checked against before it is solved.
+    pub limits: Limits,
+    /// Deadline of a request that does not carry its own (counted from its receipt).
+    pub default_deadline: Duration,
 }
 
 /// A request travelling to a worker and its response travelling back. Built once per worker.
@@ -95,15 +106,31 @@ pub fn worker_loop(
     }
 }
 
-type Active = ActiveRequest<ipc::Service, [u8], (), [u8], ()>;
+type Active = ActiveRequest<ipc::Service, [u8], RequestHeader, [u8], ()>;
 
 type Rpc = iceoryx2::service::port_factory::request_response::PortFactory<
     ipc::Service,
     [u8],
-    (),
+    RequestHeader,
     [u8],
     (),
 >;
+
+/// The iceoryx2 user header of a request: its deadline in microseconds after the service
+/// receives it; 0 asks for the service's default (`serve --deadline-ms`).
+pub type RequestHeader = u64;
+
+/// Longest blocking wait of the dispatcher when nothing is queued (it wakes on every event).
+const IDLE_WAIT: Duration = Duration::from_secs(3600);
+
+/// A request's deadline after receipt: its own, else the service's default.
+fn request_deadline(header_us: RequestHeader, default: Duration) -> Duration {
+    if header_us == 0 {
+        default
+    } else {
+        Duration::from_micros(header_us)
+    }
+}
 
 /// Run the flight service until SIGTERM / SIGINT. Prints one `ready` line on stdout when it
 /// accepts requests.
@@ -118,6 +145,7 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
     let rpc: Rpc = node
         .service_builder(&inst.service_name("rpc")?)
         .request_response::<[u8], [u8]>()
+        .request_user_header::<RequestHeader>()
         .max_clients(MAX_CLIENTS)
         .max_servers(2)
         .max_active_requests_per_client(MAX_IN_FLIGHT)
@@ -173,6 +201,7 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
         let worker_instance = inst.clone();
         let no_pin = opts.no_pin;
         let delay = opts.delay;
+        let limits = opts.limits;
         let (ready_tx, ready_rx) = sync_channel::<Result<(), String>>(1);
         let handle = std::thread::Builder::new()
             .name(format!("worker-{index}-cpu{cpu}"))
@@ -189,6 +218,7 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
                 });
                 let mut worker = Worker::new();
                 worker.delay = delay;
+                worker.limits = limits;
                 warm_up(&rx);
                 let (wake, pinned) = match wake {
                     Ok(w) => (Some(w), Ok(())),
@@ -220,9 +250,11 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
         .attach_notification(&listener)
         .map_err(|e| anyhow!("cannot attach listener: {e:?}"))?;
 
+    let default_deadline = opts.default_deadline;
     let mut in_flight: Vec<Option<Active>> = (0..workers).map(|_| None).collect();
+    let mut queue: Scheduler<UniqueClientId, Active> = Scheduler::new(MAX_CLIENTS, MAX_IN_FLIGHT);
     let mut answered: u64 = 0;
-    let mut failed: Option<anyhow::Error> = None;
+    let mut expired: u64 = 0;
     println!(
         "ready: service {} prefix {} workers {} cpus {:?}",
         inst.service, inst.prefix, workers, opts.cpus
@@ -231,94 +263,128 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
     let _ = std::io::stdout().flush();
     let allocations_at_start = super::alloc_count::allocations();
 
-    let mut pump =
-        |in_flight: &mut Vec<Option<_>>, free: &mut Vec<Option<Box<Job>>>| -> Result<()> {
-            // Finished jobs first: send their responses, free their workers.
-            loop {
-                match done_rx.try_recv() {
-                    Ok(job) => {
-                        let index = job.worker;
-                        if let Some(active) = in_flight.get_mut(index).and_then(Option::take) {
-                            send_response(&active, &job);
-                            answered += 1;
-                            let _ = notifier.notify();
-                        }
-                        if let Some(slot) = free.get_mut(index) {
-                            *slot = Some(job);
-                        }
+    let mut pump = |in_flight: &mut Vec<Option<Active>>,
+                    free: &mut Vec<Option<Box<Job>>>,
+                    queue: &mut Scheduler<UniqueClientId, Active>|
+     -> Result<()> {
+        // 1. Finished jobs: send their responses, free their workers.
+        loop {
+            match done_rx.try_recv() {
+                Ok(job) => {
+                    let index = job.worker;
+                    if let Some(active) = in_flight.get_mut(index).and_then(Option::take) {
+                        send_response(&active, &job);
+                        answered += 1;
+                        let _ = notifier.notify();
                     }
-                    Err(TryRecvError::Empty) => break,
-                    Err(TryRecvError::Disconnected) => return Err(anyhow!("a worker has died")),
-                }
-            }
-            // Then new requests, only while a worker is free.
-            for index in 0..free.len() {
-                let Some(slot) = free.get_mut(index) else {
-                    break;
-                };
-                if slot.is_none() {
-                    continue;
-                }
-                let active = match server.receive() {
-                    Ok(Some(active)) => active,
-                    Ok(None) => break,
-                    Err(e) => {
-                        // A broken connection to one feeder must not stop the service.
-                        eprintln!("serve: receive failed: {e:?}");
-                        break;
+                    if let Some(slot) = free.get_mut(index) {
+                        *slot = Some(job);
                     }
-                };
-                let Some(mut job) = slot.take() else { break };
-                let bytes = active.payload();
-                let len = bytes.len().min(job.request.len());
-                if let (Some(dst), Some(src)) = (job.request.get_mut(..len), bytes.get(..len)) {
-                    dst.copy_from_slice(src);
                 }
-                // A request longer than the largest frame keeps its true length, so the decoder
-                // reports it as oversized rather than as a truncated frame.
-                job.request_len = if bytes.len() > job.request.len() {
-                    job.request.len() + 1
-                } else {
-                    len
-                };
-                if job.request_len > job.request.len() {
-                    oversized_answer(&active, bytes.len());
-                    answered += 1;
-                    let _ = notifier.notify();
-                    *slot = Some(job);
-                    continue;
-                }
-                if let Some(tx) = job_txs.get(index) {
-                    tx.send(job)
-                        .map_err(|_| anyhow!("worker {index} has died"))?;
-                }
-                if let Some(f) = in_flight.get_mut(index) {
-                    *f = Some(active);
-                }
-            }
-            Ok(())
-        };
-
-    let outcome = waitset.wait_and_process(|id| {
-        if id.has_event_from(&guard) {
-            // Consume the notifications, then serve everything that is there.
-            let _ = listener.try_wait(|_| {});
-            if let Err(e) = pump(&mut in_flight, &mut free) {
-                failed = Some(e);
-                return CallbackProgression::Stop;
+                Err(TryRecvError::Empty) => break,
+                Err(TryRecvError::Disconnected) => return Err(anyhow!("a worker has died")),
             }
         }
-        CallbackProgression::Continue
-    });
+        // 2. Everything iceoryx2 holds moves to the per-client queues (bounded by iceoryx2's
+        // MAX_CLIENTS x MAX_IN_FLIGHT), so clients can be served in turn.
+        loop {
+            let active = match server.receive() {
+                Ok(Some(active)) => active,
+                Ok(None) => break,
+                Err(e) => {
+                    // A broken connection to one feeder must not stop the service.
+                    eprintln!("serve: receive failed: {e:?}");
+                    break;
+                }
+            };
+            let len = active.payload().len();
+            if len > REQUEST_MAX_BYTES {
+                oversized_answer(&active, len);
+                answered += 1;
+                let _ = notifier.notify();
+                continue;
+            }
+            let now = Instant::now();
+            let deadline = now + request_deadline(*active.user_header(), default_deadline);
+            queue.push(active.origin(), active, now, deadline);
+        }
+        // 3. Requests past their deadline are answered without being solved.
+        let now = Instant::now();
+        queue.take_expired(now, |q| {
+            expired_answer(&q, now);
+            answered += 1;
+            expired += 1;
+            let _ = notifier.notify();
+        });
+        // 4. Free workers take the next request, clients in turn.
+        for index in 0..free.len() {
+            let Some(slot) = free.get_mut(index) else {
+                break;
+            };
+            if slot.is_none() {
+                continue;
+            }
+            let Some(q) = queue.pop() else { break };
+            let Some(mut job) = slot.take() else { break };
+            let bytes = q.item.payload();
+            let len = bytes.len().min(job.request.len());
+            if let (Some(dst), Some(src)) = (job.request.get_mut(..len), bytes.get(..len)) {
+                dst.copy_from_slice(src);
+            }
+            job.request_len = len;
+            if let Some(tx) = job_txs.get(index) {
+                tx.send(job)
+                    .map_err(|_| anyhow!("worker {index} has died"))?;
+            }
+            if let Some(f) = in_flight.get_mut(index) {
+                *f = Some(q.item);
+            }
+        }
+        Ok(())
+    };
+
+    // Wait for a wake-up or the next queued deadline, whichever comes first; then pump.
+    let mut failed: Option<anyhow::Error> = None;
+    let outcome = loop {
+        let timeout = queue
+            .next_deadline()
+            .map_or(IDLE_WAIT, |d| d.saturating_duration_since(Instant::now()))
+            .min(IDLE_WAIT);
+        let result = waitset.wait_and_process_once_with_timeout(
+            |id| {
+                if id.has_event_from(&guard) {
+                    // Consume the notifications; the pump below serves everything there is.
+                    let _ = listener.try_wait(|_| {});
+                }
+                CallbackProgression::Continue
+            },
+            timeout,
+        );
+        match result {
+            Ok(WaitSetRunResult::TerminationRequest | WaitSetRunResult::Interrupt) => break result,
+            Ok(_) => {}
+            Err(_) => break result,
+        }
+        if let Err(e) = pump(&mut in_flight, &mut free, &mut queue) {
+            failed = Some(e);
+            break Ok(WaitSetRunResult::StopRequest);
+        }
+    };
     if let Some(e) = failed {
         return Err(e);
     }
     let outcome = outcome.map_err(|e| anyhow!("waitset failed: {e:?}"))?;
     let allocations = super::alloc_count::allocations() - allocations_at_start;
-    eprintln!("serve: stopping ({outcome:?}); finishing jobs in progress");
-    // Finish what the workers hold; answer it.
-    let deadline = std::time::Instant::now() + Duration::from_secs(10);
-    while in_flight.iter().any(Option::is_some) && std::time::Instant::now() < deadline {
+    eprintln!(
+        "serve: stopping ({outcome:?}); finishing jobs in progress, {} queued requests are \
+         not answered",
+        queue.len()
+    );
+    // Queued requests are dropped unanswered (their clients see them lost, as on a crash);
+    // what the workers hold is finished and answered.
+    queue.drain(drop);
+    let deadline = Instant::now() + Duration::from_secs(10);
+    while in_flight.iter().any(Option::is_some) && Instant::now() < deadline {
         let _ = listener.timed_wait(|_| {}, Duration::from_millis(50));
         while let Ok(job) = done_rx.try_recv() {
             if let Some(active) = in_flight.get_mut(job.worker).and_then(Option::take) {
@@ -333,7 +399,7 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
         let _ = h.join();
     }
     eprintln!(
-        "serve: answered {answered} requests; heap allocations in the process after start-up: \
+        "serve: answered {answered} requests ({expired} expired in the queue); heap allocations in the process after start-up: \
          {allocations} (iceoryx2 and WaitSet on the dispatcher; the workers make none)"
     );
     Ok(())
@@ -375,6 +441,20 @@ fn send_bytes(active: &Active, bytes: &[u8]) {
         }
         Err(e) => eprintln!("serve: cannot loan a response: {e:?}"),
     }
+}
+
+/// Answer a request that waited in the queue past its deadline, without solving it.
+fn expired_answer(q: &super::schedule::Queued<Active>, now: Instant) {
+    let seq = reconfig_core::wire::peek_request_seq(q.item.payload()).unwrap_or(0);
+    let micros = |d: Duration| u64::try_from(d.as_micros()).unwrap_or(u64::MAX);
+    let expiry = Expiry {
+        queued_us: micros(now.saturating_duration_since(q.received)),
+        deadline_us: micros(q.deadline.saturating_duration_since(q.received)),
+    };
+    let mut buf = [0u8; 256];
+    let n = reconfig_core::wire::encode_response(seq, 0, &OutcomeRef::Expired(expiry), &mut buf)
+        .unwrap_or(0);
+    send_bytes(&q.item, buf.get(..n).unwrap_or(&[]));
 }
 
 /// Answer a request longer than the largest frame without copying it to a worker.

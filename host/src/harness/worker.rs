@@ -2,6 +2,7 @@
 //! the response frame. After [`Worker::new`] nothing here allocates (see the counting-allocator
 //! test `harness_alloc`).
 
+use reconfig_core::limits::Limits;
 use reconfig_core::wire::{self, Outcome, OutcomeRef, Request};
 use reconfig_core::{impulsive, pseudospectral};
 use std::time::Instant;
@@ -16,6 +17,8 @@ pub struct Worker {
     ps_solution: Box<pseudospectral::Solution>,
     imp_workspace: Box<impulsive::Workspace>,
     imp_solution: Box<impulsive::Solution>,
+    /// The service's limits: a request outside them is answered `LimitExceeded` unsolved.
+    pub limits: Limits,
     /// Test hook: sleep this long per request (a stand-in for a long solve in fault tests).
     pub delay: std::time::Duration,
 }
@@ -34,6 +37,7 @@ impl Worker {
             ps_solution: Box::new(pseudospectral::Solution::new()),
             imp_workspace: Box::new(impulsive::Workspace::new()),
             imp_solution: Box::new(impulsive::Solution::new()),
+            limits: Limits::default(),
             delay: std::time::Duration::ZERO,
         }
     }
@@ -50,6 +54,11 @@ impl Worker {
             std::thread::sleep(self.delay);
         }
         let start = Instant::now();
+        // Before any solve: a request outside the limits is refused, never clamped.
+        if let Err(violation) = self.limits.check(&frame.request) {
+            let ns = elapsed_ns(start);
+            return encode(frame.seq, ns, &OutcomeRef::LimitExceeded(violation), out);
+        }
         match &frame.request {
             Request::Pseudospectral { problem, settings } => {
                 // A fresh output buffer per solve: a rejected request leaves `out` untouched,
@@ -143,6 +152,22 @@ pub fn summarize(outcome: &Outcome) -> (String, String, String, String) {
         }
         Outcome::BadRequest(e) => (
             format!("bad request: {e}"),
+            "-".into(),
+            "-".into(),
+            "-".into(),
+        ),
+        Outcome::LimitExceeded(v) => (
+            format!("limit exceeded: {v}"),
+            "-".into(),
+            "-".into(),
+            "-".into(),
+        ),
+        Outcome::Expired(x) => (
+            format!(
+                "expired: queued {:.1} ms, deadline {:.1} ms",
+                x.queued_us as f64 / 1e3,
+                x.deadline_us as f64 / 1e3
+            ),
             "-".into(),
             "-".into(),
             "-".into(),

@@ -1,0 +1,139 @@
+//! Limits files (`serve --limits FILE`, `solve --limits FILE`, `feed --limits FILE`) and
+//! fixture `[settings]` tables, both read as partial TOML tables over the core's defaults.
+//!
+//! A limits file has a `[pseudospectral]` and an `[impulsive]` table whose keys are the fields
+//! of `reconfig_core::limits::{pseudospectral, impulsive}::Limits` (the settings' own names);
+//! keys left out keep the built-in limit. Unknown keys are an error.
+
+use anyhow::{anyhow, Context, Result};
+use reconfig_core::limits::Limits;
+use serde::de::DeserializeOwned;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+
+/// `--limits FILE` of the commands that apply limits.
+#[derive(Clone, Debug, Default, clap::Args)]
+pub struct LimitsArg {
+    /// Limits file (TOML; default: the built-in limits, docs/harness.md). A request outside
+    /// them is refused with `LimitExceeded`, naming the setting, its value and the limit.
+    #[arg(long = "limits", value_name = "FILE")]
+    pub limits: Option<PathBuf>,
+}
+
+impl LimitsArg {
+    /// The limits from the file, or the built-in ones.
+    ///
+    /// # Errors
+    /// The file cannot be read or does not parse.
+    pub fn load(&self) -> Result<Limits> {
+        self.limits.as_deref().map_or(Ok(Limits::default()), load)
+    }
+}
+
+/// Read a limits file.
+///
+/// # Errors
+/// The file cannot be read, is not TOML, or has an unknown key or a wrong type.
+pub fn load(path: &Path) -> Result<Limits> {
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("cannot read limits file {}", path.display()))?;
+    parse(&text).with_context(|| format!("in limits file {}", path.display()))
+}
+
+/// Parse limits text.
+///
+/// # Errors
+/// Not TOML, an unknown key or a wrong type.
+pub fn parse(text: &str) -> Result<Limits> {
+    toml::from_str(text).map_err(|e| anyhow!("{e}"))
+}
+
+/// The built-in limits as a TOML file (every key), for documentation and as a template.
+///
+/// # Errors
+/// Never in practice (the limits are plain numbers and flags).
+pub fn default_toml() -> Result<String> {
+    Ok(toml::to_string(&Limits::default())?)
+}
+
+/// Overlay a partial `[settings]` table on `defaults`: every key must be a field of `T` (the
+/// core's setting names), and keys left out keep the default.
+///
+/// # Errors
+/// An unknown key (named) or a value of the wrong type.
+pub fn overlay<T: Serialize + DeserializeOwned>(defaults: &T, table: &toml::Table) -> Result<T> {
+    let mut merged = toml::Table::try_from(defaults).context("cannot tabulate the defaults")?;
+    for (key, value) in table {
+        if !merged.contains_key(key) {
+            let known: Vec<&str> = merged.keys().map(String::as_str).collect();
+            return Err(anyhow!(
+                "unknown setting {key:?} in [settings]; known: {}",
+                known.join(", ")
+            ));
+        }
+        merged.insert(key.clone(), value.clone());
+    }
+    merged
+        .try_into()
+        .map_err(|e| anyhow!("bad value in [settings]: {e}"))
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+    use reconfig_core::{impulsive, pseudospectral};
+
+    #[test]
+    fn partial_files_keep_the_rest_and_unknown_keys_fail() {
+        let l = parse("[impulsive]\nsearch_samples = 500\n").unwrap();
+        assert_eq!(l.impulsive.search_samples, 500);
+        assert_eq!(l.pseudospectral, Limits::default().pseudospectral);
+        assert_eq!(
+            l.impulsive.fixed_point_max_iter,
+            Limits::default().impulsive.fixed_point_max_iter
+        );
+        assert!(parse("[impulsive]\nsearch_sample = 500\n").is_err());
+        assert!(parse("[pseudospectral]\nsqp_max_iter = -1\n").is_err());
+        let round = parse(&default_toml().unwrap()).unwrap();
+        assert_eq!(round, Limits::default());
+    }
+
+    #[test]
+    fn limit_names_are_the_settings_names() {
+        // Every limit but the problem sizes and the search switch is named after its setting,
+        // so a limits file and a fixture's [settings] use one vocabulary.
+        let keys = |v: toml::Table| v.keys().cloned().collect::<std::collections::BTreeSet<_>>();
+        let limits = toml::Table::try_from(Limits::default()).unwrap();
+        let table = |k: &str| limits[k].as_table().unwrap().clone();
+        let a = keys(toml::Table::try_from(pseudospectral::Settings::default()).unwrap());
+        for k in keys(table("pseudospectral")) {
+            assert!(
+                a.contains(&k) || ["spacecraft", "nodes"].contains(&k.as_str()),
+                "{k}"
+            );
+        }
+        let b = keys(toml::Table::try_from(impulsive::Settings::default()).unwrap());
+        for k in keys(table("impulsive")) {
+            assert!(
+                b.contains(&k) || ["impulses", "search"].contains(&k.as_str()),
+                "{k}"
+            );
+        }
+    }
+
+    #[test]
+    fn settings_tables_overlay_the_defaults() {
+        let t: toml::Table = toml::from_str("search_samples = 2000000\nmin_fuel = false").unwrap();
+        let s = overlay(&impulsive::Settings::default(), &t).unwrap();
+        assert_eq!(s.search_samples, 2_000_000);
+        assert!(!s.min_fuel);
+        assert_eq!(
+            s.kepler_max_iter,
+            impulsive::Settings::default().kepler_max_iter
+        );
+        let t: toml::Table = toml::from_str("sqp_max_iters = 3").unwrap();
+        let e = overlay(&pseudospectral::Settings::default(), &t).unwrap_err();
+        assert!(e.to_string().contains("sqp_max_iters"), "{e}");
+    }
+}

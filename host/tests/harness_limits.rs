@@ -1,0 +1,174 @@
+//! Service-side limits and fair scheduling, with real processes: a request outside the limits
+//! is answered `LimitExceeded` naming the setting (never solved); a `--limits` file tightens
+//! them; a request queued past its deadline is answered `Expired`; two feeders at once are
+//! served in turn.
+
+mod harness_common;
+
+use harness_common::*;
+use std::time::Duration;
+
+fn result<'a>(report: &'a serde_json::Value, label: &str) -> &'a serde_json::Value {
+    report["results"]
+        .as_array()
+        .expect("results")
+        .iter()
+        .find(|r| r["label"] == label)
+        .unwrap_or_else(|| panic!("no result for {label}: {report}"))
+}
+
+fn fixture(path: &str) -> String {
+    format!("{}/../fixtures/{path}", env!("CARGO_MANIFEST_DIR"))
+}
+
+#[test]
+fn requests_outside_the_limits_are_refused_by_name_and_a_limits_file_tightens_them() {
+    let inst = instance("limits");
+    let limits = temp("limits", "limits.toml");
+    // Tighter than the built-in limits: planner A at most 2 spacecraft.
+    std::fs::write(&limits, "[pseudospectral]\nspacecraft = 2\n").expect("write limits");
+    let limits_arg = limits.display().to_string();
+    let service = serve(&inst, &["--limits", &limits_arg]);
+    let json = temp("limits", "report.json");
+    let search = fixture("over-limits/wang2018-search-3imp-2m-samples.toml");
+    let unsafe_a = fixture("over-limits/huang2012-n10-no-continuous-verification.toml");
+    let three = fixture("huang2012-three-sats-n10.toml");
+    let fixed = fixture("wang2018-gco-to-pco-3imp.toml");
+    let (code, report) = feed(
+        &inst,
+        &[
+            "--fixture",
+            &search,
+            "--fixture",
+            &unsafe_a,
+            "--fixture",
+            &three,
+            "--fixture",
+            &fixed,
+            "--limits",
+            &limits_arg,
+        ],
+        &json,
+    );
+    // Every answer equals the local check under the same limits.
+    assert_eq!(code, Some(0), "{report}");
+    let status = |label: &str| {
+        result(&report, label)["status"]
+            .as_str()
+            .unwrap_or("")
+            .to_string()
+    };
+    assert_eq!(
+        status("wang2018-search-3imp-2m-samples"),
+        "limit exceeded: search_samples = 2000000 is above the limit 3000"
+    );
+    assert_eq!(
+        status("huang2012-three-sats-n10-no-continuous-verification"),
+        "limit exceeded: spacecraft = 3 is above the limit 2"
+    );
+    assert_eq!(
+        status("huang2012-three-sats-n10"),
+        "limit exceeded: spacecraft = 3 is above the limit 2"
+    );
+    // Within the limits: solved.
+    assert_eq!(status("wang2018-gco-to-pco-3imp"), "Solved");
+    // Refused without solving: the round trip is the harness's alone, far below a search's.
+    let rtt = result(&report, "wang2018-search-3imp-2m-samples")["rtt_us"]
+        .as_f64()
+        .expect("rtt");
+    assert!(rtt < 50_000.0, "refusal took {rtt} us");
+    let _ = std::fs::remove_file(&json);
+    let _ = std::fs::remove_file(&limits);
+    stop_and_check_clean(service, &inst);
+}
+
+#[test]
+fn a_request_queued_past_its_deadline_is_answered_expired_unsolved() {
+    let inst = instance("expire");
+    // One worker, 400 ms per request: with four in flight and a 100 ms deadline, the requests
+    // behind the first one wait past their deadline.
+    let service = serve(&inst, &["--debug-delay-ms", "400"]);
+    let json = temp("expire", "report.json");
+    let (code, report) = feed(
+        &inst,
+        &[
+            "--random",
+            "4",
+            "--seed",
+            "5",
+            "--window",
+            "4",
+            "--deadline-ms",
+            "100",
+        ],
+        &json,
+    );
+    // Expired answers are truthful but not plans, so the feed does not pass.
+    assert_eq!(code, Some(1), "{report}");
+    let results = report["results"].as_array().expect("results");
+    let expired: Vec<_> = results
+        .iter()
+        .filter(|r| {
+            r["status"]
+                .as_str()
+                .is_some_and(|s| s.starts_with("expired"))
+        })
+        .collect();
+    let solved = results.iter().filter(|r| r["correct"] == true).count();
+    assert_eq!(
+        solved, 1,
+        "only the first request reaches the worker: {report}"
+    );
+    assert_eq!(expired.len(), 3, "{report}");
+    for r in expired {
+        // Answered at its deadline, not after the worker got round to it.
+        let rtt = r["rtt_us"].as_f64().expect("rtt");
+        assert!((100_000.0..390_000.0).contains(&rtt), "{r}");
+        assert!(
+            r["status"]
+                .as_str()
+                .unwrap_or("")
+                .contains("deadline 100.0 ms"),
+            "{r}"
+        );
+    }
+    assert_eq!(report["reports"][0]["counters"]["lost"], 0);
+    let _ = std::fs::remove_file(&json);
+    stop_and_check_clean(service, &inst);
+}
+
+#[test]
+fn two_feeders_are_served_in_turn() {
+    // `reconfig fairness` starts its own service (one worker here) and two feeders per phase:
+    // expensive + cheap (the cheap p99 within the budget), then two alike (neither below half
+    // of the other's throughput); every answer checked, nothing lost.
+    let json = temp("fair", "fair.json");
+    let out = std::process::Command::new(exe())
+        .args([
+            "fairness",
+            "--seconds",
+            "2",
+            "--window",
+            "2",
+            "--cpus",
+            "0",
+            "--no-pin",
+            "--budget-ms",
+            "250",
+            "--json",
+        ])
+        .arg(&json)
+        .output()
+        .expect("run fairness");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap_or_default())
+            .unwrap_or(serde_json::Value::Null);
+    assert!(out.status.success(), "{stdout}\n{report}");
+    assert_eq!(report["passed"], true, "{report}");
+    let cheap = &report["mixed"][1];
+    assert!(cheap["correct"].as_u64().unwrap_or(0) >= 20, "{report}");
+    assert!(report["same_kind_throughput_ratio"].as_f64().unwrap_or(0.0) >= 0.5);
+    let _ = std::fs::remove_file(&json);
+    let _ = Duration::ZERO;
+}

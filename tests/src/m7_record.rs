@@ -1,0 +1,162 @@
+//! The M7 figures record (`fixtures/golden/m7-figures.toml`, written by the QEMU test) and the
+//! tables of `docs/firmware.md` generated from it, between the markers
+//! `<!-- m7-figures:begin -->` and `<!-- m7-figures:end -->`.
+//!
+//! `tests/tests/m7_docs.rs` fails when the docs differ from what the record generates;
+//! `RECONFIG_UPDATE_DOCS=1 cargo test -p reconfig-tests --test m7_docs` rewrites them (the QEMU
+//! test's `RECONFIG_UPDATE_FIGURES=1` run does too, after writing the record).
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+/// The record, relative to the workspace.
+pub const RECORD_FILE: &str = "fixtures/golden/m7-figures.toml";
+/// The generated document, relative to the workspace.
+pub const DOCS_FILE: &str = "docs/firmware.md";
+/// Start marker of the generated part.
+pub const BEGIN: &str =
+    "<!-- m7-figures:begin (generated from fixtures/golden/m7-figures.toml; do not edit) -->";
+/// End marker of the generated part.
+pub const END: &str = "<!-- m7-figures:end -->";
+/// The command that rewrites the generated part from the record.
+pub const UPDATE_DOCS_COMMAND: &str =
+    "RECONFIG_UPDATE_DOCS=1 cargo test -p reconfig-tests --test m7_docs";
+
+/// The workspace root.
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+/// `1234567` as `1,234,567`.
+pub fn grouped(v: u64) -> String {
+    let digits = v.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
+fn int(t: &toml::Table, key: &str) -> Result<u64, String> {
+    t.get(key)
+        .and_then(toml::Value::as_integer)
+        .and_then(|v| u64::try_from(v).ok())
+        .ok_or_else(|| format!("{RECORD_FILE}: missing or bad `{key}`"))
+}
+
+/// The generated Markdown (without the markers) for a record's text.
+///
+/// # Errors
+/// The record does not parse or lacks a figure.
+pub fn render(record: &str) -> Result<String, String> {
+    let file: toml::Table = toml::from_str(record).map_err(|e| format!("{RECORD_FILE}: {e}"))?;
+    let binary = file
+        .get("binary")
+        .and_then(toml::Value::as_table)
+        .ok_or_else(|| format!("{RECORD_FILE}: no [binary]"))?;
+    let fixtures = file
+        .get("fixture")
+        .and_then(toml::Value::as_array)
+        .ok_or_else(|| format!("{RECORD_FILE}: no [[fixture]]"))?;
+    let mut md = String::from(
+        "| fixture | instructions | budget | stack bytes | RAM bytes (static + stack) | RAM budget |\n\
+         | --- | ---: | ---: | ---: | ---: | ---: |\n",
+    );
+    let mut ram_max = 0;
+    for f in fixtures {
+        let f = f.as_table().ok_or("a [[fixture]] is not a table")?;
+        let name = f
+            .get("name")
+            .and_then(toml::Value::as_str)
+            .ok_or("fixture without name")?;
+        let ram = int(f, "ram_bytes")?;
+        ram_max = ram_max.max(ram);
+        let _ = writeln!(
+            md,
+            "| {name} | {} | {} | {} | {} | {} |",
+            grouped(int(f, "instructions")?),
+            grouped(int(f, "instructions_budget")?),
+            grouped(int(f, "stack_bytes")?),
+            grouped(ram),
+            grouped(int(f, "ram_bytes_budget")?),
+        );
+    }
+    let kib = |v: u64| v as f64 / 1024.0;
+    let _ = write!(
+        md,
+        "\nBinary: `.text` {} B, `.rodata` {} B, `.data` {} B, `.bss` {} B; static RAM {} B, of \
+         which planner A's `Workspace` {} B and `Solution` {} B, planner B's `Workspace` {} B and \
+         `Solution` {} B. Largest RAM (static + stack) over the fixtures: {} B = {:.1} KiB, {:.1} % \
+         of 256 KiB.\n",
+        grouped(int(binary, "text_bytes")?),
+        grouped(int(binary, "rodata_bytes")?),
+        grouped(int(binary, "data_bytes")?),
+        grouped(int(binary, "bss_bytes")?),
+        grouped(int(binary, "static_ram_bytes")?),
+        grouped(int(binary, "pseudospectral_workspace_bytes")?),
+        grouped(int(binary, "pseudospectral_solution_bytes")?),
+        grouped(int(binary, "impulsive_workspace_bytes")?),
+        grouped(int(binary, "impulsive_solution_bytes")?),
+        grouped(ram_max),
+        kib(ram_max),
+        ram_max as f64 / 2621.44,
+    );
+    Ok(md)
+}
+
+/// `docs` with its generated part replaced by `generated`.
+///
+/// # Errors
+/// The markers are missing or out of order.
+pub fn splice(docs: &str, generated: &str) -> Result<String, String> {
+    let start = docs
+        .find(BEGIN)
+        .ok_or_else(|| format!("{DOCS_FILE} lacks the marker {BEGIN}"))?;
+    let end = docs
+        .find(END)
+        .filter(|&e| e > start)
+        .ok_or_else(|| format!("{DOCS_FILE} lacks the marker {END} after the begin marker"))?;
+    Ok(format!(
+        "{}{BEGIN}\n{generated}{}",
+        &docs[..start],
+        &docs[end..]
+    ))
+}
+
+/// Regenerate the docs from the record on disk; returns whether they changed.
+///
+/// # Errors
+/// A file cannot be read or written, or does not parse.
+pub fn update_docs() -> Result<bool, String> {
+    let record = std::fs::read_to_string(root().join(RECORD_FILE)).map_err(|e| e.to_string())?;
+    let docs_path = root().join(DOCS_FILE);
+    let docs = std::fs::read_to_string(&docs_path).map_err(|e| e.to_string())?;
+    let new = splice(&docs, &render(&record)?)?;
+    if new != docs {
+        std::fs::write(&docs_path, &new).map_err(|e| e.to_string())?;
+        return Ok(true);
+    }
+    Ok(false)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grouping_and_splicing() {
+        assert_eq!(grouped(0), "0");
+        assert_eq!(grouped(999), "999");
+        assert_eq!(grouped(1000), "1,000");
+        assert_eq!(grouped(420_863_326), "420,863,326");
+        let docs = format!("a\n{BEGIN}\nold\n{END}\nb\n");
+        assert_eq!(
+            splice(&docs, "new\n").unwrap(),
+            format!("a\n{BEGIN}\nnew\n{END}\nb\n")
+        );
+        assert!(splice("no markers", "x").is_err());
+    }
+}

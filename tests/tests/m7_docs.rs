@@ -1,0 +1,28 @@
+//! `docs/firmware.md`'s M7 tables are generated from the record
+//! `fixtures/golden/m7-figures.toml`: this fails when they differ, with the command that
+//! regenerates them. No QEMU needed.
+
+use reconfig_tests::m7_record::{self, DOCS_FILE, RECORD_FILE, UPDATE_DOCS_COMMAND};
+
+#[test]
+fn the_docs_tables_are_the_record() {
+    if std::env::var("RECONFIG_UPDATE_DOCS").as_deref() == Ok("1") {
+        let changed = m7_record::update_docs().expect("regenerate the docs");
+        eprintln!(
+            "{DOCS_FILE}: {}",
+            if changed {
+                "regenerated"
+            } else {
+                "already current"
+            }
+        );
+    }
+    let record = std::fs::read_to_string(m7_record::root().join(RECORD_FILE)).expect("record");
+    let docs = std::fs::read_to_string(m7_record::root().join(DOCS_FILE)).expect("docs");
+    let generated = m7_record::render(&record).expect("render");
+    let expected = m7_record::splice(&docs, &generated).expect("markers");
+    assert!(
+        expected == docs,
+        "{DOCS_FILE} differs from what {RECORD_FILE} generates; regenerate with\n  {UPDATE_DOCS_COMMAND}"
+    );
+}
