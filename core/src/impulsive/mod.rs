@@ -29,6 +29,7 @@ mod pinv;
 mod search;
 mod secular;
 mod settings;
+mod socp;
 mod solution;
 mod solver;
 mod status;

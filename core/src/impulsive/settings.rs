@@ -15,7 +15,8 @@ pub const MAX_SEARCH_STARTS: usize = 16;
 /// * minimum-norm phase: `fixed_point_max_iter` x (propagation + F + one Cholesky, or one SVD
 ///   when Cholesky declines);
 /// * min-fuel phase (`min_fuel`): `fixed_point_max_iter` x (propagation + F + Cholesky/SVD +
-///   SVD + `min_fuel_max_iter` SVDs);
+///   one cone program: a 6-row Gram-Schmidt, then at most `min_fuel_max_iter` interior-point
+///   iterations of one 6 x 6 Cholesky and two solves each);
 /// * correction (`nonlinear_correction`): `correction_max_iter` x (two propagations + SVD),
 ///   plus one exact propagation;
 /// * report: one SVD and one exact propagation.
@@ -29,18 +30,17 @@ pub struct Settings {
     pub fixed_point_max_iter: u16,
     /// The fixed point has converged when no impulse component changes by more than this, m/s.
     pub fixed_point_tol_mps: f64,
-    /// Refine the minimum-norm impulses to least `sum_k |dv_k|` over the null space of F
-    /// (eq. 13), iterated jointly with the fixed point.
+    /// Replace the minimum-norm impulses by the least `sum_k |dv_k|` subject to `F dv = dY`
+    /// (a second-order cone program, exact), iterated jointly with the fixed point.
     pub min_fuel: bool,
-    /// Most reweighting steps of the min-fuel refinement per fixed-point iteration.
+    /// Most interior-point iterations of one least-fuel cone program.
     pub min_fuel_max_iter: u16,
     /// The joint min-fuel fixed point has converged when the total changes by less than this
     /// between fixed-point iterations, m/s.
     pub min_fuel_step_tol_mps: f64,
-    /// The refinement stops when the total changes by less than this, m/s.
+    /// A least-fuel cone program is optimal when its certified gap (feasible total minus the
+    /// dual lower bound) is below this, m/s.
     pub min_fuel_tol_mps: f64,
-    /// Impulse magnitude below which reweighting treats an impulse as zero, m/s.
-    pub min_fuel_floor_mps: f64,
     /// Drive the terminal error of the nonlinear model (exact impulses, J2 secular drift) to
     /// `correction_tol` by defect correction with the linear map.
     pub nonlinear_correction: bool,
@@ -102,8 +102,7 @@ impl Default for Settings {
             min_fuel: true,
             min_fuel_max_iter: 40,
             min_fuel_step_tol_mps: 1e-9,
-            min_fuel_tol_mps: 1e-11,
-            min_fuel_floor_mps: 1e-9,
+            min_fuel_tol_mps: 1e-10,
             nonlinear_correction: true,
             correction_max_iter: 12,
             correction_tol: 1e-12,
@@ -145,7 +144,6 @@ impl Settings {
         if !positive(self.fixed_point_tol_mps)
             || !positive(self.min_fuel_tol_mps)
             || !positive(self.min_fuel_step_tol_mps)
-            || !positive(self.min_fuel_floor_mps)
             || !positive(self.correction_tol)
             || !positive(self.search_step_rad)
             || !positive(self.search_min_step_rad)
