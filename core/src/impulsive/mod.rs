@@ -43,6 +43,7 @@ pub use elements::{
 };
 pub use error::{Orbit, PlanError, Quantity, SettingsError};
 pub use settings::{Settings, MAX_SEARCH_STARTS};
+pub use socp::{least_fuel_rows, LeastFuel, SocpStatus};
 pub use solution::{Impulse, Solution};
 pub use status::{SolveInfo, SolveStatus, Stage};
 pub use trajectory::{relative_position_rtn_km, TrajectoryError};

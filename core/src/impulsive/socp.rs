@@ -39,7 +39,7 @@ type Cone = [f64; 4];
 
 /// How a least-fuel solve ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum SocpStatus {
+pub enum SocpStatus {
     /// The certified gap (upper minus lower bound) is within the tolerance.
     Optimal,
     /// The iteration cap was reached first; the plan is feasible, the gap is reported.
@@ -51,7 +51,7 @@ pub(crate) enum SocpStatus {
 
 /// The result of a least-fuel solve.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct LeastFuel {
+pub struct LeastFuel {
     /// Impulses, 3 per impulse, in the units of `y / F`; zero past the used columns.
     pub x: [f64; MAX_UNKNOWNS],
     /// `sum_k |x_k|` of `x`.
@@ -467,6 +467,58 @@ fn cholesky_solve(l: &[[f64; ROWS]; ROWS], r: usize, b: &mut [f64; ROWS]) {
     }
 }
 
+/// Cholesky of `m + delta I` with the least `delta` in `0, 1e-14 tr, 1e-12 tr, 1e-10 tr` that
+/// factors; the shift used, or `None` when none does (`m` then holds garbage).
+fn factor_regularised(m: &mut [[f64; ROWS]; ROWS], r: usize) -> Option<f64> {
+    let m0 = *m;
+    let mut trace = 0.0;
+    for (j, row) in m0.iter().enumerate().take(r) {
+        trace += row.get(j).copied().unwrap_or(0.0);
+    }
+    for rel in [0.0, 1e-14, 1e-12, 1e-10] {
+        *m = m0;
+        let delta = rel * trace;
+        for (j, row) in m.iter_mut().enumerate().take(r) {
+            if let Some(x) = row.get_mut(j) {
+                *x += delta;
+            }
+        }
+        if cholesky(m, r) {
+            return Some(delta);
+        }
+    }
+    None
+}
+
+/// Solve `m0 x = b` with the factor `l` of `m0 + shift I`: one solve, then (when shifted) three
+/// steps of iterative refinement.
+fn refined_solve(
+    m0: &[[f64; ROWS]; ROWS],
+    l: &[[f64; ROWS]; ROWS],
+    r: usize,
+    shift: f64,
+    b: &[f64; ROWS],
+) -> [f64; ROWS] {
+    let mut x = *b;
+    cholesky_solve(l, r, &mut x);
+    if shift > 0.0 {
+        for _ in 0..3 {
+            // Residual b - m0 x (m0 is stored in full).
+            let mut res = *b;
+            for (i, ri) in res.iter_mut().enumerate().take(r) {
+                for (j, xj) in x.iter().enumerate().take(r) {
+                    *ri -= m0.get(i).and_then(|row| row.get(j)).copied().unwrap_or(0.0) * *xj;
+                }
+            }
+            cholesky_solve(l, r, &mut res);
+            for (xi, d) in x.iter_mut().zip(res.iter()).take(r) {
+                *xi += *d;
+            }
+        }
+    }
+    x
+}
+
 /// The interior-point iterate.
 struct Iterate {
     z: [Cone; MAX_IMPULSES],
@@ -538,6 +590,29 @@ fn certify(
     }
     let lower = dot(h.get(..r).unwrap_or(&[]), l.get(..r).unwrap_or(&[]));
     (upper, lower, x, l)
+}
+
+/// Least `sum_k |x_k|` subject to `F x = y` for a row-major `f` (6 rows, the first `columns`
+/// columns used, 3 per impulse): the cone program the planner runs at every least-fuel
+/// fixed-point iteration, exposed so that it can be checked against an independent solver.
+/// Arguments and result as for the planner's internal call (see the module docs).
+pub fn least_fuel_rows(
+    f: &[[f64; MAX_UNKNOWNS]; ROWS],
+    columns: usize,
+    y: &[f64; ROWS],
+    tol: f64,
+    rank_rcond: f64,
+    max_iter: u16,
+) -> Option<LeastFuel> {
+    let mut m = FMatrix::zeros();
+    for (i, row) in f.iter().enumerate() {
+        for (j, v) in row.iter().enumerate() {
+            if let Some(x) = m.get_mut((i, j)) {
+                *x = *v;
+            }
+        }
+    }
+    least_fuel(&m, columns, y, tol, rank_rcond, max_iter)
 }
 
 /// Least `sum_k |x_k|` subject to `F x = y` over the first `columns` columns of `f` (3 per
@@ -659,10 +734,15 @@ pub(crate) fn least_fuel(
                 }
             }
         }
-        if !cholesky(&mut m, r) {
+        // Near the optimum the normal matrix mixes scales of 1/mu and mu (an impulse at the
+        // cone's apex, another on the boundary) and can lose definiteness to rounding: factor
+        // it with a small diagonal shift when needed and recover the accuracy by iterative
+        // refinement against the unshifted matrix.
+        let m0 = m;
+        let Some(shift) = factor_regularised(&mut m, r) else {
             status = SocpStatus::NumericalFailure;
             break;
-        }
+        };
         // Residuals: r_p = h - G x, r_d,k = e - A_k^T l - s_k.
         let mut rp = h;
         for (gk, zk) in blocks.iter().zip(it.z.iter()).take(k_used) {
@@ -708,8 +788,7 @@ pub(crate) fn least_fuel(
                     *ri += row[0] * (a[1] - b[1]) + row[1] * (a[2] - b[2]) + row[2] * (a[3] - b[3]);
                 }
             }
-            cholesky_solve(&m, r, &mut rhs);
-            let dl = rhs;
+            let dl = refined_solve(&m0, &m, r, shift, &rhs);
             let mut dz = [[0.0; 4]; MAX_IMPULSES];
             let mut ds = [[0.0; 4]; MAX_IMPULSES];
             for k in 0..k_used {
