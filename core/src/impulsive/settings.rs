@@ -22,8 +22,8 @@ pub const MAX_SEARCH_STARTS: usize = 16;
 /// * report: one SVD and one exact propagation.
 ///
 /// A search runs at most `search_max_evaluations` evaluations, each at most
-/// `search_fixed_point_max_iter` fixed-point iterations (`search_min_fuel` adds the min-fuel
-/// SVDs per iteration), then one full fixed-point solve as above.
+/// `search_fixed_point_max_iter` linearisations (propagation + F + one Cholesky or SVD) and one
+/// cone program (as above), then one full fixed-point solve as above.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Settings {
     /// Most fixed-point iterations (Wang 2018, section 2), per phase (minimum norm, min fuel).
@@ -75,10 +75,13 @@ pub struct Settings {
     pub search_step_rad: f64,
     /// A local search ends when its step falls below this, rad.
     pub search_min_step_rad: f64,
-    /// Fixed-point iterations per search evaluation.
+    /// Linearisations per local-search evaluation (the first at zero impulses, each next one
+    /// at the previous one's minimum-norm impulses); samples use one.
     pub search_fixed_point_max_iter: u16,
-    /// Score search evaluations by the min-fuel total (else the minimum-norm total).
-    pub search_min_fuel: bool,
+    /// Least-fuel tolerance of a sample's cone program (screening), m/s.
+    pub search_screen_tol_mps: f64,
+    /// Least-fuel tolerance of a local-search evaluation's cone program, m/s.
+    pub search_tol_mps: f64,
 }
 
 impl Settings {
@@ -112,14 +115,15 @@ impl Default for Settings {
             min_eccentricity: 1e-4,
             min_sin_inclination: 1e-3,
             max_total_revolutions: 100,
-            search_samples: 3000,
-            search_starts: 12,
-            search_max_evaluations: 20_000,
+            search_samples: 500,
+            search_starts: 8,
+            search_max_evaluations: 2_000,
             search_seed: 0x5741_4e47_2018_0006,
             search_step_rad: 0.25,
-            search_min_step_rad: 1e-7,
-            search_fixed_point_max_iter: 12,
-            search_min_fuel: false,
+            search_min_step_rad: 1e-4,
+            search_fixed_point_max_iter: 2,
+            search_screen_tol_mps: 1e-3,
+            search_tol_mps: 1e-7,
         }
     }
 }
@@ -147,6 +151,8 @@ impl Settings {
             || !positive(self.correction_tol)
             || !positive(self.search_step_rad)
             || !positive(self.search_min_step_rad)
+            || !positive(self.search_screen_tol_mps)
+            || !positive(self.search_tol_mps)
             || !(self.rank_rcond.is_finite() && self.rank_rcond > 0.0 && self.rank_rcond < 1.0)
         {
             return Err(SettingsError::BadTolerance);

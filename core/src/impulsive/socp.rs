@@ -369,7 +369,16 @@ impl Scaling {
         out
     }
 
+    /// The lower-right 3 x 3 block of `W^-2` as `(I + c qbar qbar^T) / eta^2`, returned as
+    /// `(1 / eta^2, c)` with `qbar = q[1..4]`: with `a = J q`, `(2 a a^T - J)^2 = 4 (a.a) a a^T
+    /// - 2 a q^T - 2 q a^T + I`, whose lower block is `(4 |q|^2 + 4) qbar qbar^T + I`.
+    fn inv_squared_block(&self) -> (f64, f64) {
+        let qq = dot(&self.q, &self.q);
+        (1.0 / (self.eta * self.eta), 4.0 * qq + 4.0)
+    }
+
     /// `W^-2` as a dense 4 x 4 (symmetric).
+    #[cfg(test)]
     fn inv_squared(&self) -> [[f64; 4]; 4] {
         let mut m = [[0.0; 4]; 4];
         for (j, col) in m.iter_mut().enumerate() {
@@ -549,6 +558,15 @@ fn gkt(gk: &[[f64; 3]; ROWS], l: &[f64; ROWS], r: usize) -> [f64; 3] {
     out
 }
 
+/// `G_k u` (an `r`-vector) for a 3-vector `u`.
+fn gkt_rows(gk: &[[f64; 3]; ROWS], u: &[f64; 3], r: usize) -> [f64; ROWS] {
+    let mut out = [0.0; ROWS];
+    for (o, row) in out.iter_mut().zip(gk.iter()).take(r) {
+        *o = dot(row, u);
+    }
+    out
+}
+
 /// Certified bounds at an iterate: the primal projected onto `G x = h`, the dual scaled into
 /// its constraints. Returns (upper, lower, projected x, scaled dual).
 fn certify(
@@ -672,6 +690,15 @@ pub(crate) fn least_fuel(
         *zk = [norm(&x) + 1.0, x[0], x[1], x[2]];
         *sk = [1.0, 0.0, 0.0, 0.0];
     }
+    // G_k G_k^T per impulse, fixed over the iterations.
+    let mut gram = [[[0.0; ROWS]; ROWS]; MAX_IMPULSES];
+    for (pk, gk) in gram.iter_mut().zip(blocks.iter()).take(k_used) {
+        for (pi, gi) in pk.iter_mut().zip(gk.iter()).take(r) {
+            for (pij, gj) in pi.iter_mut().zip(gk.iter()).take(r) {
+                *pij = dot(gi, gj);
+            }
+        }
+    }
     let tol_unit = tol / rho;
     let (mut best_upper, mut best_lower, mut best_x, mut best_l) =
         certify(&blocks, k_used, r, &h, &it);
@@ -679,60 +706,59 @@ pub(crate) fn least_fuel(
     let mut iterations = 0u16;
     let k_f = k_used as f64;
     for _ in 0..max_iter {
+        // The iterates keep the equality rows, so z.s is the duality gap up to rounding: the
+        // certificate (a projection and K norms) is computed only once it can succeed.
+        let mut gap_now = 0.0;
+        for (zk, sk) in it.z.iter().zip(it.s.iter()).take(k_used) {
+            gap_now += dot(zk, sk);
+        }
+        if gap_now <= 2.0 * tol_unit {
+            let (upper, lower, x, l) = certify(&blocks, k_used, r, &h, &it);
+            if upper.is_finite() && upper < best_upper {
+                best_upper = upper;
+                best_x = x;
+            }
+            if lower.is_finite() && lower > best_lower {
+                best_lower = lower;
+                best_l = l;
+            }
+        }
         if best_upper - best_lower <= tol_unit {
             status = SocpStatus::Optimal;
             break;
         }
-        // Scalings, scaled points v = W z = W^-1 s, and the normal matrix sum G_k W_k^-2 G_k^T.
+        // Scalings, scaled points v = W z = W^-1 s, and the normal matrix
+        // sum_k G_k W_k^-2 G_k^T = sum_k (G_k G_k^T + c_k (G_k qbar_k)(G_k qbar_k)^T) / eta_k^2.
         let mut sc = [Scaling::default(); MAX_IMPULSES];
         let mut v = [[0.0; 4]; MAX_IMPULSES];
-        let mut winv2 = [[[0.0; 4]; 4]; MAX_IMPULSES];
+        let mut m = [[0.0; ROWS]; ROWS];
         let mut ok = true;
         for k in 0..k_used {
-            let (Some(zk), Some(sk)) = (it.z.get(k), it.s.get(k)) else {
+            let (Some(zk), Some(sk), Some(gk), Some(pk)) =
+                (it.z.get(k), it.s.get(k), blocks.get(k), gram.get(k))
+            else {
                 ok = false;
                 break;
             };
-            match Scaling::new(zk, sk) {
-                Some(w) => {
-                    if let (Some(slot), Some(vk), Some(m)) =
-                        (sc.get_mut(k), v.get_mut(k), winv2.get_mut(k))
-                    {
-                        *vk = w.apply(zk);
-                        *m = w.inv_squared();
-                        *slot = w;
-                    }
+            let Some(w) = Scaling::new(zk, sk) else {
+                ok = false;
+                break;
+            };
+            let (inv_eta2, c) = w.inv_squared_block();
+            let wq = gkt_rows(gk, &[w.q[1], w.q[2], w.q[3]], r);
+            for ((mi, pi), wi) in m.iter_mut().zip(pk.iter()).zip(wq.iter()).take(r) {
+                for ((mij, pij), wj) in mi.iter_mut().zip(pi.iter()).zip(wq.iter()).take(r) {
+                    *mij += inv_eta2 * (*pij + c * *wi * *wj);
                 }
-                None => ok = false,
+            }
+            if let (Some(slot), Some(vk)) = (sc.get_mut(k), v.get_mut(k)) {
+                *vk = w.apply(zk);
+                *slot = w;
             }
         }
         if !ok {
             status = SocpStatus::NumericalFailure;
             break;
-        }
-        let mut m = [[0.0; ROWS]; ROWS];
-        for (gk, wk) in blocks.iter().zip(winv2.iter()).take(k_used) {
-            // gw = G_k * (W^-2)[1..4, 1..4]  (r x 3)
-            let mut gw = [[0.0; 3]; ROWS];
-            for (gwi, gi) in gw.iter_mut().zip(gk.iter()).take(r) {
-                for (c, o) in gwi.iter_mut().enumerate() {
-                    let mut s = 0.0;
-                    for (a, gia) in gi.iter().enumerate() {
-                        let w = wk
-                            .get(c.saturating_add(1))
-                            .and_then(|col| col.get(a.saturating_add(1)))
-                            .copied()
-                            .unwrap_or(0.0);
-                        s += *gia * w;
-                    }
-                    *o = s;
-                }
-            }
-            for (mi, gwi) in m.iter_mut().zip(gw.iter()).take(r) {
-                for (mij, gj) in mi.iter_mut().zip(gk.iter()).take(r) {
-                    *mij += dot(gwi, gj);
-                }
-            }
         }
         // Near the optimum the normal matrix mixes scales of 1/mu and mu (an impulse at the
         // cone's apex, another on the boundary) and can lose definiteness to rounding: factor
@@ -876,6 +902,9 @@ pub(crate) fn least_fuel(
             *x += alpha * *d;
         }
         iterations = iterations.saturating_add(1);
+    }
+    if status != SocpStatus::Optimal {
+        // The last iterate (the one before a failure, or at the cap) is certified too.
         let (upper, lower, x, l) = certify(&blocks, k_used, r, &h, &it);
         if upper.is_finite() && upper < best_upper {
             best_upper = upper;
@@ -916,7 +945,8 @@ pub(crate) fn least_fuel(
     clippy::unwrap_used,
     clippy::indexing_slicing,
     clippy::float_cmp,
-    clippy::arithmetic_side_effects
+    clippy::arithmetic_side_effects,
+    clippy::needless_range_loop
 )]
 mod tests {
     use super::*;
@@ -975,6 +1005,19 @@ mod tests {
             assert!((x - y).abs() < 1e-13);
         }
         assert!(Scaling::new(&[1.0, 1.0, 0.0, 0.0], &s).is_none());
+    }
+
+    #[test]
+    fn closed_form_block_of_the_inverse_squared_scaling() {
+        let w = Scaling::new(&[2.0, 0.3, -0.5, 1.1], &[0.7, -0.2, 0.1, 0.4]).unwrap();
+        let full = w.inv_squared();
+        let (inv_eta2, c) = w.inv_squared_block();
+        for i in 1..4 {
+            for j in 1..4 {
+                let want = inv_eta2 * (if i == j { 1.0 } else { 0.0 } + c * w.q[i] * w.q[j]);
+                assert!((full[j][i] - want).abs() < 1e-13, "{i} {j}");
+            }
+        }
     }
 
     #[test]
