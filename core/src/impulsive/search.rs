@@ -14,8 +14,8 @@
 //!   one linearisation at zero impulses, cone program to `search_screen_tol_mps`;
 //! * **local search** (`search_starts` pattern searches from the best samples, kept at least
 //!   `search_step_rad` apart so that they start in different basins): `search_fixed_point_max_iter`
-//!   linearisations (from zero impulses, then from the minimum-norm ones), cone program to
-//!   `search_tol_mps`. A move is first bounded below by the incumbent's dual certificate
+//!   linearisations (default 1, at zero impulses; each further one at the previous one's
+//!   minimum-norm impulses), cone program to `search_tol_mps`. A move is first bounded below by the incumbent's dual certificate
 //!   scaled to be feasible at the candidate (`dY . mu / max_k |F_k^T mu|`): a candidate whose
 //!   bound is not below the incumbent cannot improve and skips the cone program.
 //!
