@@ -473,4 +473,60 @@ mod tests {
         let bad = [1.0, 0.5, 0.0, 0.0, 0.0, 0.0];
         assert!(points_of(&bad, 2, u0, 14, &mut pts).is_none());
     }
+
+    #[test]
+    fn top_list_keeps_starts_apart() {
+        let mut s = SearchScratch::new();
+        let at = |a: f64, b: f64| [a, b, 0.0, 0.0, 0.0, 0.0];
+        insert_top(&mut s, 3, 2, 0.25, &at(1.0, 2.0), 5.0);
+        // Near a better entry: the same basin, dropped.
+        insert_top(&mut s, 3, 2, 0.25, &at(1.1, 2.1), 6.0);
+        assert!(s.costs[1].is_infinite());
+        // Near a worse entry: replaces it.
+        insert_top(&mut s, 3, 2, 0.25, &at(1.05, 2.0), 4.0);
+        assert_eq!(s.costs[0], 4.0);
+        assert_eq!(s.starts[0][0], 1.05);
+        assert!(s.costs[1].is_infinite());
+        // Far away: kept, in cost order.
+        insert_top(&mut s, 3, 2, 0.25, &at(3.0, 4.0), 4.5);
+        insert_top(&mut s, 3, 2, 0.25, &at(5.0, 6.0), 3.0);
+        assert_eq!(s.costs[..3], [3.0, 4.0, 4.5]);
+    }
+
+    #[test]
+    fn dual_bound_is_a_lower_bound_and_tight_at_its_own_problem() {
+        use crate::impulsive::socp::least_fuel;
+        let mut seed = 9u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5
+        };
+        let mut f = crate::impulsive::transfer::FMatrix::zeros();
+        for i in 0..6 {
+            for j in 0..12 {
+                f[(i, j)] = next();
+            }
+        }
+        let y = nalgebra::SVector::<f64, 6>::new(0.3, -0.1, 0.2, 0.05, -0.4, 0.1);
+        let mut yy = [0.0; 6];
+        yy.copy_from_slice(y.as_slice());
+        let lf = least_fuel(&f, 12, &yy, 1e-12, 1e-10, 60).unwrap();
+        let own = dual_bound(&f, 12, &y, &lf.dual).unwrap();
+        assert!((own - lf.total).abs() < 1e-10, "{own} {}", lf.total);
+        // At a perturbed problem the same certificate still bounds the optimum from below.
+        for _ in 0..20 {
+            let mut g = f;
+            for v in g.iter_mut().take(72) {
+                *v += 0.05 * next();
+            }
+            let mut yg = [0.0; 6];
+            yg.copy_from_slice(y.as_slice());
+            let opt = least_fuel(&g, 12, &yg, 1e-12, 1e-10, 60).unwrap().total;
+            let bound = dual_bound(&g, 12, &y, &lf.dual).unwrap();
+            assert!(bound <= opt + 1e-12, "{bound} > {opt}");
+            assert!(bound > 0.5 * opt);
+        }
+    }
 }
