@@ -29,6 +29,7 @@ mod pinv;
 mod search;
 mod secular;
 mod settings;
+mod socp;
 mod solution;
 mod solver;
 mod status;
@@ -42,6 +43,7 @@ pub use elements::{
 };
 pub use error::{Orbit, PlanError, Quantity, SettingsError, MAX_ANGLE_RAD, MAX_SMA_KM};
 pub use settings::{Settings, MAX_SEARCH_STARTS};
+pub use socp::{least_fuel_rows, LeastFuel, SocpStatus};
 pub use solution::{Impulse, Solution};
 pub use status::{SolveInfo, SolveStatus, Stage};
 pub use trajectory::{formation_position_rtn_km, relative_position_rtn_km, TrajectoryError};

@@ -1,23 +1,36 @@
 //! Bounded, deterministic search over the impulse points `(u_k, dN_k)` for the least total dv,
-//! with the fixed-point solve inside (the on-board replacement for the paper's genetic
+//! scored by the exact least-fuel objective (the on-board replacement for the paper's genetic
 //! algorithm, Wang 2018, section 3).
 //!
 //! The points are searched as cumulative phases `phi_1 <= ... <= phi_N` (rad of mean argument
 //! of latitude travelled since the epoch): `u_k = wrap_2pi(u_0 + phi_k)` and
 //! `dN_k = (phi_k - phi_{k-1} - wrap_2pi(u_k - u_{k-1})) / 2 pi`, so a revolution count is
 //! just a longer gap and the problem is continuous; feasible when the gaps are non-negative and
-//! `sum dN_k <= max_revolutions`. Phase 1 scores `search_samples` random phase vectors from a
-//! seeded xorshift generator; phase 2 runs `search_starts` pattern searches from the best of
-//! them (moves of `+-2 pi` shift one revolution between neighbouring gaps, moves of `+-step`
-//! slide one point; the step halves when no move improves). Every evaluation counts against
-//! `search_max_evaluations`, so the work is bounded by the settings alone, and the same input
-//! gives the same answer on every run (fixed seed, no clock, no data-dependent budget).
+//! `sum dN_k <= max_revolutions`.
+//!
+//! Every candidate is scored by the least `sum_k |dv_k|` (the cone program of `socp`) on the
+//! linear end condition:
+//! * **screening** (the `search_samples` random phase vectors of a seeded xorshift generator):
+//!   one linearisation at zero impulses, cone program to `search_screen_tol_mps`;
+//! * **local search** (`search_starts` pattern searches from the best samples, kept at least
+//!   `search_step_rad` apart so that they start in different basins): `search_fixed_point_max_iter`
+//!   linearisations (default 1, at zero impulses; each further one at the previous one's
+//!   minimum-norm impulses), cone program to `search_tol_mps`. A move is first bounded below by the incumbent's dual certificate
+//!   scaled to be feasible at the candidate (`dY . mu / max_k |F_k^T mu|`): a candidate whose
+//!   bound is not below the incumbent cannot improve and skips the cone program.
+//!
+//! Moves of `+-2 pi` shift one revolution between neighbouring gaps, moves of `+-step` slide one
+//! point; the step halves when no move improves, down to `search_min_step_rad`. Every scored
+//! candidate counts against `search_max_evaluations`, so the work is bounded by the settings
+//! alone, and the same input gives the same answer on every run (fixed seed, no clock, no
+//! data-dependent budget).
 
+use super::elements::M_PER_KM;
 use super::elements::{mean_arg_latitude_rad, wrap_two_pi, TWO_PI};
-use super::min_fuel::total;
+use super::min_fuel::min_norm;
 use super::settings::{Settings, MAX_SEARCH_STARTS};
-use super::solver::fixed_point;
-use super::transfer::{Context, Points, Sequence, XVector};
+use super::socp::least_fuel;
+use super::transfer::{build_system, propagate, Context, ImpulseModel, Points, Sequence, XVector};
 use super::types::ImpulsePoint;
 use crate::capacity::MAX_IMPULSES;
 
@@ -117,50 +130,172 @@ pub(crate) fn points_of(
     Some(())
 }
 
-#[allow(clippy::too_many_arguments)]
-/// Cost of a phase vector: the fixed-point total in m/s (infinite when infeasible or failed).
-fn cost_of(
-    phi: &Phases,
+/// A scored candidate: least-fuel total (m/s, infinite when infeasible or failed) and its dual
+/// certificate in F's rows (km/s units of dY per unit of dv).
+#[derive(Clone, Copy, Debug)]
+struct Score {
+    cost: f64,
+    dual: [f64; 6],
+}
+
+const INFEASIBLE: Score = Score {
+    cost: f64::INFINITY,
+    dual: [0.0; 6],
+};
+
+/// What a search evaluation needs besides the candidate.
+struct Scorer<'a> {
+    ctx: &'a Context,
+    settings: &'a Settings,
     n: usize,
     u0: f64,
     max_revolutions: i32,
-    ctx: &Context,
-    settings: &Settings,
-    seq: &mut Sequence,
-    pts: &mut Points,
-) -> f64 {
-    if points_of(phi, n, u0, max_revolutions, pts).is_none() {
-        return f64::INFINITY;
-    }
-    let mut dv = XVector::zeros();
-    match fixed_point(
-        ctx,
-        pts,
-        settings,
-        seq,
-        &mut dv,
-        settings.search_min_fuel,
-        settings.search_fixed_point_max_iter,
-    ) {
-        Ok(fp) if fp.conditioning.rank == 6 => {
-            let t = total(&dv) * super::elements::M_PER_KM;
-            if t.is_finite() {
-                t
-            } else {
-                f64::INFINITY
+}
+
+impl Scorer<'_> {
+    /// Least-fuel total of `phi` after `linearisations` fixed-point linearisations (the first at
+    /// zero impulses, the next at the minimum-norm impulses of the previous one), the cone
+    /// program solved to `tol_mps`. With `incumbent = (dual, cost)`, a candidate whose dual
+    /// lower bound is not below `cost` is returned as that bound without the cone program.
+    fn score(
+        &self,
+        phi: &Phases,
+        linearisations: u16,
+        tol_mps: f64,
+        incumbent: Option<&Score>,
+        seq: &mut Sequence,
+        pts: &mut Points,
+    ) -> Score {
+        if points_of(phi, self.n, self.u0, self.max_revolutions, pts).is_none() {
+            return INFEASIBLE;
+        }
+        let columns = self.n.saturating_mul(3);
+        let mut dv = XVector::zeros();
+        for j in 0..linearisations.max(1) {
+            if propagate(self.ctx, pts, &dv, ImpulseModel::Linear, self.settings, seq).is_err() {
+                return INFEASIBLE;
+            }
+            build_system(self.ctx, pts, seq);
+            if j.saturating_add(1) < linearisations {
+                match min_norm(&seq.f, columns, &seq.dy, self.settings) {
+                    Ok(x) => dv = x,
+                    Err(_) => return INFEASIBLE,
+                }
             }
         }
-        _ => f64::INFINITY,
+        if let Some(inc) = incumbent {
+            if let Some(bound) = dual_bound(&seq.f, columns, &seq.dy, &inc.dual) {
+                if bound * M_PER_KM >= inc.cost {
+                    return Score {
+                        cost: bound * M_PER_KM,
+                        dual: inc.dual,
+                    };
+                }
+            }
+        }
+        let mut y = [0.0; 6];
+        y.copy_from_slice(seq.dy.as_slice());
+        let Some(lf) = least_fuel(
+            &seq.f,
+            columns,
+            &y,
+            tol_mps / M_PER_KM,
+            self.settings.rank_rcond,
+            self.settings.min_fuel_max_iter,
+        ) else {
+            return INFEASIBLE;
+        };
+        // Rank-deficient points cannot reach the target; a failed cone program still returns a
+        // feasible plan, whose total is an honest (upper) score.
+        let cost = lf.total * M_PER_KM;
+        if lf.rank == 6 && cost.is_finite() {
+            Score {
+                cost,
+                dual: lf.dual,
+            }
+        } else {
+            INFEASIBLE
+        }
     }
 }
 
-/// Insert `(phi, cost)` into the sorted top list of length `keep` (stable: earlier wins ties).
-fn insert_top(scratch: &mut SearchScratch, keep: usize, phi: &Phases, cost: f64) {
+/// `dY . mu / max(1, max_k |F_k^T mu|)`: a lower bound on the least fuel of `(F, dY)` from any
+/// `mu` (weak duality); `None` when not finite.
+fn dual_bound(
+    f: &super::transfer::FMatrix,
+    columns: usize,
+    dy: &nalgebra::SVector<f64, 6>,
+    mu: &[f64; 6],
+) -> Option<f64> {
+    let mut worst = 1.0f64;
+    for c in (0..columns).step_by(3) {
+        let mut s = 0.0;
+        for j in c..c.saturating_add(3) {
+            let mut g = 0.0;
+            for (i, m) in mu.iter().enumerate() {
+                g += f.get((i, j)).copied().unwrap_or(0.0) * *m;
+            }
+            s += g * g;
+        }
+        worst = worst.max(libm::sqrt(s));
+    }
+    let mut b = 0.0;
+    for (d, m) in dy.iter().zip(mu.iter()) {
+        b += *d * *m;
+    }
+    let b = b / worst;
+    if b.is_finite() {
+        Some(b)
+    } else {
+        None
+    }
+}
+
+/// Largest `|phi_k - psi_k|` over the first `n` phases.
+fn distance(phi: &Phases, psi: &Phases, n: usize) -> f64 {
+    let mut d = 0.0f64;
+    for (a, b) in phi.iter().zip(psi.iter()).take(n) {
+        d = d.max(libm::fabs(*a - *b));
+    }
+    d
+}
+
+/// Insert `(phi, cost)` into the sorted top list of length `keep` (stable: earlier wins ties),
+/// keeping its entries more than `separation` apart: a candidate that close to a better entry
+/// is dropped, and one that beats a close entry replaces it (starts in different basins).
+fn insert_top(
+    scratch: &mut SearchScratch,
+    keep: usize,
+    n: usize,
+    separation: f64,
+    phi: &Phases,
+    cost: f64,
+) {
     let keep = keep.min(MAX_SEARCH_STARTS);
     let Some(pos) = scratch.costs.iter().take(keep).position(|c| cost < *c) else {
         return;
     };
-    let last = keep.saturating_sub(1);
+    // A better entry nearby: same basin, drop.
+    let near_better = scratch
+        .starts
+        .iter()
+        .zip(scratch.costs.iter())
+        .take(pos)
+        .any(|(s, c)| c.is_finite() && distance(s, phi, n) <= separation);
+    if near_better {
+        return;
+    }
+    // A worse entry nearby: the candidate takes its place (the entries below it move up).
+    let near_worse = scratch
+        .starts
+        .iter()
+        .zip(scratch.costs.iter())
+        .enumerate()
+        .take(keep)
+        .skip(pos)
+        .find(|(_, (s, c))| c.is_finite() && distance(s, phi, n) <= separation)
+        .map(|(j, _)| j);
+    let last = near_worse.unwrap_or(keep.saturating_sub(1));
     let mut j = last;
     while j > pos {
         let below = j.saturating_sub(1);
@@ -193,7 +328,13 @@ pub(crate) fn search(
     scratch: &mut SearchScratch,
 ) -> u32 {
     let n = n.clamp(1, MAX_IMPULSES);
-    let u0 = mean_arg_latitude_rad(&ctx.deputy0);
+    let scorer = Scorer {
+        ctx,
+        settings,
+        n,
+        u0: mean_arg_latitude_rad(&ctx.deputy0),
+        max_revolutions,
+    };
     let budget = settings.search_max_evaluations;
     let starts = usize::from(settings.search_starts).min(MAX_SEARCH_STARTS);
     let mut rng = XorShift64::new(settings.search_seed);
@@ -204,7 +345,7 @@ pub(crate) fn search(
     let span = TWO_PI * (revs + n_f);
     let shrink = (revs + 1.0) / (revs + n_f);
 
-    // Phase 1: random samples.
+    // Phase 1: random samples, screened by the least fuel at one linearisation.
     for _ in 0..settings.search_samples.min(budget) {
         let mut phi = [0.0; MAX_IMPULSES];
         for p in phi.iter_mut().take(n) {
@@ -213,20 +354,24 @@ pub(crate) fn search(
         if let Some(head) = phi.get_mut(..n) {
             head.sort_unstable_by(f64::total_cmp);
         }
-        if points_of(&phi, n, u0, max_revolutions, pts).is_none() {
+        if points_of(&phi, n, scorer.u0, max_revolutions, pts).is_none() {
             // Shrinking to phi_N < 2 pi (max_revolutions + 1) always makes it feasible.
             for p in phi.iter_mut().take(n) {
                 *p *= shrink;
             }
         }
-        let c = cost_of(&phi, n, u0, max_revolutions, ctx, settings, seq, pts);
+        let c = scorer
+            .score(&phi, 1, settings.search_screen_tol_mps, None, seq, pts)
+            .cost;
         evaluations = evaluations.saturating_add(1);
-        insert_top(scratch, starts, &phi, c);
+        insert_top(scratch, starts, n, settings.search_step_rad, &phi, c);
     }
 
     // Phase 2: pattern searches from the best samples; unused budget carries to the next start.
+    let lin = settings.search_fixed_point_max_iter;
+    let tol = settings.search_tol_mps;
     let mut best_phi = scratch.starts[0];
-    let mut best_cost = scratch.costs[0];
+    let mut best_cost = f64::INFINITY;
     for j in 0..starts {
         let (Some(&start), Some(&start_cost)) = (scratch.starts.get(j), scratch.costs.get(j))
         else {
@@ -240,9 +385,12 @@ pub(crate) fn search(
             .saturating_sub(evaluations)
             .checked_div(remaining_starts)
             .unwrap_or(0);
-        let mut used: u32 = 0;
+        if allowance == 0 {
+            break;
+        }
+        let mut used: u32 = 1;
         let mut phi = start;
-        let mut cost = start_cost;
+        let mut inc = scorer.score(&phi, lin, tol, None, seq, pts);
         let mut step = settings.search_step_rad;
         while used < allowance && step >= settings.search_min_step_rad {
             let mut improved = false;
@@ -255,14 +403,14 @@ pub(crate) fn search(
                     if let Some(p) = cand.get_mut(k) {
                         *p += delta;
                     }
-                    if points_of(&cand, n, u0, max_revolutions, pts).is_none() {
+                    if points_of(&cand, n, scorer.u0, max_revolutions, pts).is_none() {
                         continue;
                     }
-                    let c = cost_of(&cand, n, u0, max_revolutions, ctx, settings, seq, pts);
+                    let sc = scorer.score(&cand, lin, tol, Some(&inc), seq, pts);
                     used = used.saturating_add(1);
-                    if c < cost {
+                    if sc.cost < inc.cost {
                         phi = cand;
-                        cost = c;
+                        inc = sc;
                         improved = true;
                         break;
                     }
@@ -273,18 +421,18 @@ pub(crate) fn search(
             }
         }
         evaluations = evaluations.saturating_add(used);
-        if cost < best_cost {
-            best_cost = cost;
+        if inc.cost < best_cost {
+            best_cost = inc.cost;
             best_phi = phi;
         }
     }
-    if points_of(&best_phi, n, u0, max_revolutions, pts).is_none() {
+    if points_of(&best_phi, n, scorer.u0, max_revolutions, pts).is_none() {
         // Only when no sample was feasible and finite: fall back to evenly spread points.
         let mut phi = [0.0; MAX_IMPULSES];
         for (k, p) in phi.iter_mut().take(n).enumerate() {
             *p = TWO_PI * (revs + 1.0) * (k as f64 + 0.5) / n_f;
         }
-        let _ = points_of(&phi, n, u0, max_revolutions, pts);
+        let _ = points_of(&phi, n, scorer.u0, max_revolutions, pts);
     }
     evaluations
 }
@@ -324,5 +472,61 @@ mod tests {
         assert!(points_of(&phi, 2, u0, 1, &mut pts).is_none());
         let bad = [1.0, 0.5, 0.0, 0.0, 0.0, 0.0];
         assert!(points_of(&bad, 2, u0, 14, &mut pts).is_none());
+    }
+
+    #[test]
+    fn top_list_keeps_starts_apart() {
+        let mut s = SearchScratch::new();
+        let at = |a: f64, b: f64| [a, b, 0.0, 0.0, 0.0, 0.0];
+        insert_top(&mut s, 3, 2, 0.25, &at(1.0, 2.0), 5.0);
+        // Near a better entry: the same basin, dropped.
+        insert_top(&mut s, 3, 2, 0.25, &at(1.1, 2.1), 6.0);
+        assert!(s.costs[1].is_infinite());
+        // Near a worse entry: replaces it.
+        insert_top(&mut s, 3, 2, 0.25, &at(1.05, 2.0), 4.0);
+        assert_eq!(s.costs[0], 4.0);
+        assert_eq!(s.starts[0][0], 1.05);
+        assert!(s.costs[1].is_infinite());
+        // Far away: kept, in cost order.
+        insert_top(&mut s, 3, 2, 0.25, &at(3.0, 4.0), 4.5);
+        insert_top(&mut s, 3, 2, 0.25, &at(5.0, 6.0), 3.0);
+        assert_eq!(s.costs[..3], [3.0, 4.0, 4.5]);
+    }
+
+    #[test]
+    fn dual_bound_is_a_lower_bound_and_tight_at_its_own_problem() {
+        use crate::impulsive::socp::least_fuel;
+        let mut seed = 9u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5
+        };
+        let mut f = crate::impulsive::transfer::FMatrix::zeros();
+        for i in 0..6 {
+            for j in 0..12 {
+                f[(i, j)] = next();
+            }
+        }
+        let y = nalgebra::SVector::<f64, 6>::new(0.3, -0.1, 0.2, 0.05, -0.4, 0.1);
+        let mut yy = [0.0; 6];
+        yy.copy_from_slice(y.as_slice());
+        let lf = least_fuel(&f, 12, &yy, 1e-12, 1e-10, 60).unwrap();
+        let own = dual_bound(&f, 12, &y, &lf.dual).unwrap();
+        assert!((own - lf.total).abs() < 1e-10, "{own} {}", lf.total);
+        // At a perturbed problem the same certificate still bounds the optimum from below.
+        for _ in 0..20 {
+            let mut g = f;
+            for v in g.iter_mut().take(72) {
+                *v += 0.05 * next();
+            }
+            let mut yg = [0.0; 6];
+            yg.copy_from_slice(y.as_slice());
+            let opt = least_fuel(&g, 12, &yg, 1e-12, 1e-10, 60).unwrap().total;
+            let bound = dual_bound(&g, 12, &y, &lf.dual).unwrap();
+            assert!(bound <= opt + 1e-12, "{bound} > {opt}");
+            assert!(bound > 0.5 * opt);
+        }
     }
 }

@@ -16,7 +16,8 @@ pub const MAX_SEARCH_STARTS: usize = 16;
 /// * minimum-norm phase: `fixed_point_max_iter` x (propagation + F + one Cholesky, or one SVD
 ///   when Cholesky declines);
 /// * min-fuel phase (`min_fuel`): `fixed_point_max_iter` x (propagation + F + Cholesky/SVD +
-///   SVD + `min_fuel_max_iter` SVDs);
+///   one cone program: a 6-row Gram-Schmidt, then at most `min_fuel_max_iter` interior-point
+///   iterations of one 6 x 6 Cholesky and two solves each);
 /// * correction (`nonlinear_correction`): one exact propagation, `3N` exact propagations for
 ///   the finite-difference Jacobian, then `correction_max_iter` x (Cholesky/SVD + exact
 ///   propagation + rank-one update);
@@ -24,26 +25,25 @@ pub const MAX_SEARCH_STARTS: usize = 16;
 ///   exact propagation (the nonlinear re-check and the transfer arcs' perigees).
 ///
 /// A search runs at most `search_max_evaluations` evaluations, each at most
-/// `search_fixed_point_max_iter` fixed-point iterations (`search_min_fuel` adds the min-fuel
-/// SVDs per iteration), then one full fixed-point solve as above.
+/// `search_fixed_point_max_iter` linearisations (propagation + F + one Cholesky or SVD) and one
+/// cone program (as above), then one full fixed-point solve as above.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Settings {
     /// Most fixed-point iterations (Wang 2018, section 2), per phase (minimum norm, min fuel).
     pub fixed_point_max_iter: u16,
     /// The fixed point has converged when no impulse component changes by more than this, m/s.
     pub fixed_point_tol_mps: f64,
-    /// Refine the minimum-norm impulses to least `sum_k |dv_k|` over the null space of F
-    /// (eq. 13), iterated jointly with the fixed point.
+    /// Replace the minimum-norm impulses by the least `sum_k |dv_k|` subject to `F dv = dY`
+    /// (a second-order cone program, exact), iterated jointly with the fixed point.
     pub min_fuel: bool,
-    /// Most reweighting steps of the min-fuel refinement per fixed-point iteration.
+    /// Most interior-point iterations of one least-fuel cone program.
     pub min_fuel_max_iter: u16,
     /// The joint min-fuel fixed point has converged when the total changes by less than this
     /// between fixed-point iterations, m/s.
     pub min_fuel_step_tol_mps: f64,
-    /// The refinement stops when the total changes by less than this, m/s.
+    /// A least-fuel cone program is optimal when its certified gap (feasible total minus the
+    /// dual lower bound) is below this, m/s.
     pub min_fuel_tol_mps: f64,
-    /// Impulse magnitude below which reweighting treats an impulse as zero, m/s.
-    pub min_fuel_floor_mps: f64,
     /// Drive the terminal error of the nonlinear model (exact impulses, J2 secular drift) to
     /// `correction_tol` by Broyden's method started from a finite-difference Jacobian. Off,
     /// the plan is the linear model's fixed point and its status `Linearised { miss_m }`.
@@ -85,10 +85,13 @@ pub struct Settings {
     pub search_step_rad: f64,
     /// A local search ends when its step falls below this, rad.
     pub search_min_step_rad: f64,
-    /// Fixed-point iterations per search evaluation.
+    /// Linearisations per local-search evaluation (the first at zero impulses, each next one
+    /// at the previous one's minimum-norm impulses); samples use one.
     pub search_fixed_point_max_iter: u16,
-    /// Score search evaluations by the min-fuel total (else the minimum-norm total).
-    pub search_min_fuel: bool,
+    /// Least-fuel tolerance of a sample's cone program (screening), m/s.
+    pub search_screen_tol_mps: f64,
+    /// Least-fuel tolerance of a local-search evaluation's cone program, m/s.
+    pub search_tol_mps: f64,
 }
 
 impl Settings {
@@ -111,9 +114,8 @@ impl Default for Settings {
             fixed_point_tol_mps: 1e-7,
             min_fuel: true,
             min_fuel_max_iter: 40,
-            min_fuel_step_tol_mps: 1e-9,
-            min_fuel_tol_mps: 1e-11,
-            min_fuel_floor_mps: 1e-9,
+            min_fuel_step_tol_mps: 1e-8,
+            min_fuel_tol_mps: 1e-9,
             nonlinear_correction: true,
             correction_max_iter: 12,
             correction_tol: 1e-12,
@@ -124,14 +126,15 @@ impl Default for Settings {
             min_sin_inclination: 1e-3,
             max_total_revolutions: 100,
             min_perigee_altitude_km: 100.0,
-            search_samples: 3000,
-            search_starts: 12,
-            search_max_evaluations: 20_000,
+            search_samples: 400,
+            search_starts: 8,
+            search_max_evaluations: 1_800,
             search_seed: 0x5741_4e47_2018_0006,
             search_step_rad: 0.25,
-            search_min_step_rad: 1e-7,
-            search_fixed_point_max_iter: 12,
-            search_min_fuel: false,
+            search_min_step_rad: 1e-4,
+            search_fixed_point_max_iter: 1,
+            search_screen_tol_mps: 1e-3,
+            search_tol_mps: 1e-7,
         }
     }
 }
@@ -156,10 +159,11 @@ impl Settings {
         if !positive(self.fixed_point_tol_mps)
             || !positive(self.min_fuel_tol_mps)
             || !positive(self.min_fuel_step_tol_mps)
-            || !positive(self.min_fuel_floor_mps)
             || !positive(self.correction_tol)
             || !positive(self.search_step_rad)
             || !positive(self.search_min_step_rad)
+            || !positive(self.search_screen_tol_mps)
+            || !positive(self.search_tol_mps)
             || !(self.rank_rcond.is_finite() && self.rank_rcond > 0.0 && self.rank_rcond < 1.0)
         {
             return Err(SettingsError::BadTolerance);

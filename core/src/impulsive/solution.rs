@@ -77,6 +77,7 @@ impl Solution {
                 min_fuel_used: false,
                 correction_used: false,
                 evaluations: 0,
+                min_fuel_gap_mps: 0.0,
             },
         }
     }

@@ -8,7 +8,7 @@ use super::elements::{
 };
 use super::error::{Orbit, PlanError, Quantity, MAX_ANGLE_RAD, MAX_SMA_KM};
 use super::kepler::true_anomaly;
-use super::min_fuel::{min_norm, refine, total};
+use super::min_fuel::{min_norm, solve_least_fuel, total};
 use super::nonlinear::{relative_position_rtn, state};
 use super::pinv::{solve_full_row_rank, solve_min_norm, Conditioning};
 use super::settings::Settings;
@@ -199,8 +199,10 @@ pub(crate) struct FixedPoint {
     pub iterations: u16,
     /// Met `fixed_point_tol_mps`.
     pub converged: bool,
-    /// Reweighting steps used (min-fuel phase).
+    /// Interior-point iterations used (min-fuel phase).
     pub min_fuel_steps: u16,
+    /// Certified gap of the last least-fuel solve (upper minus lower bound), km/s.
+    pub min_fuel_gap_km_s: f64,
     /// Rank and condition of F at the last iteration.
     pub conditioning: Conditioning,
 }
@@ -268,15 +270,16 @@ pub(crate) fn fixed_point(
             }
         };
         let x = if min_fuel {
-            // Warm start from the previous iterate's magnitudes only if it is a plan already.
-            let start = if total(dv) > 0.0 {
-                project(&seq.f, columns, &seq.dy, dv, &x0, settings)?
+            // Exact least fuel on this linearisation (a cone program, `socp`); its impulses
+            // are feasible whatever its status, and the certified gap is reported.
+            let (x, lf) = solve_least_fuel(&seq.f, columns, &seq.dy, settings)?;
+            out.min_fuel_steps = out.min_fuel_steps.saturating_add(lf.iterations);
+            out.min_fuel_gap_km_s = lf.total - lf.lower_bound;
+            if total(&x) <= total(&x0) {
+                x
             } else {
                 x0
-            };
-            let (x, steps) = refine(&seq.f, columns, &seq.dy, &start, settings)?;
-            out.min_fuel_steps = out.min_fuel_steps.saturating_add(steps);
-            x
+            }
         } else {
             x0
         };
@@ -303,24 +306,6 @@ fn max_abs_diff(a: &XVector, b: &XVector) -> f64 {
         m = m.max(libm::fabs(*x - *y));
     }
     m
-}
-
-/// The previous iterate moved onto the current constraint `F x = y` (minimum-norm correction),
-/// falling back to `x0` when that is cheaper.
-fn project(
-    f: &super::transfer::FMatrix,
-    columns: usize,
-    y: &nalgebra::SVector<f64, 6>,
-    prev: &XVector,
-    x0: &XVector,
-    settings: &Settings,
-) -> Result<XVector, Stage> {
-    let mut r = *y;
-    r.gemv(-1.0, f, prev, 1.0);
-    let d = min_norm(f, columns, &r, settings)?;
-    let mut x = *prev;
-    x.axpy(1.0, &d, 1.0);
-    Ok(if total(&x) < total(x0) { x } else { *x0 })
 }
 
 /// Nonlinear check: propagate with exact impulses and compare with the target at the last
@@ -379,6 +364,7 @@ pub(crate) struct Report {
     pub status: SolveStatus,
     pub iterations: u16,
     pub min_fuel_steps: u16,
+    pub min_fuel_gap_km_s: f64,
     pub correction_steps: u16,
     pub min_norm_total_km_s: f64,
     pub linear_total_km_s: f64,
@@ -399,6 +385,7 @@ pub(crate) fn solve_points(
         status: SolveStatus::Solved,
         iterations: 0,
         min_fuel_steps: 0,
+        min_fuel_gap_km_s: 0.0,
         correction_steps: 0,
         min_norm_total_km_s: 0.0,
         linear_total_km_s: 0.0,
@@ -449,6 +436,7 @@ pub(crate) fn solve_points(
             Ok(fp2) => {
                 rep.iterations = rep.iterations.saturating_add(fp2.iterations);
                 rep.min_fuel_steps = fp2.min_fuel_steps;
+                rep.min_fuel_gap_km_s = fp2.min_fuel_gap_km_s;
                 if total(&fuel_dv) <= rep.min_norm_total_km_s && fp2.conditioning.rank == 6 {
                     rep.dv = fuel_dv;
                     rep.min_fuel_used = true;
@@ -750,6 +738,11 @@ pub(crate) fn write_solution(
     out.terminal_error_elements = to_relative(&err);
     out.info.iterations = rep.iterations;
     out.info.min_fuel_iterations = rep.min_fuel_steps;
+    out.info.min_fuel_gap_mps = if rep.min_fuel_used {
+        rep.min_fuel_gap_km_s * M_PER_KM
+    } else {
+        0.0
+    };
     out.info.correction_iterations = rep.correction_steps;
     out.info.rank = rep.conditioning.rank;
     // Rank-deficient F has no finite condition number; the largest f64 says so in a finite

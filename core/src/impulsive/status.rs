@@ -76,7 +76,7 @@ pub struct SolveInfo {
     pub status: SolveStatus,
     /// Fixed-point iterations (minimum-norm phase plus min-fuel phase) of the returned plan.
     pub iterations: u16,
-    /// Iteratively-reweighted least-squares steps of the min-fuel refinement, all told.
+    /// Interior-point iterations of the least-fuel cone programs, all told.
     pub min_fuel_iterations: u16,
     /// Nonlinear defect-correction steps.
     pub correction_iterations: u16,
@@ -91,6 +91,9 @@ pub struct SolveInfo {
     pub correction_used: bool,
     /// Fixed-point solves evaluated (1 for fixed points; the search's count otherwise).
     pub evaluations: u32,
+    /// Certified optimality gap of the least-fuel impulses on the final linearisation (upper
+    /// minus dual lower bound), m/s; 0 when the least-fuel plan was not used.
+    pub min_fuel_gap_mps: f64,
 }
 
 #[cfg(test)]

@@ -9,8 +9,8 @@ use serde::{Deserialize, Serialize};
 
 /// Planner-B limits. Field names are the settings' names; each is the most (for
 /// `rank_rcond`, `min_eccentricity` and `min_sin_inclination` the least) a request may ask for;
-/// flags say whether a request may switch the work on (`min_fuel`, `search`,
-/// `search_min_fuel`) or must keep the check on (`nonlinear_correction`). Defaults: the default
+/// flags say whether a request may switch the work on (`min_fuel`, `search`) or must keep the
+/// check on (`nonlinear_correction`). Defaults: the default
 /// settings and the compiled capacity.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -25,14 +25,12 @@ pub struct Limits {
     pub fixed_point_tol_mps: f64,
     /// A request may ask for the least-fuel refinement.
     pub min_fuel: bool,
-    /// Most reweighting steps per fixed-point iteration.
+    /// Most interior-point iterations of one least-fuel cone program.
     pub min_fuel_max_iter: u16,
     /// Loosest joint min-fuel step tolerance, m/s.
     pub min_fuel_step_tol_mps: f64,
-    /// Loosest refinement tolerance, m/s.
+    /// Loosest certified gap of a least-fuel cone program, m/s.
     pub min_fuel_tol_mps: f64,
-    /// Largest magnitude treated as a zero impulse, m/s.
-    pub min_fuel_floor_mps: f64,
     /// The nonlinear defect correction must be on.
     pub nonlinear_correction: bool,
     /// Most defect-correction steps.
@@ -52,6 +50,9 @@ pub struct Limits {
     pub min_sin_inclination: f64,
     /// Largest sum of revolution counts.
     pub max_total_revolutions: i32,
+    /// Least minimum perigee altitude of every orbit and transfer arc, km (a request may
+    /// raise it, never lower it).
+    pub min_perigee_altitude_km: f64,
     /// Most random samples of a search.
     pub search_samples: u32,
     /// Most local searches.
@@ -62,11 +63,12 @@ pub struct Limits {
     pub search_step_rad: f64,
     /// Loosest final pattern step, rad.
     pub search_min_step_rad: f64,
-    /// Most fixed-point iterations per search evaluation.
+    /// Most linearisations per search evaluation.
     pub search_fixed_point_max_iter: u16,
-    /// A request may score search evaluations by the min-fuel total (adds the min-fuel SVDs to
-    /// every evaluation).
-    pub search_min_fuel: bool,
+    /// Loosest least-fuel gap when screening search samples, m/s.
+    pub search_screen_tol_mps: f64,
+    /// Loosest least-fuel gap in the search's local moves, m/s.
+    pub search_tol_mps: f64,
 }
 
 impl Default for Limits {
@@ -81,7 +83,6 @@ impl Default for Limits {
             min_fuel_max_iter: d.min_fuel_max_iter,
             min_fuel_step_tol_mps: d.min_fuel_step_tol_mps,
             min_fuel_tol_mps: d.min_fuel_tol_mps,
-            min_fuel_floor_mps: d.min_fuel_floor_mps,
             nonlinear_correction: d.nonlinear_correction,
             correction_max_iter: d.correction_max_iter,
             correction_tol: d.correction_tol,
@@ -91,13 +92,15 @@ impl Default for Limits {
             min_eccentricity: d.min_eccentricity,
             min_sin_inclination: d.min_sin_inclination,
             max_total_revolutions: d.max_total_revolutions,
+            min_perigee_altitude_km: d.min_perigee_altitude_km,
             search_samples: d.search_samples,
             search_starts: d.search_starts,
             search_max_evaluations: d.search_max_evaluations,
             search_step_rad: d.search_step_rad,
             search_min_step_rad: d.search_min_step_rad,
             search_fixed_point_max_iter: d.search_fixed_point_max_iter,
-            search_min_fuel: d.search_min_fuel,
+            search_screen_tol_mps: d.search_screen_tol_mps,
+            search_tol_mps: d.search_tol_mps,
         }
     }
 }
@@ -144,7 +147,6 @@ impl Limits {
             min_fuel_max_iter,
             min_fuel_step_tol_mps,
             min_fuel_tol_mps,
-            min_fuel_floor_mps,
             nonlinear_correction,
             correction_max_iter,
             correction_tol,
@@ -154,6 +156,7 @@ impl Limits {
             min_eccentricity,
             min_sin_inclination,
             max_total_revolutions,
+            min_perigee_altitude_km,
             search_samples,
             search_starts,
             search_max_evaluations,
@@ -161,7 +164,8 @@ impl Limits {
             search_step_rad,
             search_min_step_rad,
             search_fixed_point_max_iter,
-            search_min_fuel,
+            search_screen_tol_mps,
+            search_tol_mps,
         } = *s;
         use Setting as S;
         let l = self;
@@ -188,11 +192,6 @@ impl Limits {
             l.min_fuel_step_tol_mps,
         )?;
         at_most(S::ImpMinFuelTolMps, min_fuel_tol_mps, l.min_fuel_tol_mps)?;
-        at_most(
-            S::ImpMinFuelFloorMps,
-            min_fuel_floor_mps,
-            l.min_fuel_floor_mps,
-        )?;
         must_be_on(
             S::ImpNonlinearCorrection,
             nonlinear_correction,
@@ -222,6 +221,11 @@ impl Limits {
             f64::from(max_total_revolutions),
             f64::from(l.max_total_revolutions),
         )?;
+        at_least(
+            S::ImpMinPerigeeAltitudeKm,
+            min_perigee_altitude_km,
+            l.min_perigee_altitude_km,
+        )?;
         at_most(
             S::ImpSearchSamples,
             f64::from(search_samples),
@@ -248,7 +252,12 @@ impl Limits {
             n(search_fixed_point_max_iter),
             n(l.search_fixed_point_max_iter),
         )?;
-        allowed(S::ImpSearchMinFuel, search_min_fuel, l.search_min_fuel)
+        at_most(
+            S::ImpSearchScreenTolMps,
+            search_screen_tol_mps,
+            l.search_screen_tol_mps,
+        )?;
+        at_most(S::ImpSearchTolMps, search_tol_mps, l.search_tol_mps)
     }
 }
 
@@ -280,7 +289,7 @@ mod tests {
             .unwrap_err();
         assert_eq!(
             (e.setting, e.value, e.limit, e.rule),
-            (Setting::ImpSearchSamples, 2e6, 3000.0, Rule::AtMost)
+            (Setting::ImpSearchSamples, 2e6, 400.0, Rule::AtMost)
         );
         let e = l
             .check_settings(&Settings {
@@ -301,13 +310,13 @@ mod tests {
         );
         let e = l
             .check_settings(&Settings {
-                search_min_fuel: true,
+                min_perigee_altitude_km: 50.0,
                 ..Settings::default()
             })
             .unwrap_err();
         assert_eq!(
-            (e.setting, e.rule),
-            (Setting::ImpSearchMinFuel, Rule::MustBeOff)
+            (e.setting, e.value, e.limit, e.rule),
+            (Setting::ImpMinPerigeeAltitudeKm, 50.0, 100.0, Rule::AtLeast)
         );
         let tighter = Settings {
             fixed_point_max_iter: 5,
@@ -315,6 +324,7 @@ mod tests {
             min_fuel: false,
             search_samples: 100,
             search_max_evaluations: 200,
+            min_perigee_altitude_km: 300.0,
             ..Settings::default()
         };
         assert_eq!(l.check_settings(&tighter), Ok(()));

@@ -69,8 +69,8 @@ pub enum Setting {
     ImpMinFuelStepTolMps = 38,
     /// Planner B: `min_fuel_tol_mps`.
     ImpMinFuelTolMps = 39,
-    /// Planner B: `min_fuel_floor_mps`.
-    ImpMinFuelFloorMps = 40,
+    /// Planner B: `min_perigee_altitude_km`.
+    ImpMinPerigeeAltitudeKm = 40,
     /// Planner B: `nonlinear_correction`.
     ImpNonlinearCorrection = 41,
     /// Planner B: `correction_max_iter`.
@@ -103,8 +103,10 @@ pub enum Setting {
     ImpSearchMinStepRad = 55,
     /// Planner B: `search_fixed_point_max_iter`.
     ImpSearchFixedPointMaxIter = 56,
-    /// Planner B: `search_min_fuel`.
-    ImpSearchMinFuel = 57,
+    /// Planner B: `search_screen_tol_mps`.
+    ImpSearchScreenTolMps = 57,
+    /// Planner B: `search_tol_mps`.
+    ImpSearchTolMps = 58,
 }
 
 impl Setting {
@@ -134,7 +136,7 @@ impl Setting {
             Self::ImpMinFuelMaxIter => "min_fuel_max_iter",
             Self::ImpMinFuelStepTolMps => "min_fuel_step_tol_mps",
             Self::ImpMinFuelTolMps => "min_fuel_tol_mps",
-            Self::ImpMinFuelFloorMps => "min_fuel_floor_mps",
+            Self::ImpMinPerigeeAltitudeKm => "min_perigee_altitude_km",
             Self::ImpNonlinearCorrection => "nonlinear_correction",
             Self::ImpCorrectionMaxIter => "correction_max_iter",
             Self::ImpCorrectionTol => "correction_tol",
@@ -151,7 +153,8 @@ impl Setting {
             Self::ImpSearchStepRad => "search_step_rad",
             Self::ImpSearchMinStepRad => "search_min_step_rad",
             Self::ImpSearchFixedPointMaxIter => "search_fixed_point_max_iter",
-            Self::ImpSearchMinFuel => "search_min_fuel",
+            Self::ImpSearchScreenTolMps => "search_screen_tol_mps",
+            Self::ImpSearchTolMps => "search_tol_mps",
         }
     }
 
