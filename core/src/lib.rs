@@ -26,6 +26,8 @@
 #![deny(missing_docs)]
 
 pub mod capacity;
+pub mod geo_tour;
 pub mod impulsive;
+pub mod lambert;
 pub mod pseudospectral;
 pub mod wire;

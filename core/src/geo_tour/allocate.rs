@@ -1,0 +1,377 @@
+//! Exact time allocation by a Lagrange time price.
+//!
+//! For a price `lambda` (m/s of Δv per second of time) every leg independently minimises
+//! `dv_j(t) + lambda t` over its options: the drift depth (continuous, convex in t) and the
+//! point options (Hohmann, radial, direct Lambert, Lambert well bottoms). The tour's time
+//! `sum t_j(lambda)` does not increase with lambda; a bracketing search (in `w = 1/sqrt
+//! lambda`, where the drift legs' time is nearly linear) finds the price at which the tour
+//! just fits the mission time. Where point options switch at that price the Lagrangian leaves
+//! a duality gap: the switching legs are tried both ways (2^k assignments), each with the
+//! drift legs' time re-allocated exactly for the points it fixes. Then every leg on a Lambert
+//! well is refined at the final price (its well searched for `dv + lambda t`), kept when the
+//! re-allocated total falls. See docs/geo-tour.md for the proof of exactness on drift legs.
+
+use super::root::illinois;
+use super::table::{LegTable, Point};
+use super::types::{Settings, MAX_TARGETS};
+
+/// What a leg does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Choice {
+    /// The drift method at a depth set by the price.
+    Drift,
+    /// Point option i of the leg's table.
+    Point(u8),
+}
+
+/// A leg's choice with its time and cost.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Pick {
+    pub choice: Choice,
+    pub duration_s: f64,
+    pub dv_mps: f64,
+    /// Drift depth (km) when `choice == Drift`.
+    pub x_km: f64,
+}
+
+impl Pick {
+    pub const fn none() -> Self {
+        Self {
+            choice: Choice::Point(0),
+            duration_s: 0.0,
+            dv_mps: 0.0,
+            x_km: 0.0,
+        }
+    }
+}
+
+fn drift_pick(t: &LegTable, price: f64, s: &Settings) -> Option<Pick> {
+    let d = t.drift.as_ref()?;
+    let x = d.model.depth_for_price(price, d.x_max_km, s.root_max_iter);
+    let p = d.model.at(x);
+    Some(Pick {
+        choice: Choice::Drift,
+        duration_s: p.duration_s,
+        dv_mps: p.dv_mps,
+        x_km: x,
+    })
+}
+
+fn point_pick(i: usize, p: &Point) -> Pick {
+    Pick {
+        choice: Choice::Point(u8::try_from(i).unwrap_or(u8::MAX)),
+        duration_s: p.duration_s,
+        dv_mps: p.dv_mps,
+        x_km: 0.0,
+    }
+}
+
+/// The leg's best option at `price` (ties: drift first, then the table's order).
+fn pick(t: &LegTable, price: f64, s: &Settings) -> Option<Pick> {
+    let mut best = drift_pick(t, price, s);
+    for (i, p) in t.points.iter().enumerate() {
+        let score = p.dv_mps + price * p.duration_s;
+        if best.is_none_or(|b| score < b.dv_mps + price * b.duration_s) {
+            best = Some(point_pick(i, p));
+        }
+    }
+    best
+}
+
+/// Every leg's best option at `price` into `picks`; returns the tour's time.
+fn pick_all(tables: &[LegTable], price: f64, s: &Settings, picks: &mut [Pick]) -> f64 {
+    let mut total = 0.0;
+    for (t, slot) in tables.iter().zip(picks.iter_mut()) {
+        match pick(t, price, s) {
+            Some(p) => {
+                total += p.duration_s;
+                *slot = p;
+            }
+            None => return f64::INFINITY,
+        }
+    }
+    total
+}
+
+fn totals(picks: &[Pick]) -> (f64, f64) {
+    picks
+        .iter()
+        .fold((0.0, 0.0), |(t, v), p| (t + p.duration_s, v + p.dv_mps))
+}
+
+/// Result of an allocation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Allocation {
+    pub price: f64,
+    pub dv_mps: f64,
+    pub time_s: f64,
+    pub iterations: u32,
+    pub gap_assignments: u32,
+    pub refined: u8,
+}
+
+/// Drift legs' time for the choices in `picks` (points fixed): the price at which their
+/// durations fill `budget_s`, durations written into `picks`. `None` when the drift legs'
+/// fastest durations exceed the budget.
+fn drift_allocate(
+    tables: &[LegTable],
+    picks: &mut [Pick],
+    budget_s: f64,
+    s: &Settings,
+    iterations: &mut u32,
+) -> Option<f64> {
+    let mut fixed = 0.0;
+    let mut fastest = 0.0;
+    let mut top = 0.0_f64;
+    let mut any = false;
+    for (t, p) in tables.iter().zip(picks.iter()) {
+        match (p.choice, t.drift.as_ref()) {
+            (Choice::Drift, Some(d)) => {
+                any = true;
+                fastest += d.t_min_s;
+                top = top.max(d.model.price_at(d.x_max_km));
+            }
+            (Choice::Drift, None) => return None,
+            (Choice::Point(_), _) => fixed += p.duration_s,
+        }
+    }
+    let budget = budget_s - fixed;
+    if !any {
+        return (budget >= 0.0).then_some(0.0);
+    }
+    if fastest > budget {
+        return None;
+    }
+    let drift_time = |price: f64, picks: &mut [Pick]| -> f64 {
+        let mut sum = 0.0;
+        for (t, p) in tables.iter().zip(picks.iter_mut()) {
+            if p.choice == Choice::Drift {
+                if let Some(q) = drift_pick(t, price, s) {
+                    sum += q.duration_s;
+                    *p = q;
+                }
+            }
+        }
+        sum
+    };
+    // w = 1/sqrt(price): w_a at the price where every drift leg is at its fastest (time <=
+    // budget), w_b small enough prices (long drifts) to exceed the budget.
+    let w_a = 1.0 / libm::sqrt(top);
+    let fa = drift_time(top, picks) - budget;
+    if fa >= -s.time_tol_s {
+        return Some(top);
+    }
+    let mut w_b = w_a;
+    let mut fb = fa;
+    for _ in 0..64 {
+        w_b *= 4.0;
+        fb = drift_time(1.0 / (w_b * w_b), picks) - budget;
+        if fb > 0.0 {
+            break;
+        }
+    }
+    if fb.is_nan() || fb <= 0.0 {
+        return None;
+    }
+    let mut n = 0u32;
+    let (w, _, _, _, steps) = illinois(
+        |w| {
+            n = n.saturating_add(1);
+            drift_time(1.0 / (w * w), picks) - budget
+        },
+        w_a,
+        fa,
+        w_b,
+        fb,
+        s.price_max_iter,
+        1e-15,
+        s.time_tol_s,
+    );
+    *iterations = iterations.saturating_add(u32::from(steps));
+    let price = 1.0 / (w * w);
+    drift_time(price, picks);
+    Some(price)
+}
+
+/// Allocate the mission time `budget_s` over the legs. `picks` receives each leg's choice and
+/// duration; `scratch` and `trial` are working copies. `None` when the fastest tour does not
+/// fit (the caller has already checked that it does, so this means a numerical failure).
+pub(crate) fn allocate(
+    tables: &mut [LegTable],
+    budget_s: f64,
+    s: &Settings,
+    picks: &mut [Pick; MAX_TARGETS],
+    lo_picks: &mut [Pick; MAX_TARGETS],
+    trial: &mut [Pick; MAX_TARGETS],
+) -> Option<Allocation> {
+    let n = tables.len();
+    let mut iterations = 0u32;
+    // Does time bind at all? With no drift leg the cheapest points may fit.
+    let any_drift = tables.iter().any(|t| t.drift.is_some());
+    if !any_drift {
+        let tt = pick_all(tables, 0.0, s, picks);
+        if tt <= budget_s {
+            let (time_s, dv_mps) = totals(picks.get(..n)?);
+            return Some(Allocation {
+                price: 0.0,
+                dv_mps,
+                time_s,
+                iterations,
+                gap_assignments: 0,
+                refined: 0,
+            });
+        }
+    }
+    // Bracket the critical price: w_a feasible (time <= budget), w_b not.
+    let mut w_a = 1e3;
+    let mut fa = pick_all(tables, 1.0 / (w_a * w_a), s, picks) - budget_s;
+    for _ in 0..64 {
+        if fa <= 0.0 {
+            break;
+        }
+        w_a *= 0.25;
+        fa = pick_all(tables, 1.0 / (w_a * w_a), s, picks) - budget_s;
+    }
+    if fa.is_nan() || fa > 0.0 {
+        return None;
+    }
+    let mut w_b = w_a;
+    let mut fb = fa;
+    for _ in 0..64 {
+        w_b *= 4.0;
+        fb = pick_all(tables, 1.0 / (w_b * w_b), s, lo_picks) - budget_s;
+        if fb > 0.0 {
+            break;
+        }
+    }
+    let (wa, wb) = if fb > 0.0 {
+        let (a, _, b, _, steps) = illinois(
+            |w| pick_all(tables, 1.0 / (w * w), s, trial) - budget_s,
+            w_a,
+            fa,
+            w_b,
+            fb,
+            s.price_max_iter,
+            1e-15,
+            s.time_tol_s,
+        );
+        iterations = iterations.saturating_add(u32::from(steps));
+        (a, b)
+    } else {
+        // Time never binds (points only and all fit at every price tried).
+        (w_b, w_b)
+    };
+    pick_all(tables, 1.0 / (wa * wa), s, picks);
+    pick_all(tables, 1.0 / (wb * wb), s, lo_picks);
+    let mut price = 1.0 / (wa * wa);
+    // Duality gap: legs whose choice differs across the bracket, tried both ways.
+    let mut switching = [0usize; MAX_TARGETS];
+    let mut k = 0usize;
+    for j in 0..n {
+        let (Some(a), Some(b)) = (picks.get(j), lo_picks.get(j)) else {
+            continue;
+        };
+        if a.choice != b.choice && k < usize::from(s.gap_max_legs) {
+            if let Some(slot) = switching.get_mut(k) {
+                *slot = j;
+                k = k.saturating_add(1);
+            }
+        }
+    }
+    let mut best_dv = f64::INFINITY;
+    let mut best_price = price;
+    let mut assignments = 0u32;
+    let combos = 1u32.checked_shl(u32::try_from(k).unwrap_or(0)).unwrap_or(1);
+    let hi_copy = *picks;
+    for mask in 0..combos {
+        *trial = hi_copy;
+        for (bit, &j) in switching.iter().take(k).enumerate() {
+            if (mask >> bit) & 1 == 1 {
+                if let (Some(t), Some(l)) = (trial.get_mut(j), lo_picks.get(j)) {
+                    *t = *l;
+                }
+            }
+        }
+        assignments = assignments.saturating_add(1);
+        let Some(p) = drift_allocate(tables, trial.get_mut(..n)?, budget_s, s, &mut iterations)
+        else {
+            continue;
+        };
+        let (time_s, dv) = totals(trial.get(..n)?);
+        if time_s <= budget_s && dv < best_dv {
+            best_dv = dv;
+            best_price = p;
+            *picks = *trial;
+        }
+    }
+    if !best_dv.is_finite() {
+        return None;
+    }
+    price = best_price;
+    // Local refinement of the Lambert wells at the final price.
+    let mut refined = 0u8;
+    let g = super::geo::Geo::standard();
+    for j in 0..n {
+        let Some(Pick {
+            choice: Choice::Point(i),
+            ..
+        }) = picks.get(j).copied()
+        else {
+            continue;
+        };
+        let Some(t) = tables.get(j) else { continue };
+        let Some(pt) = t.points.get(usize::from(i)).copied() else {
+            continue;
+        };
+        let super::table::PointKind::Well(m) = pt.kind else {
+            continue;
+        };
+        let dir = super::table::direction_of(t);
+        let Some(mv) = super::lambert_phasing::well_minimum(
+            &g,
+            dir,
+            t.phase_rad,
+            m,
+            price,
+            t.cap_mps,
+            s.well_iterations,
+            super::table::bounds(s),
+        ) else {
+            continue;
+        };
+        if mv.transfer_s >= pt.duration_s {
+            continue;
+        }
+        *trial = *picks;
+        if let Some(slot) = trial.get_mut(j) {
+            slot.duration_s = mv.transfer_s;
+            slot.dv_mps = mv.dv_mps;
+        }
+        let Some(p) = drift_allocate(tables, trial.get_mut(..n)?, budget_s, s, &mut iterations)
+        else {
+            continue;
+        };
+        let (time_s, dv) = totals(trial.get(..n)?);
+        if time_s <= budget_s && dv < best_dv {
+            best_dv = dv;
+            price = p;
+            *picks = *trial;
+            if let Some(tm) = tables.get_mut(j) {
+                if let Some(ptm) = tm.points.get_mut(usize::from(i)) {
+                    ptm.duration_s = mv.transfer_s;
+                    ptm.dv_mps = mv.dv_mps;
+                }
+            }
+            refined = refined.saturating_add(1);
+        }
+    }
+    let (time_s, dv_mps) = totals(picks.get(..n)?);
+    Some(Allocation {
+        price,
+        dv_mps,
+        time_s,
+        iterations,
+        gap_assignments: assignments,
+        refined,
+    })
+}
