@@ -11,8 +11,10 @@
 //! well is refined at the final price (its well searched for `dv + lambda t`), kept when the
 //! re-allocated total falls. See docs/geo-tour.md for the proof of exactness on drift legs.
 
+use super::geo::Geo;
+use super::lambert_phasing::well_minimum;
 use super::root::illinois;
-use super::table::{LegTable, Point};
+use super::table::{bounds, direction_of, LegTable, Point, PointKind, MAX_POINTS};
 use super::types::{Settings, MAX_TARGETS};
 
 /// What a leg does.
@@ -308,62 +310,21 @@ pub(crate) fn allocate(
         return None;
     }
     price = best_price;
-    // Local refinement of the Lambert wells at the final price.
+    let mut exchanges = 0u32;
     let mut refined = 0u8;
-    let g = super::geo::Geo::standard();
-    for j in 0..n {
-        let Some(Pick {
-            choice: Choice::Point(i),
-            ..
-        }) = picks.get(j).copied()
-        else {
-            continue;
-        };
-        let Some(t) = tables.get(j) else { continue };
-        let Some(pt) = t.points.get(usize::from(i)).copied() else {
-            continue;
-        };
-        let super::table::PointKind::Well(m) = pt.kind else {
-            continue;
-        };
-        let dir = super::table::direction_of(t);
-        let Some(mv) = super::lambert_phasing::well_minimum(
-            &g,
-            dir,
-            t.phase_rad,
-            m,
-            price,
-            t.cap_mps,
-            s.well_iterations,
-            super::table::bounds(s),
-        ) else {
-            continue;
-        };
-        if mv.transfer_s >= pt.duration_s {
-            continue;
-        }
-        *trial = *picks;
-        if let Some(slot) = trial.get_mut(j) {
-            slot.duration_s = mv.transfer_s;
-            slot.dv_mps = mv.dv_mps;
-        }
-        let Some(p) = drift_allocate(tables, trial.get_mut(..n)?, budget_s, s, &mut iterations)
-        else {
-            continue;
-        };
-        let (time_s, dv) = totals(trial.get(..n)?);
-        if time_s <= budget_s && dv < best_dv {
-            best_dv = dv;
-            price = p;
-            *picks = *trial;
-            if let Some(tm) = tables.get_mut(j) {
-                if let Some(ptm) = tm.points.get_mut(usize::from(i)) {
-                    ptm.duration_s = mv.transfer_s;
-                    ptm.dv_mps = mv.dv_mps;
-                }
-            }
-            refined = refined.saturating_add(1);
-        }
+    if let Some((p, _)) = exchange(
+        tables,
+        picks,
+        trial,
+        budget_s,
+        s,
+        price,
+        best_dv,
+        &mut iterations,
+        &mut exchanges,
+        &mut refined,
+    ) {
+        price = p;
     }
     let (time_s, dv_mps) = totals(picks.get(..n)?);
     Some(Allocation {
@@ -371,7 +332,143 @@ pub(crate) fn allocate(
         dv_mps,
         time_s,
         iterations,
-        gap_assignments: assignments,
+        gap_assignments: assignments.saturating_add(exchanges),
         refined,
     })
+}
+
+/// A leg's alternative in the exchange search: a pick, and for a Lambert well refined at the
+/// current price its new point (written into the table when the exchange is kept).
+fn alternatives(
+    t: &LegTable,
+    cur: &Pick,
+    price: f64,
+    s: &Settings,
+    out: &mut heapless::Vec<(Pick, Option<Point>), { MAX_POINTS + 1 }>,
+) {
+    out.clear();
+    let g = Geo::standard();
+    for (i, p) in t.points.iter().enumerate() {
+        let base = point_pick(i, p);
+        let est = (base.dv_mps - cur.dv_mps) + price * (base.duration_s - cur.duration_s);
+        if let PointKind::Well(m) = p.kind {
+            // A well moves with the price: refine it when it could compete (its refined
+            // score is at most the stored one, so the stored estimate bounds it from above
+            // only approximately; `exchange_margin_mps` widens the net).
+            if est < s.exchange_margin_mps {
+                let refined = well_minimum(
+                    &g,
+                    direction_of(t),
+                    t.phase_rad,
+                    m,
+                    price,
+                    t.cap_mps,
+                    s.well_iterations,
+                    bounds(s),
+                );
+                if let Some(mv) = refined {
+                    let q = Point {
+                        kind: p.kind,
+                        duration_s: mv.transfer_s,
+                        dv_mps: mv.dv_mps,
+                    };
+                    let _ = out.push((point_pick(i, &q), Some(q)));
+                }
+            }
+        } else if base.choice != cur.choice && est < 0.0 {
+            let _ = out.push((base, None));
+        }
+    }
+    if cur.choice != Choice::Drift {
+        if let Some(d) = drift_pick(t, price, s) {
+            let est = (d.dv_mps - cur.dv_mps) + price * (d.duration_s - cur.duration_s);
+            if est < 0.0 {
+                let _ = out.push((d, None));
+            }
+        }
+    }
+}
+
+/// Exchange search after the price. The Lagrangian solution can miss the optimum where point
+/// options switch (a duality gap wider than the legs switching at the critical price), and a
+/// Lambert well's best time moves with the price. For the current assignment and its drift
+/// price `lambda`, every alternative of every leg whose first-order effect
+/// `d(dv) + lambda d(t)` is negative (Lambert wells: below `exchange_margin_mps`, refined at
+/// `lambda` first) is evaluated exactly (drift time re-allocated) and kept when the total
+/// falls. At most `exchange_rounds` rounds, each at most `MAX_POINTS + 1` alternatives per leg.
+/// Returns the new price and total when anything changed.
+#[allow(clippy::too_many_arguments)]
+fn exchange(
+    tables: &mut [LegTable],
+    picks: &mut [Pick; MAX_TARGETS],
+    trial: &mut [Pick; MAX_TARGETS],
+    budget_s: f64,
+    s: &Settings,
+    mut price: f64,
+    mut best_dv: f64,
+    iterations: &mut u32,
+    exchanges: &mut u32,
+    refined: &mut u8,
+) -> Option<(f64, f64)> {
+    let n = tables.len();
+    let mut changed = false;
+    let mut alts = heapless::Vec::new();
+    for _ in 0..s.exchange_rounds {
+        let mut improved = false;
+        for j in 0..n {
+            let (Some(cur), Some(t)) = (picks.get(j).copied(), tables.get(j)) else {
+                continue;
+            };
+            alternatives(t, &cur, price, s, &mut alts);
+            let mut accepted: Option<Option<Point>> = None;
+            for (alt, point) in alts.iter() {
+                if alt.choice == cur.choice
+                    && (alt.duration_s - cur.duration_s).abs() <= 1e-9 * cur.duration_s
+                {
+                    continue;
+                }
+                *trial = *picks;
+                if let Some(slot) = trial.get_mut(j) {
+                    *slot = *alt;
+                }
+                *exchanges = exchanges.saturating_add(1);
+                let Some(p) = drift_allocate(tables, trial.get_mut(..n)?, budget_s, s, iterations)
+                else {
+                    continue;
+                };
+                let (time_s, dv) = totals(trial.get(..n)?);
+                if time_s <= budget_s && dv < best_dv - 1e-12 {
+                    best_dv = dv;
+                    price = p;
+                    *picks = *trial;
+                    accepted = Some(*point);
+                    break;
+                }
+            }
+            if let Some(point) = accepted {
+                improved = true;
+                changed = true;
+                if let (
+                    Some(q),
+                    Some(Pick {
+                        choice: Choice::Point(i),
+                        ..
+                    }),
+                ) = (point, picks.get(j).copied())
+                {
+                    if let Some(slot) = tables
+                        .get_mut(j)
+                        .and_then(|t| t.points.get_mut(usize::from(i)))
+                    {
+                        *slot = q;
+                        *refined = refined.saturating_add(1);
+                    }
+                }
+            }
+        }
+        if !improved {
+            break;
+        }
+    }
+    changed.then_some((price, best_dv))
 }

@@ -185,6 +185,17 @@ impl Drift {
     }
 }
 
+/// The drift manoeuvre at depth `depth_km` (drift orbit `a0 - s depth`), for any caller
+/// (brute-force checks, plots); `None` when the transfers alone overshoot the phase.
+pub fn drift_at_depth(g: &Geo, dir: Direction, phase_rad: f64, depth_km: f64) -> Option<Maneuver> {
+    let d = Drift {
+        g: *g,
+        dir,
+        phase_rad,
+    };
+    (d.at(depth_km).drift_s >= 0.0).then(|| d.maneuver(depth_km))
+}
+
 /// Convenience for callers outside the allocation: the drift manoeuvre of a leg that takes
 /// exactly `duration_s`, or `None` when no admissible drift orbit is that fast.
 pub fn drift_for_duration(

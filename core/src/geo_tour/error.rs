@@ -41,6 +41,10 @@ pub enum Field {
     RuleRadialAbove = 15,
     /// `Settings::lambert_direct_time_s`.
     LambertDirectTime = 16,
+    /// `Settings::exchange_rounds`.
+    ExchangeRounds = 17,
+    /// `Settings::exchange_margin_mps`.
+    ExchangeMargin = 18,
 }
 
 /// A request the planner refuses.

@@ -36,7 +36,7 @@ mod types;
 mod validate;
 mod workspace;
 
-pub use drift::drift_for_duration;
+pub use drift::{drift_at_depth, drift_for_duration};
 pub use error::{Field, PlanError};
 pub use geo::{
     inertial_to_rtn, rtn_to_inertial, wrap_two_pi, Geo, EARTH_RATE_RAD_S, MU_KM3_S2, TWO_PI,

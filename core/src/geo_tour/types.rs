@@ -79,6 +79,12 @@ pub struct Settings {
     pub time_tol_s: f64,
     /// Legs switching at the critical price tried both ways, <= 6.
     pub gap_max_legs: u8,
+    /// Rounds of the exchange search after the price (each tries every leg's options whose
+    /// first-order gain at the current price is positive).
+    pub exchange_rounds: u16,
+    /// A Lambert well is refined at the current price in the exchange search when its stored
+    /// bottom's first-order effect is below this, m/s.
+    pub exchange_margin_mps: f64,
     /// No intermediate orbit may come closer to Earth's centre than this, km.
     pub min_radius_km: f64,
     /// Paper's rule: drift above this phase offset, rad (1.2 deg).
@@ -103,6 +109,8 @@ impl Default for Settings {
             price_max_iter: 100,
             time_tol_s: 1e-3,
             gap_max_legs: 4,
+            exchange_rounds: 8,
+            exchange_margin_mps: 0.05,
             min_radius_km: 6578.137,
             rule_drift_above_rad: 1.2 * deg,
             rule_hohmann_above_rad: 0.25 * deg,

@@ -59,6 +59,8 @@ pub(crate) fn settings(s: &Settings) -> Result<(), PlanError> {
         0.0,
         f64::from(MAX_GAP_LEGS),
     )?;
+    check(Field::ExchangeRounds, 0, u(s.exchange_rounds), 0.0, 100.0)?;
+    check(Field::ExchangeMargin, 0, s.exchange_margin_mps, 0.0, 100.0)?;
     check(Field::MinRadius, 0, s.min_radius_km, 6378.137, 42_000.0)?;
     check(Field::RuleDriftAbove, 0, s.rule_drift_above_rad, 0.0, PI)?;
     check(
