@@ -242,7 +242,10 @@ pub fn solve(
     let t_nd = libm::sqrt(2.0 * mu_km3_s2 / (s * s * s)) * tof_s;
     let m = f64::from(revs);
     let pi = core::f64::consts::PI;
-    if revs > 0 {
+    // T(x = 0) = acos(lambda) + lambda sqrt(1 - lambda^2) + K pi bounds the least time of the
+    // K-revolution family from above: only shorter times need the Halley search for it.
+    let t_00 = libm::acos(lam) + lam * libm::sqrt((1.0 - lam * lam).max(0.0)) + m * pi;
+    if revs > 0 && t_nd < t_00 {
         let t_min = min_tof(lam, m, max_iter, tol).ok_or(LambertError::NotConverged)?;
         if t_nd < t_min {
             return Err(LambertError::NoSolution);

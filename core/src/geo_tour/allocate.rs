@@ -186,7 +186,7 @@ fn drift_allocate(
         w_b,
         fb,
         s.price_max_iter,
-        1e-15,
+        1e-9,
         s.time_tol_s,
     );
     *iterations = iterations.saturating_add(u32::from(steps));
@@ -254,7 +254,7 @@ pub(crate) fn allocate(
             w_b,
             fb,
             s.price_max_iter,
-            1e-15,
+            1e-9,
             s.time_tol_s,
         );
         iterations = iterations.saturating_add(u32::from(steps));
@@ -337,53 +337,49 @@ pub(crate) fn allocate(
     })
 }
 
-/// A leg's alternative in the exchange search: a pick, and for a Lambert well refined at the
-/// current price its new point (written into the table when the exchange is kept).
+/// A leg's alternatives in the exchange search (point index or drift, with time and cost).
+/// Lambert wells are first re-priced: moved to the minimum of `dv + price t` of their well
+/// (written into the table, so each well is searched again only when the price has moved by
+/// more than 1 %).
 fn alternatives(
-    t: &LegTable,
+    t: &mut LegTable,
     cur: &Pick,
     price: f64,
     s: &Settings,
-    out: &mut heapless::Vec<(Pick, Option<Point>), { MAX_POINTS + 1 }>,
+    out: &mut heapless::Vec<Pick, { MAX_POINTS + 1 }>,
 ) {
     out.clear();
     let g = Geo::standard();
-    for (i, p) in t.points.iter().enumerate() {
-        let base = point_pick(i, p);
-        let est = (base.dv_mps - cur.dv_mps) + price * (base.duration_s - cur.duration_s);
+    let dir = direction_of(t);
+    let (phase, cap) = (t.phase_rad, t.cap_mps);
+    for (i, p) in t.points.iter_mut().enumerate() {
         if let PointKind::Well(m) = p.kind {
-            // A well moves with the price: refine it when it could compete (its refined
-            // score is at most the stored one, so the stored estimate bounds it from above
-            // only approximately; `exchange_margin_mps` widens the net).
-            if est < s.exchange_margin_mps {
-                let refined = well_minimum(
-                    &g,
-                    direction_of(t),
-                    t.phase_rad,
-                    m,
-                    price,
-                    t.cap_mps,
-                    s.well_iterations,
-                    bounds(s),
-                );
-                if let Some(mv) = refined {
-                    let q = Point {
-                        kind: p.kind,
-                        duration_s: mv.transfer_s,
-                        dv_mps: mv.dv_mps,
-                    };
-                    let _ = out.push((point_pick(i, &q), Some(q)));
+            let est = (p.dv_mps - cur.dv_mps) + price * (p.duration_s - cur.duration_s);
+            let stale = (p.price - price).abs() > 0.01 * price;
+            if est < s.exchange_margin_mps && stale {
+                let w = well_minimum(&g, dir, phase, m, price, cap, s.well_iterations, bounds(s));
+                if let Some(mv) = w {
+                    if mv.dv_mps + price * mv.transfer_s <= p.dv_mps + price * p.duration_s {
+                        p.duration_s = mv.transfer_s;
+                        p.dv_mps = mv.dv_mps;
+                    }
                 }
+                p.price = price;
             }
-        } else if base.choice != cur.choice && est < 0.0 {
-            let _ = out.push((base, None));
+        }
+        let alt = point_pick(i, p);
+        let est = (alt.dv_mps - cur.dv_mps) + price * (alt.duration_s - cur.duration_s);
+        let moved = alt.choice == cur.choice
+            && (alt.duration_s - cur.duration_s).abs() > 1e-9 * cur.duration_s;
+        if (alt.choice != cur.choice || moved) && est < 0.0 {
+            let _ = out.push(alt);
         }
     }
     if cur.choice != Choice::Drift {
         if let Some(d) = drift_pick(t, price, s) {
             let est = (d.dv_mps - cur.dv_mps) + price * (d.duration_s - cur.duration_s);
             if est < 0.0 {
-                let _ = out.push((d, None));
+                let _ = out.push(d);
             }
         }
     }
@@ -416,17 +412,11 @@ fn exchange(
     for _ in 0..s.exchange_rounds {
         let mut improved = false;
         for j in 0..n {
-            let (Some(cur), Some(t)) = (picks.get(j).copied(), tables.get(j)) else {
+            let (Some(cur), Some(t)) = (picks.get(j).copied(), tables.get_mut(j)) else {
                 continue;
             };
             alternatives(t, &cur, price, s, &mut alts);
-            let mut accepted: Option<Option<Point>> = None;
-            for (alt, point) in alts.iter() {
-                if alt.choice == cur.choice
-                    && (alt.duration_s - cur.duration_s).abs() <= 1e-9 * cur.duration_s
-                {
-                    continue;
-                }
+            for alt in alts.iter() {
                 *trial = *picks;
                 if let Some(slot) = trial.get_mut(j) {
                     *slot = *alt;
@@ -441,28 +431,12 @@ fn exchange(
                     best_dv = dv;
                     price = p;
                     *picks = *trial;
-                    accepted = Some(*point);
-                    break;
-                }
-            }
-            if let Some(point) = accepted {
-                improved = true;
-                changed = true;
-                if let (
-                    Some(q),
-                    Some(Pick {
-                        choice: Choice::Point(i),
-                        ..
-                    }),
-                ) = (point, picks.get(j).copied())
-                {
-                    if let Some(slot) = tables
-                        .get_mut(j)
-                        .and_then(|t| t.points.get_mut(usize::from(i)))
-                    {
-                        *slot = q;
+                    improved = true;
+                    changed = true;
+                    if alt.choice == cur.choice {
                         *refined = refined.saturating_add(1);
                     }
+                    break;
                 }
             }
         }

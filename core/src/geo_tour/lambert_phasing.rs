@@ -139,9 +139,15 @@ pub(crate) fn coincidence_s(g: &Geo, dir: Direction, phase_rad: f64, m: u16) -> 
 }
 
 /// Minimise `dv(tau) + price * tau` over well `m` (K = m - 1 revolutions,
-/// `tau in [tau_m - T0/2, tau_m - T0 * 1e-9]`) by golden section, `iterations` steps; burns
+/// `tau in [tau_m - T0/4, tau_m - T0 * 1e-9]`) by golden section, `iterations` steps; burns
 /// within `cap_mps`. Returns the best manoeuvre found (cap-violating or failed points are
 /// skipped, so the result is always admissible).
+///
+/// Two economies, both conservative: the well is skipped when the tangential m-revolution
+/// phasing orbit at its end (which the bottom undercuts by about 1 %) needs burns above
+/// 1.25 times the cap; and the branch (for K >= 1) is chosen once, the cheaper at the window's
+/// two first golden points, since one branch is the near-tangential family across the whole
+/// window and the other the near-rectilinear one (tens to thousands of m/s dearer).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn well_minimum(
     g: &Geo,
@@ -154,18 +160,40 @@ pub(crate) fn well_minimum(
     b: LambertBounds,
 ) -> Option<Maneuver> {
     let revs = m.saturating_sub(1);
-    let hi0 = coincidence_s(g, dir, phase_rad, m) - g.t0 * 1e-9;
-    let lo0 = (hi0 - 0.5 * g.t0).max(1.0);
+    let tau_m = coincidence_s(g, dir, phase_rad, m);
+    let period = tau_m / f64::from(m.max(1));
+    let a_m = libm::cbrt(g.mu * (period / TWO_PI) * (period / TWO_PI));
+    let tangential_mps = (g.vis_viva(g.a0, a_m) - g.v0).abs() * M_PER_KM;
+    if tangential_mps.is_nan() || tangential_mps > 1.25 * cap_mps {
+        return None;
+    }
+    let hi0 = tau_m - g.t0 * 1e-9;
+    let lo0 = (hi0 - 0.25 * g.t0).max(1.0);
     if hi0.is_nan() || hi0 <= lo0 {
         return None;
     }
+    let r = 0.5 * (libm::sqrt(5.0) - 1.0);
+    let branch = if revs == 0 {
+        Branch::Left
+    } else {
+        let mut best = (f64::INFINITY, Branch::Left);
+        for t in [hi0 - r * (hi0 - lo0), lo0 + r * (hi0 - lo0)] {
+            for br in [Branch::Left, Branch::Right] {
+                if let Some((_, dv)) = arc(g, dir, phase_rad, t, revs, br, b) {
+                    if dv < best.0 {
+                        best = (dv, br);
+                    }
+                }
+            }
+        }
+        best.1
+    };
     let score = |t: f64| -> (f64, Option<Maneuver>) {
-        match lambert_revs(g, dir, phase_rad, t, revs, cap_mps, b) {
-            Some(mv) => (mv.dv_mps + price * t, Some(mv)),
-            None => (f64::INFINITY, None),
+        match arc(g, dir, phase_rad, t, revs, branch, b) {
+            Some((mv, dv)) if mv.max_burn_mps <= cap_mps => (dv + price * t, Some(mv)),
+            _ => (f64::INFINITY, None),
         }
     };
-    let r = 0.5 * (libm::sqrt(5.0) - 1.0);
     let (mut lo, mut hi) = (lo0, hi0);
     let mut c = hi - r * (hi - lo);
     let mut d = lo + r * (hi - lo);

@@ -211,10 +211,14 @@ fn solve_sweep(
         let jj = u8::try_from(j).unwrap_or(u8::MAX);
         let mv = match p.choice {
             Choice::Drift => t.drift.as_ref().map(|d| d.model.maneuver(p.x_km)),
-            Choice::Point(i) => t
-                .points
-                .get(usize::from(i))
-                .and_then(|pt| point_maneuver(g, dir, t.phase_rad, pt, s)),
+            Choice::Point(i) => t.points.get(usize::from(i)).and_then(|pt| {
+                // The pick's time (a Lambert well may have been re-priced since).
+                let at = table::Point {
+                    duration_s: p.duration_s,
+                    ..*pt
+                };
+                point_maneuver(g, dir, t.phase_rad, &at, t.cap_mps, s)
+            }),
         };
         let Some(mv) = mv else {
             failed = failed.or(Some(jj));

@@ -34,6 +34,8 @@ pub(crate) struct Point {
     pub kind: PointKind,
     pub duration_s: f64,
     pub dv_mps: f64,
+    /// Lambert wells: the time price this point minimises `dv + price t` for (0: the bottom).
+    pub price: f64,
 }
 
 /// The drift option of a leg: admissible depths `(0, x_max]`, fastest duration `t_min`.
@@ -116,22 +118,21 @@ pub(crate) fn point_maneuver(
     dir: Direction,
     phase_rad: f64,
     p: &Point,
+    p_cap: f64,
     s: &Settings,
 ) -> Option<Maneuver> {
     match p.kind {
         PointKind::Stay => Some(Maneuver::none()),
         PointKind::Hohmann => hohmann(g, dir, phase_rad, s.min_radius_km),
         PointKind::Radial => radial(g, dir, phase_rad, s.min_radius_km, s.root_max_iter),
-        PointKind::Direct => {
-            lambert_revs(g, dir, phase_rad, p.duration_s, 0, f64::INFINITY, bounds(s))
-        }
+        PointKind::Direct => lambert_revs(g, dir, phase_rad, p.duration_s, 0, p_cap, bounds(s)),
         PointKind::Well(m) => lambert_revs(
             g,
             dir,
             phase_rad,
             p.duration_s,
             m.saturating_sub(1),
-            f64::INFINITY,
+            p_cap,
             bounds(s),
         ),
     }
@@ -147,6 +148,7 @@ fn push(t: &mut LegTable, kind: PointKind, m: Option<Maneuver>, cap: f64) {
                 kind,
                 duration_s: m.transfer_s,
                 dv_mps: m.dv_mps,
+                price: 0.0,
             });
         }
     }

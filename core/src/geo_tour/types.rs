@@ -104,7 +104,7 @@ impl Default for Settings {
             lambert_max_revolutions: 3,
             lambert_max_iter: 40,
             lambert_tol: 1e-13,
-            well_iterations: 30,
+            well_iterations: 20,
             root_max_iter: 200,
             price_max_iter: 100,
             time_tol_s: 1e-3,
