@@ -7,6 +7,9 @@ use reconfig_core::geo_tour::{
     Workspace,
 };
 
+type ProblemEdit = Box<dyn Fn(&mut Problem)>;
+type SettingsEdit = Box<dyn Fn(&mut Settings)>;
+
 const DEG: f64 = std::f64::consts::PI / 180.0;
 const DAY: f64 = 86_400.0;
 
@@ -51,7 +54,7 @@ fn field_of(e: PlanError) -> (Field, u8, f64) {
 #[test]
 fn every_bad_input_is_named() {
     let s = Settings::default();
-    let cases: Vec<(Box<dyn Fn(&mut Problem)>, Field, u8)> = vec![
+    let cases: Vec<(ProblemEdit, Field, u8)> = vec![
         (
             Box::new(|p| p.start_lon_rad = f64::NAN),
             Field::StartLongitude,
@@ -92,7 +95,7 @@ fn every_bad_input_is_named() {
 #[test]
 fn every_bad_setting_is_named() {
     let p = base();
-    let cases: Vec<(Box<dyn Fn(&mut Settings)>, Field)> = vec![
+    let cases: Vec<(SettingsEdit, Field)> = vec![
         (
             Box::new(|s| s.lambert_max_revolutions = 9),
             Field::LambertMaxRevolutions,
