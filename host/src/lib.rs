@@ -5,4 +5,5 @@ pub mod cli;
 pub mod fixture;
 pub mod harness;
 pub mod plot;
+pub mod plot_geo;
 pub mod scenario;
