@@ -18,7 +18,7 @@
 //! value naming what was wrong; no byte string makes a decode panic (proptested in `tests/`).
 //! Nothing here allocates.
 
-use crate::{impulsive, pseudospectral};
+use crate::{geo_tour, impulsive, pseudospectral};
 use serde::{Deserialize, Serialize};
 
 /// Protocol version carried in every frame; a frame of another version is refused.
@@ -64,6 +64,13 @@ pub enum Request {
         /// Loop bounds and tolerances.
         settings: impulsive::Settings,
     },
+    /// The GEO servicing tour.
+    GeoTour {
+        /// The problem.
+        problem: geo_tour::Problem,
+        /// Loop bounds, tolerances and the paper's rule.
+        settings: geo_tour::Settings,
+    },
 }
 
 impl Request {
@@ -72,6 +79,7 @@ impl Request {
         match self {
             Self::Pseudospectral { .. } => Planner::Pseudospectral,
             Self::Impulsive { .. } => Planner::Impulsive,
+            Self::GeoTour { .. } => Planner::GeoTour,
         }
     }
 }
@@ -84,6 +92,8 @@ pub enum Planner {
     Pseudospectral = 0,
     /// Planner B.
     Impulsive = 1,
+    /// The GEO servicing tour.
+    GeoTour = 2,
 }
 
 /// What the service answers to one request.
@@ -101,6 +111,10 @@ pub enum Outcome {
     ImpulsiveRejected(impulsive::PlanError),
     /// The request frame could not be decoded; says what was wrong.
     BadRequest(FrameError),
+    /// The GEO tour planned; the solution's `info.status` says how it ended.
+    GeoTour(geo_tour::Solution),
+    /// The GEO tour rejected the request.
+    GeoTourRejected(geo_tour::PlanError),
 }
 
 /// A borrowed [`Outcome`]: encodes to the same bytes without copying a solution.
@@ -116,6 +130,10 @@ pub enum OutcomeRef<'a> {
     ImpulsiveRejected(impulsive::PlanError),
     /// See [`Outcome::BadRequest`].
     BadRequest(FrameError),
+    /// See [`Outcome::GeoTour`].
+    GeoTour(&'a geo_tour::Solution),
+    /// See [`Outcome::GeoTourRejected`].
+    GeoTourRejected(geo_tour::PlanError),
 }
 
 /// Why a frame was refused. Sizes in bytes.
@@ -514,6 +532,8 @@ impl Outcome {
             Self::Impulsive(s) => OutcomeRef::Impulsive(s),
             Self::ImpulsiveRejected(e) => OutcomeRef::ImpulsiveRejected(*e),
             Self::BadRequest(e) => OutcomeRef::BadRequest(*e),
+            Self::GeoTour(s) => OutcomeRef::GeoTour(s),
+            Self::GeoTourRejected(e) => OutcomeRef::GeoTourRejected(*e),
         }
     }
 }
