@@ -6,8 +6,8 @@ use reconfig_core::geo_tour::{
     solve, MethodPolicy, Problem, Settings, Solution, SolveStatus, SweepChoice, Workspace,
 };
 use reconfig_core::wire::{
-    decode_request, decode_response, encode_request, encode_response, Outcome, OutcomeRef,
-    Request, REQUEST_MAX_BYTES, RESPONSE_MAX_BYTES,
+    decode_request, decode_response, encode_request, encode_response, Outcome, OutcomeRef, Request,
+    REQUEST_MAX_BYTES, RESPONSE_MAX_BYTES,
 };
 
 fn capacity_problem() -> Problem {
@@ -48,4 +48,15 @@ fn request_and_solution_at_capacity_round_trip() {
     println!("request {n} bytes, response {m} bytes (16 legs)");
     let back = decode_response(&rbuf[..m]).unwrap();
     assert_eq!(back.outcome, Outcome::GeoTour((*out).clone()));
+}
+
+#[test]
+fn memory_sizes() {
+    // Reported in docs/geo-tour.md (static memory an M7 build would add).
+    println!(
+        "Workspace {} B, Solution {} B",
+        std::mem::size_of::<Workspace>(),
+        std::mem::size_of::<Solution>()
+    );
+    assert!(std::mem::size_of::<Workspace>() < 32 * 1024);
 }
