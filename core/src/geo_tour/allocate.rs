@@ -7,9 +7,10 @@
 //! lambda`, where the drift legs' time is nearly linear) finds the price at which the tour
 //! just fits the mission time. Where point options switch at that price the Lagrangian leaves
 //! a duality gap: the switching legs are tried both ways (2^k assignments), each with the
-//! drift legs' time re-allocated exactly for the points it fixes. Then every leg on a Lambert
-//! well is refined at the final price (its well searched for `dv + lambda t`), kept when the
-//! re-allocated total falls. See docs/geo-tour.md for the proof of exactness on drift legs.
+//! drift legs' time re-allocated exactly for the points it fixes. Then an exchange search tries
+//! every alternative with a negative first-order effect at the current price (Lambert wells
+//! re-priced first), each evaluated exactly. See docs/geo-tour.md for the proof of exactness on
+//! drift legs and the brute-force evidence for the rest.
 
 use super::geo::Geo;
 use super::lambert_phasing::well_minimum;

@@ -59,8 +59,9 @@ pub struct Problem {
 /// W = `lambert_max_revolutions + 1` wells): table building M (W (`well_iterations` + 3) + 2)
 /// Lambert pairs (<= 2 `lambert_max_iter` Householder steps each) and 4 M `root_max_iter`
 /// drift/radial bisection steps; allocation (1 + 2^`gap_max_legs`) `price_max_iter` price
-/// steps of M drift roots of at most `root_max_iter` steps each; the refinement of each
-/// Lambert leg one more well search.
+/// steps of M drift roots of at most `root_max_iter` steps each; the exchange search at most
+/// `exchange_rounds` x M x (`MAX_POINTS` + 1) exact re-allocations (each `price_max_iter` x M
+/// drift roots) and M x W well searches.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Settings {
     /// Most whole revolutions of a Lambert transfer (wells 1..=this+1), <= 8.
