@@ -72,6 +72,11 @@ pub fn encode_all(dir: &Path) -> Result<Vec<EncodedFixture>, String> {
     use reconfig_host::fixture::{load, Fixture};
     let mut out: Vec<EncodedFixture> = Vec::new();
     for file in fixture_files(dir)? {
+        // GEO-tour fixtures are not run on the M7 yet (docs/geo-tour.md): not baked in.
+        let text = std::fs::read_to_string(&file).unwrap_or_default();
+        if reconfig_host::fixture::geo_tour::is_geo_tour(&text) {
+            continue;
+        }
         let fixture = load(&file).map_err(|e| format!("{e:#}"))?;
         let name = fixture.name().to_owned();
         if let Some(other) = out.iter().find(|f| f.name == name) {

@@ -26,7 +26,9 @@
 #![deny(missing_docs)]
 
 pub mod capacity;
+pub mod geo_tour;
 pub mod impulsive;
+pub mod lambert;
 pub mod limits;
 pub mod pseudospectral;
 pub mod wire;

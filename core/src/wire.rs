@@ -18,7 +18,7 @@
 //! value naming what was wrong; no byte string makes a decode panic (proptested in `tests/`).
 //! Nothing here allocates.
 
-use crate::{impulsive, pseudospectral};
+use crate::{geo_tour, impulsive, pseudospectral};
 use serde::{Deserialize, Serialize};
 
 /// Protocol version carried in every frame; a frame of another version is refused.
@@ -64,6 +64,13 @@ pub enum Request {
         /// Loop bounds and tolerances.
         settings: impulsive::Settings,
     },
+    /// The GEO servicing tour.
+    GeoTour {
+        /// The problem.
+        problem: geo_tour::Problem,
+        /// Loop bounds, tolerances and the paper's rule.
+        settings: geo_tour::Settings,
+    },
 }
 
 impl Request {
@@ -72,11 +79,12 @@ impl Request {
         match self {
             Self::Pseudospectral { .. } => Planner::Pseudospectral,
             Self::Impulsive { .. } => Planner::Impulsive,
+            Self::GeoTour { .. } => Planner::GeoTour,
         }
     }
 }
 
-/// The two planners.
+/// The planners.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 #[repr(u8)]
 pub enum Planner {
@@ -84,6 +92,8 @@ pub enum Planner {
     Pseudospectral = 0,
     /// Planner B.
     Impulsive = 1,
+    /// The GEO servicing tour.
+    GeoTour = 2,
 }
 
 /// What the service answers to one request.
@@ -106,6 +116,10 @@ pub enum Outcome {
     LimitExceeded(crate::limits::LimitViolation),
     /// The request waited in the service's queue past its deadline; nothing was solved.
     Expired(Expiry),
+    /// The GEO tour planned; the solution's `info.status` says how it ended.
+    GeoTour(geo_tour::Solution),
+    /// The GEO tour rejected the request.
+    GeoTourRejected(geo_tour::PlanError),
 }
 
 /// How long an expired request waited and the deadline it had, in microseconds.
@@ -134,6 +148,10 @@ pub enum OutcomeRef<'a> {
     LimitExceeded(crate::limits::LimitViolation),
     /// See [`Outcome::Expired`].
     Expired(Expiry),
+    /// See [`Outcome::GeoTour`].
+    GeoTour(&'a geo_tour::Solution),
+    /// See [`Outcome::GeoTourRejected`].
+    GeoTourRejected(geo_tour::PlanError),
 }
 
 /// Why a frame was refused. Sizes in bytes.
@@ -534,6 +552,8 @@ impl Outcome {
             Self::BadRequest(e) => OutcomeRef::BadRequest(*e),
             Self::LimitExceeded(v) => OutcomeRef::LimitExceeded(*v),
             Self::Expired(x) => OutcomeRef::Expired(*x),
+            Self::GeoTour(s) => OutcomeRef::GeoTour(s),
+            Self::GeoTourRejected(e) => OutcomeRef::GeoTourRejected(*e),
         }
     }
 }

@@ -6,4 +6,5 @@ pub mod fixture;
 pub mod harness;
 pub mod limits;
 pub mod plot;
+pub mod plot_geo;
 pub mod scenario;

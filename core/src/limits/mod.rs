@@ -15,6 +15,7 @@
 //! [`impulsive::Limits::check_settings`] destructure `Settings` without `..`, so a new field
 //! fails to compile until it has its one line (and its [`Setting`] name).
 
+pub mod geo_tour;
 pub mod impulsive;
 pub mod pseudospectral;
 
@@ -107,6 +108,30 @@ pub enum Setting {
     ImpSearchScreenTolMps = 57,
     /// Planner B: `search_tol_mps`.
     ImpSearchTolMps = 58,
+    /// GEO tour: client count of the problem.
+    GeoTargets = 64,
+    /// GEO tour: `lambert_max_revolutions`.
+    GeoLambertMaxRevolutions = 65,
+    /// GEO tour: `lambert_max_iter`.
+    GeoLambertMaxIter = 66,
+    /// GEO tour: `lambert_tol`.
+    GeoLambertTol = 67,
+    /// GEO tour: `well_iterations`.
+    GeoWellIterations = 68,
+    /// GEO tour: `root_max_iter`.
+    GeoRootMaxIter = 69,
+    /// GEO tour: `price_max_iter`.
+    GeoPriceMaxIter = 70,
+    /// GEO tour: `time_tol_s`.
+    GeoTimeTolS = 71,
+    /// GEO tour: `gap_max_legs`.
+    GeoGapMaxLegs = 72,
+    /// GEO tour: `exchange_rounds`.
+    GeoExchangeRounds = 73,
+    /// GEO tour: `exchange_margin_mps`.
+    GeoExchangeMarginMps = 74,
+    /// GEO tour: `min_radius_km`.
+    GeoMinRadiusKm = 75,
 }
 
 impl Setting {
@@ -155,15 +180,27 @@ impl Setting {
             Self::ImpSearchFixedPointMaxIter => "search_fixed_point_max_iter",
             Self::ImpSearchScreenTolMps => "search_screen_tol_mps",
             Self::ImpSearchTolMps => "search_tol_mps",
+            Self::GeoTargets => "targets",
+            Self::GeoLambertMaxRevolutions => "lambert_max_revolutions",
+            Self::GeoLambertMaxIter => "lambert_max_iter",
+            Self::GeoLambertTol => "lambert_tol",
+            Self::GeoWellIterations => "well_iterations",
+            Self::GeoRootMaxIter => "root_max_iter",
+            Self::GeoPriceMaxIter => "price_max_iter",
+            Self::GeoTimeTolS => "time_tol_s",
+            Self::GeoGapMaxLegs => "gap_max_legs",
+            Self::GeoExchangeRounds => "exchange_rounds",
+            Self::GeoExchangeMarginMps => "exchange_margin_mps",
+            Self::GeoMinRadiusKm => "min_radius_km",
         }
     }
 
     /// The planner the setting belongs to.
     pub const fn planner(self) -> crate::wire::Planner {
-        if (self as u8) < 32 {
-            crate::wire::Planner::Pseudospectral
-        } else {
-            crate::wire::Planner::Impulsive
+        match self as u8 {
+            0..=31 => crate::wire::Planner::Pseudospectral,
+            32..=63 => crate::wire::Planner::Impulsive,
+            _ => crate::wire::Planner::GeoTour,
         }
     }
 }
@@ -223,7 +260,7 @@ impl core::fmt::Display for LimitViolation {
 
 impl core::error::Error for LimitViolation {}
 
-/// The limits of both planners.
+/// The limits of every planner.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Limits {
@@ -231,6 +268,8 @@ pub struct Limits {
     pub pseudospectral: pseudospectral::Limits,
     /// Planner B.
     pub impulsive: impulsive::Limits,
+    /// The GEO servicing tour.
+    pub geo_tour: geo_tour::Limits,
 }
 
 impl Limits {
@@ -244,6 +283,7 @@ impl Limits {
                 self.pseudospectral.check(problem, settings)
             }
             Request::Impulsive { problem, settings } => self.impulsive.check(problem, settings),
+            Request::GeoTour { problem, settings } => self.geo_tour.check(problem, settings),
         }
     }
 }

@@ -101,6 +101,22 @@ pub struct JsonResult {
 pub fn fixture_items(paths: &[PathBuf]) -> Vec<Item> {
     let mut items = Vec::new();
     for path in paths {
+        let text = std::fs::read_to_string(path).unwrap_or_default();
+        if fixture::geo_tour::is_geo_tour(&text) {
+            match fixture::geo_tour::load(path) {
+                Ok(f) => items.push(Item {
+                    label: f.name.clone(),
+                    planner: Some(Planner::GeoTour),
+                    size: format!("T{}", f.problem.targets_lon_rad.len()),
+                    payload: Payload::Request(Box::new(Request::GeoTour {
+                        problem: f.problem,
+                        settings: f.settings,
+                    })),
+                }),
+                Err(e) => eprintln!("skipped {}: {e:#}", path.display()),
+            }
+            continue;
+        }
         match fixture::load(path) {
             Ok(Fixture::Pseudospectral(f)) => {
                 let size = format!("M{} N{}", f.problem.spacecraft.len(), f.problem.degree);

@@ -7,5 +7,6 @@ pub mod montecarlo;
 pub mod plot;
 pub mod serve;
 pub mod solve;
+pub mod solve_geo_tour;
 pub mod solve_impulsive;
 pub mod solve_pseudospectral;

@@ -19,6 +19,9 @@ pub struct Args {
     /// failing when the solver rejects the problem or is not built.
     #[arg(long)]
     pub guess: bool,
+    /// GEO tour: draw total dv against mission time (20-120 d) instead of the tour.
+    #[arg(long)]
+    pub pareto: bool,
 }
 
 /// Run `reconfig plot`.
@@ -30,6 +33,20 @@ pub fn run(args: &Args) -> Result<ExitCode> {
             "Wang 2018 published case (Table 2 impulse points)",
             &args.output,
         )?;
+        println!("wrote {}", args.output.display());
+        return Ok(ExitCode::SUCCESS);
+    }
+    let text = std::fs::read_to_string(&args.file).unwrap_or_default();
+    if fixture::geo_tour::is_geo_tour(&text) {
+        let f = fixture::geo_tour::load(&args.file)?;
+        if args.pareto {
+            let days: Vec<f64> = (10..=60).map(|k| f64::from(k) * 2.0).collect();
+            for (d, by_cost, by_rule) in crate::plot_geo::pareto_svg(&f, &days, &args.output)? {
+                println!("{d:6.1} d  by cost {by_cost:?}  by rule {by_rule:?}");
+            }
+        } else {
+            crate::plot_geo::tour_svg(&f, &args.output)?;
+        }
         println!("wrote {}", args.output.display());
         return Ok(ExitCode::SUCCESS);
     }

@@ -4,7 +4,7 @@
 
 use crate::fixture::{self, Fixture};
 use crate::limits::LimitsArg;
-use anyhow::Result;
+use anyhow::{Context, Result};
 use reconfig_core::limits::LimitViolation;
 use reconfig_core::wire::Request;
 use serde_json::json;
@@ -22,7 +22,7 @@ pub const EXIT_REJECTED: u8 = 2;
 /// Arguments of `reconfig solve`.
 #[derive(clap::Args, Debug)]
 #[command(
-    after_help = "Exit codes (both planners): 0 the plan is usable (status Solved); \
+    after_help = "Exit codes (every planner): 0 the plan is usable (status Solved); \
 1 the planner ran and the plan is not usable (any other status: it is still printed); \
 2 the input was rejected (fixture unreadable or invalid, the planner's PlanError, or a setting \
 outside the limits, which is named)."
@@ -35,12 +35,32 @@ pub struct Args {
     pub json: bool,
     #[command(flatten)]
     pub limits: LimitsArg,
+    /// GEO tour: override the fixture's mission time, days.
+    #[arg(long)]
+    pub mission_days: Option<f64>,
 }
 
 /// Run `reconfig solve`. Exit codes [`EXIT_USABLE`], [`EXIT_NOT_USABLE`], [`EXIT_REJECTED`]
 /// (a fixture that does not load is an error, which `main` turns into 2 as well).
 pub fn run(args: &Args) -> Result<ExitCode> {
     let limits = args.limits.load()?;
+    let text = std::fs::read_to_string(&args.file)
+        .with_context(|| format!("reading {}", args.file.display()))?;
+    if fixture::geo_tour::is_geo_tour(&text) {
+        let f = fixture::geo_tour::load(&args.file)?;
+        let mut problem = f.problem.clone();
+        if let Some(days) = args.mission_days {
+            problem.mission_time_s = days * fixture::geo_tour::DAY_S;
+        }
+        let request = Request::GeoTour {
+            problem,
+            settings: f.settings,
+        };
+        if let Some(code) = refuse_outside(&limits, &request, &f.name, args.json) {
+            return Ok(code);
+        }
+        return crate::cli::solve_geo_tour::run(&f, args.json, args.mission_days);
+    }
     let fixture = fixture::load(&args.file)?;
     // The very check the service's workers run, on the request the service would receive.
     let request = match &fixture {
@@ -53,18 +73,30 @@ pub fn run(args: &Args) -> Result<ExitCode> {
             settings: f.settings,
         },
     };
-    let started = Instant::now();
-    let checked = limits.check(&request);
-    let check_time_s = started.elapsed().as_secs_f64();
-    if let Err(violation) = checked {
-        report_refusal(fixture.name(), &violation, check_time_s, args.json);
-        // A refusal by the limits is a rejected input: the one convention of both planners.
-        return Ok(ExitCode::from(EXIT_REJECTED));
+    if let Some(code) = refuse_outside(&limits, &request, fixture.name(), args.json) {
+        return Ok(code);
     }
     match fixture {
         Fixture::Pseudospectral(f) => crate::cli::solve_pseudospectral::run(&f, args.json),
         Fixture::Impulsive(f) => crate::cli::solve_impulsive::run(&f, args.json),
     }
+}
+
+/// The limits' verdict on `request`: `None` when it may be solved, else the refusal is
+/// reported and its exit code returned (a rejected input).
+fn refuse_outside(
+    limits: &reconfig_core::limits::Limits,
+    request: &Request,
+    name: &str,
+    json_output: bool,
+) -> Option<ExitCode> {
+    let started = Instant::now();
+    let checked = limits.check(request);
+    let check_time_s = started.elapsed().as_secs_f64();
+    let violation = checked.err()?;
+    report_refusal(name, &violation, check_time_s, json_output);
+    // A refusal by the limits is a rejected input: the one convention of every planner.
+    Some(ExitCode::from(EXIT_REJECTED))
 }
 
 fn report_refusal(name: &str, v: &LimitViolation, check_time_s: f64, json_output: bool) {

@@ -115,6 +115,7 @@ pub fn print_table(items: &[Item], verdicts: &[Verdict], limit: usize) {
         let planner = match item.planner {
             Some(wire::Planner::Pseudospectral) => "pseudospectral",
             Some(wire::Planner::Impulsive) => "impulsive",
+            Some(wire::Planner::GeoTour) => "geo-tour",
             None => "fault",
         };
         println!(

@@ -132,6 +132,7 @@ fn planner_name(item: &Item) -> String {
     match item.planner {
         Some(reconfig_core::wire::Planner::Pseudospectral) => "pseudospectral".into(),
         Some(reconfig_core::wire::Planner::Impulsive) => "impulsive".into(),
+        Some(reconfig_core::wire::Planner::GeoTour) => "geo-tour".into(),
         None => "faults".into(),
     }
 }

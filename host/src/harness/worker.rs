@@ -4,7 +4,7 @@
 
 use reconfig_core::limits::Limits;
 use reconfig_core::wire::{self, Outcome, OutcomeRef, Request};
-use reconfig_core::{impulsive, pseudospectral};
+use reconfig_core::{geo_tour, impulsive, pseudospectral};
 use std::time::Instant;
 
 /// Stack size for threads that own a [`Worker`]: workspaces are boxed, but building them goes
@@ -19,6 +19,8 @@ pub struct Worker {
     imp_solution: Box<impulsive::Solution>,
     /// The service's limits: a request outside them is answered `LimitExceeded` unsolved.
     pub limits: Limits,
+    geo_workspace: Box<geo_tour::Workspace>,
+    geo_solution: Box<geo_tour::Solution>,
     /// Test hook: sleep this long per request (a stand-in for a long solve in fault tests).
     pub delay: std::time::Duration,
 }
@@ -38,6 +40,8 @@ impl Worker {
             imp_workspace: Box::new(impulsive::Workspace::new()),
             imp_solution: Box::new(impulsive::Solution::new()),
             limits: Limits::default(),
+            geo_workspace: Box::new(geo_tour::Workspace::new()),
+            geo_solution: Box::new(geo_tour::Solution::new()),
             delay: std::time::Duration::ZERO,
         }
     }
@@ -100,6 +104,20 @@ impl Worker {
                     Err(e) => encode(frame.seq, ns, &OutcomeRef::ImpulsiveRejected(e), out),
                 }
             }
+            Request::GeoTour { problem, settings } => {
+                *self.geo_solution = geo_tour::Solution::new();
+                let result = geo_tour::solve(
+                    problem,
+                    settings,
+                    &mut self.geo_workspace,
+                    &mut self.geo_solution,
+                );
+                let ns = elapsed_ns(start);
+                match result {
+                    Ok(()) => encode(frame.seq, ns, &OutcomeRef::GeoTour(&self.geo_solution), out),
+                    Err(e) => encode(frame.seq, ns, &OutcomeRef::GeoTourRejected(e), out),
+                }
+            }
         }
     }
 }
@@ -148,6 +166,15 @@ pub fn summarize(outcome: &Outcome) -> (String, String, String, String) {
             (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
         }
         Outcome::ImpulsiveRejected(e) => {
+            (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
+        }
+        Outcome::GeoTour(s) => (
+            format!("{:?}", s.info.status),
+            format!("dv={:.4} m/s", s.total_dv_mps),
+            "-".into(),
+            format!("{}", s.info.price_iterations),
+        ),
+        Outcome::GeoTourRejected(e) => {
             (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
         }
         Outcome::BadRequest(e) => (

@@ -1,0 +1,449 @@
+//! Exact time allocation by a Lagrange time price.
+//!
+//! For a price `lambda` (m/s of Δv per second of time) every leg independently minimises
+//! `dv_j(t) + lambda t` over its options: the drift depth (continuous, convex in t) and the
+//! point options (Hohmann, radial, direct Lambert, Lambert well bottoms). The tour's time
+//! `sum t_j(lambda)` does not increase with lambda; a bracketing search (in `w = 1/sqrt
+//! lambda`, where the drift legs' time is nearly linear) finds the price at which the tour
+//! just fits the mission time. Where point options switch at that price the Lagrangian leaves
+//! a duality gap: the switching legs are tried both ways (2^k assignments), each with the
+//! drift legs' time re-allocated exactly for the points it fixes. Then an exchange search tries
+//! every alternative with a negative first-order effect at the current price (Lambert wells
+//! re-priced first), each evaluated exactly. See docs/geo-tour.md for the proof of exactness on
+//! drift legs and the brute-force evidence for the rest.
+
+use super::geo::Geo;
+use super::lambert_phasing::well_minimum;
+use super::root::illinois;
+use super::table::{bounds, direction_of, LegTable, Point, PointKind, MAX_POINTS};
+use super::types::{Settings, MAX_TARGETS};
+
+/// What a leg does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Choice {
+    /// The drift method at a depth set by the price.
+    Drift,
+    /// Point option i of the leg's table.
+    Point(u8),
+}
+
+/// A leg's choice with its time and cost.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Pick {
+    pub choice: Choice,
+    pub duration_s: f64,
+    pub dv_mps: f64,
+    /// Drift depth (km) when `choice == Drift`.
+    pub x_km: f64,
+}
+
+impl Pick {
+    pub const fn none() -> Self {
+        Self {
+            choice: Choice::Point(0),
+            duration_s: 0.0,
+            dv_mps: 0.0,
+            x_km: 0.0,
+        }
+    }
+}
+
+fn drift_pick(t: &LegTable, price: f64, s: &Settings) -> Option<Pick> {
+    let d = t.drift.as_ref()?;
+    let x = d.model.depth_for_price(price, d.x_max_km, s.root_max_iter);
+    let p = d.model.at(x);
+    Some(Pick {
+        choice: Choice::Drift,
+        duration_s: p.duration_s,
+        dv_mps: p.dv_mps,
+        x_km: x,
+    })
+}
+
+fn point_pick(i: usize, p: &Point) -> Pick {
+    Pick {
+        choice: Choice::Point(u8::try_from(i).unwrap_or(u8::MAX)),
+        duration_s: p.duration_s,
+        dv_mps: p.dv_mps,
+        x_km: 0.0,
+    }
+}
+
+/// The leg's best option at `price` (ties: drift first, then the table's order).
+fn pick(t: &LegTable, price: f64, s: &Settings) -> Option<Pick> {
+    let mut best = drift_pick(t, price, s);
+    for (i, p) in t.points.iter().enumerate() {
+        let score = p.dv_mps + price * p.duration_s;
+        if best.is_none_or(|b| score < b.dv_mps + price * b.duration_s) {
+            best = Some(point_pick(i, p));
+        }
+    }
+    best
+}
+
+/// Every leg's best option at `price` into `picks`; returns the tour's time.
+fn pick_all(tables: &[LegTable], price: f64, s: &Settings, picks: &mut [Pick]) -> f64 {
+    let mut total = 0.0;
+    for (t, slot) in tables.iter().zip(picks.iter_mut()) {
+        match pick(t, price, s) {
+            Some(p) => {
+                total += p.duration_s;
+                *slot = p;
+            }
+            None => return f64::INFINITY,
+        }
+    }
+    total
+}
+
+fn totals(picks: &[Pick]) -> (f64, f64) {
+    picks
+        .iter()
+        .fold((0.0, 0.0), |(t, v), p| (t + p.duration_s, v + p.dv_mps))
+}
+
+/// Result of an allocation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Allocation {
+    pub price: f64,
+    pub dv_mps: f64,
+    pub time_s: f64,
+    pub iterations: u32,
+    pub gap_assignments: u32,
+    pub refined: u8,
+}
+
+/// Drift legs' time for the choices in `picks` (points fixed): the price at which their
+/// durations fill `budget_s`, durations written into `picks`. `None` when the drift legs'
+/// fastest durations exceed the budget.
+fn drift_allocate(
+    tables: &[LegTable],
+    picks: &mut [Pick],
+    budget_s: f64,
+    s: &Settings,
+    iterations: &mut u32,
+) -> Option<f64> {
+    let mut fixed = 0.0;
+    let mut fastest = 0.0;
+    let mut top = 0.0_f64;
+    let mut any = false;
+    for (t, p) in tables.iter().zip(picks.iter()) {
+        match (p.choice, t.drift.as_ref()) {
+            (Choice::Drift, Some(d)) => {
+                any = true;
+                fastest += d.t_min_s;
+                top = top.max(d.model.price_at(d.x_max_km));
+            }
+            (Choice::Drift, None) => return None,
+            (Choice::Point(_), _) => fixed += p.duration_s,
+        }
+    }
+    let budget = budget_s - fixed;
+    if !any {
+        return (budget >= 0.0).then_some(0.0);
+    }
+    if fastest > budget {
+        return None;
+    }
+    let drift_time = |price: f64, picks: &mut [Pick]| -> f64 {
+        let mut sum = 0.0;
+        for (t, p) in tables.iter().zip(picks.iter_mut()) {
+            if p.choice == Choice::Drift {
+                if let Some(q) = drift_pick(t, price, s) {
+                    sum += q.duration_s;
+                    *p = q;
+                }
+            }
+        }
+        sum
+    };
+    // w = 1/sqrt(price): w_a at the price where every drift leg is at its fastest (time <=
+    // budget), w_b small enough prices (long drifts) to exceed the budget.
+    let w_a = 1.0 / libm::sqrt(top);
+    let fa = drift_time(top, picks) - budget;
+    if fa >= -s.time_tol_s {
+        return Some(top);
+    }
+    let mut w_b = w_a;
+    let mut fb = fa;
+    for _ in 0..64 {
+        w_b *= 4.0;
+        fb = drift_time(1.0 / (w_b * w_b), picks) - budget;
+        if fb > 0.0 {
+            break;
+        }
+    }
+    if fb.is_nan() || fb <= 0.0 {
+        return None;
+    }
+    let mut n = 0u32;
+    let (w, _, _, _, steps) = illinois(
+        |w| {
+            n = n.saturating_add(1);
+            drift_time(1.0 / (w * w), picks) - budget
+        },
+        w_a,
+        fa,
+        w_b,
+        fb,
+        s.price_max_iter,
+        1e-9,
+        s.time_tol_s,
+    );
+    *iterations = iterations.saturating_add(u32::from(steps));
+    let price = 1.0 / (w * w);
+    drift_time(price, picks);
+    Some(price)
+}
+
+/// Allocate the mission time `budget_s` over the legs. `picks` receives each leg's choice and
+/// duration; `scratch` and `trial` are working copies. `None` when the fastest tour does not
+/// fit (the caller has already checked that it does, so this means a numerical failure).
+pub(crate) fn allocate(
+    tables: &mut [LegTable],
+    budget_s: f64,
+    s: &Settings,
+    picks: &mut [Pick; MAX_TARGETS],
+    lo_picks: &mut [Pick; MAX_TARGETS],
+    trial: &mut [Pick; MAX_TARGETS],
+) -> Option<Allocation> {
+    let n = tables.len();
+    let mut iterations = 0u32;
+    // Does time bind at all? With no drift leg the cheapest points may fit.
+    let any_drift = tables.iter().any(|t| t.drift.is_some());
+    if !any_drift {
+        let tt = pick_all(tables, 0.0, s, picks);
+        if tt <= budget_s {
+            let (time_s, dv_mps) = totals(picks.get(..n)?);
+            return Some(Allocation {
+                price: 0.0,
+                dv_mps,
+                time_s,
+                iterations,
+                gap_assignments: 0,
+                refined: 0,
+            });
+        }
+    }
+    // Bracket the critical price: w_a feasible (time <= budget), w_b not.
+    let mut w_a = 1e3;
+    let mut fa = pick_all(tables, 1.0 / (w_a * w_a), s, picks) - budget_s;
+    for _ in 0..64 {
+        if fa <= 0.0 {
+            break;
+        }
+        w_a *= 0.25;
+        fa = pick_all(tables, 1.0 / (w_a * w_a), s, picks) - budget_s;
+    }
+    if fa.is_nan() || fa > 0.0 {
+        return None;
+    }
+    let mut w_b = w_a;
+    let mut fb = fa;
+    for _ in 0..64 {
+        w_b *= 4.0;
+        fb = pick_all(tables, 1.0 / (w_b * w_b), s, lo_picks) - budget_s;
+        if fb > 0.0 {
+            break;
+        }
+    }
+    let (wa, wb) = if fb > 0.0 {
+        let (a, _, b, _, steps) = illinois(
+            |w| pick_all(tables, 1.0 / (w * w), s, trial) - budget_s,
+            w_a,
+            fa,
+            w_b,
+            fb,
+            s.price_max_iter,
+            1e-9,
+            s.time_tol_s,
+        );
+        iterations = iterations.saturating_add(u32::from(steps));
+        (a, b)
+    } else {
+        // Time never binds (points only and all fit at every price tried).
+        (w_b, w_b)
+    };
+    pick_all(tables, 1.0 / (wa * wa), s, picks);
+    pick_all(tables, 1.0 / (wb * wb), s, lo_picks);
+    let mut price = 1.0 / (wa * wa);
+    // Duality gap: legs whose choice differs across the bracket, tried both ways.
+    let mut switching = [0usize; MAX_TARGETS];
+    let mut k = 0usize;
+    for j in 0..n {
+        let (Some(a), Some(b)) = (picks.get(j), lo_picks.get(j)) else {
+            continue;
+        };
+        if a.choice != b.choice && k < usize::from(s.gap_max_legs) {
+            if let Some(slot) = switching.get_mut(k) {
+                *slot = j;
+                k = k.saturating_add(1);
+            }
+        }
+    }
+    let mut best_dv = f64::INFINITY;
+    let mut best_price = price;
+    let mut assignments = 0u32;
+    let combos = 1u32.checked_shl(u32::try_from(k).unwrap_or(0)).unwrap_or(1);
+    let hi_copy = *picks;
+    for mask in 0..combos {
+        *trial = hi_copy;
+        for (bit, &j) in switching.iter().take(k).enumerate() {
+            if (mask >> bit) & 1 == 1 {
+                if let (Some(t), Some(l)) = (trial.get_mut(j), lo_picks.get(j)) {
+                    *t = *l;
+                }
+            }
+        }
+        assignments = assignments.saturating_add(1);
+        let Some(p) = drift_allocate(tables, trial.get_mut(..n)?, budget_s, s, &mut iterations)
+        else {
+            continue;
+        };
+        let (time_s, dv) = totals(trial.get(..n)?);
+        if time_s <= budget_s && dv < best_dv {
+            best_dv = dv;
+            best_price = p;
+            *picks = *trial;
+        }
+    }
+    if !best_dv.is_finite() {
+        return None;
+    }
+    price = best_price;
+    let mut exchanges = 0u32;
+    let mut refined = 0u8;
+    if let Some((p, _)) = exchange(
+        tables,
+        picks,
+        trial,
+        budget_s,
+        s,
+        price,
+        best_dv,
+        &mut iterations,
+        &mut exchanges,
+        &mut refined,
+    ) {
+        price = p;
+    }
+    let (time_s, dv_mps) = totals(picks.get(..n)?);
+    Some(Allocation {
+        price,
+        dv_mps,
+        time_s,
+        iterations,
+        gap_assignments: assignments.saturating_add(exchanges),
+        refined,
+    })
+}
+
+/// A leg's alternatives in the exchange search (point index or drift, with time and cost).
+/// Lambert wells are first re-priced: moved to the minimum of `dv + price t` of their well
+/// (written into the table, so each well is searched again only when the price has moved by
+/// more than 1 %).
+fn alternatives(
+    t: &mut LegTable,
+    cur: &Pick,
+    price: f64,
+    s: &Settings,
+    out: &mut heapless::Vec<Pick, { MAX_POINTS + 1 }>,
+) {
+    out.clear();
+    let g = Geo::standard();
+    let dir = direction_of(t);
+    let (phase, cap) = (t.phase_rad, t.cap_mps);
+    for (i, p) in t.points.iter_mut().enumerate() {
+        if let PointKind::Well(m) = p.kind {
+            let est = (p.dv_mps - cur.dv_mps) + price * (p.duration_s - cur.duration_s);
+            let stale = (p.price - price).abs() > 0.01 * price;
+            if est < s.exchange_margin_mps && stale {
+                let w = well_minimum(&g, dir, phase, m, price, cap, s.well_iterations, bounds(s));
+                if let Some(mv) = w {
+                    if mv.dv_mps + price * mv.transfer_s <= p.dv_mps + price * p.duration_s {
+                        p.duration_s = mv.transfer_s;
+                        p.dv_mps = mv.dv_mps;
+                    }
+                }
+                p.price = price;
+            }
+        }
+        let alt = point_pick(i, p);
+        let est = (alt.dv_mps - cur.dv_mps) + price * (alt.duration_s - cur.duration_s);
+        let moved = alt.choice == cur.choice
+            && (alt.duration_s - cur.duration_s).abs() > 1e-9 * cur.duration_s;
+        if (alt.choice != cur.choice || moved) && est < 0.0 {
+            let _ = out.push(alt);
+        }
+    }
+    if cur.choice != Choice::Drift {
+        if let Some(d) = drift_pick(t, price, s) {
+            let est = (d.dv_mps - cur.dv_mps) + price * (d.duration_s - cur.duration_s);
+            if est < 0.0 {
+                let _ = out.push(d);
+            }
+        }
+    }
+}
+
+/// Exchange search after the price. The Lagrangian solution can miss the optimum where point
+/// options switch (a duality gap wider than the legs switching at the critical price), and a
+/// Lambert well's best time moves with the price. For the current assignment and its drift
+/// price `lambda`, every alternative of every leg whose first-order effect
+/// `d(dv) + lambda d(t)` is negative (Lambert wells: below `exchange_margin_mps`, refined at
+/// `lambda` first) is evaluated exactly (drift time re-allocated) and kept when the total
+/// falls. At most `exchange_rounds` rounds, each at most `MAX_POINTS + 1` alternatives per leg.
+/// Returns the new price and total when anything changed.
+#[allow(clippy::too_many_arguments)]
+fn exchange(
+    tables: &mut [LegTable],
+    picks: &mut [Pick; MAX_TARGETS],
+    trial: &mut [Pick; MAX_TARGETS],
+    budget_s: f64,
+    s: &Settings,
+    mut price: f64,
+    mut best_dv: f64,
+    iterations: &mut u32,
+    exchanges: &mut u32,
+    refined: &mut u8,
+) -> Option<(f64, f64)> {
+    let n = tables.len();
+    let mut changed = false;
+    let mut alts = heapless::Vec::new();
+    for _ in 0..s.exchange_rounds {
+        let mut improved = false;
+        for j in 0..n {
+            let (Some(cur), Some(t)) = (picks.get(j).copied(), tables.get_mut(j)) else {
+                continue;
+            };
+            alternatives(t, &cur, price, s, &mut alts);
+            for alt in alts.iter() {
+                *trial = *picks;
+                if let Some(slot) = trial.get_mut(j) {
+                    *slot = *alt;
+                }
+                *exchanges = exchanges.saturating_add(1);
+                let Some(p) = drift_allocate(tables, trial.get_mut(..n)?, budget_s, s, iterations)
+                else {
+                    continue;
+                };
+                let (time_s, dv) = totals(trial.get(..n)?);
+                if time_s <= budget_s && dv < best_dv - 1e-12 {
+                    best_dv = dv;
+                    price = p;
+                    *picks = *trial;
+                    improved = true;
+                    changed = true;
+                    if alt.choice == cur.choice {
+                        *refined = refined.saturating_add(1);
+                    }
+                    break;
+                }
+            }
+        }
+        if !improved {
+            break;
+        }
+    }
+    changed.then_some((price, best_dv))
+}

@@ -1,0 +1,310 @@
+//! Lambert phasing: the servicer leaves its slot on the Lambert arc that reaches the client's
+//! position `tau` later with K whole revolutions, and matches the client's velocity there.
+//! Two burns: `v1 - v_slot` and `v_client - v2`.
+//!
+//! ## Wells
+//! Seen as a function of `tau`, the cost has one well per revolution. The end points coincide
+//! when `s du + n0 tau = 2 pi m` (`tau_m = (2 pi m - s du) / n0`, m >= 1): there Lambert's
+//! problem degenerates (`lambda = 1`) and its tangential branch is the m-revolution phasing
+//! orbit (for m = 1, the one-revolution Hohmann-type method). The cost is continuous through
+//! `tau_m` (the (m-1)-revolution family before, the m-revolution family after) and its minimum
+//! lies just before it, on the (m-1)-revolution family whose transfer angle approaches 2 pi
+//! (e.g. 0.12 deg: 0.683 m/s 20 min before `tau_1`, 0.689 m/s 20 min after; a time price only
+//! moves the optimum earlier). Exactly at `tau_m` the geometry is degenerate and the solver's
+//! answer is not used. So well m is searched on `[tau_m - T0/2, tau_m)` with K = m - 1, both
+//! branches, by golden section (`well_iterations` steps, each 1 or 2 Lambert solves).
+
+use super::geo::{inertial_to_rtn, Geo, M_PER_KM, TWO_PI};
+use super::maneuver::{Burn, Direction, Maneuver, Method};
+use crate::lambert::{self, Branch, LambertSolution};
+
+/// Lambert solver bounds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct LambertBounds {
+    pub max_iter: u16,
+    pub tol: f64,
+}
+
+/// The two burns of the K-revolution arc of duration `tau_s` on `branch`, inertial frame
+/// at the departure slot (longitude 0 at epoch 0, by symmetry of the ring): `None` if the
+/// family has no solution for this time.
+fn arc(
+    g: &Geo,
+    dir: Direction,
+    phase_rad: f64,
+    tau_s: f64,
+    revs: u16,
+    branch: Branch,
+    b: LambertBounds,
+) -> Option<(Maneuver, f64)> {
+    let (r1, v1c) = g.slot_state(0.0, 0.0);
+    let (r2, v2c) = g.slot_state(dir.sign() * phase_rad, tau_s);
+    let sol: LambertSolution = lambert::solve(
+        g.mu,
+        &r1,
+        &r2,
+        tau_s,
+        revs,
+        branch,
+        &[0.0, 0.0, 1.0],
+        b.max_iter,
+        b.tol,
+    )
+    .ok()?;
+    let d1 = [
+        sol.v1_kmps[0] - v1c[0],
+        sol.v1_kmps[1] - v1c[1],
+        sol.v1_kmps[2] - v1c[2],
+    ];
+    let d2 = [
+        v2c[0] - sol.v2_kmps[0],
+        v2c[1] - sol.v2_kmps[1],
+        v2c[2] - sol.v2_kmps[2],
+    ];
+    let k = |a: [f64; 3]| [a[0] * M_PER_KM, a[1] * M_PER_KM, a[2] * M_PER_KM];
+    let burns = [
+        Burn {
+            offset_s: 0.0,
+            dv_rtn_mps: k(inertial_to_rtn(&r1, &v1c, &d1)),
+        },
+        Burn {
+            offset_s: tau_s,
+            dv_rtn_mps: k(inertial_to_rtn(&r2, &v2c, &d2)),
+        },
+    ];
+    let v = sol.v1_kmps;
+    let energy = 0.5 * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) - g.mu / g.a0;
+    let sma = -g.mu / (2.0 * energy);
+    let m = Maneuver::from_burns(Method::Lambert, tau_s, sma, revs, &burns);
+    let dv = m.dv_mps;
+    dv.is_finite().then_some((m, dv))
+}
+
+/// Cheapest Lambert phasing of duration `tau_s` with exactly `revs` revolutions (both branches
+/// when `revs >= 1`) whose burns are all within `cap_mps`.
+pub(crate) fn lambert_revs(
+    g: &Geo,
+    dir: Direction,
+    phase_rad: f64,
+    tau_s: f64,
+    revs: u16,
+    cap_mps: f64,
+    b: LambertBounds,
+) -> Option<Maneuver> {
+    let mut best: Option<Maneuver> = None;
+    let branches: &[Branch] = if revs == 0 {
+        &[Branch::Left]
+    } else {
+        &[Branch::Left, Branch::Right]
+    };
+    for &br in branches {
+        if let Some((m, dv)) = arc(g, dir, phase_rad, tau_s, revs, br, b) {
+            let better = best.as_ref().is_none_or(|x| dv < x.dv_mps);
+            if m.max_burn_mps <= cap_mps && better {
+                best = Some(m);
+            }
+        }
+    }
+    best
+}
+
+/// Cheapest Lambert phasing of duration `tau_s` over every revolution count `0..=max_revs`
+/// and both branches, burns within `cap_mps` (the "every branch" evaluation).
+#[allow(clippy::too_many_arguments)]
+pub fn lambert_phasing(
+    g: &Geo,
+    dir: Direction,
+    phase_rad: f64,
+    tau_s: f64,
+    max_revs: u16,
+    cap_mps: f64,
+    max_iter: u16,
+    tol: f64,
+) -> Option<Maneuver> {
+    let b = LambertBounds { max_iter, tol };
+    let mut best: Option<Maneuver> = None;
+    for k in 0..=max_revs {
+        if let Some(m) = lambert_revs(g, dir, phase_rad, tau_s, k, cap_mps, b) {
+            if best.as_ref().is_none_or(|x| m.dv_mps < x.dv_mps) {
+                best = Some(m);
+            }
+        }
+    }
+    best
+}
+
+/// Time at which the end points of well `m` (>= 1) coincide, s.
+pub(crate) fn coincidence_s(g: &Geo, dir: Direction, phase_rad: f64, m: u16) -> f64 {
+    (TWO_PI * f64::from(m) - dir.sign() * phase_rad) / g.n0
+}
+
+/// Minimise `dv(tau) + price * tau` over well `m` (K = m - 1 revolutions,
+/// `tau in [tau_m - T0/4, tau_m - T0 * 1e-9]`) by golden section, `iterations` steps; burns
+/// within `cap_mps`. Returns the best manoeuvre found (cap-violating or failed points are
+/// skipped, so the result is always admissible).
+///
+/// Two economies, both conservative: the well is skipped when the tangential m-revolution
+/// phasing orbit at its end (which the bottom undercuts by about 1 %) needs burns above
+/// 1.25 times the cap; and the branch (for K >= 1) is chosen once, the cheaper at the window's
+/// two first golden points, since one branch is the near-tangential family across the whole
+/// window and the other the near-rectilinear one (tens to thousands of m/s dearer).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn well_minimum(
+    g: &Geo,
+    dir: Direction,
+    phase_rad: f64,
+    m: u16,
+    price: f64,
+    cap_mps: f64,
+    iterations: u16,
+    b: LambertBounds,
+) -> Option<Maneuver> {
+    let revs = m.saturating_sub(1);
+    let tau_m = coincidence_s(g, dir, phase_rad, m);
+    let period = tau_m / f64::from(m.max(1));
+    let a_m = libm::cbrt(g.mu * (period / TWO_PI) * (period / TWO_PI));
+    let tangential_mps = (g.vis_viva(g.a0, a_m) - g.v0).abs() * M_PER_KM;
+    if tangential_mps.is_nan() || tangential_mps > 1.25 * cap_mps {
+        return None;
+    }
+    let hi0 = tau_m - g.t0 * 1e-9;
+    let lo0 = (hi0 - 0.25 * g.t0).max(1.0);
+    if hi0.is_nan() || hi0 <= lo0 {
+        return None;
+    }
+    let r = 0.5 * (libm::sqrt(5.0) - 1.0);
+    let branch = if revs == 0 {
+        Branch::Left
+    } else {
+        let mut best = (f64::INFINITY, Branch::Left);
+        for t in [hi0 - r * (hi0 - lo0), lo0 + r * (hi0 - lo0)] {
+            for br in [Branch::Left, Branch::Right] {
+                if let Some((_, dv)) = arc(g, dir, phase_rad, t, revs, br, b) {
+                    if dv < best.0 {
+                        best = (dv, br);
+                    }
+                }
+            }
+        }
+        best.1
+    };
+    let score = |t: f64| -> (f64, Option<Maneuver>) {
+        match arc(g, dir, phase_rad, t, revs, branch, b) {
+            Some((mv, dv)) if mv.max_burn_mps <= cap_mps => (dv + price * t, Some(mv)),
+            _ => (f64::INFINITY, None),
+        }
+    };
+    let (mut lo, mut hi) = (lo0, hi0);
+    let mut c = hi - r * (hi - lo);
+    let mut d = lo + r * (hi - lo);
+    let (mut fc, mut mc) = score(c);
+    let (mut fd, mut md) = score(d);
+    let mut best: Option<(f64, Maneuver)> = None;
+    let keep = |f: f64, m: &Option<Maneuver>, best: &mut Option<(f64, Maneuver)>| {
+        if let Some(mv) = m {
+            if best.as_ref().is_none_or(|(bf, _)| f < *bf) {
+                *best = Some((f, mv.clone()));
+            }
+        }
+    };
+    keep(fc, &mc, &mut best);
+    keep(fd, &md, &mut best);
+    for _ in 0..iterations {
+        if fc <= fd {
+            hi = d;
+            d = c;
+            fd = fc;
+            md = mc;
+            c = hi - r * (hi - lo);
+            (fc, mc) = score(c);
+            keep(fc, &mc, &mut best);
+        } else {
+            lo = c;
+            c = d;
+            fc = fd;
+            mc = md;
+            d = lo + r * (hi - lo);
+            (fd, md) = score(d);
+            keep(fd, &md, &mut best);
+        }
+    }
+    best.map(|(_, m)| m)
+}
+
+#[cfg(test)]
+#[allow(
+    clippy::unwrap_used,
+    clippy::indexing_slicing,
+    clippy::float_cmp,
+    clippy::arithmetic_side_effects
+)]
+mod tests {
+    use super::*;
+
+    const DEG: f64 = core::f64::consts::PI / 180.0;
+
+    #[test]
+    fn digest_reference_values_at_9_and_12_hours() {
+        let g = Geo::standard();
+        // Digest: 0.05..0.25 deg cost 2.15..10.75 m/s at 9 h and 1.33..6.67 m/s at 12 h.
+        for (k, du) in [0.05, 0.10, 0.15, 0.20, 0.25].iter().enumerate() {
+            let a = lambert_phasing(
+                &g,
+                Direction::East,
+                du * DEG,
+                9.0 * 3600.0,
+                0,
+                1e9,
+                40,
+                1e-13,
+            )
+            .unwrap();
+            let b = lambert_phasing(
+                &g,
+                Direction::East,
+                du * DEG,
+                12.0 * 3600.0,
+                0,
+                1e9,
+                40,
+                1e-13,
+            )
+            .unwrap();
+            let want9 = [2.15, 4.30, 6.45, 8.60, 10.75][k];
+            let want12 = [1.33, 2.67, 4.00, 5.33, 6.67][k];
+            assert!((a.dv_mps - want9).abs() < 0.01, "{du}: {}", a.dv_mps);
+            assert!((b.dv_mps - want12).abs() < 0.01, "{du}: {}", b.dv_mps);
+        }
+    }
+
+    #[test]
+    fn well_bottom_is_below_the_k_revolution_phasing_orbit() {
+        let g = Geo::standard();
+        let b = LambertBounds {
+            max_iter: 40,
+            tol: 1e-13,
+        };
+        for dir in [Direction::East, Direction::West] {
+            for m in 1..=3u16 {
+                let du = 0.5 * DEG;
+                let w = well_minimum(&g, dir, du, m, 0.0, 1e9, 40, b).unwrap();
+                // m-revolution tangential phasing orbit: period (2 pi m - s du) / (m n0).
+                let tm = coincidence_s(&g, dir, du, m) / f64::from(m);
+                let am = libm::cbrt(g.mu * (tm / TWO_PI) * (tm / TWO_PI));
+                let tangential = 2.0 * (g.vis_viva(g.a0, am) - g.v0).abs() * M_PER_KM;
+                assert!(
+                    w.dv_mps <= tangential + 1e-6,
+                    "{m}: {} {}",
+                    w.dv_mps,
+                    tangential
+                );
+                assert!(
+                    w.dv_mps > 0.9 * tangential,
+                    "{m}: {} {}",
+                    w.dv_mps,
+                    tangential
+                );
+            }
+        }
+    }
+}

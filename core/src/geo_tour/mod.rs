@@ -1,0 +1,304 @@
+//! GEO servicing tour: one servicer on the geostationary ring visits clients in other slots in
+//! one sweep within a mission time, least total Δv, every burn under a cap (the GEO servicing
+//! paper digested in SPEC-servicing.md, seed 003).
+//!
+//! * Per leg, four phasing methods on the circular ring (two-body, coplanar): one-revolution
+//!   Hohmann-type ([`hohmann`]), drift ([`drift_for_duration`]; drift orbit from the duration
+//!   by a bounded 1-D root), radial-impulse ([`radial`]) and Lambert ([`lambert_phasing`],
+//!   every revolution count and branch up to `Settings::lambert_max_revolutions`).
+//! * Time allocation by a Lagrange time price (exact for the convex drift legs), the duality
+//!   gap at the critical price closed by enumerating the switching legs, and a local
+//!   refinement of the Lambert wells (module `allocate`).
+//! * Both sweeps (east and west), the cheaper kept unless the request fixes one; the paper's
+//!   threshold rule as `MethodPolicy::PaperRule`.
+//!
+//! ## Frame and units
+//! Longitudes in rad (Earth-fixed, east positive), times in s from the mission epoch, burns in
+//! m/s in the servicer's local radial / along-track / normal frame. A leg's time beyond its
+//! transfer is spent waiting co-located with the client, after the arrival.
+//!
+//! ## Bounds
+//! Every loop is bounded by a `Settings` field or a capacity ([`MAX_TARGETS`] clients,
+//! [`MAX_LAMBERT_REVOLUTIONS`]); the worst case is in the [`Settings`] docs.
+
+mod allocate;
+mod drift;
+mod error;
+mod geo;
+mod hohmann;
+mod lambert_phasing;
+mod maneuver;
+mod radial;
+mod root;
+mod solution;
+mod table;
+mod types;
+mod validate;
+mod workspace;
+
+pub use drift::{drift_at_depth, drift_for_duration};
+pub use error::{Field, PlanError};
+pub use geo::{
+    inertial_to_rtn, rtn_to_inertial, wrap_two_pi, Geo, EARTH_RATE_RAD_S, MU_KM3_S2, TWO_PI,
+};
+pub use hohmann::hohmann;
+pub use lambert_phasing::lambert_phasing;
+pub use maneuver::{Burn, Direction, Maneuver, Method, MAX_BURNS};
+pub use radial::radial;
+pub use solution::{Leg, Solution, SolveInfo, SolveStatus};
+pub use types::{
+    MethodPolicy, Problem, Settings, SweepChoice, MAX_GAP_LEGS, MAX_LAMBERT_REVOLUTIONS,
+    MAX_TARGETS,
+};
+pub use validate::{MAX_BURN_CAP_MPS, MAX_MISSION_TIME_S};
+pub use workspace::Workspace;
+
+use allocate::{allocate, Choice};
+use table::{build, point_maneuver};
+
+/// The method the paper's threshold rule gives a phase offset (rad) under `settings`.
+pub fn rule_method(phase_rad: f64, settings: &Settings) -> Method {
+    table::rule_method(phase_rad, settings)
+}
+
+/// Plan the tour of `problem` into `out`.
+///
+/// Time is bounded by `settings` and the capacities alone (see [`Settings`]); no heap, no
+/// panics, bit-identical on every run. The status in `out.info` says whether the plan is
+/// usable (`Solved`) or which leg makes the request infeasible.
+///
+/// # Errors
+/// [`PlanError`] naming the field, the value and the limit when an input or a setting is out
+/// of range; `out` is then untouched.
+pub fn solve(
+    problem: &Problem,
+    settings: &Settings,
+    workspace: &mut Workspace,
+    out: &mut Solution,
+) -> Result<(), PlanError> {
+    validate::settings(settings)?;
+    validate::problem(problem)?;
+    let g = Geo::standard();
+    match problem.sweep {
+        SweepChoice::East => solve_sweep(&g, Direction::East, problem, settings, workspace, out),
+        SweepChoice::West => solve_sweep(&g, Direction::West, problem, settings, workspace, out),
+        SweepChoice::Cheaper => {
+            solve_sweep(&g, Direction::East, problem, settings, workspace, out);
+            let mut other = core::mem::take(&mut workspace.other);
+            solve_sweep(
+                &g,
+                Direction::West,
+                problem,
+                settings,
+                workspace,
+                &mut other,
+            );
+            let solved = |s: &Solution| s.info.status == SolveStatus::Solved;
+            let iterations = out.info.price_iterations;
+            let take_west = (solved(&other) && !solved(out))
+                || (solved(&other) && solved(out) && other.total_dv_mps < out.total_dv_mps);
+            if take_west {
+                core::mem::swap(out, &mut other);
+            }
+            out.info.price_iterations = out.info.price_iterations.saturating_add(iterations);
+            workspace.other = other;
+        }
+    }
+    Ok(())
+}
+
+/// Plan one sweep (inputs already validated).
+fn solve_sweep(
+    g: &Geo,
+    dir: Direction,
+    problem: &Problem,
+    s: &Settings,
+    ws: &mut Workspace,
+    out: &mut Solution,
+) {
+    *out = Solution::new();
+    out.info.direction = Some(dir);
+    let sign = dir.sign();
+    let start = wrap_two_pi(problem.start_lon_rad);
+    // Visiting order: by offset from the start in the sweep's direction (ties by index).
+    let n = problem.targets_lon_rad.len().min(MAX_TARGETS);
+    let mut order = [0usize; MAX_TARGETS];
+    let mut offsets = [0.0f64; MAX_TARGETS];
+    for (i, (&lon, off)) in problem
+        .targets_lon_rad
+        .iter()
+        .zip(offsets.iter_mut())
+        .enumerate()
+    {
+        *off = wrap_two_pi(sign * (wrap_two_pi(lon) - start));
+        if let Some(o) = order.get_mut(i) {
+            *o = i;
+        }
+    }
+    let key = |i: usize| offsets.get(i).copied().unwrap_or(f64::INFINITY);
+    // Insertion sort, n <= 16.
+    for i in 1..n {
+        let mut j = i;
+        while j > 0 {
+            let (Some(&a), Some(&b)) = (order.get(j.wrapping_sub(1)), order.get(j)) else {
+                break;
+            };
+            if key(a) > key(b) {
+                order.swap(j.wrapping_sub(1), j);
+                j = j.wrapping_sub(1);
+            } else {
+                break;
+            }
+        }
+    }
+    let mut prev_off = 0.0;
+    let mut prev_lon = start;
+    let mut fastest = 0.0;
+    let mut fastest_uncapped = 0.0;
+    for (leg, &i) in order.iter().take(n).enumerate() {
+        let off = key(i);
+        let to = problem
+            .targets_lon_rad
+            .get(i)
+            .map_or(0.0, |&l| wrap_two_pi(l));
+        let phase = (off - prev_off).max(0.0);
+        if let Some(t) = ws.tables.get_mut(leg) {
+            *t = build(
+                g,
+                dir,
+                u8::try_from(i).unwrap_or(u8::MAX),
+                prev_lon,
+                to,
+                phase,
+                problem.max_burn_mps,
+                problem.policy,
+                s,
+            );
+            fastest += t.fastest_s;
+            fastest_uncapped += t.fastest_uncapped_s;
+        }
+        prev_off = off;
+        prev_lon = to;
+    }
+    out.info.fastest_tour_s = fastest;
+    let Some(tables) = ws.tables.get_mut(..n) else {
+        out.info.status = SolveStatus::CheckFailed { leg: 0 };
+        return;
+    };
+    if fastest.is_nan() || fastest > problem.mission_time_s {
+        out.info.status = infeasible(tables, problem, s, fastest_uncapped);
+        return;
+    }
+    let Some(alloc) = allocate(
+        tables,
+        problem.mission_time_s,
+        s,
+        &mut ws.picks,
+        &mut ws.lo_picks,
+        &mut ws.trial,
+    ) else {
+        out.info.status = SolveStatus::CheckFailed { leg: 0 };
+        return;
+    };
+    out.info.price_mps_per_s = alloc.price;
+    out.info.price_iterations = alloc.iterations;
+    out.info.gap_assignments = alloc.gap_assignments;
+    out.info.refined_legs = alloc.refined;
+    // Assemble the legs from the picks.
+    let mut clock = 0.0;
+    let mut failed: Option<u8> = None;
+    for (j, (t, p)) in tables.iter().zip(ws.picks.iter()).enumerate() {
+        let jj = u8::try_from(j).unwrap_or(u8::MAX);
+        let mv = match p.choice {
+            Choice::Drift => t.drift.as_ref().map(|d| d.model.maneuver(p.x_km)),
+            Choice::Point(i) => t.points.get(usize::from(i)).and_then(|pt| {
+                // The pick's time (a Lambert well may have been re-priced since).
+                let at = table::Point {
+                    duration_s: p.duration_s,
+                    ..*pt
+                };
+                point_maneuver(g, dir, t.phase_rad, &at, t.cap_mps, s)
+            }),
+        };
+        let Some(mv) = mv else {
+            failed = failed.or(Some(jj));
+            continue;
+        };
+        let duration = p.duration_s.max(mv.transfer_s);
+        let leg = Leg {
+            target_index: t.target_index,
+            from_lon_rad: t.from_lon_rad,
+            to_lon_rad: t.to_lon_rad,
+            phase_rad: t.phase_rad,
+            method: mv.method,
+            start_s: clock,
+            duration_s: duration,
+            transfer_s: mv.transfer_s,
+            wait_s: duration - mv.transfer_s,
+            dv_mps: mv.dv_mps,
+            max_burn_mps: mv.max_burn_mps,
+            orbit_sma_km: mv.orbit_sma_km,
+            revolutions: mv.revolutions,
+            burns: mv.burns.clone(),
+        };
+        clock += duration;
+        out.total_dv_mps += leg.dv_mps;
+        out.max_burn_mps = out.max_burn_mps.max(leg.max_burn_mps);
+        let ok_leg = leg.max_burn_mps <= problem.max_burn_mps * (1.0 + 1e-12)
+            && leg.dv_mps.is_finite()
+            && leg.duration_s.is_finite();
+        if !ok_leg {
+            failed = failed.or(Some(jj));
+        }
+        // n <= MAX_TARGETS legs.
+        let _ = out.legs.push(leg);
+    }
+    out.mission_time_s = clock;
+    if clock > problem.mission_time_s * (1.0 + 1e-12) {
+        failed = failed.or(Some(u8::try_from(n.saturating_sub(1)).unwrap_or(u8::MAX)));
+    }
+    out.info.status = match failed {
+        Some(leg) => SolveStatus::CheckFailed { leg },
+        None => SolveStatus::Solved,
+    };
+}
+
+/// Which leg makes the request infeasible, and why.
+fn infeasible(
+    tables: &[table::LegTable],
+    problem: &Problem,
+    _s: &Settings,
+    fastest_uncapped: f64,
+) -> SolveStatus {
+    let idx = |j: usize| u8::try_from(j).unwrap_or(u8::MAX);
+    if fastest_uncapped <= problem.mission_time_s {
+        // The cap is what fails: name the leg it slows most (infinite: nothing admissible).
+        let mut worst = (0usize, f64::NEG_INFINITY);
+        for (j, t) in tables.iter().enumerate() {
+            let slowed = t.fastest_s - t.fastest_uncapped_s;
+            if slowed > worst.1 || (t.fastest_s.is_infinite() && worst.1.is_finite()) {
+                worst = (j, slowed);
+            }
+        }
+        SolveStatus::CapTooLow { leg: idx(worst.0) }
+    } else if problem.policy == MethodPolicy::PaperRule
+        && tables.iter().any(|t| t.fastest_s.is_infinite())
+    {
+        let j = tables
+            .iter()
+            .position(|t| t.fastest_s.is_infinite())
+            .unwrap_or(0);
+        SolveStatus::RuleMethodInadmissible { leg: idx(j) }
+    } else {
+        let mut worst = (0usize, f64::NEG_INFINITY);
+        for (j, t) in tables.iter().enumerate() {
+            if t.fastest_s > worst.1 {
+                worst = (j, t.fastest_s);
+            }
+        }
+        SolveStatus::MissionTooShort { leg: idx(worst.0) }
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,76 @@
+//! Radial-impulse phasing: a radial burn `w` keeps the angular momentum, so the orbit's
+//! semi-latus rectum stays `a0` and it meets the ring again at true anomaly `+-pi/2`, half a
+//! turn later, with the radial velocity reversed; a second radial burn of the same sign and
+//! size recircularises. East (gain phase): inward burns, the arc passes perigee; west: outward
+//! burns through apogee. Exact in two-body (digest eqs. 9-14 are its small-e limit):
+//! `e = w / v0`, `a = a0 / (1 - e^2)`, arc time `2 (acos e - e sqrt(1 - e^2)) / n` through
+//! perigee, and the phase change `|pi - n0 * arc|`.
+
+use super::geo::{Geo, M_PER_KM, TWO_PI};
+use super::maneuver::{Burn, Direction, Maneuver, Method};
+
+/// Arc time (s) and phase gained (rad, positive = the direction's way) for eccentricity `e`.
+fn arc(g: &Geo, dir: Direction, e: f64) -> (f64, f64) {
+    let a = g.a0 / (1.0 - e * e);
+    let n = libm::sqrt(g.mu / (a * a * a));
+    let half = (libm::acos(e) - e * libm::sqrt(1.0 - e * e)) / n;
+    match dir {
+        Direction::East => {
+            let t = 2.0 * half;
+            (t, core::f64::consts::PI - g.n0 * t)
+        }
+        Direction::West => {
+            let t = TWO_PI / n - 2.0 * half;
+            (t, g.n0 * t - core::f64::consts::PI)
+        }
+    }
+}
+
+/// The manoeuvre, or `None` when the phase needs a perigee below `min_radius_km`.
+/// At most `max_iter` bisection steps on e.
+pub fn radial(
+    g: &Geo,
+    dir: Direction,
+    phase_rad: f64,
+    min_radius_km: f64,
+    max_iter: u16,
+) -> Option<Maneuver> {
+    // Perigee a0 / (1 + e) above the floor; e below 0.9 keeps the arc well conditioned.
+    let e_max = (g.a0 / min_radius_km - 1.0).clamp(0.0, 0.9);
+    if !(phase_rad.is_finite() && phase_rad >= 0.0) || arc(g, dir, e_max).1 < phase_rad {
+        return None;
+    }
+    // Phase gained grows with e: bisection.
+    let (mut lo, mut hi) = (0.0_f64, e_max);
+    for _ in 0..max_iter {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if arc(g, dir, mid).1 < phase_rad {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let e = 0.5 * (lo + hi);
+    let (t, _) = arc(g, dir, e);
+    let w = -dir.sign() * e * g.v0 * M_PER_KM;
+    let burns = [
+        Burn {
+            offset_s: 0.0,
+            dv_rtn_mps: [w, 0.0, 0.0],
+        },
+        Burn {
+            offset_s: t,
+            dv_rtn_mps: [w, 0.0, 0.0],
+        },
+    ];
+    Some(Maneuver::from_burns(
+        Method::Radial,
+        t,
+        g.a0 / (1.0 - e * e),
+        0,
+        &burns,
+    ))
+}

@@ -1,0 +1,71 @@
+//! A bounded bracketing root finder (Illinois regula falsi with a bisection every fourth
+//! step, so a step function cannot stall it).
+
+/// Root of a non-decreasing `f` on `[a, b]` given `fa = f(a) <= 0 < fb = f(b)`. Returns the
+/// final bracket `(a, fa, b, fb, steps)`: `f(a) <= 0 < f(b)` always holds, so `a` is the
+/// "feasible" end when `f <= 0` means feasible. Stops after `max_iter` steps, when the bracket
+/// is narrower than `xtol * (1 + |a|)`, or when `-ftol <= f(a) <= 0`.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn illinois<F: FnMut(f64) -> f64>(
+    mut f: F,
+    mut a: f64,
+    mut fa: f64,
+    mut b: f64,
+    mut fb: f64,
+    max_iter: u16,
+    xtol: f64,
+    ftol: f64,
+) -> (f64, f64, f64, f64, u16) {
+    // Illinois weights (halved end values) are kept apart from the true values.
+    let (mut wa, mut wb) = (fa, fb);
+    let mut side = 0i8;
+    let mut steps = 0u16;
+    for k in 0..max_iter {
+        if (b - a).abs() <= xtol * (1.0 + a.abs()) || (fa <= 0.0 && -fa <= ftol) {
+            break;
+        }
+        steps = steps.saturating_add(1);
+        let mut c = (a * wb - b * wa) / (wb - wa);
+        if k % 4 == 3 || !(c > a && c < b) {
+            c = 0.5 * (a + b);
+        }
+        let fc = f(c);
+        if fc.is_nan() {
+            break;
+        }
+        if fc <= 0.0 {
+            a = c;
+            fa = fc;
+            wa = fc;
+            if side < 0 {
+                wb *= 0.5;
+            }
+            side = -1;
+        } else {
+            b = c;
+            fb = fc;
+            wb = fc;
+            if side > 0 {
+                wa *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    (a, fa, b, fb, steps)
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::float_cmp)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finds_smooth_roots_and_steps() {
+        let (a, _, b, _, n) = illinois(|x| x * x * x - 2.0, 0.0, -2.0, 2.0, 6.0, 100, 1e-15, 0.0);
+        assert!((a - libm::cbrt(2.0)).abs() < 1e-14 && b >= a, "{a} {b}");
+        assert!(n < 40, "{n}");
+        let step = |x: f64| if x < 0.3 { -1.0 } else { 1.0 };
+        let (a, fa, b, fb, _) = illinois(step, 0.0, -1.0, 1.0, 1.0, 200, 1e-12, 0.0);
+        assert!(fa <= 0.0 && fb > 0.0 && (b - a) < 1e-11 && (a - 0.3).abs() < 1e-11);
+    }
+}

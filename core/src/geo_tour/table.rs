@@ -1,0 +1,240 @@
+//! Per-leg option tables: what each leg can do, built once per sweep, before any time is
+//! allocated. The drift method is kept as a continuous option (its admissible depth range);
+//! the other methods are points `(duration, Δv)` that a longer leg reaches by waiting.
+
+use super::drift::Drift;
+use super::geo::Geo;
+use super::hohmann::hohmann;
+use super::lambert_phasing::{lambert_revs, well_minimum, LambertBounds};
+use super::maneuver::{Direction, Maneuver, Method};
+use super::radial::radial;
+use super::types::{MethodPolicy, Settings, MAX_LAMBERT_REVOLUTIONS};
+
+/// Most point options of a leg: Hohmann, radial, direct Lambert and one per Lambert well.
+pub(crate) const MAX_POINTS: usize = 4 + MAX_LAMBERT_REVOLUTIONS as usize;
+
+/// Which point option.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum PointKind {
+    /// Client in the same slot.
+    Stay,
+    /// One-revolution Hohmann-type phasing.
+    Hohmann,
+    /// Radial-impulse phasing.
+    Radial,
+    /// Direct (0-revolution) Lambert in `lambert_direct_time_s`.
+    Direct,
+    /// Bottom of Lambert well m (K = m - 1 revolutions).
+    Well(u16),
+}
+
+/// A point option.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Point {
+    pub kind: PointKind,
+    pub duration_s: f64,
+    pub dv_mps: f64,
+    /// Lambert wells: the time price this point minimises `dv + price t` for (0: the bottom).
+    pub price: f64,
+}
+
+/// The drift option of a leg: admissible depths `(0, x_max]`, fastest duration `t_min`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct DriftRange {
+    pub model: Drift,
+    pub x_max_km: f64,
+    pub t_min_s: f64,
+}
+
+/// Everything one leg can do.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct LegTable {
+    pub target_index: u8,
+    pub from_lon_rad: f64,
+    pub to_lon_rad: f64,
+    pub phase_rad: f64,
+    /// Sweep direction of the leg.
+    pub east: bool,
+    /// The per-burn cap the table was built for, m/s.
+    pub cap_mps: f64,
+    pub drift: Option<DriftRange>,
+    pub points: heapless::Vec<Point, MAX_POINTS>,
+    /// Fastest admissible duration (infinite when nothing is admissible), s.
+    pub fastest_s: f64,
+    /// Fastest duration ignoring the cap, s.
+    pub fastest_uncapped_s: f64,
+}
+
+impl LegTable {
+    pub const fn empty() -> Self {
+        Self {
+            target_index: 0,
+            from_lon_rad: 0.0,
+            to_lon_rad: 0.0,
+            phase_rad: 0.0,
+            east: true,
+            cap_mps: 0.0,
+            drift: None,
+            points: heapless::Vec::new(),
+            fastest_s: f64::INFINITY,
+            fastest_uncapped_s: f64::INFINITY,
+        }
+    }
+}
+
+pub(crate) fn bounds(s: &Settings) -> LambertBounds {
+    LambertBounds {
+        max_iter: s.lambert_max_iter,
+        tol: s.lambert_tol,
+    }
+}
+
+/// The sweep direction a table was built for.
+pub(crate) fn direction_of(t: &LegTable) -> Direction {
+    if t.east {
+        Direction::East
+    } else {
+        Direction::West
+    }
+}
+
+/// The method the paper's rule gives a phase offset.
+pub(crate) fn rule_method(phase_rad: f64, s: &Settings) -> Method {
+    if phase_rad > s.rule_drift_above_rad {
+        Method::Drift
+    } else if phase_rad > s.rule_hohmann_above_rad {
+        Method::Hohmann
+    } else if phase_rad > s.rule_radial_above_rad {
+        Method::Radial
+    } else {
+        Method::Lambert
+    }
+}
+
+/// Rebuild the manoeuvre of a point option (deterministic: the same numbers as when the
+/// table was built).
+pub(crate) fn point_maneuver(
+    g: &Geo,
+    dir: Direction,
+    phase_rad: f64,
+    p: &Point,
+    p_cap: f64,
+    s: &Settings,
+) -> Option<Maneuver> {
+    match p.kind {
+        PointKind::Stay => Some(Maneuver::none()),
+        PointKind::Hohmann => hohmann(g, dir, phase_rad, s.min_radius_km),
+        PointKind::Radial => radial(g, dir, phase_rad, s.min_radius_km, s.root_max_iter),
+        PointKind::Direct => lambert_revs(g, dir, phase_rad, p.duration_s, 0, p_cap, bounds(s)),
+        PointKind::Well(m) => lambert_revs(
+            g,
+            dir,
+            phase_rad,
+            p.duration_s,
+            m.saturating_sub(1),
+            p_cap,
+            bounds(s),
+        ),
+    }
+}
+
+fn push(t: &mut LegTable, kind: PointKind, m: Option<Maneuver>, cap: f64) {
+    if let Some(m) = m {
+        t.fastest_uncapped_s = t.fastest_uncapped_s.min(m.transfer_s);
+        if m.max_burn_mps <= cap {
+            t.fastest_s = t.fastest_s.min(m.transfer_s);
+            // MAX_POINTS holds every kind once and each well once.
+            let _ = t.points.push(Point {
+                kind,
+                duration_s: m.transfer_s,
+                dv_mps: m.dv_mps,
+                price: 0.0,
+            });
+        }
+    }
+}
+
+/// Build the table of one leg.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn build(
+    g: &Geo,
+    dir: Direction,
+    target_index: u8,
+    from_lon_rad: f64,
+    to_lon_rad: f64,
+    phase_rad: f64,
+    cap_mps: f64,
+    policy: MethodPolicy,
+    s: &Settings,
+) -> LegTable {
+    let mut t = LegTable::empty();
+    t.target_index = target_index;
+    t.from_lon_rad = from_lon_rad;
+    t.to_lon_rad = to_lon_rad;
+    t.phase_rad = phase_rad;
+    t.east = dir == Direction::East;
+    t.cap_mps = cap_mps;
+    if phase_rad <= 0.0 {
+        push(&mut t, PointKind::Stay, Some(Maneuver::none()), cap_mps);
+        return t;
+    }
+    let allowed = |m: Method| match policy {
+        MethodPolicy::ByCost => true,
+        MethodPolicy::PaperRule => rule_method(phase_rad, s) == m,
+    };
+    if allowed(Method::Drift) {
+        let model = Drift {
+            g: *g,
+            dir,
+            phase_rad,
+        };
+        if let Some(x) = model.max_depth_km(f64::INFINITY, s.min_radius_km, s.root_max_iter) {
+            t.fastest_uncapped_s = t.fastest_uncapped_s.min(model.at(x).duration_s);
+        }
+        if let Some(x) = model.max_depth_km(cap_mps, s.min_radius_km, s.root_max_iter) {
+            let t_min = model.at(x).duration_s;
+            t.fastest_s = t.fastest_s.min(t_min);
+            t.drift = Some(DriftRange {
+                model,
+                x_max_km: x,
+                t_min_s: t_min,
+            });
+        }
+    }
+    if allowed(Method::Hohmann) {
+        push(
+            &mut t,
+            PointKind::Hohmann,
+            hohmann(g, dir, phase_rad, s.min_radius_km),
+            cap_mps,
+        );
+    }
+    if allowed(Method::Radial) {
+        push(
+            &mut t,
+            PointKind::Radial,
+            radial(g, dir, phase_rad, s.min_radius_km, s.root_max_iter),
+            cap_mps,
+        );
+    }
+    if allowed(Method::Lambert) {
+        let b = bounds(s);
+        let direct = lambert_revs(
+            g,
+            dir,
+            phase_rad,
+            s.lambert_direct_time_s,
+            0,
+            f64::INFINITY,
+            b,
+        );
+        push(&mut t, PointKind::Direct, direct, cap_mps);
+        if policy == MethodPolicy::ByCost {
+            for m in 1..=s.lambert_max_revolutions.saturating_add(1) {
+                let w = well_minimum(g, dir, phase_rad, m, 0.0, cap_mps, s.well_iterations, b);
+                push(&mut t, PointKind::Well(m), w, cap_mps);
+            }
+        }
+    }
+    t
+}

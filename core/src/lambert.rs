@@ -1,0 +1,520 @@
+//! Lambert's problem, multi-revolution, general 3-D: the two-body orbit from `r1` to `r2` in a
+//! given time with a given number of whole revolutions (Izzo 2015, "Revisiting Lambert's
+//! problem", Householder iterations on Lancaster–Blanchard's x variable).
+//!
+//! Used by the GEO tour (phasing by Lambert transfer); written for any pair of positions so the
+//! LEO tour can reuse it.
+//!
+//! ## Degenerate geometry
+//! When `r1` and `r2` are (nearly) parallel the transfer plane is not defined by the positions;
+//! the caller's `normal` (the wanted angular momentum direction) defines it. The end points may
+//! coincide (transfer angle `2 pi K`): then `lambda = 1`, and the right branch is the tangential
+//! K-revolution phasing orbit (the limit the GEO tour's Lambert wells approach), the left one
+//! a rectilinear fall. Both are returned as finite numbers; no division by the chord.
+//!
+//! ## Bounds
+//! At most `max_iter` Householder steps per branch, plus `max_iter` Halley steps for the
+//! minimum time of a multi-revolution family. A hypergeometric series of at most 64 terms.
+
+use serde::{Deserialize, Serialize};
+
+/// 3-vector, km or km/s.
+pub type Vec3 = [f64; 3];
+
+/// Which of the two solutions of a multi-revolution family (K >= 1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[repr(u8)]
+pub enum Branch {
+    /// Izzo's "left" (low-path, larger x) solution.
+    Left = 0,
+    /// Izzo's "right" solution.
+    Right = 1,
+}
+
+/// Why a Lambert solve gave no orbit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[repr(u8)]
+pub enum LambertError {
+    /// An input is NaN or infinite, a radius or the time of flight is not positive, or the
+    /// normal has zero length.
+    BadInput = 0,
+    /// The time of flight is shorter than the least time of a K-revolution transfer.
+    NoSolution = 1,
+    /// Householder did not converge within `max_iter`.
+    NotConverged = 2,
+}
+
+/// Departure and arrival velocities of a Lambert transfer, km/s.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LambertSolution {
+    /// Velocity just after departure at `r1`.
+    pub v1_kmps: Vec3,
+    /// Velocity just before arrival at `r2`.
+    pub v2_kmps: Vec3,
+    /// Householder steps used.
+    pub iterations: u16,
+}
+
+fn dot(a: &Vec3, b: &Vec3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: &Vec3, b: &Vec3) -> Vec3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn norm(a: &Vec3) -> f64 {
+    libm::sqrt(dot(a, a))
+}
+
+fn scale(a: &Vec3, k: f64) -> Vec3 {
+    [a[0] * k, a[1] * k, a[2] * k]
+}
+
+fn add(a: &Vec3, b: &Vec3) -> Vec3 {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+fn sub(a: &Vec3, b: &Vec3) -> Vec3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn finite(a: &Vec3) -> bool {
+    a.iter().all(|v| v.is_finite())
+}
+
+/// Gauss hypergeometric 2F1(3, 1; 5/2; z) for |z| < 1 (Battin's series in Izzo's eq. 20),
+/// at most 64 terms; used only near x = 1 where z is small.
+fn hyp2f1b(z: f64) -> f64 {
+    let mut res = 1.0;
+    let mut term = 1.0;
+    let mut i = 0.0;
+    for _ in 0..64 {
+        term = term * (3.0 + i) * (1.0 + i) / (2.5 + i) * z / (i + 1.0);
+        let old = res;
+        res += term;
+        if (res - old).abs() <= f64::EPSILON * res.abs() {
+            break;
+        }
+        i += 1.0;
+    }
+    res
+}
+
+fn compute_y(x: f64, lam: f64) -> f64 {
+    libm::sqrt((1.0 - lam * lam * (1.0 - x * x)).max(0.0))
+}
+
+fn compute_psi(x: f64, y: f64, lam: f64) -> f64 {
+    if (-1.0..1.0).contains(&x) {
+        libm::acos((x * y + lam * (1.0 - x * x)).clamp(-1.0, 1.0))
+    } else if x > 1.0 {
+        libm::asinh((y - x * lam) * libm::sqrt(x * x - 1.0))
+    } else {
+        0.0
+    }
+}
+
+/// Non-dimensional time of flight at x (Izzo eq. 18 / Battin series near x = 1).
+fn tof(x: f64, y: f64, lam: f64, revs: f64) -> f64 {
+    if revs == 0.0 && x > libm::sqrt(0.6) && x < libm::sqrt(1.4) {
+        let eta = y - lam * x;
+        let s1 = (1.0 - lam - x * eta) * 0.5;
+        let q = 4.0 / 3.0 * hyp2f1b(s1);
+        (eta * eta * eta * q + 4.0 * lam * eta) * 0.5
+    } else {
+        let psi = compute_psi(x, y, lam);
+        let one_m = 1.0 - x * x;
+        ((psi + revs * core::f64::consts::PI) / libm::sqrt(one_m.abs()) - x + lam * y) / one_m
+    }
+}
+
+/// First three derivatives of the time of flight with respect to x (Izzo eq. 22).
+fn tof_derivatives(x: f64, y: f64, t: f64, lam: f64) -> (f64, f64, f64) {
+    let one_m = 1.0 - x * x;
+    let l2 = lam * lam;
+    let l3 = l2 * lam;
+    let d1 = (3.0 * t * x - 2.0 + 2.0 * l3 * x / y) / one_m;
+    let d2 = (3.0 * t + 5.0 * x * d1 + 2.0 * (1.0 - l2) * l3 / (y * y * y)) / one_m;
+    let d3 =
+        (7.0 * x * d2 + 8.0 * d1 - 6.0 * (1.0 - l2) * l2 * l3 * x / (y * y * y * y * y)) / one_m;
+    (d1, d2, d3)
+}
+
+/// Least non-dimensional time of a `revs`-revolution family (Halley on dT/dx = 0).
+fn min_tof(lam: f64, revs: f64, max_iter: u16, tol: f64) -> Option<f64> {
+    let mut x = 0.1;
+    if lam >= 1.0 {
+        x = 0.0;
+    } else {
+        for _ in 0..max_iter {
+            let y = compute_y(x, lam);
+            let t = tof(x, y, lam, revs);
+            let (d1, d2, d3) = tof_derivatives(x, y, t, lam);
+            let den = 2.0 * d2 * d2 - d1 * d3;
+            if den == 0.0 || !den.is_finite() {
+                return None;
+            }
+            let next = x - 2.0 * d1 * d2 / den;
+            let done = (next - x).abs() <= tol * (1.0 + x.abs());
+            x = next.clamp(-0.999_999, 0.999_999);
+            if done {
+                break;
+            }
+        }
+    }
+    let t = tof(x, compute_y(x, lam), lam, revs);
+    t.is_finite().then_some(t)
+}
+
+/// Solve Lambert's problem.
+///
+/// * `mu_km3_s2`: gravitational parameter.
+/// * `r1_km`, `r2_km`: positions at departure and arrival.
+/// * `tof_s`: time of flight, s, > 0.
+/// * `revs`: whole revolutions K before arrival (0 = direct).
+/// * `branch`: which solution of a K >= 1 family (ignored for K = 0).
+/// * `normal`: the wanted angular-momentum direction (prograde motion about it); defines the
+///   plane when `r1` and `r2` are parallel and picks the short or long way otherwise.
+/// * `max_iter`, `tol`: Householder bound and tolerance on x.
+///
+/// # Errors
+/// [`LambertError`] saying why no orbit was returned.
+#[allow(clippy::too_many_arguments)]
+pub fn solve(
+    mu_km3_s2: f64,
+    r1_km: &Vec3,
+    r2_km: &Vec3,
+    tof_s: f64,
+    revs: u16,
+    branch: Branch,
+    normal: &Vec3,
+    max_iter: u16,
+    tol: f64,
+) -> Result<LambertSolution, LambertError> {
+    let r1n = norm(r1_km);
+    let r2n = norm(r2_km);
+    let nn = norm(normal);
+    let valid = finite(r1_km)
+        && finite(r2_km)
+        && finite(normal)
+        && mu_km3_s2.is_finite()
+        && mu_km3_s2 > 0.0
+        && tof_s.is_finite()
+        && tof_s > 0.0
+        && r1n > 0.0
+        && r2n > 0.0
+        && nn > 0.0;
+    if !valid {
+        return Err(LambertError::BadInput);
+    }
+    let ir1 = scale(r1_km, 1.0 / r1n);
+    let ir2 = scale(r2_km, 1.0 / r2n);
+    let ihat = scale(normal, 1.0 / nn);
+    let chord = sub(r2_km, r1_km);
+    let c = norm(&chord);
+    let s = 0.5 * (r1n + r2n + c);
+    // Plane normal: from the positions when they span one, else the caller's; oriented with
+    // the caller's so the motion is prograde about `normal`.
+    let h_raw = cross(&ir1, &ir2);
+    let hn = norm(&h_raw);
+    let (ih, long_way) = if hn > 1e-12 {
+        let h = scale(&h_raw, 1.0 / hn);
+        if dot(&h, &ihat) >= 0.0 {
+            (h, false)
+        } else {
+            (scale(&h, -1.0), true)
+        }
+    } else {
+        // Parallel positions: same direction (angle 0 mod 2 pi) or opposite (pi).
+        (ihat, false)
+    };
+    let mut lam = libm::sqrt((1.0 - (c / s).min(1.0)).max(0.0));
+    if long_way {
+        lam = -lam;
+    }
+    let it1 = cross(&ih, &ir1);
+    let it2 = cross(&ih, &ir2);
+    let t_nd = libm::sqrt(2.0 * mu_km3_s2 / (s * s * s)) * tof_s;
+    let m = f64::from(revs);
+    let pi = core::f64::consts::PI;
+    // T(x = 0) = acos(lambda) + lambda sqrt(1 - lambda^2) + K pi bounds the least time of the
+    // K-revolution family from above: only shorter times need the Halley search for it.
+    let t_00 = libm::acos(lam) + lam * libm::sqrt((1.0 - lam * lam).max(0.0)) + m * pi;
+    if revs > 0 && t_nd < t_00 {
+        let t_min = min_tof(lam, m, max_iter, tol).ok_or(LambertError::NotConverged)?;
+        if t_nd < t_min {
+            return Err(LambertError::NoSolution);
+        }
+    }
+    // Initial guess (Izzo eq. 30 and the multi-revolution guesses).
+    let mut x = if revs == 0 {
+        let t0 = libm::acos(lam) + lam * libm::sqrt((1.0 - lam * lam).max(0.0));
+        let t1 = 2.0 * (1.0 - lam * lam * lam) / 3.0;
+        if t_nd >= t0 {
+            libm::pow(t0 / t_nd, 2.0 / 3.0) - 1.0
+        } else if t_nd < t1 {
+            2.5 * t1 / t_nd * (t1 - t_nd) / (1.0 - libm::pow(lam, 5.0)) + 1.0
+        } else {
+            libm::pow(t0 / t_nd, libm::log2(t1 / t0)) - 1.0
+        }
+    } else {
+        let a = libm::pow((m * pi + pi) / (8.0 * t_nd), 2.0 / 3.0);
+        let xl = (a - 1.0) / (a + 1.0);
+        let b = libm::pow(8.0 * t_nd / (m * pi), 2.0 / 3.0);
+        let xr = (b - 1.0) / (b + 1.0);
+        match branch {
+            Branch::Left => xl.max(xr),
+            Branch::Right => xl.min(xr),
+        }
+    };
+    let mut used = 0u16;
+    let mut converged = false;
+    for _ in 0..max_iter {
+        used = used.saturating_add(1);
+        let y = compute_y(x, lam);
+        let t = tof(x, y, lam, m);
+        let f = t - t_nd;
+        let (d1, d2, d3) = tof_derivatives(x, y, t, lam);
+        let den = d1 * (d1 * d1 - f * d2) + d3 * f * f / 6.0;
+        if den == 0.0 || !den.is_finite() {
+            break;
+        }
+        let next = x - f * (d1 * d1 - f * d2 * 0.5) / den;
+        let step = (next - x).abs();
+        x = next;
+        if !x.is_finite() {
+            break;
+        }
+        if step <= tol * (1.0 + x.abs()) {
+            converged = true;
+            break;
+        }
+    }
+    if !converged || x <= -1.0 && revs > 0 {
+        return Err(LambertError::NotConverged);
+    }
+    let y = compute_y(x, lam);
+    let gamma = libm::sqrt(mu_km3_s2 * s / 2.0);
+    // rho = (r1 - r2) / c; with equal radii it is 0 however small the chord (GEO phasing).
+    let dr = r1n - r2n;
+    let rho = if c > 0.0 {
+        (dr / c).clamp(-1.0, 1.0)
+    } else {
+        0.0
+    };
+    let sigma = libm::sqrt((1.0 - rho * rho).max(0.0));
+    let vr1 = gamma * ((lam * y - x) - rho * (lam * y + x)) / r1n;
+    let vr2 = -gamma * ((lam * y - x) + rho * (lam * y + x)) / r2n;
+    let vt1 = gamma * sigma * (y + lam * x) / r1n;
+    let vt2 = gamma * sigma * (y + lam * x) / r2n;
+    let v1 = add(&scale(&ir1, vr1), &scale(&it1, vt1));
+    let v2 = add(&scale(&ir2, vr2), &scale(&it2, vt2));
+    if finite(&v1) && finite(&v2) {
+        Ok(LambertSolution {
+            v1_kmps: v1,
+            v2_kmps: v2,
+            iterations: used,
+        })
+    } else {
+        Err(LambertError::NotConverged)
+    }
+}
+
+/// Two-body propagation by universal variables (bounded Newton on Kepler's universal
+/// equation, at most `max_iter` steps): state after `dt_s` from `(r, v)`. Used to check
+/// Lambert arcs and the GEO tour's legs; `None` if it did not converge.
+pub fn propagate(
+    mu_km3_s2: f64,
+    r_km: &Vec3,
+    v_kmps: &Vec3,
+    dt_s: f64,
+    max_iter: u16,
+) -> Option<(Vec3, Vec3)> {
+    let r0 = norm(r_km);
+    let v0 = norm(v_kmps);
+    let sqmu = libm::sqrt(mu_km3_s2);
+    let rv = dot(r_km, v_kmps) / sqmu;
+    let alpha = 2.0 / r0 - v0 * v0 / mu_km3_s2;
+    let mut chi = sqmu * alpha.abs() * dt_s;
+    if alpha <= 0.0 {
+        chi = sqmu * dt_s / r0;
+    }
+    let stumpff = |z: f64| -> (f64, f64) {
+        if z > 1e-8 {
+            let sz = libm::sqrt(z);
+            (
+                (1.0 - libm::cos(sz)) / z,
+                (sz - libm::sin(sz)) / (sz * sz * sz),
+            )
+        } else if z < -1e-8 {
+            let sz = libm::sqrt(-z);
+            (
+                (libm::cosh(sz) - 1.0) / -z,
+                (libm::sinh(sz) - sz) / (sz * sz * sz),
+            )
+        } else {
+            (0.5 - z / 24.0, 1.0 / 6.0 - z / 120.0)
+        }
+    };
+    let mut ok = false;
+    for _ in 0..max_iter {
+        let z = alpha * chi * chi;
+        let (c2, c3) = stumpff(z);
+        let r = chi * chi * c2 + rv * chi * (1.0 - z * c3) + r0 * (1.0 - z * c2);
+        let f = rv * chi * chi * c2 + (1.0 - alpha * r0) * chi * chi * chi * c3 + r0 * chi
+            - sqmu * dt_s;
+        let step = f / r;
+        chi -= step;
+        if step.abs() <= 1e-14 * (1.0 + chi.abs()) {
+            ok = true;
+            break;
+        }
+    }
+    if !ok {
+        return None;
+    }
+    let z = alpha * chi * chi;
+    let (c2, c3) = stumpff(z);
+    let f = 1.0 - chi * chi / r0 * c2;
+    let g = dt_s - chi * chi * chi / sqmu * c3;
+    let r = add(&scale(r_km, f), &scale(v_kmps, g));
+    let rn = norm(&r);
+    let fdot = sqmu / (rn * r0) * (alpha * chi * chi * chi * c3 - chi);
+    let gdot = 1.0 - chi * chi / rn * c2;
+    let v = add(&scale(r_km, fdot), &scale(v_kmps, gdot));
+    (finite(&r) && finite(&v)).then_some((r, v))
+}
+
+#[cfg(test)]
+#[allow(
+    clippy::unwrap_used,
+    clippy::indexing_slicing,
+    clippy::float_cmp,
+    clippy::arithmetic_side_effects
+)]
+mod tests {
+    use super::*;
+
+    const MU: f64 = 398_600.441_8;
+
+    fn check_arc(r1: Vec3, r2: Vec3, tof_s: f64, revs: u16, branch: Branch) -> LambertSolution {
+        let sol = solve(
+            MU,
+            &r1,
+            &r2,
+            tof_s,
+            revs,
+            branch,
+            &[0.0, 0.0, 1.0],
+            40,
+            1e-13,
+        )
+        .unwrap();
+        let (r, _) = propagate(MU, &r1, &sol.v1_kmps, tof_s, 60).unwrap();
+        let miss = norm(&sub(&r, &r2));
+        assert!(miss < 1e-6, "miss {miss} km (revs {revs}, {branch:?})");
+        sol
+    }
+
+    #[test]
+    fn zero_and_multi_revolution_arcs_reach_the_target() {
+        let r1 = [7000.0, 0.0, 0.0];
+        let r2 = [-2000.0, 6500.0, 1200.0];
+        check_arc(r1, r2, 2000.0, 0, Branch::Left);
+        check_arc(r1, r2, 6000.0, 0, Branch::Left);
+        for revs in 1..=3 {
+            for branch in [Branch::Left, Branch::Right] {
+                check_arc(r1, r2, 7000.0 * f64::from(revs) + 9000.0, revs, branch);
+            }
+        }
+    }
+
+    #[test]
+    fn coincident_end_points_give_the_tangential_phasing_orbit() {
+        // r1 = r2 on a 42164 km circle, 1 revolution of period 0.99 T0: tangential burn.
+        let a0 = 42_164.17;
+        let r = [a0, 0.0, 0.0];
+        let t0 = 2.0 * core::f64::consts::PI * libm::sqrt(a0 * a0 * a0 / MU);
+        let tof_s = 0.99 * t0;
+        let left = solve(
+            MU,
+            &r,
+            &r,
+            tof_s,
+            1,
+            Branch::Left,
+            &[0.0, 0.0, 1.0],
+            40,
+            1e-13,
+        );
+        let right = solve(
+            MU,
+            &r,
+            &r,
+            tof_s,
+            1,
+            Branch::Right,
+            &[0.0, 0.0, 1.0],
+            40,
+            1e-13,
+        );
+        let (left, right) = (left.unwrap(), right.unwrap());
+        // One branch is the tangential phasing orbit, the other the rectilinear fall.
+        let sol = if left.v1_kmps[0].abs() < right.v1_kmps[0].abs() {
+            left
+        } else {
+            right
+        };
+        assert!(sol.v1_kmps[0].abs() < 1e-9, "radial {}", sol.v1_kmps[0]);
+        let a_m = libm::cbrt(MU * (tof_s / (2.0 * core::f64::consts::PI)).powi(2));
+        let v_apo = libm::sqrt(MU * (2.0 / a0 - 1.0 / a_m));
+        assert!((sol.v1_kmps[1] - v_apo).abs() < 1e-9);
+    }
+
+    #[test]
+    fn too_short_for_the_revolutions_and_bad_input_are_errors() {
+        let r1 = [7000.0, 0.0, 0.0];
+        let r2 = [0.0, 7000.0, 0.0];
+        let e = solve(
+            MU,
+            &r1,
+            &r2,
+            3000.0,
+            2,
+            Branch::Left,
+            &[0.0, 0.0, 1.0],
+            40,
+            1e-13,
+        );
+        assert_eq!(e, Err(LambertError::NoSolution));
+        let e = solve(
+            MU,
+            &r1,
+            &r2,
+            f64::NAN,
+            0,
+            Branch::Left,
+            &[0.0, 0.0, 1.0],
+            40,
+            1e-13,
+        );
+        assert_eq!(e, Err(LambertError::BadInput));
+        let e = solve(
+            MU,
+            &r1,
+            &r2,
+            100.0,
+            0,
+            Branch::Left,
+            &[0.0, 0.0, 0.0],
+            40,
+            1e-13,
+        );
+        assert_eq!(e, Err(LambertError::BadInput));
+    }
+}

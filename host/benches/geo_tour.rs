@@ -1,0 +1,42 @@
+//! GEO servicing tour wall-clock benchmarks: the published case (11 clients, 60 d) and the
+//! 16-client capacity case (80 d), both sweeps planned (`sweep = "cheaper"`), and east only.
+//!
+//! `cargo bench -p reconfig-host --bench geo_tour`
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use reconfig_core::geo_tour::{solve, Solution, SweepChoice, Workspace};
+use reconfig_host::fixture::geo_tour::{load, GeoTourFixture};
+use std::hint::black_box;
+use std::path::PathBuf;
+use std::time::Duration;
+
+fn fixture(name: &str) -> GeoTourFixture {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../fixtures")
+        .join(format!("{name}.toml"));
+    load(&path).expect("fixture")
+}
+
+fn tours(c: &mut Criterion) {
+    let mut group = c.benchmark_group("geo_tour");
+    group
+        .sample_size(20)
+        .measurement_time(Duration::from_secs(3));
+    let mut ws = Box::new(Workspace::new());
+    let mut out = Box::new(Solution::new());
+    for name in ["geo-servicing-published-60d", "geo-servicing-16-targets"] {
+        let f = fixture(name);
+        group.bench_function(format!("{name}/cheaper"), |b| {
+            b.iter(|| solve(black_box(&f.problem), &f.settings, &mut ws, &mut out))
+        });
+        let mut east = f.problem.clone();
+        east.sweep = SweepChoice::East;
+        group.bench_function(format!("{name}/east"), |b| {
+            b.iter(|| solve(black_box(&east), &f.settings, &mut ws, &mut out))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, tours);
+criterion_main!(benches);
