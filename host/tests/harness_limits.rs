@@ -60,7 +60,7 @@ fn requests_outside_the_limits_are_refused_by_name_and_a_limits_file_tightens_th
     };
     assert_eq!(
         status("wang2018-search-3imp-2m-samples"),
-        "limit exceeded: search_samples = 2000000 is above the limit 3000"
+        "limit exceeded: search_samples = 2000000 is above the limit 400"
     );
     assert_eq!(
         status("huang2012-three-sats-n10-no-continuous-verification"),
