@@ -8,12 +8,17 @@
 //! ## Method
 //! See `README.md` ("Planner A") for the derivation and the measured figures.
 
+mod certificate;
 mod error;
 mod problem;
 mod settings;
 mod solution;
 mod status;
 
+pub use certificate::{
+    ActiveConstraint, Certificate, Multiplier, COMPLEMENTARITY_TOL, CURVATURE_TOL,
+    POWER_ITERATIONS, STATIONARITY_TOL,
+};
 pub use error::{
     Boundary, Capacity, PlanError, Quantity, SettingsError, MAX_MAGNITUDE, MIN_POSITIVE,
 };
@@ -61,7 +66,9 @@ mod collision;
 mod guess;
 mod lgl;
 mod linalg;
+mod packed;
 mod qp;
+mod qp_dual;
 mod solver;
 mod transcription;
 mod validate;

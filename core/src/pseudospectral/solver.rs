@@ -1,6 +1,7 @@
 //! The planner-A solve: set up the transcription, run the convex-concave sequence of QPs,
 //! verify the separation on the continuous trajectory, refine, and write the solution.
 
+use super::certificate;
 use super::collision;
 use super::error::{PlanError, Quantity};
 use super::guess::{self, AxisBoundary, AxisLaw, GuessError};
@@ -171,12 +172,69 @@ fn run(
         out.info.verify_points_added = out.info.verify_points_added.saturating_add(points);
     }
     let verified = write_solution(ws, settings, out);
+    // Feasibility is checked on the returned trajectory itself, whatever the iteration says.
+    let control_excess = control_excess(out, ws.transcription.max_control_fu);
+    let separation_deficit = ws.transcription.keep_out_lu - out.min_separation_lu;
+    out.certificate.max_violation = control_excess.max(separation_deficit).max(0.0);
+    let feasible = verified
+        && control_excess <= CONTROL_TOL_REL * ws.transcription.max_control_fu
+        && out.max_dynamics_error <= DYNAMICS_TOL_REL * (1.0 + state_scale(out));
+    if !matches!(end, SqpEnd::Failed(_)) {
+        linearise(ws);
+        let mut direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
+        certificate::evaluate(
+            &ws.transcription,
+            &mut ws.qp,
+            &ws.iterate,
+            out.cost,
+            &mut direction,
+            &mut out.certificate,
+        );
+    }
+    let certified = end == SqpEnd::Converged && out.certificate.certifies_local_optimum();
     match end {
+        _ if feasible && certified => SolveStatus::Solved,
+        _ if feasible => SolveStatus::Feasible,
         SqpEnd::Failed(status) => status,
         SqpEnd::MaxIterations => SolveStatus::MaxIterations,
-        SqpEnd::Converged if verified => SolveStatus::Solved,
         SqpEnd::Converged => SolveStatus::SeparationNotVerified,
     }
+}
+
+/// A node control may exceed Umax by this fraction of Umax and still count as within the bound
+/// (the QP's own tolerance is 1e-12 of a row norm).
+pub(crate) const CONTROL_TOL_REL: f64 = 1e-9;
+/// The dynamics check (eq. 29) must be below this times (1 + the largest state magnitude).
+pub(crate) const DYNAMICS_TOL_REL: f64 = 1e-8;
+
+/// Largest excess of a node control over Umax (negative when all are inside).
+fn control_excess(out: &Solution, max_control_fu: f64) -> f64 {
+    let mut worst = f64::NEG_INFINITY;
+    let m = usize::from(out.spacecraft_count);
+    let nodes = usize::from(out.degree).saturating_add(1);
+    for sc in out.controls_fu.iter().take(m) {
+        for node in sc.iter().take(nodes) {
+            for u in node {
+                worst = worst.max(libm::fabs(*u) - max_control_fu);
+            }
+        }
+    }
+    worst
+}
+
+/// Largest magnitude of any returned state component.
+fn state_scale(out: &Solution) -> f64 {
+    let m = usize::from(out.spacecraft_count);
+    let nodes = usize::from(out.degree).saturating_add(1);
+    let mut largest = 0.0f64;
+    for sc in out.states.iter().take(m) {
+        for node in sc.iter().take(nodes) {
+            for v in node {
+                largest = largest.max(libm::fabs(*v));
+            }
+        }
+    }
+    largest
 }
 
 /// Build the grid, basis, base cubics, pairs, pruning windows and check points.
@@ -671,9 +729,9 @@ fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -> SqpEnd {
         let active = u16::try_from(ws.qp.peak).unwrap_or(u16::MAX);
         out.info.max_active = out.info.max_active.max(active);
         let failure = match outcome {
-            QpOutcome::Optimal => None,
+            QpOutcome::Optimal | QpOutcome::Approximate => None,
             QpOutcome::Infeasible => Some(SolveStatus::Infeasible),
-            QpOutcome::IterationLimit | QpOutcome::ActiveSetFull => Some(SolveStatus::QpLimit),
+            QpOutcome::IterationLimit => Some(SolveStatus::QpLimit),
             QpOutcome::FactorFailure => Some(SolveStatus::NumericalFailure(Stage::QpFactor)),
         };
         if let Some(status) = failure {
@@ -716,7 +774,9 @@ fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -> SqpEnd {
             && (decrease <= 0.0 || gap <= tolerance)
             && !restarted;
         previous_decrease = decrease;
-        if have_solution && (small_change || step <= settings.sqp_tol_step_lu) {
+        // A QP that stopped short of its optimum is no fixed point, however small the step.
+        let exact = outcome == QpOutcome::Optimal;
+        if have_solution && exact && (small_change || step <= settings.sqp_tol_step_lu) {
             ws.iterate = ws.accepted;
             return SqpEnd::Converged;
         }
@@ -1010,6 +1070,19 @@ mod tests {
     #[test]
     fn paper_case_reaches_the_independent_optimum_with_verified_separation() {
         let out = run(&paper_case(10, true), &Settings::default());
+        let c = &out.certificate;
+        extern crate std;
+        std::println!(
+            "{:?} {} {} {} {} {} {}",
+            out.info.status,
+            c.stationarity,
+            c.complementarity,
+            c.min_reduced_eigenvalue,
+            c.max_violation,
+            c.multipliers.len(),
+            c.second_order_evaluated
+        );
+        std::println!("{:?}", c.multipliers);
         assert_eq!(out.info.status, SolveStatus::Solved);
         assert!((out.cost - 6.743183).abs() < 1e-5, "J = {}", out.cost);
         assert!(out.min_separation_lu >= 2.0 - 1e-6);
