@@ -69,6 +69,7 @@ impl Solution {
                 max_active: 0,
                 warm_start_used: false,
                 max_violation: 0.0,
+                saddle_escapes: 0,
             },
             certificate: Certificate::new(),
         }

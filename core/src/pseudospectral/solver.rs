@@ -121,6 +121,70 @@ fn run(
         return SolveStatus::NumericalFailure(stage);
     }
     initial_iterate(ws, warm, out);
+    let mut end = iterate_and_verify(ws, settings, out);
+    let mut direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
+    let mut status = finish(ws, settings, out, end, &mut direction);
+    // Saddle escape: a feasible first-order point with negative reduced curvature is left
+    // along the curvature direction (deterministic: a fixed power-method start and sign), and
+    // the iteration resumes; the better verified answer is kept.
+    let mut escapes = 0u8;
+    while escapes < MAX_SADDLE_ESCAPES && is_saddle(status, end, out) {
+        escapes = escapes.saturating_add(1);
+        out.info.saddle_escapes = escapes;
+        let saddle_cost = out.cost;
+        ws.saved = ws.iterate;
+        step_along(ws, &direction);
+        end = iterate_and_verify(ws, settings, out);
+        status = finish(ws, settings, out, end, &mut direction);
+        if !status.is_usable() || out.cost >= saddle_cost {
+            // No better: return to the saddle's answer (a fixed point: it re-converges at once).
+            ws.iterate = ws.saved;
+            end = iterate_and_verify(ws, settings, out);
+            status = finish(ws, settings, out, end, &mut direction);
+            break;
+        }
+    }
+    status
+}
+
+/// Most saddle escapes per solve (each one more run of the iteration and verification rounds).
+pub(crate) const MAX_SADDLE_ESCAPES: u8 = 2;
+
+/// A feasible, stationary point whose reduced Hessian has a negative eigenvalue.
+fn is_saddle(status: SolveStatus, end: SqpEnd, out: &Solution) -> bool {
+    let c = &out.certificate;
+    status == SolveStatus::Feasible
+        && end == SqpEnd::Converged
+        && c.second_order_evaluated
+        && c.stationarity <= certificate::STATIONARITY_TOL
+        && c.min_reduced_eigenvalue < -certificate::CURVATURE_TOL
+}
+
+/// `y <- y + alpha v` with `v` the unit negative-curvature direction, signed so that its
+/// largest component is positive (deterministic), and `alpha` a quarter of `|y|` (at least
+/// 0.1): large enough to leave the saddle's neighbourhood, small enough to stay in its basin.
+fn step_along(ws: &mut Workspace, direction: &Coefficients) {
+    let mut largest = 0.0f64;
+    let mut norm2 = 0.0;
+    for (row, values) in direction.iter().zip(ws.iterate.iter()) {
+        for (d, y) in row.iter().zip(values.iter()) {
+            if libm::fabs(*d) > libm::fabs(largest) {
+                largest = *d;
+            }
+            norm2 += y * y;
+        }
+    }
+    let sign = if largest < 0.0 { -1.0 } else { 1.0 };
+    let alpha = sign * (0.25 * libm::sqrt(norm2)).max(0.1);
+    for (row, values) in direction.iter().zip(ws.iterate.iter_mut()) {
+        for (d, y) in row.iter().zip(values.iter_mut()) {
+            *y += alpha * d;
+        }
+    }
+}
+
+/// The convex-concave iteration from `ws.iterate`, with the continuous verification rounds.
+fn iterate_and_verify(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -> SqpEnd {
     let tr = &ws.transcription;
     let d = tr.keep_out_lu;
     let mut end;
@@ -171,6 +235,18 @@ fn run(
         out.info.verify_rounds = rounds;
         out.info.verify_points_added = out.info.verify_points_added.saturating_add(points);
     }
+    end
+}
+
+/// Write the solution, check its feasibility, evaluate its certificate, and return its status.
+/// `direction` receives the certificate's negative-curvature direction.
+fn finish(
+    ws: &mut Workspace,
+    settings: &Settings,
+    out: &mut Solution,
+    end: SqpEnd,
+    direction: &mut Coefficients,
+) -> SolveStatus {
     let verified = write_solution(ws, settings, out);
     // Feasibility is checked on the returned trajectory itself, whatever the iteration says.
     let control_excess = control_excess(out, ws.transcription.max_control_fu);
@@ -179,15 +255,16 @@ fn run(
     let feasible = verified
         && control_excess <= CONTROL_TOL_REL * ws.transcription.max_control_fu
         && out.max_dynamics_error <= DYNAMICS_TOL_REL * (1.0 + state_scale(out));
+    out.certificate.first_order_evaluated = false;
+    out.certificate.second_order_evaluated = false;
     if !matches!(end, SqpEnd::Failed(_)) {
-        linearise(ws);
-        let mut direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
+        unit_normals(ws);
         certificate::evaluate(
             &ws.transcription,
             &mut ws.qp,
             &ws.iterate,
             out.cost,
-            &mut direction,
+            direction,
             &mut out.certificate,
         );
     }
@@ -605,6 +682,13 @@ fn relative_state(ws: &Workspace, pair: usize, tau: f64) -> ([f64; 3], [f64; 3])
     (position, velocity)
 }
 
+/// A converged iterate lies within this fraction of d of its linearisation point (so the QP's
+/// rows are the constraint gradients there to about this relative accuracy).
+const FIXED_POINT_TOL_REL: f64 = 1e-4;
+
+/// Relative depth below the keep-out that counts as violated when linearising.
+const LINEARISE_TOL_REL: f64 = 1e-9;
+
 /// Set every check's normal from the current iterate.
 ///
 /// Where a check is feasible at the iterate, the normal is the unit separation:
@@ -622,6 +706,10 @@ fn linearise(ws: &mut Workspace) {
     for pair in 0..ws.transcription.pair_count {
         let tr = &ws.transcription;
         let keep_out = tr.keep_out_for(pair);
+        // A check the QP met to its tolerance is feasible, not violated: swerving its normal
+        // there would make a fixed point of the iteration that is not a KKT point (the normal
+        // must be the unit separation, the constraint's gradient, at a converged iterate).
+        let violated_below = keep_out * (1.0 - LINEARISE_TOL_REL);
         let count = tr.check_count.get(pair).copied().unwrap_or(0);
         let mut closest: Option<(f64, f64)> = None;
         for c in 0..count {
@@ -629,7 +717,7 @@ fn linearise(ws: &mut Workspace) {
                 continue;
             };
             let length = norm3(&tr.relative(pair, check.source, &ws.iterate));
-            if length < keep_out && closest.is_none_or(|(_, best)| length < best) {
+            if length < violated_below && closest.is_none_or(|(_, best)| length < best) {
                 closest = Some((check.tau, length));
             }
         }
@@ -656,7 +744,7 @@ fn linearise(ws: &mut Workspace) {
             };
             let mut relative = tr.relative(pair, check.source, &ws.iterate);
             let length = norm3(&relative);
-            if length < keep_out {
+            if length < violated_below {
                 if let Some((t_star, direction, width)) = swerve {
                     let x = (tr.time_of(check.tau) - t_star) / width;
                     let bump = if width.is_finite() {
@@ -684,6 +772,30 @@ fn linearise(ws: &mut Workspace) {
             };
             if let Some(slot) = tr.checks.get_mut(pair).and_then(|row| row.get_mut(c)) {
                 slot.normal = normal;
+            }
+        }
+    }
+}
+
+/// Set every check's normal to the unit separation at the iterate: the constraint gradients
+/// the certificate needs (`linearise` swerves where a check is violated, even by rounding).
+fn unit_normals(ws: &mut Workspace) {
+    let tr = &mut ws.transcription;
+    for pair in 0..tr.pair_count {
+        for c in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
+            let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)).copied() else {
+                continue;
+            };
+            let relative = tr.relative(pair, check.source, &ws.iterate);
+            let length = norm3(&relative);
+            if length > 0.0 {
+                if let Some(slot) = tr.checks.get_mut(pair).and_then(|row| row.get_mut(c)) {
+                    slot.normal = [
+                        relative[0] / length,
+                        relative[1] / length,
+                        relative[2] / length,
+                    ];
+                }
             }
         }
     }
@@ -748,11 +860,19 @@ fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -> SqpEnd {
         }
         let cost = ws.transcription.base_cost + half_norm2(&ws.trial, blocks, free);
         let mut step = 0.0f64;
+        // How far the QP's answer is from the point it was linearised at (the Anderson
+        // extrapolation): a fixed point needs both equal, or the rows are not the constraint
+        // gradients at the answer and it is not a KKT point (two extrapolated points can give the
+        // same QP answer).
+        let mut off_linearisation = 0.0f64;
         for b in 0..blocks {
             let mass = ws.transcription.mass_of(b / 3);
-            if let (Some(new), Some(old)) = (ws.trial.get(b), ws.accepted.get(b)) {
-                for (x, y) in new.iter().zip(old.iter()).take(free) {
+            if let (Some(new), Some(old), Some(at)) =
+                (ws.trial.get(b), ws.accepted.get(b), ws.iterate.get(b))
+            {
+                for ((x, y), z) in new.iter().zip(old.iter()).zip(at.iter()).take(free) {
                     step = step.max(libm::fabs(x - y) / mass);
+                    off_linearisation = off_linearisation.max(libm::fabs(x - z) / mass);
                 }
             }
         }
@@ -777,8 +897,16 @@ fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -> SqpEnd {
         // A QP that stopped short of its optimum is no fixed point, however small the step.
         let exact = outcome == QpOutcome::Optimal;
         if have_solution && exact && (small_change || step <= settings.sqp_tol_step_lu) {
+            if off_linearisation <= FIXED_POINT_TOL_REL * ws.transcription.keep_out_lu {
+                ws.iterate = ws.accepted;
+                return SqpEnd::Converged;
+            }
+            // Converged in cost but linearised elsewhere: take plain steps from the answer.
+            ws.anderson.reset();
             ws.iterate = ws.accepted;
-            return SqpEnd::Converged;
+            previous_cost = cost;
+            restarted = true;
+            continue;
         }
         // Safeguard: an extrapolation that raised the cost restarts the memory, so the next
         // step is a plain convex-concave step (which never raises the cost from a feasible
@@ -1135,6 +1263,45 @@ mod tests {
             warm.cost,
             cold.cost
         );
+    }
+
+    #[test]
+    fn square_swap_leaves_the_plane_by_the_saddle_escape() {
+        let craft = |a: [f64; 3], b: [f64; 3]| Spacecraft {
+            mass_mu: 1.0,
+            initial_state: [a[0], a[1], a[2], 0.0, 0.0, 0.0],
+            final_state: [b[0], b[1], b[2], 0.0, 0.0, 0.0],
+        };
+        let mut spacecraft = heapless::Vec::new();
+        for (x, y) in [(6.0, 6.0), (-6.0, 6.0), (-6.0, -6.0), (6.0, -6.0)] {
+            spacecraft.push(craft([x, y, 0.0], [-x, -y, 0.0])).unwrap();
+        }
+        let p = Problem {
+            horizon_tu: 10.0,
+            max_control_fu: 1.0,
+            keep_out_lu: 2.0,
+            degree: 16,
+            test_points: true,
+            spacecraft,
+        };
+        let out = run(&p, &Settings::default());
+        // In the plane the iteration stops on a saddle (J = 7.6805, reduced-Hessian eigenvalue
+        // -0.29); one escape along the negative curvature leaves the plane.
+        assert_eq!(
+            out.info.status,
+            SolveStatus::Solved,
+            "{:?}",
+            out.certificate
+        );
+        assert_eq!(out.info.saddle_escapes, 1);
+        assert!(out.cost <= 7.50, "J = {}", out.cost);
+        assert!(out.certificate.min_reduced_eigenvalue > 0.1);
+        let out_of_plane = out.states[..4]
+            .iter()
+            .flat_map(|sc| sc[..17].iter())
+            .map(|s| s[2].abs())
+            .fold(0.0f64, f64::max);
+        assert!(out_of_plane > 0.1, "{out_of_plane}");
     }
 
     #[test]

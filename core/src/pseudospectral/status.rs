@@ -93,4 +93,7 @@ pub struct SolveInfo {
     pub warm_start_used: bool,
     /// Largest violation of a checked constraint at the returned iterate.
     pub max_violation: f64,
+    /// Saddle escapes tried (a step along negative reduced curvature, then the iteration
+    /// again); at most `MAX_SADDLE_ESCAPES` (2).
+    pub saddle_escapes: u8,
 }
