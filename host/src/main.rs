@@ -33,6 +33,8 @@ enum Command {
     Feed(reconfig_host::cli::feed::Args),
     /// Draw a plan (SVG): trajectories, separations and controls, or relative motion.
     Plot(reconfig_host::cli::plot::Args),
+    /// Planner A over seeded generated problem families: a table per family.
+    Sweep(reconfig_host::cli::sweep::Args),
 }
 
 fn main() -> ExitCode {
@@ -47,6 +49,7 @@ fn main() -> ExitCode {
         Command::Serve(args) => reconfig_host::cli::serve::run(&args),
         Command::Feed(args) => reconfig_host::cli::feed::run(&args),
         Command::Plot(args) => reconfig_host::cli::plot::run(&args),
+        Command::Sweep(args) => reconfig_host::cli::sweep::run(&args),
     };
     match result {
         Ok(code) => code,

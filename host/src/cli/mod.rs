@@ -8,3 +8,4 @@ pub mod serve;
 pub mod solve;
 pub mod solve_impulsive;
 pub mod solve_pseudospectral;
+pub mod sweep;
