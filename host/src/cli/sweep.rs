@@ -227,6 +227,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         let mut solved = 0usize;
         let mut feasible = 0usize;
         let mut rejected = 0usize;
+        let mut reasons: std::collections::BTreeMap<String, usize> = Default::default();
         let mut other: std::collections::BTreeMap<String, usize> = Default::default();
         let mut times = Vec::new();
         let mut costs = Vec::new();
@@ -242,9 +243,23 @@ pub fn run(args: &Args) -> Result<ExitCode> {
                     serde_json::json!({ "family": family, "problem": &p })
                 )?;
             }
-            let Ok(timed) = solve_timed(&p, &settings) else {
-                rejected += 1;
-                continue;
+            let timed = match solve_timed(&p, &settings) {
+                Ok(timed) => timed,
+                Err(e) => {
+                    rejected += 1;
+                    // Name the refusal class from the core's message.
+                    let text = e.to_string();
+                    let class = if text.contains("cannot meet its boundary conditions") {
+                        "ManoeuvreInfeasible"
+                    } else if text.contains("closer than") {
+                        "BoundaryTooClose"
+                    } else {
+                        "other"
+                    }
+                    .to_string();
+                    *reasons.entry(class).or_default() += 1;
+                    continue;
+                }
             };
             let s = &timed.solution;
             times.push(timed.solve_time_s * 1e3);
@@ -270,10 +285,12 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         times.sort_by(f64::total_cmp);
         costs.sort_by(f64::total_cmp);
         let others: Vec<String> = other.iter().map(|(k, v)| format!("{k}: {v}")).collect();
+        let reasons: Vec<String> = reasons.iter().map(|(k, v)| format!("{k}: {v}")).collect();
         println!(
-            "| {family} | {} | {solved} | {feasible} | {} | {rejected} | {working} | {escapes} ({helped}) | {:.4} / {:.4} | {:.2} / {:.2} |",
+            "| {family} | {} | {solved} | {feasible} | {} | {rejected}{} | {working} | {escapes} ({helped}) | {:.4} / {:.4} | {:.2} / {:.2} |",
             args.per_family,
             if others.is_empty() { "-".to_string() } else { others.join(", ") },
+            if reasons.is_empty() { String::new() } else { format!(" ({})", reasons.join(", ")) },
             percentile(&costs, 0.5),
             costs.last().copied().unwrap_or(f64::NAN),
             percentile(&times, 0.5),
