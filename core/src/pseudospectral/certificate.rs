@@ -49,7 +49,7 @@ pub const POWER_ITERATIONS: usize = 120;
 /// Active keep-out checks whose envelope correction the second-order test holds at once
 /// (about 400 bytes of stack each). Corrections past it are left out, which only lowers the
 /// reported eigenvalue (the correction is positive semidefinite): conservative.
-pub const MAX_ENVELOPES: usize = 16;
+pub const MAX_ENVELOPES: usize = 8;
 
 /// An active constraint of the returned iterate.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -134,19 +134,20 @@ impl Certificate {
     }
 }
 
-fn dot(a: &Coefficients, b: &Coefficients) -> f64 {
+/// `a . b` over the first `blocks` blocks and `free` coefficients (the rest are unused).
+fn dot(a: &Coefficients, b: &Coefficients, (blocks, free): (usize, usize)) -> f64 {
     let mut sum = 0.0;
-    for (x, y) in a.iter().zip(b.iter()) {
-        for (p, q) in x.iter().zip(y.iter()) {
+    for (x, y) in a.iter().zip(b.iter()).take(blocks) {
+        for (p, q) in x.iter().zip(y.iter()).take(free) {
             sum += p * q;
         }
     }
     sum
 }
 
-fn scale(a: &mut Coefficients, factor: f64) {
-    for row in a.iter_mut() {
-        for v in row.iter_mut() {
+fn scale(a: &mut Coefficients, factor: f64, (blocks, free): (usize, usize)) {
+    for row in a.iter_mut().take(blocks) {
+        for v in row.iter_mut().take(free) {
             *v *= factor;
         }
     }
@@ -393,9 +394,11 @@ pub(crate) fn evaluate(
     y: &Coefficients,
     cost: f64,
     direction: &mut Coefficients,
+    w: &mut Coefficients,
     out: &mut Certificate,
 ) {
     let free = tr.basis.free;
+    let size = (tr.blocks(), free);
     out.first_order_evaluated = true;
     out.multipliers.clear();
     out.multipliers_complete = true;
@@ -418,8 +421,8 @@ pub(crate) fn evaluate(
             out.multipliers_complete = false;
         }
     });
-    let y_norm = libm::sqrt(dot(y, y));
-    out.stationarity = libm::sqrt(dot(direction, direction)) / y_norm.max(1.0);
+    let y_norm = libm::sqrt(dot(y, y, size));
+    out.stationarity = libm::sqrt(dot(direction, direction, size)) / y_norm.max(1.0);
     out.complementarity = complementarity / (1.0 + libm::fabs(cost));
     // Second order: needs the Gram factor of the active rows as linearised at y.
     out.second_order_evaluated = false;
@@ -487,37 +490,42 @@ pub(crate) fn evaluate(
     project(tr, qp, direction);
     let mut largest = 0.0f64;
     for _ in 0..POWER_ITERATIONS {
-        let norm = libm::sqrt(dot(direction, direction));
+        let norm = libm::sqrt(dot(direction, direction, size));
         if norm <= 1e-12 {
             largest = 0.0;
             break;
         }
-        scale(direction, 1.0 / norm);
-        let mut w = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
+        scale(direction, 1.0 / norm, size);
+        *w = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
         for_each_multiplier(tr, qp, |id, value| {
             if let RowId::KeepOut { pair, check } = id {
                 let p = usize::from(pair);
                 if let Some(c) = tr.checks.get(p).and_then(|row| row.get(usize::from(check))) {
-                    add_curvature(tr, y, (p, c.source), value, direction, &mut w);
+                    add_curvature(tr, y, (p, c.source), value, direction, w);
                 }
             }
         });
         for envelope in corrections.iter() {
             let along = envelope.weight * envelope.dot(tr, direction);
-            envelope.axpy(tr, -along, &mut w);
+            envelope.axpy(tr, -along, w);
         }
-        for (wr, dr) in w.iter_mut().zip(direction.iter()) {
-            for (a, b) in wr.iter_mut().zip(dr.iter()) {
+        for (wr, dr) in w.iter_mut().zip(direction.iter()).take(blocks) {
+            for (a, b) in wr.iter_mut().zip(dr.iter()).take(free) {
                 *a += sigma * b;
             }
         }
-        project(tr, qp, &mut w);
-        largest = dot(direction, &w) - sigma;
-        *direction = w;
+        project(tr, qp, w);
+        let previous = largest;
+        largest = dot(direction, w, size) - sigma;
+        *direction = *w;
+        // Converged to rounding: further steps change nothing (deterministic either way).
+        if libm::fabs(largest - previous) <= 1e-13 * (1.0 + libm::fabs(largest)) {
+            break;
+        }
     }
-    let norm = libm::sqrt(dot(direction, direction));
+    let norm = libm::sqrt(dot(direction, direction, size));
     if norm > 0.0 {
-        scale(direction, 1.0 / norm);
+        scale(direction, 1.0 / norm, size);
     }
     out.min_reduced_eigenvalue = 1.0 - largest;
     out.second_order_evaluated = true;

@@ -14,10 +14,9 @@ use super::settings::Settings;
 use super::setup::{initial_iterate, setup};
 use super::solution::Solution;
 use super::status::SolveStatus;
-use super::transcription::{Coefficients, MAX_BLOCKS};
 use super::validate;
 use super::workspace::Workspace;
-use crate::capacity::{MAX_FREE_PER_AXIS, MAX_SPACECRAFT};
+use crate::capacity::MAX_SPACECRAFT;
 
 pub(super) fn u8_of(value: usize) -> u8 {
     u8::try_from(value).unwrap_or(u8::MAX)
@@ -114,8 +113,7 @@ fn run(
     }
     initial_iterate(ws, warm, out);
     let mut end = iterate_and_verify(ws, settings, out);
-    let mut direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
-    let mut status = finish(ws, settings, out, end, &mut direction);
+    let mut status = finish(ws, settings, out, end);
     // Saddle escape: a feasible first-order point with negative reduced curvature is left
     // along the curvature direction (deterministic: a fixed power-method start and sign), and
     // the iteration resumes; the better verified answer is kept.
@@ -125,14 +123,14 @@ fn run(
         out.info.saddle_escapes = escapes;
         let saddle_cost = out.cost;
         ws.saved = ws.iterate;
-        step_along(ws, &direction);
+        step_along(ws);
         end = iterate_and_verify(ws, settings, out);
-        status = finish(ws, settings, out, end, &mut direction);
+        status = finish(ws, settings, out, end);
         if !status.is_usable() || out.cost >= saddle_cost {
             // No better: return to the saddle's answer (a fixed point: it re-converges at once).
             ws.iterate = ws.saved;
             end = iterate_and_verify(ws, settings, out);
-            status = finish(ws, settings, out, end, &mut direction);
+            status = finish(ws, settings, out, end);
             break;
         }
     }
@@ -155,7 +153,8 @@ fn is_saddle(status: SolveStatus, end: SqpEnd, out: &Solution) -> bool {
 /// `y <- y + alpha v` with `v` the unit negative-curvature direction, signed so that its
 /// largest component is positive (deterministic), and `alpha` a quarter of `|y|` (at least
 /// 0.1): large enough to leave the saddle's neighbourhood, small enough to stay in its basin.
-fn step_along(ws: &mut Workspace, direction: &Coefficients) {
+fn step_along(ws: &mut Workspace) {
+    let direction = &ws.trial;
     let mut largest = 0.0f64;
     let mut norm2 = 0.0;
     for (row, values) in direction.iter().zip(ws.iterate.iter()) {
@@ -231,14 +230,9 @@ fn iterate_and_verify(ws: &mut Workspace, settings: &Settings, out: &mut Solutio
 }
 
 /// Write the solution, check its feasibility, evaluate its certificate, and return its status.
-/// `direction` receives the certificate's negative-curvature direction.
-fn finish(
-    ws: &mut Workspace,
-    settings: &Settings,
-    out: &mut Solution,
-    end: SqpEnd,
-    direction: &mut Coefficients,
-) -> SolveStatus {
+/// `ws.trial` receives the certificate's negative-curvature direction (`ws.saved` is its
+/// scratch): workspace buffers idle at this point, so the certificate adds nothing to the stack.
+fn finish(ws: &mut Workspace, settings: &Settings, out: &mut Solution, end: SqpEnd) -> SolveStatus {
     let verified = write_solution(ws, settings, out);
     // Feasibility is checked on the returned trajectory itself, whatever the iteration says.
     let control_excess = control_excess(out, ws.transcription.max_control_fu);
@@ -256,7 +250,8 @@ fn finish(
             &mut ws.qp,
             &ws.iterate,
             out.cost,
-            direction,
+            &mut ws.trial,
+            &mut ws.saved,
             &mut out.certificate,
         );
     }
