@@ -49,7 +49,7 @@ pub const POWER_ITERATIONS: usize = 120;
 /// Active keep-out checks whose envelope correction the second-order test holds at once
 /// (about 400 bytes of stack each). Corrections past it are left out, which only lowers the
 /// reported eigenvalue (the correction is positive semidefinite): conservative.
-pub const MAX_ENVELOPES: usize = 8;
+pub const MAX_ENVELOPES: usize = 16;
 
 /// An active constraint of the returned iterate.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -518,8 +518,11 @@ pub(crate) fn evaluate(
         let previous = largest;
         largest = dot(direction, w, size) - sigma;
         *direction = *w;
-        // Converged far below the curvature tolerance (1e-6): stop (deterministic either way).
-        if libm::fabs(largest - previous) <= 1e-9 * (1.0 + libm::fabs(largest)) {
+        // Converged far below the curvature tolerance (1e-6) at a positive curvature: stop
+        // (deterministic either way). At a negative one the eigenvector is the saddle escape's
+        // direction and converges more slowly than the eigenvalue: all steps are taken.
+        let positive = largest < 1.0;
+        if positive && libm::fabs(largest - previous) <= 1e-9 * (1.0 + libm::fabs(largest)) {
             break;
         }
     }
