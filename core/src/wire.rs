@@ -38,8 +38,9 @@ pub const CRC_BYTES: usize = 4;
 pub const REQUEST_MAX_BYTES: usize = 1024;
 /// Largest request body, in bytes.
 pub const REQUEST_BODY_MAX_BYTES: usize = REQUEST_MAX_BYTES - REQUEST_HEADER_BYTES - CRC_BYTES;
-/// Largest response frame, in bytes. A planner-A solution at capacity takes 16 241 body bytes.
-pub const RESPONSE_MAX_BYTES: usize = 17 * 1024;
+/// Largest response frame, in bytes. A planner-A solution at capacity takes 17 342 body bytes
+/// (16 241 before its optimality certificate, which lists up to 56 multipliers).
+pub const RESPONSE_MAX_BYTES: usize = 18 * 1024;
 /// Largest response body, in bytes.
 pub const RESPONSE_BODY_MAX_BYTES: usize = RESPONSE_MAX_BYTES - RESPONSE_HEADER_BYTES - CRC_BYTES;
 

@@ -35,6 +35,8 @@ enum Command {
     Plot(reconfig_host::cli::plot::Args),
     /// Two feeders at once (expensive + cheap, then two alike) against one flight service.
     Fairness(reconfig_host::cli::fairness::Args),
+    /// Planner A over seeded generated problem families: a table per family.
+    Sweep(reconfig_host::cli::sweep::Args),
 }
 
 fn main() -> ExitCode {
@@ -50,6 +52,7 @@ fn main() -> ExitCode {
         Command::Feed(args) => reconfig_host::cli::feed::run(&args),
         Command::Plot(args) => reconfig_host::cli::plot::run(&args),
         Command::Fairness(args) => reconfig_host::cli::fairness::run(&args),
+        Command::Sweep(args) => reconfig_host::cli::sweep::run(&args),
     };
     match result {
         Ok(code) => code,

@@ -88,6 +88,19 @@ fn worst_pseudospectral_solution() -> pseudospectral::Solution {
     s.info.verify_rounds = u8::MAX;
     s.info.verify_points_added = u16::MAX;
     s.info.keep_out_checks = u16::MAX;
+    // A certificate listing every multiplier it can hold, each at its longest encoding.
+    while s
+        .certificate
+        .multipliers
+        .push(pseudospectral::Multiplier {
+            constraint: pseudospectral::ActiveConstraint::KeepOut {
+                pair: (u8::MAX, u8::MAX),
+                time_tu: f64::MAX,
+            },
+            value: f64::MAX,
+        })
+        .is_ok()
+    {}
     s
 }
 
@@ -117,7 +130,8 @@ fn worst_case_response_fits_the_stated_maximum() {
     let outcome = OutcomeRef::Pseudospectral(&solution);
     let n = encode_response(u64::MAX, u64::MAX, &outcome, &mut buf).unwrap();
     assert!(n <= RESPONSE_MAX_BYTES, "{n}");
-    // 16 241 body bytes when this was written; keep headroom for solution fields.
+    // 17 342 body bytes when this was written (with a full certificate); keep headroom for
+    // solution fields.
     println!(
         "planner-A response body at capacity: {} bytes",
         n - RESPONSE_HEADER_BYTES - CRC_BYTES

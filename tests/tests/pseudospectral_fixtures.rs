@@ -136,3 +136,18 @@ fn a_reused_workspace_gives_the_same_bits_as_a_fresh_one() {
         );
     }
 }
+
+#[test]
+fn square_swap_leaves_the_plane_and_is_certified() {
+    // Issue 9's saddle case: in the plane J = 7.68 is a saddle; leaving it gives 7.488.
+    let problem = pseudospectral_fixture("square-swap-4-sats-n16");
+    let s = solve_pseudospectral(&problem, &Settings::default()).expect("accepted");
+    assert_eq!(s.info.status, SolveStatus::Solved, "{:?}", s.certificate);
+    assert!(s.cost <= 7.50, "J = {}", s.cost);
+    assert!(s.info.saddle_escapes >= 1);
+    let c = &s.certificate;
+    assert!(c.certifies_local_optimum());
+    assert!(c.min_reduced_eigenvalue > 0.1, "{c:?}");
+    assert!(c.max_violation <= 1e-7, "{c:?}");
+    assert!(s.min_separation_lu >= 2.0 - 1e-7);
+}

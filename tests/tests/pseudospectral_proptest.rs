@@ -133,8 +133,17 @@ proptest! {
         let solution = solve_pseudospectral(&problem, &Settings::default())
             .expect("a valid problem is accepted");
         let status = solution.info.status;
-        if status == reconfig_core::pseudospectral::SolveStatus::Solved {
-            // Solved means verified: continuous separation and boundary conditions hold.
+        if status.is_usable() {
+            // Solved and Feasible mean verified: continuous separation, control bound and
+            // boundary conditions hold.
+            for sc in solution.controls_fu.iter().take(problem.spacecraft.len()) {
+                for u in sc.iter().take(usize::from(problem.degree) + 1) {
+                    prop_assert!(u.iter().all(|c| c.abs() <= problem.max_control_fu * (1.0 + 1e-9)));
+                }
+            }
+            if status.is_certified() {
+                prop_assert!(solution.certificate.certifies_local_optimum());
+            }
             prop_assert!(solution.min_separation_lu >= 2.0 - 1e-6, "{}", solution.min_separation_lu);
             let n = usize::from(problem.degree);
             for (i, craft) in problem.spacecraft.iter().enumerate() {

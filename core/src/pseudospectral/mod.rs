@@ -8,12 +8,17 @@
 //! ## Method
 //! See `README.md` ("Planner A") for the derivation and the measured figures.
 
+mod certificate;
 mod error;
 mod problem;
 mod settings;
 mod solution;
 mod status;
 
+pub use certificate::{
+    ActiveConstraint, Certificate, Multiplier, COMPLEMENTARITY_TOL, CURVATURE_TOL,
+    POWER_ITERATIONS, STATIONARITY_TOL,
+};
 pub use error::{
     Boundary, Capacity, PlanError, Quantity, SettingsError, MAX_MAGNITUDE, MIN_POSITIVE,
 };
@@ -59,9 +64,15 @@ mod anderson;
 mod basis;
 mod collision;
 mod guess;
+mod iteration;
 mod lgl;
 mod linalg;
+mod linearise;
+mod output;
+mod packed;
 mod qp;
+mod qp_dual;
+mod setup;
 mod solver;
 mod transcription;
 mod validate;

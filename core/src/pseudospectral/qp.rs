@@ -9,7 +9,7 @@
 //! strictly, and the work per step is bounded by the capacities. Infeasibility is detected
 //! exactly (a violated row dependent on the active rows with no multiplier to release).
 
-use super::linalg::{cholesky_in_place, set, solve_lower, solve_lower_transposed};
+use super::packed::{self, cholesky, set, solve_lower, solve_lower_transposed};
 use super::transcription::{
     block_dot, row_axpy, row_dot, rows_dot, Coefficients, RowId, Transcription, MAX_BLOCKS,
 };
@@ -19,21 +19,45 @@ use crate::capacity::{MAX_ACTIVE, MAX_CHECKS_PER_PAIR, MAX_FREE_PER_AXIS, MAX_NO
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum QpOutcome {
     Optimal,
+    /// The capacity-free fallback ran out of sweeps with a feasible but not yet optimal point
+    /// (every row met with the fallback's margin): usable as an iterate, not as a fixed point.
+    Approximate,
     Infeasible,
     IterationLimit,
-    ActiveSetFull,
     FactorFailure,
 }
+
+/// Which representation the last QP's multipliers are in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Mode {
+    /// Goldfarb–Idnani: `active[..count]`, `multiplier`, and the packed Gram factor in `store`.
+    Factor,
+    /// The dual coordinate-ascent fallback: one multiplier per candidate row in `store`
+    /// (see [`super::qp_dual::dual_index`]); no factor.
+    Dual,
+}
+
+/// Numbers of the packed Gram factor at capacity.
+const FACTOR_LEN: usize = packed::packed_len(MAX_ACTIVE);
+/// The shared buffer: the Gram factor or the fallback's dual table, whichever is larger.
+pub(crate) const STORE_LEN: usize = if FACTOR_LEN > super::qp_dual::DUAL_LEN {
+    FACTOR_LEN
+} else {
+    super::qp_dual::DUAL_LEN
+};
 
 /// The active set and its factorisation.
 #[derive(Clone, Debug)]
 pub(crate) struct QpState {
     pub active: [RowId; MAX_ACTIVE],
     pub count: usize,
-    /// Largest `count` reached during the last solve.
+    /// Largest working set of the last solve: `count` in factor mode, or the rows with a
+    /// positive multiplier in the fallback (which may exceed `MAX_ACTIVE`).
     pub peak: usize,
     pub multiplier: [f64; MAX_ACTIVE],
-    chol: [[f64; MAX_ACTIVE]; MAX_ACTIVE],
+    pub mode: Mode,
+    /// Packed lower Gram factor (factor mode) or dual table (fallback mode).
+    pub store: [f64; STORE_LEN],
     direction: Coefficients,
     control_active: [[u8; MAX_NODES]; MAX_BLOCKS],
     keep_out_active: [[bool; MAX_CHECKS_PER_PAIR]; MAX_PAIRS],
@@ -52,7 +76,8 @@ impl QpState {
             count: 0,
             peak: 0,
             multiplier: [0.0; MAX_ACTIVE],
-            chol: [[0.0; MAX_ACTIVE]; MAX_ACTIVE],
+            mode: Mode::Factor,
+            store: [0.0; STORE_LEN],
             direction: [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS],
             control_active: [[0; MAX_NODES]; MAX_BLOCKS],
             keep_out_active: [[false; MAX_CHECKS_PER_PAIR]; MAX_PAIRS],
@@ -84,11 +109,12 @@ impl QpState {
     pub fn reset(&mut self) {
         self.count = 0;
         self.peak = 0;
+        self.mode = Mode::Factor;
         self.control_active = [[0; MAX_NODES]; MAX_BLOCKS];
         self.keep_out_active = [[false; MAX_CHECKS_PER_PAIR]; MAX_PAIRS];
     }
 
-    fn mark(&mut self, id: RowId, on: bool) {
+    pub(crate) fn mark(&mut self, id: RowId, on: bool) {
         match id {
             RowId::Control { block, node, upper } => {
                 let bit = if upper { 1u8 } else { 2u8 };
@@ -112,17 +138,27 @@ impl QpState {
         }
     }
 
-    /// Refactor the Gram matrix of the active rows. Returns false on a non-positive pivot.
-    fn refactor(&mut self, tr: &Transcription) -> bool {
+    /// Refactor the Gram matrix of the active rows (as the transcription now linearises
+    /// them). Returns false on a non-positive pivot, or in fallback mode (no active set).
+    pub(crate) fn refactor(&mut self, tr: &Transcription) -> bool {
+        if self.mode != Mode::Factor {
+            return false;
+        }
         let free = tr.basis.free;
-        for a in 0..self.count {
-            let va = tr.view(self.active.get(a).copied().unwrap_or(NO_ROW));
-            for b in 0..=a {
-                let vb = tr.view(self.active.get(b).copied().unwrap_or(NO_ROW));
-                set(&mut self.chol, a, b, rows_dot(&va, &vb, free));
+        for (a, &ida) in self.active.iter().enumerate().take(self.count) {
+            let va = tr.view(ida);
+            for (b, &idb) in self.active.iter().enumerate().take(a.saturating_add(1)) {
+                let vb = tr.view(idb);
+                set(&mut self.store, a, b, rows_dot(&va, &vb, free));
             }
         }
-        cholesky_in_place(&mut self.chol, self.count).is_none()
+        cholesky(&mut self.store, self.count).is_none()
+    }
+
+    /// Solve `G x = b` with the current Gram factor (factor mode).
+    pub(crate) fn gram_solve(&self, b: &mut [f64; MAX_ACTIVE]) {
+        solve_lower(&self.store, self.count, b);
+        solve_lower_transposed(&self.store, self.count, b);
     }
 
     /// Remove active row `index`, keeping the others' order and multipliers.
@@ -345,9 +381,9 @@ pub(crate) fn solve(
             }
             // r = G^{-1} g; keep l = L^{-1} g for appending p to the factor.
             let mut l = g;
-            solve_lower(&state.chol, k, &mut l);
+            solve_lower(&state.store, k, &mut l);
             r.copy_from_slice(&l);
-            solve_lower_transposed(&state.chol, k, &mut r);
+            solve_lower_transposed(&state.store, k, &mut r);
             // Primal direction z = a_p - A^T r: the part of a_p orthogonal to the active rows.
             state.direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
             row_axpy(&vp, 1.0, &mut state.direction, free);
@@ -396,12 +432,23 @@ pub(crate) fn solve(
             let full = matches!(full_step, Some(f) if f <= step);
             if full {
                 if k >= MAX_ACTIVE {
-                    return QpOutcome::ActiveSetFull;
+                    // The working set needs more rows than the factor holds (up to 3 M (N - 3)
+                    // can be independent, 504 at capacity: far beyond any RAM budget). Continue
+                    // without a factor, from this dual-feasible point.
+                    return super::qp_dual::solve(
+                        tr,
+                        state,
+                        y,
+                        (p, multiplier_p),
+                        max_iter,
+                        tol,
+                        iterations,
+                    );
                 }
                 for (c, value) in l.iter().enumerate().take(k) {
-                    set(&mut state.chol, k, c, *value);
+                    set(&mut state.store, k, c, *value);
                 }
-                set(&mut state.chol, k, k, libm::sqrt(z2));
+                set(&mut state.store, k, k, libm::sqrt(z2));
                 if let Some(slot) = state.active.get_mut(k) {
                     *slot = p;
                 }

@@ -1,5 +1,6 @@
 //! The planner-A result: node states and controls, cost, verified separation.
 
+use super::certificate::Certificate;
 use super::status::SolveInfo;
 use crate::capacity::{MAX_NODES, MAX_PAIRS, MAX_SPACECRAFT, TEST_POINTS_PER_PAIR};
 use serde::{Deserialize, Serialize};
@@ -38,6 +39,8 @@ pub struct Solution {
     pub test_point_times_tu: [[f64; TEST_POINTS_PER_PAIR]; MAX_PAIRS],
     /// Counters and status.
     pub info: SolveInfo,
+    /// Optimality measures of the returned trajectory (`Solved` requires them met).
+    pub certificate: Certificate,
 }
 
 impl Solution {
@@ -66,7 +69,9 @@ impl Solution {
                 max_active: 0,
                 warm_start_used: false,
                 max_violation: 0.0,
+                saddle_escapes: 0,
             },
+            certificate: Certificate::new(),
         }
     }
 }
@@ -93,6 +98,7 @@ impl Solution {
             pair.fill(0.0);
         }
         self.info = SolveInfo::default();
+        self.certificate = Certificate::new();
     }
 }
 

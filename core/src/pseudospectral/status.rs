@@ -2,26 +2,48 @@
 
 use serde::{Deserialize, Serialize};
 
-/// The state of the returned iterate.
+/// The state of the returned iterate: a promise about the trajectory in the solution.
+///
+/// Only `Solved` and `Feasible` promise anything about the returned trajectory, and both are
+/// checked on it by the code that returns them (`solver.rs`, `certificate.rs`):
+///
+/// * feasible: keep-out `>= d - verify_tol_lu` on the **continuous** trajectory (global
+///   branch-and-bound minimum per pair, certified), every node control within
+///   `Umax + CONTROL_TOL_FU`, and the dynamics check (eq. 29) below `DYNAMICS_TOL`;
+/// * certified: additionally the certificate in `Solution::certificate` meets the first- and
+///   second-order tolerances of [`super::Certificate`].
+///
+/// Every other status makes **no** feasibility promise: the trajectory returned with it may
+/// violate the keep-out or the control bound (`max_violation` and `min_separation_lu` say by
+/// how much).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[repr(u8)]
 pub enum SolveStatus {
     /// No solve has written this solution.
     #[default]
     Unsolved = 0,
-    /// Converged; keep-out holds on the continuous trajectory within `verify_tol_lu`.
+    /// Feasible (as above) and certified a local optimum: stationary, complementary, and the
+    /// reduced Hessian of the Lagrangian positive on the active constraints' null space, each
+    /// within the certificate's tolerances.
     Solved = 1,
-    /// Converged at the check points, but continuous verification ran out of rounds or points
-    /// with the separation still below d; the solution says where.
+    /// The iteration ended but the continuous separation is below `d - verify_tol_lu`
+    /// somewhere; the solution says where. Not feasible.
     SeparationNotVerified = 2,
-    /// The SQP iteration limit was reached; the best feasible iterate is returned.
+    /// The SQP iteration limit was reached and the last iterate is not verified feasible.
     MaxIterations = 3,
     /// A QP subproblem was infeasible (the linearised keep-out and control bounds conflict).
+    /// Not feasible.
     Infeasible = 4,
-    /// A QP hit its active-set capacity or iteration limit.
+    /// A QP hit its iteration limit (never its active-set capacity: past it the QP continues
+    /// without a factor) and the last iterate is not verified feasible.
     QpLimit = 5,
-    /// A factorisation failed; the stage says where.
+    /// A factorisation failed; the stage says where. Not feasible.
     NumericalFailure(Stage) = 6,
+    /// Verified feasible (as above) but not certified optimal within the budget: the iteration
+    /// limit was reached, a QP stopped early, or the certificate missed a tolerance (for
+    /// example a saddle the escape could not leave). May be flown; it may cost more than a
+    /// local optimum.
+    Feasible = 7,
 }
 
 /// Where a numerical failure happened.
@@ -38,8 +60,14 @@ pub enum Stage {
 }
 
 impl SolveStatus {
-    /// The trajectory meets every constraint and may be flown.
+    /// The trajectory was verified to meet every constraint and may be flown (`Solved` or
+    /// `Feasible`).
     pub fn is_usable(&self) -> bool {
+        matches!(self, Self::Solved | Self::Feasible)
+    }
+
+    /// The trajectory is also certified a local optimum (`Solved`).
+    pub fn is_certified(&self) -> bool {
         matches!(self, Self::Solved)
     }
 }
@@ -65,4 +93,7 @@ pub struct SolveInfo {
     pub warm_start_used: bool,
     /// Largest violation of a checked constraint at the returned iterate.
     pub max_violation: f64,
+    /// Saddle escapes tried (a step along negative reduced curvature, then the iteration
+    /// again); at most `MAX_SADDLE_ESCAPES` (2).
+    pub saddle_escapes: u8,
 }

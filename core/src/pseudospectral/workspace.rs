@@ -43,6 +43,8 @@ pub struct Workspace {
     pub(crate) test_times: [[f64; TEST_POINTS_PER_PAIR]; MAX_PAIRS],
     /// Direction used for a pair's linearisation where the spacecraft coincide.
     pub(crate) fallback_normal: [[f64; 3]; MAX_PAIRS],
+    /// The saddle's iterate while an escape from it is tried.
+    pub(crate) saved: Coefficients,
 }
 
 impl Workspace {
@@ -60,6 +62,7 @@ impl Workspace {
             basis_scratch: [[0.0; MAX_FREE_PER_AXIS]; MAX_FREE_PER_AXIS],
             test_times: [[0.0; TEST_POINTS_PER_PAIR]; MAX_PAIRS],
             fallback_normal: [[0.0; 3]; MAX_PAIRS],
+            saved: [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS],
         }
     }
 }

@@ -10,3 +10,4 @@ pub mod solve;
 pub mod solve_geo_tour;
 pub mod solve_impulsive;
 pub mod solve_pseudospectral;
+pub mod sweep;

@@ -73,6 +73,7 @@ pub fn to_json(name: &str, timed: &Timed) -> serde_json::Value {
         "warm_start_used": s.info.warm_start_used,
         "max_violation": s.info.max_violation,
         "max_dynamics_error": s.max_dynamics_error,
+        "certificate": &s.certificate,
         "solve_time_s": timed.solve_time_s,
         "node_times": &s.node_times_tu[..nodes],
         "states": states,
@@ -133,6 +134,20 @@ pub fn run(fixture: &PseudospectralFixture, json_output: bool) -> Result<ExitCod
         println!(
             "  iterations           {} convex subproblems, {} active-set steps, {} verification rounds (+{} points)",
             s.info.sqp_iterations, s.info.qp_iterations, s.info.verify_rounds, s.info.verify_points_added
+        );
+        let c = &s.certificate;
+        println!(
+            "  certificate          stationarity {:.1e}, complementarity {:.1e}, max violation {:.1e}, reduced-Hessian min eigenvalue {}, {} active constraints{}",
+            c.stationarity,
+            c.complementarity,
+            c.max_violation,
+            if c.second_order_evaluated {
+                format!("{:.4}", c.min_reduced_eigenvalue)
+            } else {
+                "not evaluated".to_string()
+            },
+            c.multipliers.len(),
+            if c.multipliers_complete { "" } else { " (more than listed)" }
         );
         println!("  solve time           {:.3} ms", timed.solve_time_s * 1e3);
     }

@@ -1,0 +1,151 @@
+//! The convex-concave iteration (globalisation of the sequence of QPs): one QP per
+//! linearisation, Anderson-accelerated, with the cost safeguard and the fixed-point test.
+
+use super::linearise::{follow_minima, linearise};
+use super::qp::{self, QpOutcome};
+use super::settings::Settings;
+use super::solution::Solution;
+use super::status::{SolveStatus, Stage};
+use super::transcription::{Coefficients, MAX_BLOCKS};
+use super::workspace::Workspace;
+use crate::capacity::MAX_FREE_PER_AXIS;
+
+/// How the SQP loop ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum SqpEnd {
+    Converged,
+    MaxIterations,
+    Failed(SolveStatus),
+}
+
+/// A converged iterate lies within this fraction of d of its linearisation point (so the QP's
+/// rows are the constraint gradients there to about this relative accuracy).
+pub(super) const FIXED_POINT_TOL_REL: f64 = 1e-4;
+
+pub(super) fn half_norm2(y: &Coefficients, blocks: usize, free: usize) -> f64 {
+    let mut sum = 0.0;
+    for block in y.iter().take(blocks) {
+        for v in block.iter().take(free) {
+            sum += v * v;
+        }
+    }
+    0.5 * sum
+}
+
+/// The convex-concave sequence of QPs from the current iterate, Anderson-accelerated.
+/// On return `ws.iterate` holds the last QP solution (feasible at every check).
+pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -> SqpEnd {
+    let blocks = ws.transcription.blocks();
+    let free = ws.transcription.basis.free;
+    let memory = usize::from(settings.acceleration_memory);
+    let mut previous_cost = f64::INFINITY;
+    ws.anderson.reset();
+    ws.accepted = ws.iterate;
+    let mut have_solution = false;
+    let mut accelerated = false;
+    let mut restarted = false;
+    let mut previous_decrease = f64::INFINITY;
+    for _ in 0..settings.sqp_max_iter {
+        if settings.continuous_verification {
+            follow_minima(ws, settings);
+        }
+        linearise(ws);
+        let outcome = qp::solve(
+            &ws.transcription,
+            &mut ws.qp,
+            &mut ws.trial,
+            settings.qp_max_iter,
+            settings.qp_tol_feas,
+            &mut out.info.qp_iterations,
+        );
+        out.info.sqp_iterations = out.info.sqp_iterations.saturating_add(1);
+        let active = u16::try_from(ws.qp.peak).unwrap_or(u16::MAX);
+        out.info.max_active = out.info.max_active.max(active);
+        let failure = match outcome {
+            QpOutcome::Optimal | QpOutcome::Approximate => None,
+            QpOutcome::Infeasible => Some(SolveStatus::Infeasible),
+            QpOutcome::IterationLimit => Some(SolveStatus::QpLimit),
+            QpOutcome::FactorFailure => Some(SolveStatus::NumericalFailure(Stage::QpFactor)),
+        };
+        if let Some(status) = failure {
+            if accelerated {
+                // The extrapolated point was a poor linearisation: fall back to plain iteration
+                // from the last solution.
+                ws.anderson.reset();
+                accelerated = false;
+                ws.iterate = ws.accepted;
+                continue;
+            }
+            ws.iterate = ws.accepted;
+            return SqpEnd::Failed(status);
+        }
+        let cost = ws.transcription.base_cost + half_norm2(&ws.trial, blocks, free);
+        let mut step = 0.0f64;
+        // How far the QP's answer is from the point it was linearised at (the Anderson
+        // extrapolation): a fixed point needs both equal, or the rows are not the constraint
+        // gradients at the answer and it is not a KKT point (two extrapolated points can give the
+        // same QP answer).
+        let mut off_linearisation = 0.0f64;
+        for b in 0..blocks {
+            let mass = ws.transcription.mass_of(b / 3);
+            if let (Some(new), Some(old), Some(at)) =
+                (ws.trial.get(b), ws.accepted.get(b), ws.iterate.get(b))
+            {
+                for ((x, y), z) in new.iter().zip(old.iter()).zip(at.iter()).take(free) {
+                    step = step.max(libm::fabs(x - y) / mass);
+                    off_linearisation = off_linearisation.max(libm::fabs(x - z) / mass);
+                }
+            }
+        }
+        ws.accepted = ws.trial;
+        // Convergence: the cost decrease and the remaining gap it predicts are both small. The
+        // convex-concave tail is linear; with rate rho = dJ_k / dJ_(k-1) the remaining gap is
+        // about dJ_k rho / (1 - rho), which stays large while the iterate slides slowly along
+        // the keep-out surface even though each step changes little.
+        let decrease = previous_cost - cost;
+        let tolerance = settings.sqp_tol_cost * (1.0 + cost);
+        let rate = if previous_decrease > 0.0 && decrease >= 0.0 {
+            (decrease / previous_decrease).min(0.999)
+        } else {
+            0.999
+        };
+        let gap = decrease.max(0.0) * rate / (1.0 - rate);
+        let small_change = decrease >= 0.0
+            && decrease <= tolerance
+            && (decrease <= 0.0 || gap <= tolerance)
+            && !restarted;
+        previous_decrease = decrease;
+        // A QP that stopped short of its optimum is no fixed point, however small the step.
+        let exact = outcome == QpOutcome::Optimal;
+        if have_solution && exact && (small_change || step <= settings.sqp_tol_step_lu) {
+            if off_linearisation <= FIXED_POINT_TOL_REL * ws.transcription.keep_out_lu {
+                ws.iterate = ws.accepted;
+                return SqpEnd::Converged;
+            }
+            // Converged in cost but linearised elsewhere: take plain steps from the answer.
+            ws.anderson.reset();
+            ws.iterate = ws.accepted;
+            previous_cost = cost;
+            restarted = true;
+            continue;
+        }
+        // Safeguard: an extrapolation that raised the cost restarts the memory, so the next
+        // step is a plain convex-concave step (which never raises the cost from a feasible
+        // point).
+        restarted = false;
+        if have_solution && cost > previous_cost + settings.sqp_tol_cost * (1.0 + cost) {
+            ws.anderson.reset();
+            ws.iterate = ws.accepted;
+            restarted = true;
+        }
+        have_solution = true;
+        previous_cost = cost;
+        let mut next = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
+        ws.anderson
+            .step(&ws.iterate, &ws.trial, &mut next, memory, blocks, free);
+        accelerated = memory > 0;
+        ws.iterate = next;
+    }
+    ws.iterate = ws.accepted;
+    SqpEnd::MaxIterations
+}

@@ -1,0 +1,312 @@
+//! The geometry of the iterate: relative node positions and states of a pair, each pair's
+//! continuous separation minimum (and the moving check that follows it), and the
+//! linearisation of every keep-out check (the unit separation, or a swerved normal where the
+//! iterate violates the check).
+
+use super::settings::Settings;
+use super::solver::norm3;
+use super::transcription::{block_dot, node_value, Coefficients, Transcription};
+use super::verify::{Minimum, MAX_PRODUCT};
+use super::workspace::Workspace;
+use crate::capacity::MAX_NODES;
+
+/// A unit vector perpendicular to `velocity`, along the miss vector `relative` when it is not
+/// negligible, else a fixed choice (the coordinate axis least aligned with the velocity, made
+/// perpendicular), deterministic per pair.
+pub(super) fn perpendicular_direction(
+    relative: &[f64; 3],
+    velocity: &[f64; 3],
+    fallback: Option<[f64; 3]>,
+) -> [f64; 3] {
+    let speed = norm3(velocity);
+    let unit_v = if speed > 0.0 {
+        [
+            velocity[0] / speed,
+            velocity[1] / speed,
+            velocity[2] / speed,
+        ]
+    } else {
+        [0.0, 0.0, 0.0]
+    };
+    let reject = |v: [f64; 3]| {
+        let along = v[0] * unit_v[0] + v[1] * unit_v[1] + v[2] * unit_v[2];
+        [
+            v[0] - along * unit_v[0],
+            v[1] - along * unit_v[1],
+            v[2] - along * unit_v[2],
+        ]
+    };
+    let miss = reject(*relative);
+    let miss_norm = norm3(&miss);
+    if miss_norm > 1e-9 * (1.0 + norm3(relative)) {
+        return [
+            miss[0] / miss_norm,
+            miss[1] / miss_norm,
+            miss[2] / miss_norm,
+        ];
+    }
+    if let Some(direction) = fallback {
+        let candidate = reject(direction);
+        let c_norm = norm3(&candidate);
+        if c_norm > 0.5 {
+            return [
+                candidate[0] / c_norm,
+                candidate[1] / c_norm,
+                candidate[2] / c_norm,
+            ];
+        }
+    }
+    // Head on: pass to the right of the relative velocity, `v x e` with `e` the coordinate axis
+    // least aligned with it. For crossings in a plane this is a consistent roundabout: every
+    // pair turns the same way, so no pair's choice fights another's.
+    let mut axis = 0usize;
+    let mut least = f64::INFINITY;
+    for (k, component) in unit_v.iter().enumerate() {
+        if libm::fabs(*component) < least {
+            least = libm::fabs(*component);
+            axis = k;
+        }
+    }
+    let mut e = [0.0; 3];
+    if let Some(slot) = e.get_mut(axis) {
+        *slot = 1.0;
+    }
+    let right = [
+        unit_v[1] * e[2] - unit_v[2] * e[1],
+        unit_v[2] * e[0] - unit_v[0] * e[2],
+        unit_v[0] * e[1] - unit_v[1] * e[0],
+    ];
+    let r_norm = norm3(&right);
+    if r_norm > 0.0 {
+        [right[0] / r_norm, right[1] / r_norm, right[2] / r_norm]
+    } else {
+        [1.0, 0.0, 0.0]
+    }
+}
+
+/// Node values of `r_i - r_j` on one axis for the coefficients `y`.
+pub(super) fn relative_nodes(
+    tr: &Transcription,
+    y: &Coefficients,
+    (i, j): (u8, u8),
+    axis: usize,
+) -> [f64; MAX_NODES] {
+    let mut pi = [0.0; MAX_NODES];
+    let mut pj = [0.0; MAX_NODES];
+    block_positions(
+        tr,
+        y,
+        usize::from(i).saturating_mul(3).saturating_add(axis),
+        &mut pi,
+    );
+    block_positions(
+        tr,
+        y,
+        usize::from(j).saturating_mul(3).saturating_add(axis),
+        &mut pj,
+    );
+    let mut relative = [0.0; MAX_NODES];
+    for ((slot, a), b) in relative.iter_mut().zip(pi.iter()).zip(pj.iter()) {
+        *slot = a - b;
+    }
+    relative
+}
+
+/// Relative position and velocity of a pair at `tau` on the current iterate.
+pub(super) fn relative_state(ws: &Workspace, pair: usize, tau: f64) -> ([f64; 3], [f64; 3]) {
+    let tr = &ws.transcription;
+    let (i, j) = tr.pairs.get(pair).copied().unwrap_or((0, 0));
+    let mut position = [0.0; 3];
+    let mut velocity = [0.0; 3];
+    for axis in 0..3 {
+        let relative = relative_nodes(tr, &ws.iterate, (i, j), axis);
+        let mut derivative = [0.0; MAX_NODES];
+        tr.grid.differentiate(&relative, &mut derivative);
+        if let Some(slot) = position.get_mut(axis) {
+            *slot = tr.grid.interpolate(&relative, tau);
+        }
+        if let Some(slot) = velocity.get_mut(axis) {
+            *slot = 2.0 / tr.horizon_tu * tr.grid.interpolate(&derivative, tau);
+        }
+    }
+    (position, velocity)
+}
+
+/// Relative depth below the keep-out that counts as violated when linearising.
+pub(super) const LINEARISE_TOL_REL: f64 = 1e-9;
+
+/// Set every check's normal from the current iterate.
+///
+/// Where a check is feasible at the iterate, the normal is the unit separation:
+/// `n . (r_i - r_j) >= d` is then the tangent half-space of the keep-out ball, inside the feasible set, and the
+/// iterate satisfies it (the convex-concave procedure: feasible and never more costly).
+///
+/// Where a check is violated (the first iterate, or a dip found by verification), the unit
+/// separation can flip sign along a pass-through, which would demand an along-track jump of 2d
+/// between neighbouring checks. There the linearisation is taken about a swerved relative
+/// trajectory `dr + d p phi(t)`: `p` the miss direction perpendicular to the relative velocity
+/// at the pair's closest approach (a fixed perpendicular when they meet head on), `phi` a bump of
+/// the width the pair needs to cover d at its relative speed. Any unit normal gives a valid
+/// inner approximation, so this only chooses which side the pair passes on.
+pub(super) fn linearise(ws: &mut Workspace) {
+    for pair in 0..ws.transcription.pair_count {
+        let tr = &ws.transcription;
+        let keep_out = tr.keep_out_for(pair);
+        // A check the QP met to its tolerance is feasible, not violated: swerving its normal
+        // there would make a fixed point of the iteration that is not a KKT point (the normal
+        // must be the unit separation, the constraint's gradient, at a converged iterate).
+        let violated_below = keep_out * (1.0 - LINEARISE_TOL_REL);
+        let count = tr.check_count.get(pair).copied().unwrap_or(0);
+        let mut closest: Option<(f64, f64)> = None;
+        for c in 0..count {
+            let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)).copied() else {
+                continue;
+            };
+            let length = norm3(&tr.relative(pair, check.source, &ws.iterate));
+            if length < violated_below && closest.is_none_or(|(_, best)| length < best) {
+                closest = Some((check.tau, length));
+            }
+        }
+        let swerve = closest.map(|(tau, _)| {
+            let (relative, velocity) = relative_state(ws, pair, tau);
+            let fallback = ws
+                .fallback_normal
+                .get(pair)
+                .copied()
+                .unwrap_or([1.0, 0.0, 0.0]);
+            let direction = perpendicular_direction(&relative, &velocity, Some(fallback));
+            let speed = norm3(&velocity);
+            let width = if speed > 0.0 {
+                keep_out / speed
+            } else {
+                f64::INFINITY
+            };
+            (ws.transcription.time_of(tau), direction, width)
+        });
+        let tr = &mut ws.transcription;
+        for c in 0..count {
+            let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)).copied() else {
+                continue;
+            };
+            let mut relative = tr.relative(pair, check.source, &ws.iterate);
+            let length = norm3(&relative);
+            if length < violated_below {
+                if let Some((t_star, direction, width)) = swerve {
+                    let x = (tr.time_of(check.tau) - t_star) / width;
+                    let bump = if width.is_finite() {
+                        libm::exp(-x * x)
+                    } else {
+                        1.0
+                    };
+                    for (r, p) in relative.iter_mut().zip(direction.iter()) {
+                        *r += keep_out * bump * p;
+                    }
+                }
+            }
+            let length = norm3(&relative);
+            let normal = if length > 0.0 {
+                [
+                    relative[0] / length,
+                    relative[1] / length,
+                    relative[2] / length,
+                ]
+            } else {
+                ws.fallback_normal
+                    .get(pair)
+                    .copied()
+                    .unwrap_or([1.0, 0.0, 0.0])
+            };
+            if let Some(slot) = tr.checks.get_mut(pair).and_then(|row| row.get_mut(c)) {
+                slot.normal = normal;
+            }
+        }
+    }
+}
+
+/// Set every check's normal to the unit separation at the iterate: the constraint gradients
+/// the certificate needs (`linearise` swerves where a check is violated, even by rounding).
+pub(super) fn unit_normals(ws: &mut Workspace) {
+    let tr = &mut ws.transcription;
+    for pair in 0..tr.pair_count {
+        for c in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
+            let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)).copied() else {
+                continue;
+            };
+            let relative = tr.relative(pair, check.source, &ws.iterate);
+            let length = norm3(&relative);
+            if length > 0.0 {
+                if let Some(slot) = tr.checks.get_mut(pair).and_then(|row| row.get_mut(c)) {
+                    slot.normal = [
+                        relative[0] / length,
+                        relative[1] / length,
+                        relative[2] / length,
+                    ];
+                }
+            }
+        }
+    }
+}
+
+/// Node positions of a block at the current iterate.
+pub(super) fn block_positions(
+    tr: &Transcription,
+    y: &Coefficients,
+    block: usize,
+    out: &mut [f64; MAX_NODES],
+) {
+    let mass = tr.mass_of(block / 3);
+    *out = [0.0; MAX_NODES];
+    for (h, slot) in out.iter_mut().enumerate().take(tr.grid.nodes()) {
+        let row = tr.basis.position.get(h);
+        let offset = match row {
+            Some(row) => block_dot(row, y, block, tr.basis.free) / mass,
+            None => 0.0,
+        };
+        *slot = node_value(&tr.base_position, block, h) + offset;
+    }
+}
+
+/// Move each near-contact pair's moving check to the pair's current continuous separation
+/// minimum (a local-reduction step for the semi-infinite keep-out constraint): the convex
+/// subproblems then converge to the continuous optimum, not only to the checked points'.
+pub(super) fn follow_minima(ws: &mut Workspace, settings: &Settings) {
+    for pair in 0..ws.transcription.pair_count {
+        let keep_out = ws.transcription.keep_out_for(pair);
+        // Only pairs near contact: the least separation over the fixed checks within 10 % of d.
+        let tr = &ws.transcription;
+        let mut least = f64::INFINITY;
+        for c in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
+            if let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)) {
+                least = least.min(norm3(&tr.relative(pair, check.source, &ws.iterate)));
+            }
+        }
+        if least > 1.1 * keep_out && tr.moving_check.get(pair).copied().flatten().is_none() {
+            continue;
+        }
+        let minimum = pair_minimum(ws, pair, settings);
+        let tau = 2.0 * minimum.at_s - 1.0;
+        if tau > -1.0 && tau < 1.0 {
+            let _ = ws.transcription.place_moving_check(pair, tau);
+        }
+    }
+}
+
+/// The global minimum of the squared separation of one pair over the whole horizon.
+pub(super) fn pair_minimum(ws: &mut Workspace, pair: usize, settings: &Settings) -> Minimum {
+    let tr = &ws.transcription;
+    let (i, j) = tr.pairs.get(pair).copied().unwrap_or((0, 0));
+    let mut axes = [[0.0; MAX_NODES]; 3];
+    for (axis, coeffs) in axes.iter_mut().enumerate() {
+        let relative = relative_nodes(tr, &ws.iterate, (i, j), axis);
+        ws.bernstein.coefficients(&relative, coeffs);
+    }
+    let mut product = [0.0; MAX_PRODUCT];
+    ws.bernstein.squared_norm(&axes, &mut product);
+    // Tolerance on the squared separation equivalent to verify_tol / 100 on the separation.
+    let tol = 0.02 * tr.keep_out_lu * settings.verify_tol_lu;
+    ws.bernstein.minimum(
+        &product,
+        tol,
+        u32::from(settings.refine_max_iter).saturating_mul(50),
+    )
+}

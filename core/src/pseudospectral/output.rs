@@ -1,0 +1,215 @@
+//! Writing the returned trajectory and checking it: states, controls, cost, the verified
+//! continuous separation, the largest violations and the dynamics check (eq. 29).
+
+use super::linearise::{block_positions, pair_minimum};
+use super::settings::Settings;
+use super::solution::Solution;
+use super::solver::norm3;
+use super::transcription::{block_dot, node_value, Transcription};
+use super::workspace::Workspace;
+use crate::capacity::MAX_NODES;
+
+/// A node control may exceed Umax by this fraction of Umax and still count as within the bound
+/// (the QP's own tolerance is 1e-12 of a row norm).
+pub(crate) const CONTROL_TOL_REL: f64 = 1e-9;
+
+/// The dynamics check (eq. 29) must be below this times (1 + the largest state magnitude).
+pub(crate) const DYNAMICS_TOL_REL: f64 = 1e-8;
+
+/// Largest excess of a node control over Umax (negative when all are inside).
+pub(super) fn control_excess(out: &Solution, max_control_fu: f64) -> f64 {
+    let mut worst = f64::NEG_INFINITY;
+    let m = usize::from(out.spacecraft_count);
+    let nodes = usize::from(out.degree).saturating_add(1);
+    for sc in out.controls_fu.iter().take(m) {
+        for node in sc.iter().take(nodes) {
+            for u in node {
+                worst = worst.max(libm::fabs(*u) - max_control_fu);
+            }
+        }
+    }
+    worst
+}
+
+/// Largest magnitude of any returned state component.
+pub(super) fn state_scale(out: &Solution) -> f64 {
+    let m = usize::from(out.spacecraft_count);
+    let nodes = usize::from(out.degree).saturating_add(1);
+    let mut largest = 0.0f64;
+    for sc in out.states.iter().take(m) {
+        for node in sc.iter().take(nodes) {
+            for v in node {
+                largest = largest.max(libm::fabs(*v));
+            }
+        }
+    }
+    largest
+}
+
+/// Write states, controls, cost, verified separation and the dynamics check into `out`.
+/// Returns whether every pair's continuous separation is at least `d - verify_tol`.
+pub(super) fn write_solution(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -> bool {
+    let mut verified = true;
+    let mut least = f64::INFINITY;
+    for pair in 0..ws.transcription.pair_count {
+        let minimum = pair_minimum(ws, pair, settings);
+        let separation = libm::sqrt(minimum.value_squared.max(0.0));
+        if !minimum.certified || separation < ws.transcription.keep_out_lu - settings.verify_tol_lu
+        {
+            verified = false;
+        }
+        if separation < least {
+            least = separation;
+            out.min_separation_lu = separation;
+            out.min_separation_pair = ws.transcription.pairs.get(pair).copied().unwrap_or((0, 0));
+            out.min_separation_time_tu = minimum.at_s * ws.transcription.horizon_tu;
+        }
+    }
+    if ws.transcription.pair_count == 0 {
+        out.min_separation_lu = f64::INFINITY;
+    }
+    let tr = &ws.transcription;
+    let nodes = tr.grid.nodes();
+    let scale = 2.0 / tr.horizon_tu;
+    for (h, slot) in out.node_times_tu.iter_mut().enumerate().take(nodes) {
+        *slot = tr.time_of(tr.grid.at(h));
+    }
+    let mut cost = 0.0;
+    for sc in 0..tr.spacecraft {
+        for axis in 0..3 {
+            let block = sc.saturating_mul(3).saturating_add(axis);
+            let mut positions = [0.0; MAX_NODES];
+            block_positions(tr, &ws.iterate, block, &mut positions);
+            let mut velocities = [0.0; MAX_NODES];
+            tr.grid.differentiate(&positions, &mut velocities);
+            for h in 0..nodes {
+                let control = node_value(&tr.base_control, block, h)
+                    + match tr.basis.accel.get(h) {
+                        Some(row) => block_dot(row, &ws.iterate, block, tr.basis.free),
+                        None => 0.0,
+                    };
+                let w = tr.grid.weight.get(h).copied().unwrap_or(0.0);
+                cost += 0.25 * tr.horizon_tu * w * control * control;
+                if let Some(state) = out.states.get_mut(sc).and_then(|row| row.get_mut(h)) {
+                    if let Some(p) = state.get_mut(axis) {
+                        *p = positions.get(h).copied().unwrap_or(0.0);
+                    }
+                    if let Some(v) = state.get_mut(axis.saturating_add(3)) {
+                        *v = scale * velocities.get(h).copied().unwrap_or(0.0);
+                    }
+                }
+                if let Some(u) = out
+                    .controls_fu
+                    .get_mut(sc)
+                    .and_then(|row| row.get_mut(h))
+                    .and_then(|node| node.get_mut(axis))
+                {
+                    *u = control;
+                }
+            }
+        }
+    }
+    out.cost = cost;
+    out.test_point_times_tu = ws.test_times;
+    // Largest violation of a checked constraint.
+    let mut violation = 0.0f64;
+    for pair in 0..tr.pair_count {
+        for c in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
+            if let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)) {
+                if check.pruned {
+                    continue;
+                }
+                let relative = tr.relative(pair, check.source, &ws.iterate);
+                violation = violation.max(tr.keep_out_lu - norm3(&relative));
+            }
+        }
+    }
+    for sc in out.controls_fu.iter().take(tr.spacecraft) {
+        for node in sc.iter().take(nodes) {
+            for u in node {
+                violation = violation.max(libm::fabs(*u) - tr.max_control_fu);
+            }
+        }
+    }
+    out.info.max_violation = violation;
+    out.info.keep_out_checks = 0;
+    for pair in 0..tr.pair_count {
+        for c in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
+            if tr
+                .checks
+                .get(pair)
+                .and_then(|row| row.get(c))
+                .is_some_and(|k| !k.pruned)
+            {
+                out.info.keep_out_checks = out.info.keep_out_checks.saturating_add(1);
+            }
+        }
+    }
+    out.max_dynamics_error = dynamics_error(tr, out);
+    verified
+}
+
+/// Eq. 29: propagate the true double integrator from the initial state with the interpolated
+/// control and compare with the interpolated states, at every node and every midpoint between
+/// nodes. The quadrature (LGL on [0, t]) is exact for the polynomial integrands.
+pub(super) fn dynamics_error(tr: &Transcription, out: &Solution) -> f64 {
+    let grid = &tr.grid;
+    let nodes = grid.nodes();
+    let mut worst = 0.0f64;
+    for sc in 0..tr.spacecraft {
+        let mass = tr.mass_of(sc);
+        let (Some(states), Some(controls)) = (out.states.get(sc), out.controls_fu.get(sc)) else {
+            continue;
+        };
+        for axis in 0..3 {
+            let mut position = [0.0; MAX_NODES];
+            let mut velocity = [0.0; MAX_NODES];
+            let mut control = [0.0; MAX_NODES];
+            for h in 0..nodes {
+                let state = states.get(h).copied().unwrap_or([0.0; 6]);
+                if let Some(slot) = position.get_mut(h) {
+                    *slot = state.get(axis).copied().unwrap_or(0.0);
+                }
+                if let Some(slot) = velocity.get_mut(h) {
+                    *slot = state.get(axis.saturating_add(3)).copied().unwrap_or(0.0);
+                }
+                if let Some(slot) = control.get_mut(h) {
+                    *slot = controls
+                        .get(h)
+                        .and_then(|u| u.get(axis))
+                        .copied()
+                        .unwrap_or(0.0);
+                }
+            }
+            let x0 = position[0];
+            let v0 = velocity[0];
+            let samples = nodes.saturating_mul(2).saturating_sub(1);
+            for k in 0..samples {
+                let tau = if k % 2 == 0 {
+                    grid.at(k / 2)
+                } else {
+                    0.5 * (grid.at(k / 2) + grid.at((k / 2).saturating_add(1)))
+                };
+                let t = tr.time_of(tau);
+                // int_0^t u(s) ds and int_0^t (t - s) u(s) ds by LGL quadrature on [0, t].
+                let mut first = 0.0;
+                let mut second = 0.0;
+                for q in 0..nodes {
+                    let s = 0.5 * t * (grid.at(q) + 1.0);
+                    let w = 0.5 * t * grid.weight.get(q).copied().unwrap_or(0.0);
+                    let u = grid.interpolate(&control, tr.tau_of(s));
+                    first += w * u;
+                    second += w * (t - s) * u;
+                }
+                let propagated_v = v0 + first / mass;
+                let propagated_x = x0 + v0 * t + second / mass;
+                let interpolated_x = grid.interpolate(&position, tau);
+                let interpolated_v = grid.interpolate(&velocity, tau);
+                worst = worst
+                    .max(libm::fabs(propagated_x - interpolated_x))
+                    .max(libm::fabs(propagated_v - interpolated_v));
+            }
+        }
+    }
+    worst
+}

@@ -1,0 +1,282 @@
+//! The QP's capacity-free fallback: Hildreth's dual coordinate ascent for
+//! `min 1/2 |y|^2  s.t.  a_k^T y >= b_k`.
+//!
+//! Why: the dual active-set method keeps a dense Cholesky factor of the working set's Gram
+//! matrix, which fits `MAX_ACTIVE` rows. The real worst case is the number of variables,
+//! `3 M (N - 3)` (504 at capacity: a 1 MB factor), far beyond the firmware's RAM. When a QP
+//! needs more, it continues here from the active-set method's dual-feasible point. The dual
+//! `max b^T l - 1/2 |A^T l|^2, l >= 0` is maximised one multiplier at a time, exactly (a
+//! closed-form step per row), with `y = A^T l` kept up to date; every step raises the dual, the
+//! method converges to the QP's optimum, and it needs one number per candidate row, which fits
+//! in the same buffer as the factor (`DUAL_LEN <= STORE_LEN`).
+//!
+//! Each control bound pair `-Umax <= u <= Umax` at a node is one range row with one signed
+//! multiplier (positive: lower bound active, negative: upper). Every row is tightened by
+//! `TIGHTEN` (distance in `y`), and the result is returned only when every tightened row is met
+//! to within half of it, so the returned `y` meets every original row with a margin: the
+//! iterate the caller accepts is feasible, never approximately so.
+//!
+//! Cost: one sweep touches every candidate row once, `O(rows x 6 (N - 3))` flops; at most
+//! `max_sweeps` sweeps (the QP's iteration setting).
+
+use super::qp::{Mode, QpOutcome, QpState};
+use super::transcription::{
+    block_dot, node_value, row_axpy, row_dot, Coefficients, RowId, Transcription, MAX_BLOCKS,
+};
+use crate::capacity::{MAX_CHECKS_PER_PAIR, MAX_FREE_PER_AXIS, MAX_NODES, MAX_PAIRS};
+
+/// Multipliers of the control range rows, one per block per node.
+const CONTROL_DUALS: usize = MAX_BLOCKS * MAX_NODES;
+/// The dual table: control range rows, then keep-out checks per pair.
+pub(crate) const DUAL_LEN: usize = CONTROL_DUALS + MAX_PAIRS * MAX_CHECKS_PER_PAIR;
+
+/// Tightening of every row, as a distance in `y` (row normalised).
+const TIGHTEN: f64 = 1e-9;
+
+/// Where a row's multiplier lives in the dual table. A control row's two bounds share one slot.
+pub(crate) fn dual_index(id: RowId) -> Option<usize> {
+    let index = match id {
+        RowId::Control { block, node, .. } => usize::from(block)
+            .checked_mul(MAX_NODES)?
+            .checked_add(usize::from(node))?,
+        RowId::KeepOut { pair, check } => usize::from(pair)
+            .checked_mul(MAX_CHECKS_PER_PAIR)?
+            .checked_add(usize::from(check))?
+            .checked_add(CONTROL_DUALS)?,
+    };
+    (index < DUAL_LEN).then_some(index)
+}
+
+/// The signed dual-table value of a row's multiplier (control: lower positive, upper negative).
+fn signed(id: RowId, multiplier: f64) -> f64 {
+    match id {
+        RowId::Control { upper: true, .. } => -multiplier,
+        _ => multiplier,
+    }
+}
+
+/// One exact coordinate step on a control range row; returns the change of `y` along the row
+/// (in units of the row vector) and the row's normalised violation of the original bounds.
+fn control_step(control: f64, umax: f64, norm2: f64, multiplier: f64) -> f64 {
+    let bound = umax - TIGHTEN * libm::sqrt(norm2);
+    if control < -bound {
+        (-bound - control) / norm2
+    } else if control > bound {
+        (bound - control) / norm2
+    } else if multiplier > 0.0 {
+        ((-bound - control) / norm2).max(-multiplier)
+    } else if multiplier < 0.0 {
+        ((bound - control) / norm2).min(-multiplier)
+    } else {
+        0.0
+    }
+}
+
+/// Continue a QP without a factor. `entering` is the row the active-set method was adding and
+/// its multiplier so far. On return `state.mode` is `Dual` and `state.store` holds every
+/// multiplier.
+pub(crate) fn solve(
+    tr: &Transcription,
+    state: &mut QpState,
+    y: &mut Coefficients,
+    entering: (RowId, f64),
+    max_sweeps: u16,
+    tol: f64,
+    iterations: &mut u32,
+) -> QpOutcome {
+    let free = tr.basis.free;
+    // Load the active-set method's multipliers (it is dual feasible: `y = A^T l`).
+    state.store.fill(0.0);
+    let count = state.count;
+    for k in 0..count {
+        let (Some(&id), Some(&value)) = (state.active.get(k), state.multiplier.get(k)) else {
+            continue;
+        };
+        if let Some(slot) = dual_index(id).and_then(|i| state.store.get_mut(i)) {
+            *slot += signed(id, value);
+        }
+        state.mark(id, false);
+    }
+    if let Some(slot) = dual_index(entering.0).and_then(|i| state.store.get_mut(i)) {
+        *slot += signed(entering.0, entering.1);
+    }
+    state.count = 0;
+    state.mode = Mode::Dual;
+    // Rebuild y = A^T l from the table so the two agree to rounding.
+    *y = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
+    for block in 0..tr.blocks() {
+        for node in 0..tr.grid.nodes() {
+            let id = control_id(block, node);
+            let value = dual_index(id)
+                .and_then(|i| state.store.get(i))
+                .copied()
+                .unwrap_or(0.0);
+            if value != 0.0 {
+                row_axpy(&tr.view(id), value, y, free);
+            }
+        }
+    }
+    for pair in 0..tr.pair_count {
+        for check in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
+            let id = keep_out_id(pair, check);
+            let value = dual_index(id)
+                .and_then(|i| state.store.get(i))
+                .copied()
+                .unwrap_or(0.0);
+            if value != 0.0 {
+                row_axpy(&tr.view(id), value, y, free);
+            }
+        }
+    }
+    let mut sweeps: u16 = 0;
+    loop {
+        let mut worst = 0.0f64;
+        let mut largest_move = 0.0f64;
+        for block in 0..tr.blocks() {
+            for node in 0..tr.grid.nodes() {
+                let norm = tr.basis.accel_norm.get(node).copied().unwrap_or(0.0);
+                let (Some(row), Some(index)) = (
+                    tr.basis.accel.get(node),
+                    dual_index(control_id(block, node)),
+                ) else {
+                    continue;
+                };
+                if norm <= 0.0 {
+                    continue;
+                }
+                let control =
+                    node_value(&tr.base_control, block, node) + block_dot(row, y, block, free);
+                worst = worst.max((libm::fabs(control) - tr.max_control_fu) / norm + TIGHTEN);
+                let multiplier = state.store.get(index).copied().unwrap_or(0.0);
+                let delta = control_step(control, tr.max_control_fu, norm * norm, multiplier);
+                if delta != 0.0 {
+                    if let Some(slot) = state.store.get_mut(index) {
+                        *slot = multiplier + delta;
+                    }
+                    if let Some(values) = y.get_mut(block) {
+                        for (slot, g) in values.iter_mut().zip(row.iter()).take(free) {
+                            *slot += delta * g;
+                        }
+                    }
+                    largest_move = largest_move.max(libm::fabs(delta) * norm);
+                }
+            }
+        }
+        for pair in 0..tr.pair_count {
+            for check in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
+                let pruned = tr
+                    .checks
+                    .get(pair)
+                    .and_then(|row| row.get(check))
+                    .is_none_or(|c| c.pruned);
+                let id = keep_out_id(pair, check);
+                let Some(index) = dual_index(id) else {
+                    continue;
+                };
+                if pruned {
+                    continue;
+                }
+                let view = tr.view(id);
+                if view.norm <= 0.0 {
+                    continue;
+                }
+                let norm2 = view.norm * view.norm;
+                let slack = row_dot(&view, y, free) - view.rhs - TIGHTEN * view.norm;
+                worst = worst.max(-slack / view.norm);
+                let multiplier = state.store.get(index).copied().unwrap_or(0.0);
+                let delta = (-slack / norm2).max(-multiplier);
+                if delta != 0.0 {
+                    if let Some(slot) = state.store.get_mut(index) {
+                        *slot = multiplier + delta;
+                    }
+                    row_axpy(&view, delta, y, free);
+                    largest_move = largest_move.max(libm::fabs(delta) * view.norm);
+                }
+            }
+        }
+        sweeps = sweeps.saturating_add(1);
+        *iterations = iterations.saturating_add(1);
+        // Converged: every tightened row met within half the tightening (so every original row
+        // holds with margin), and the last sweep moved y by no more than the QP's tolerance.
+        let feasible = worst <= 0.5 * TIGHTEN;
+        if feasible && largest_move <= tol.max(1e-3 * TIGHTEN) {
+            state.peak = state.peak.max(positive_multipliers(state));
+            return QpOutcome::Optimal;
+        }
+        if sweeps >= max_sweeps {
+            state.peak = state.peak.max(positive_multipliers(state));
+            return if feasible {
+                QpOutcome::Approximate
+            } else {
+                QpOutcome::IterationLimit
+            };
+        }
+    }
+}
+
+fn control_id(block: usize, node: usize) -> RowId {
+    RowId::Control {
+        block: u8::try_from(block).unwrap_or(u8::MAX),
+        node: u8::try_from(node).unwrap_or(u8::MAX),
+        upper: false,
+    }
+}
+
+fn keep_out_id(pair: usize, check: usize) -> RowId {
+    RowId::KeepOut {
+        pair: u8::try_from(pair).unwrap_or(u8::MAX),
+        check: u8::try_from(check).unwrap_or(u8::MAX),
+    }
+}
+
+fn positive_multipliers(state: &QpState) -> usize {
+    state
+        .store
+        .iter()
+        .take(DUAL_LEN)
+        .filter(|v| **v != 0.0)
+        .count()
+}
+
+/// Every nonzero multiplier of the fallback's table as (row, multiplier >= 0), in table order.
+pub(crate) fn for_each_multiplier(
+    state: &QpState,
+    tr: &Transcription,
+    mut f: impl FnMut(RowId, f64),
+) {
+    for block in 0..tr.blocks() {
+        for node in 0..tr.grid.nodes() {
+            let id = control_id(block, node);
+            let value = dual_index(id)
+                .and_then(|i| state.store.get(i))
+                .copied()
+                .unwrap_or(0.0);
+            if value > 0.0 {
+                f(id, value);
+            } else if value < 0.0 {
+                if let RowId::Control { block, node, .. } = id {
+                    f(
+                        RowId::Control {
+                            block,
+                            node,
+                            upper: true,
+                        },
+                        -value,
+                    );
+                }
+            }
+        }
+    }
+    for pair in 0..tr.pair_count {
+        for check in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
+            let id = keep_out_id(pair, check);
+            let value = dual_index(id)
+                .and_then(|i| state.store.get(i))
+                .copied()
+                .unwrap_or(0.0);
+            if value > 0.0 {
+                f(id, value);
+            }
+        }
+    }
+}

@@ -1,0 +1,301 @@
+//! `reconfig sweep`: planner A over seeded generated problem families, one table per family.
+//!
+//! Six families (issue 9): `random` (2-8 spacecraft, random ends in a 20 LU box),
+//! `symmetric` (2-8 spacecraft on a circle, each to the antipode, so all meet at the centre),
+//! `tight` (random, with Umax 1.15 times the least that reaches every axis rest to rest),
+//! `fly-through` (two files of spacecraft passing through each other with initial velocity),
+//! `dense` (8 spacecraft on a 2.4 LU lattice, permuted), `mixed` (random with masses 0.5-2,
+//! degrees 8-24). The generator is seeded (ChaCha8), so the same arguments give the same
+//! problems; `--write` stores them as JSON (one problem per line) for other tools.
+//!
+//! Per family the table gives the statuses, the largest QP working set, the saddle escapes and
+//! the solve time (median, worst). No oracle costs are compared here yet (issue 9 item 7 is not
+//! done): the cost column is the median and worst J.
+
+use crate::cli::solve_pseudospectral::solve_timed;
+use anyhow::{Context, Result};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use reconfig_core::pseudospectral::{Problem, Settings, SolveStatus, Spacecraft};
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Arguments of `reconfig sweep`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Problems per family.
+    #[arg(long, default_value_t = 42)]
+    pub per_family: usize,
+    /// Random seed.
+    #[arg(long, default_value_t = 9)]
+    pub seed: u64,
+    /// Also write the generated problems here (JSON, one `{family, problem}` per line).
+    #[arg(long)]
+    pub write: Option<PathBuf>,
+}
+
+/// The family names, in table order.
+pub const FAMILIES: [&str; 6] = [
+    "random",
+    "symmetric",
+    "tight",
+    "fly-through",
+    "dense",
+    "mixed",
+];
+
+const KEEP_OUT_LU: f64 = 2.0;
+const HORIZON_TU: f64 = 10.0;
+
+fn craft(mass: f64, a: [f64; 6], b: [f64; 6]) -> Spacecraft {
+    Spacecraft {
+        mass_mu: mass,
+        initial_state: a,
+        final_state: b,
+    }
+}
+
+fn at_rest(p: [f64; 3]) -> [f64; 6] {
+    [p[0], p[1], p[2], 0.0, 0.0, 0.0]
+}
+
+/// `count` points in a cube of half-width `half`, pairwise at least `gap` apart.
+fn spread(rng: &mut ChaCha8Rng, count: usize, half: f64, gap: f64) -> Vec<[f64; 3]> {
+    let mut points: Vec<[f64; 3]> = Vec::new();
+    // Bounded rejection sampling: the cube is large enough for 8 points at this gap.
+    for _ in 0..10_000 {
+        if points.len() == count {
+            break;
+        }
+        let p = [
+            rng.random_range(-half..half),
+            rng.random_range(-half..half),
+            rng.random_range(-half..half),
+        ];
+        let clear = points.iter().all(|q| {
+            let d2: f64 = (0..3).map(|k| (p[k] - q[k]).powi(2)).sum();
+            d2 >= gap * gap
+        });
+        if clear {
+            points.push(p);
+        }
+    }
+    points
+}
+
+fn problem(umax: f64, degree: u16, spacecraft: Vec<Spacecraft>) -> Problem {
+    let mut list = heapless::Vec::new();
+    for c in spacecraft.into_iter().take(8) {
+        let _ = list.push(c);
+    }
+    Problem {
+        horizon_tu: HORIZON_TU,
+        max_control_fu: umax,
+        keep_out_lu: KEEP_OUT_LU,
+        degree,
+        test_points: true,
+        spacecraft: list,
+    }
+}
+
+/// Generate one problem of `family`.
+pub fn generate(family: &str, rng: &mut ChaCha8Rng) -> Problem {
+    let gap = KEEP_OUT_LU + 0.5;
+    match family {
+        "symmetric" => {
+            let m = rng.random_range(2..=8usize);
+            let radius = 6.0;
+            let phase = rng.random_range(0.0..std::f64::consts::PI);
+            let crafts = (0..m)
+                .map(|k| {
+                    let a = phase + 2.0 * std::f64::consts::PI * k as f64 / m as f64;
+                    let p = [radius * a.cos(), radius * a.sin(), 0.0];
+                    craft(1.0, at_rest(p), at_rest([-p[0], -p[1], 0.0]))
+                })
+                .collect();
+            problem(1.0, 16, crafts)
+        }
+        "tight" => {
+            let m = rng.random_range(2..=6usize);
+            let starts = spread(rng, m, 8.0, gap);
+            let ends = spread(rng, m, 8.0, gap);
+            // Rest to rest along one axis needs 4 D / T^2 at least.
+            let mut need = 0.0f64;
+            for (a, b) in starts.iter().zip(ends.iter()) {
+                for k in 0..3 {
+                    need = need.max(4.0 * (b[k] - a[k]).abs() / (HORIZON_TU * HORIZON_TU));
+                }
+            }
+            let crafts = starts
+                .iter()
+                .zip(ends.iter())
+                .map(|(a, b)| craft(1.0, at_rest(*a), at_rest(*b)))
+                .collect();
+            problem(1.15 * need.max(0.05), 12, crafts)
+        }
+        "fly-through" => {
+            let per_side = rng.random_range(1..=4usize);
+            let mut crafts = Vec::new();
+            for k in 0..per_side {
+                let y = 3.0 * k as f64 - 1.5 * (per_side - 1) as f64;
+                let z = rng.random_range(-0.5..0.5);
+                let speed = rng.random_range(0.5..1.5);
+                crafts.push(craft(
+                    1.0,
+                    [-10.0, y, z, speed, 0.0, 0.0],
+                    [10.0, y + rng.random_range(-1.0..1.0), z, speed, 0.0, 0.0],
+                ));
+                crafts.push(craft(
+                    1.0,
+                    [10.0, y + 0.5, -z, -speed, 0.0, 0.0],
+                    [-10.0, y + 0.5, -z, -speed, 0.0, 0.0],
+                ));
+            }
+            problem(1.0, 14, crafts)
+        }
+        "dense" => {
+            let mut cells: Vec<[f64; 3]> = Vec::new();
+            for i in 0..2 {
+                for j in 0..2 {
+                    for k in 0..2 {
+                        cells.push([2.4 * i as f64, 2.4 * j as f64, 2.4 * k as f64]);
+                    }
+                }
+            }
+            let mut order: Vec<usize> = (0..8).collect();
+            for i in (1..8).rev() {
+                order.swap(i, rng.random_range(0..=i));
+            }
+            let crafts = (0..8)
+                .map(|i| craft(1.0, at_rest(cells[i]), at_rest(cells[order[i]])))
+                .collect();
+            problem(1.0, 12, crafts)
+        }
+        "mixed" => {
+            let m = rng.random_range(2..=8usize);
+            let starts = spread(rng, m, 10.0, gap);
+            let ends = spread(rng, m, 10.0, gap);
+            let degree = rng.random_range(8..=24u16);
+            let crafts = starts
+                .iter()
+                .zip(ends.iter())
+                .map(|(a, b)| craft(rng.random_range(0.5..2.0), at_rest(*a), at_rest(*b)))
+                .collect();
+            problem(1.0, degree, crafts)
+        }
+        _ => {
+            let m = rng.random_range(2..=8usize);
+            let starts = spread(rng, m, 10.0, gap);
+            let ends = spread(rng, m, 10.0, gap);
+            let crafts = starts
+                .iter()
+                .zip(ends.iter())
+                .map(|(a, b)| craft(1.0, at_rest(*a), at_rest(*b)))
+                .collect();
+            problem(1.0, 12, crafts)
+        }
+    }
+}
+
+fn percentile(sorted: &[f64], q: f64) -> f64 {
+    if sorted.is_empty() {
+        return f64::NAN;
+    }
+    let index = ((sorted.len() - 1) as f64 * q).round() as usize;
+    sorted[index.min(sorted.len() - 1)]
+}
+
+/// Run the sweep and print the tables.
+///
+/// # Errors
+/// Writing the problem file.
+pub fn run(args: &Args) -> Result<ExitCode> {
+    let mut rng = ChaCha8Rng::seed_from_u64(args.seed);
+    let mut file = match &args.write {
+        Some(path) => Some(
+            std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))?,
+        ),
+        None => None,
+    };
+    let settings = Settings::default();
+    println!(
+        "| family | problems | Solved | Feasible | other (status: count) | rejected | largest working set | saddle escapes (helped) | J median / worst | ms median / worst |"
+    );
+    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+    for family in FAMILIES {
+        let mut solved = 0usize;
+        let mut feasible = 0usize;
+        let mut rejected = 0usize;
+        let mut reasons: std::collections::BTreeMap<String, usize> = Default::default();
+        let mut other: std::collections::BTreeMap<String, usize> = Default::default();
+        let mut times = Vec::new();
+        let mut costs = Vec::new();
+        let mut working = 0u16;
+        let mut escapes = 0usize;
+        let mut helped = 0usize;
+        for _ in 0..args.per_family {
+            let p = generate(family, &mut rng);
+            if let Some(f) = file.as_mut() {
+                writeln!(
+                    f,
+                    "{}",
+                    serde_json::json!({ "family": family, "problem": &p })
+                )?;
+            }
+            let timed = match solve_timed(&p, &settings) {
+                Ok(timed) => timed,
+                Err(e) => {
+                    rejected += 1;
+                    // Name the refusal class from the core's message.
+                    let text = e.to_string();
+                    let class = if text.contains("cannot meet its boundary conditions") {
+                        "ManoeuvreInfeasible"
+                    } else if text.contains("closer than") {
+                        "BoundaryTooClose"
+                    } else {
+                        "other"
+                    }
+                    .to_string();
+                    *reasons.entry(class).or_default() += 1;
+                    continue;
+                }
+            };
+            let s = &timed.solution;
+            times.push(timed.solve_time_s * 1e3);
+            working = working.max(s.info.max_active);
+            if s.info.saddle_escapes > 0 {
+                escapes += 1;
+                if s.info.status == SolveStatus::Solved {
+                    helped += 1;
+                }
+            }
+            match s.info.status {
+                SolveStatus::Solved => {
+                    solved += 1;
+                    costs.push(s.cost);
+                }
+                SolveStatus::Feasible => {
+                    feasible += 1;
+                    costs.push(s.cost);
+                }
+                status => *other.entry(format!("{status:?}")).or_default() += 1,
+            }
+        }
+        times.sort_by(f64::total_cmp);
+        costs.sort_by(f64::total_cmp);
+        let others: Vec<String> = other.iter().map(|(k, v)| format!("{k}: {v}")).collect();
+        let reasons: Vec<String> = reasons.iter().map(|(k, v)| format!("{k}: {v}")).collect();
+        println!(
+            "| {family} | {} | {solved} | {feasible} | {} | {rejected}{} | {working} | {escapes} ({helped}) | {:.4} / {:.4} | {:.2} / {:.2} |",
+            args.per_family,
+            if others.is_empty() { "-".to_string() } else { others.join(", ") },
+            if reasons.is_empty() { String::new() } else { format!(" ({})", reasons.join(", ")) },
+            percentile(&costs, 0.5),
+            costs.last().copied().unwrap_or(f64::NAN),
+            percentile(&times, 0.5),
+            times.last().copied().unwrap_or(f64::NAN),
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}
