@@ -36,6 +36,7 @@ mod status;
 mod trajectory;
 mod transfer;
 mod types;
+mod validate;
 mod workspace;
 
 pub use elements::{
@@ -71,7 +72,7 @@ pub fn solve(
     out: &mut Solution,
 ) -> Result<(), PlanError> {
     settings.validate().map_err(PlanError::InvalidSettings)?;
-    let ctx = solver::validate(problem, settings)?;
+    let ctx = validate::validate(problem, settings)?;
     let evaluations = match &problem.plan {
         ImpulsePlan::Fixed(points) => {
             workspace.points = transfer::Points::new();

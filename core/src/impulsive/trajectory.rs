@@ -11,10 +11,10 @@ use super::nonlinear::{relative_position_rtn, state};
 use super::secular::rates;
 use super::settings::Settings;
 use super::solution::Solution;
-use super::solver;
 use super::status::Stage;
 use super::transfer::{chief_at, propagate, ImpulseModel, Points, Sequence, XVector};
 use super::types::{ImpulsePlan, MeanElements, Problem, RelativeElements};
+use super::validate;
 
 /// Why [`relative_position_rtn_km`] could not place the deputy.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -76,7 +76,7 @@ pub fn relative_position_rtn_km(
     settings
         .validate()
         .map_err(|e| TrajectoryError::Plan(PlanError::InvalidSettings(e)))?;
-    let ctx = solver::validate(problem, settings).map_err(TrajectoryError::Plan)?;
+    let ctx = validate::validate(problem, settings).map_err(TrajectoryError::Plan)?;
     let mut pts = Points::new();
     let mut dv = XVector::zeros();
     for (k, imp) in solution.impulses.iter().enumerate() {
