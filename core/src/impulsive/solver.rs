@@ -632,17 +632,7 @@ mod tests {
     #[test]
     fn fixed_point_converges_quickly_on_table_2() {
         let ctx = paper_context();
-        let mut pts = Points::new();
-        for (k, (u, n)) in [(274.155, 2), (238.864, 10), (285.649, 2)]
-            .iter()
-            .enumerate()
-        {
-            pts.at[k] = ImpulsePoint {
-                arg_latitude_rad: deg(*u),
-                revolutions: *n,
-            };
-        }
-        pts.n = 3;
+        let pts = table_2_points();
         let settings = Settings::default();
         let mut seq = Sequence::new();
         let mut dv = XVector::zeros();

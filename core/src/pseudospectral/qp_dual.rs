@@ -104,30 +104,9 @@ pub(crate) fn solve(
     state.mode = Mode::Dual;
     // Rebuild y = A^T l from the table so the two agree to rounding.
     *y = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
-    for block in 0..tr.blocks() {
-        for node in 0..tr.grid.nodes() {
-            let id = control_id(block, node);
-            let value = dual_index(id)
-                .and_then(|i| state.store.get(i))
-                .copied()
-                .unwrap_or(0.0);
-            if value != 0.0 {
-                row_axpy(&tr.view(id), value, y, free);
-            }
-        }
-    }
-    for pair in 0..tr.pair_count {
-        for check in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
-            let id = keep_out_id(pair, check);
-            let value = dual_index(id)
-                .and_then(|i| state.store.get(i))
-                .copied()
-                .unwrap_or(0.0);
-            if value != 0.0 {
-                row_axpy(&tr.view(id), value, y, free);
-            }
-        }
-    }
+    for_each_stored(state, tr, |id, value| {
+        row_axpy(&tr.view(id), value, y, free)
+    });
     let mut sweeps: u16 = 0;
     loop {
         let mut worst = 0.0f64;
@@ -238,45 +217,47 @@ fn positive_multipliers(state: &QpState) -> usize {
         .count()
 }
 
+/// Every nonzero value of the dual table with its row, in table order (control rows, then
+/// keep-out checks per pair): control values are signed (lower bound positive, upper negative).
+/// A row without a slot in the table has no multiplier, hence the zero.
+fn for_each_stored(state: &QpState, tr: &Transcription, mut f: impl FnMut(RowId, f64)) {
+    let mut visit = |id: RowId| {
+        let value = dual_index(id)
+            .and_then(|i| state.store.get(i))
+            .copied()
+            .unwrap_or(0.0);
+        if value != 0.0 {
+            f(id, value);
+        }
+    };
+    for block in 0..tr.blocks() {
+        for node in 0..tr.grid.nodes() {
+            visit(control_id(block, node));
+        }
+    }
+    for pair in 0..tr.pair_count {
+        for check in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
+            visit(keep_out_id(pair, check));
+        }
+    }
+}
+
 /// Every nonzero multiplier of the fallback's table as (row, multiplier >= 0), in table order.
 pub(crate) fn for_each_multiplier(
     state: &QpState,
     tr: &Transcription,
     mut f: impl FnMut(RowId, f64),
 ) {
-    for block in 0..tr.blocks() {
-        for node in 0..tr.grid.nodes() {
-            let id = control_id(block, node);
-            let value = dual_index(id)
-                .and_then(|i| state.store.get(i))
-                .copied()
-                .unwrap_or(0.0);
-            if value > 0.0 {
-                f(id, value);
-            } else if value < 0.0 {
-                if let RowId::Control { block, node, .. } = id {
-                    f(
-                        RowId::Control {
-                            block,
-                            node,
-                            upper: true,
-                        },
-                        -value,
-                    );
-                }
-            }
-        }
-    }
-    for pair in 0..tr.pair_count {
-        for check in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
-            let id = keep_out_id(pair, check);
-            let value = dual_index(id)
-                .and_then(|i| state.store.get(i))
-                .copied()
-                .unwrap_or(0.0);
-            if value > 0.0 {
-                f(id, value);
-            }
-        }
-    }
+    for_each_stored(state, tr, |id, value| match id {
+        RowId::Control { block, node, .. } if value < 0.0 => f(
+            RowId::Control {
+                block,
+                node,
+                upper: true,
+            },
+            -value,
+        ),
+        _ if value > 0.0 => f(id, value),
+        _ => {}
+    });
 }
