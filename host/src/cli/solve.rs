@@ -82,6 +82,24 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     }
 }
 
+/// Report a planner's `PlanError` in the one shape every planner uses and return exit code
+/// [`EXIT_REJECTED`].
+pub fn report_rejection<E: core::fmt::Debug + core::fmt::Display>(
+    name: &str,
+    err: &E,
+    json_output: bool,
+) -> ExitCode {
+    if json_output {
+        println!(
+            "{}",
+            json!({ "name": name, "status": "Rejected", "error": format!("{err:?}"), "message": err.to_string() })
+        );
+    } else {
+        println!("{name}: rejected: {err}");
+    }
+    ExitCode::from(EXIT_REJECTED)
+}
+
 /// The limits' verdict on `request`: `None` when it may be solved, else the refusal is
 /// reported and its exit code returned (a rejected input).
 fn refuse_outside(

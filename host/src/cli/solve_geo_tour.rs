@@ -1,6 +1,6 @@
 //! `reconfig solve` for GEO-tour fixtures: a table per leg, or `--json`.
 
-use crate::cli::solve::{EXIT_NOT_USABLE, EXIT_REJECTED, EXIT_USABLE};
+use crate::cli::solve::{report_rejection, EXIT_NOT_USABLE, EXIT_USABLE};
 use crate::fixture::geo_tour::{GeoTourFixture, DAY_S};
 use anyhow::Result;
 use reconfig_core::geo_tour::{solve, Solution, SolveStatus, Workspace};
@@ -99,15 +99,7 @@ pub fn run(fixture: &GeoTourFixture, json: bool, mission_days: Option<f64>) -> R
     let (s, solve_time_s) = match solve_fixture(fixture, mission_days) {
         Ok(v) => v,
         Err(err) => {
-            if json {
-                println!(
-                    "{}",
-                    json!({ "name": fixture.name, "status": "Rejected", "error": format!("{err:?}"), "message": err.to_string() })
-                );
-            } else {
-                println!("{}: rejected: {err}", fixture.name);
-            }
-            return Ok(ExitCode::from(EXIT_REJECTED));
+            return Ok(report_rejection(&fixture.name, &err, json));
         }
     };
     if json {

@@ -1,6 +1,6 @@
 //! `reconfig solve` for planner-B fixtures: a readable report, or `--json`.
 
-use crate::cli::solve::{EXIT_NOT_USABLE, EXIT_REJECTED, EXIT_USABLE};
+use crate::cli::solve::{report_rejection, EXIT_NOT_USABLE, EXIT_USABLE};
 use crate::fixture::impulsive::ImpulsiveFixture;
 use anyhow::Result;
 use reconfig_core::impulsive::{solve, ImpulsePlan, Solution, Workspace};
@@ -18,15 +18,7 @@ pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
     let result = solve(&fixture.problem, &settings, &mut workspace, &mut solution);
     let solve_time_s = started.elapsed().as_secs_f64();
     if let Err(err) = result {
-        if json {
-            println!(
-                "{}",
-                json!({ "name": fixture.name, "status": "Rejected", "error": format!("{err:?}"), "message": err.to_string() })
-            );
-        } else {
-            println!("{}: rejected: {err}", fixture.name);
-        }
-        return Ok(ExitCode::from(EXIT_REJECTED));
+        return Ok(report_rejection(&fixture.name, &err, json));
     }
     let s = &solution;
     if json {

@@ -1,6 +1,6 @@
 //! `reconfig solve` for planner-A fixtures: a readable report or one JSON object.
 
-use crate::cli::solve::{EXIT_NOT_USABLE, EXIT_REJECTED, EXIT_USABLE};
+use crate::cli::solve::{report_rejection, EXIT_NOT_USABLE, EXIT_USABLE};
 use crate::fixture::pseudospectral::PseudospectralFixture;
 use anyhow::{anyhow, Result};
 use reconfig_core::pseudospectral::{self, Settings, Solution, Workspace};
@@ -87,16 +87,7 @@ pub fn run(fixture: &PseudospectralFixture, json_output: bool) -> Result<ExitCod
     let timed = match solve_or_reject(&fixture.problem, &fixture.settings) {
         Ok(t) => t,
         Err(err) => {
-            // Same shape and exit code as planner B's rejection.
-            if json_output {
-                println!(
-                    "{}",
-                    json!({ "name": fixture.name, "status": "Rejected", "error": format!("{err:?}"), "message": err.to_string() })
-                );
-            } else {
-                println!("{}: rejected: {err}", fixture.name);
-            }
-            return Ok(ExitCode::from(EXIT_REJECTED));
+            return Ok(report_rejection(&fixture.name, &err, json_output));
         }
     };
     if json_output {
