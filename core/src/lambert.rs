@@ -19,7 +19,8 @@
 use serde::{Deserialize, Serialize};
 
 /// 3-vector, km or km/s.
-pub type Vec3 = [f64; 3];
+pub use crate::vec3::Vec3;
+use crate::vec3::{add, cross, dot, norm, scale, sub};
 
 /// Which of the two solutions of a multi-revolution family (K >= 1).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -53,34 +54,6 @@ pub struct LambertSolution {
     pub v2_kmps: Vec3,
     /// Householder steps used.
     pub iterations: u16,
-}
-
-fn dot(a: &Vec3, b: &Vec3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: &Vec3, b: &Vec3) -> Vec3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn norm(a: &Vec3) -> f64 {
-    libm::sqrt(dot(a, a))
-}
-
-fn scale(a: &Vec3, k: f64) -> Vec3 {
-    [a[0] * k, a[1] * k, a[2] * k]
-}
-
-fn add(a: &Vec3, b: &Vec3) -> Vec3 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-
-fn sub(a: &Vec3, b: &Vec3) -> Vec3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
 fn finite(a: &Vec3) -> bool {

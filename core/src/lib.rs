@@ -31,4 +31,5 @@ pub mod impulsive;
 pub mod lambert;
 pub mod limits;
 pub mod pseudospectral;
+mod vec3;
 pub mod wire;

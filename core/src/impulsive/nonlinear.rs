@@ -7,24 +7,8 @@ use super::elements::wrap_pi;
 use super::elements::{Elements, A, ARGP, E, EARTH_MU_KM3_S2, I, MA, RAAN};
 use super::kepler::mean_from_true;
 
-/// A 3-vector.
-pub(crate) type Vec3 = [f64; 3];
-
-fn dot(a: &Vec3, b: &Vec3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: &Vec3, b: &Vec3) -> Vec3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn norm(a: &Vec3) -> f64 {
-    libm::sqrt(dot(a, a))
-}
+pub(crate) use crate::vec3::Vec3;
+use crate::vec3::{cross, dot, norm};
 
 /// Position (km), velocity (km/s) and the local frame (radial, along-track, normal unit
 /// vectors) of elements `el` at true anomaly `f` (rad).

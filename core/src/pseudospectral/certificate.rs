@@ -31,6 +31,7 @@ use super::transcription::{
     MAX_BLOCKS,
 };
 use crate::capacity::{MAX_ACTIVE, MAX_FREE_PER_AXIS, MAX_NODES};
+use crate::vec3;
 use serde::{Deserialize, Serialize};
 
 /// `Solved` needs the scaled stationarity residual at or below this. The convex-concave
@@ -284,14 +285,14 @@ impl Envelope {
             *rd.get_mut(axis)? = rate * tr.grid.interpolate(&first, tau);
             *rdd.get_mut(axis)? = rate * rate * tr.grid.interpolate(&second, tau);
         }
-        let length = libm::sqrt(dot3(&r, &r));
+        let length = libm::sqrt(vec3::dot(&r, &r));
         if length <= 0.0 {
             return None;
         }
         let cube = length * length * length;
-        let radial = dot3(&r, &rd);
-        let f_tt = (dot3(&rd, &rd) + dot3(&r, &rdd)) / length - radial * radial / cube;
-        if f_tt <= 1e-9 * (1.0 + dot3(&rd, &rd) / length) {
+        let radial = vec3::dot(&r, &rd);
+        let f_tt = (vec3::dot(&rd, &rd) + vec3::dot(&r, &rdd)) / length - radial * radial / cube;
+        if f_tt <= 1e-9 * (1.0 + vec3::dot(&rd, &rd) / length) {
             return None;
         }
         let mut envelope = Self {
@@ -366,10 +367,6 @@ impl Envelope {
 
 fn block(sc: u8, axis: usize) -> usize {
     usize::from(sc).saturating_mul(3).saturating_add(axis)
-}
-
-fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// `x <- P x`: remove the part of `x` in the span of the active rows.
