@@ -75,12 +75,17 @@ fn nan_and_inf_anywhere() {
     );
 }
 
+fn classical(p: &Problem) -> PlanError {
+    reject(p, &Settings::paper_classical())
+}
+
 #[test]
-fn eccentricity_below_threshold_is_reported_not_divided_through() {
+fn eccentricity_below_threshold_is_reported_in_the_classical_set() {
+    // Paper-reproduction mode (classical elements): B holds 1/e, so small e is refused.
     let mut p = paper();
     p.chief.ecc = 1e-6;
     assert_eq!(
-        rejected(&p),
+        classical(&p),
         PlanError::EccentricityTooSmall {
             orbit: Orbit::Chief,
             ecc: 1e-6,
@@ -90,7 +95,7 @@ fn eccentricity_below_threshold_is_reported_not_divided_through() {
     let mut p = paper();
     p.chief.ecc = 0.0;
     assert_eq!(
-        rejected(&p),
+        classical(&p),
         PlanError::EccentricityTooSmall {
             orbit: Orbit::Chief,
             ecc: 0.0,
@@ -103,7 +108,7 @@ fn eccentricity_below_threshold_is_reported_not_divided_through() {
     p.initial.decc = 0.0;
     p.target.decc = -1.5e-4;
     assert_eq!(
-        rejected(&p),
+        classical(&p),
         PlanError::EccentricityTooSmall {
             orbit: Orbit::DeputyTarget,
             ecc: 2e-4 - 1.5e-4,
@@ -113,11 +118,12 @@ fn eccentricity_below_threshold_is_reported_not_divided_through() {
 }
 
 #[test]
-fn sin_inclination_below_threshold_is_reported() {
+fn sin_inclination_below_threshold_is_reported_in_the_classical_set() {
+    // Paper-reproduction mode: B holds 1/sin i.
     let mut p = paper();
     p.chief.inc_rad = 0.0;
     assert_eq!(
-        rejected(&p),
+        classical(&p),
         PlanError::InclinationSingular {
             orbit: Orbit::Chief,
             sin_inc: 0.0,
@@ -126,6 +132,7 @@ fn sin_inclination_below_threshold_is_reported() {
     );
     let mut p = paper();
     p.chief.inc_rad = std::f64::consts::PI - 1e-5;
+    // Retrograde equatorial is singular in the equinoctial set too (tan(i/2) infinite).
     match rejected(&p) {
         PlanError::InclinationSingular {
             orbit: Orbit::Chief,
@@ -136,6 +143,26 @@ fn sin_inclination_below_threshold_is_reported() {
             assert_eq!(min, 1e-3);
         }
         e => panic!("{e:?}"),
+    }
+}
+
+#[test]
+fn circular_and_equatorial_chiefs_are_ordinary_in_the_equinoctial_set() {
+    // The default (equinoctial) set is regular at e = 0 and i = 0: the inputs the classical
+    // set refuses above are planned, as long as every orbit is an ellipse (e >= 0).
+    for (ecc, inc_rad, decc) in [(0.0, 1.1, 1e-4), (1e-6, 1.1, 1e-4), (0.0, 0.0, 1e-4)] {
+        let mut p = paper();
+        p.chief.ecc = ecc;
+        p.chief.inc_rad = inc_rad;
+        p.initial.decc = 0.0;
+        p.target.decc = decc;
+        p.initial.dinc_rad = 0.0;
+        p.target.dinc_rad = 1e-4;
+        let mut ws = Workspace::new();
+        let mut out = Solution::new();
+        solve(&p, &Settings::default(), &mut ws, &mut out).unwrap();
+        assert_eq!(out.info.status, SolveStatus::Solved, "e {ecc} i {inc_rad}");
+        assert!(out.terminal_position_error_m < 1e-3);
     }
 }
 

@@ -20,10 +20,13 @@
 //! Every loop is bounded by a field of [`Settings`]; see its docs for the worst case.
 
 mod elements;
+mod equinoctial;
+mod equinoctial_drift;
 mod error;
 mod gve;
 mod kepler;
 mod min_fuel;
+mod model;
 mod nonlinear;
 mod pinv;
 mod search;
@@ -43,7 +46,7 @@ pub use elements::{
     wrap_pi, wrap_two_pi, EARTH_J2, EARTH_MU_KM3_S2, EARTH_RADIUS_KM, M_PER_KM, TWO_PI,
 };
 pub use error::{Orbit, PlanError, Quantity, SettingsError, MAX_ANGLE_RAD, MAX_SMA_KM};
-pub use settings::{Settings, MAX_SEARCH_STARTS};
+pub use settings::{ElementSet, Settings, MAX_SEARCH_STARTS};
 pub use socp::{least_fuel_rows, LeastFuel, SocpStatus};
 pub use solution::{Impulse, Solution};
 pub use status::{SolveInfo, SolveStatus, Stage};

@@ -26,7 +26,7 @@
 //! data-dependent budget).
 
 use super::elements::M_PER_KM;
-use super::elements::{mean_arg_latitude_rad, wrap_two_pi, TWO_PI};
+use super::elements::{wrap_two_pi, TWO_PI};
 use super::min_fuel::min_norm;
 use super::settings::{Settings, MAX_SEARCH_STARTS};
 use super::socp::least_fuel;
@@ -332,7 +332,7 @@ pub(crate) fn search(
         ctx,
         settings,
         n,
-        u0: mean_arg_latitude_rad(&ctx.deputy0),
+        u0: ctx.model.phase_rad(&ctx.deputy0),
         max_revolutions,
     };
     let budget = settings.search_max_evaluations;

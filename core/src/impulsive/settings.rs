@@ -62,7 +62,9 @@ pub struct Settings {
     pub rank_rcond: f64,
     /// Reject (and stop at) eccentricities below this: the GVE's `1/e` terms.
     pub min_eccentricity: f64,
-    /// Reject (and stop at) `|sin i|` below this: the GVE's `1/sin i` terms.
+    /// Reject (and stop at) `|sin i|` below this: the GVE's `1/sin i` terms. In the
+    /// equinoctial set, only a retrograde orbit (`cos i < 0`) this close to equatorial is
+    /// refused, and a chief with `|sin i|` below it has its impulse points in mean longitude.
     pub min_sin_inclination: f64,
     /// Largest sum of revolution counts accepted, for fixed points and a search's limit.
     pub max_total_revolutions: i32,
@@ -92,9 +94,37 @@ pub struct Settings {
     pub search_screen_tol_mps: f64,
     /// Least-fuel tolerance of a local-search evaluation's cone program, m/s.
     pub search_tol_mps: f64,
+    /// The mean-element set the drift, the impulse matrix, the fixed point and the nonlinear
+    /// correction are written in. [`ElementSet::Equinoctial`] (default) is regular at e = 0
+    /// and i = 0; [`ElementSet::Classical`] is the paper's set (paper-reproduction mode: its
+    /// linearised numbers to the digit), which refuses e < `min_eccentricity` and
+    /// `|sin i| < min_sin_inclination`. Corrected plans agree between the two (the exact end
+    /// condition does not depend on the coordinates).
+    pub element_set: ElementSet,
+}
+
+/// The working mean-element set of planner B (see `Settings::element_set`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ElementSet {
+    /// `[a, e, i, Omega, omega, M]`, Wang 2018's sigma: singular at e = 0 and sin i = 0.
+    Classical,
+    /// `[a, lambda, e cos(omega + Omega), e sin(omega + Omega), tan(i/2) cos Omega,
+    /// tan(i/2) sin Omega]`: regular except at i = pi.
+    Equinoctial,
 }
 
 impl Settings {
+    /// The paper-reproduction settings: the paper's classical elements, with the defaults
+    /// otherwise (combine with [`Settings::fixed_point_only`]'s switches for the paper's
+    /// linearised numbers).
+    pub fn paper_classical() -> Self {
+        Self {
+            element_set: ElementSet::Classical,
+            ..Self::default()
+        }
+    }
+
     /// The fixed-point plan alone: the defaults without the least-fuel refinement and without
     /// the nonlinear defect correction (Wang 2018's eq. 14 iterated to its fixed point). This is
     /// the plan the on-board instruction budget (2 M) is set for.
@@ -135,6 +165,7 @@ impl Default for Settings {
             search_fixed_point_max_iter: 1,
             search_screen_tol_mps: 1e-3,
             search_tol_mps: 1e-7,
+            element_set: ElementSet::Equinoctial,
         }
     }
 }

@@ -1,7 +1,7 @@
 //! The planner-B result: impulses, totals, terminal errors and counters.
 
 use super::status::{SolveInfo, SolveStatus};
-use super::types::RelativeElements;
+use super::types::{EquinoctialElements, RelativeElements};
 use crate::capacity::MAX_IMPULSES;
 use serde::{Deserialize, Serialize};
 
@@ -43,7 +43,13 @@ pub struct Solution {
     pub terminal_position_error_m: f64,
     /// Nonlinear check: achieved minus wanted relative elements at the last impulse (angles
     /// wrapped to `[-pi, pi]`).
+    /// In a solve in the equinoctial set these are the differences of the two orbits' classical
+    /// elements, whose node and perigee angles are not defined at i = 0 and e = 0 (they are
+    /// then 0 on each side): read `terminal_error_equinoctial` there.
     pub terminal_error_elements: RelativeElements,
+    /// Nonlinear check: achieved minus wanted equinoctial elements at the last impulse (mean
+    /// longitude wrapped to `[-pi, pi]`); regular at e = 0 and i = 0.
+    pub terminal_error_equinoctial: EquinoctialElements,
     /// Counters and status.
     pub info: SolveInfo,
 }
@@ -66,6 +72,14 @@ impl Solution {
                 draan_rad: 0.0,
                 dargp_rad: 0.0,
                 dmean_anomaly_rad: 0.0,
+            },
+            terminal_error_equinoctial: EquinoctialElements {
+                sma_km: 0.0,
+                mean_longitude_rad: 0.0,
+                ex: 0.0,
+                ey: 0.0,
+                hx: 0.0,
+                hy: 0.0,
             },
             info: SolveInfo {
                 status: SolveStatus::Unsolved,

@@ -2,20 +2,20 @@
 //! minimum-norm fixed point (Wang 2018, section 2), the min-fuel refinement, the nonlinear check
 //! and correction, and the checks of the returned plan.
 
-use super::elements::{
-    sub, to_relative, wrap_pi, wrap_two_pi, Elements, A, ARGP, E, M_PER_KM, RAAN,
-};
-use super::kepler::true_anomaly;
+use super::elements::{sub, to_relative, wrap_two_pi, Elements, A, M_PER_KM};
 use super::min_fuel::{min_norm, solve_least_fuel, total};
-use super::nonlinear::{relative_position_rtn, state};
+use super::model::Model;
+use super::nonlinear::relative_position_rtn;
 use super::pinv::{solve_full_row_rank, solve_min_norm, Conditioning};
+use super::settings::ElementSet;
 use super::settings::Settings;
 use super::solution::{Impulse, Solution};
 use super::status::{SolveStatus, Stage};
 use super::transfer::{
-    build_system, chief_at, propagate, Context, ImpulseModel, Points, Sequence, XVector,
+    build_system, chief_at, propagate, target_at, Context, ImpulseModel, Points, Sequence, XVector,
 };
-use super::validate::{index_u8, perigee_altitude_km};
+use super::types::EquinoctialElements;
+use super::validate::index_u8;
 
 /// Result of a fixed-point run.
 #[derive(Clone, Copy, Debug, Default)]
@@ -133,8 +133,20 @@ fn max_abs_diff(a: &XVector, b: &XVector) -> f64 {
     m
 }
 
+/// The nonlinear check's findings at the last impulse.
+pub(crate) struct Miss {
+    /// Achieved minus wanted elements in the working set, angles wrapped.
+    pub err: Elements,
+    /// Position error along the target's along-track direction, m.
+    pub along_m: f64,
+    /// Norm of the position error, m.
+    pub pos_m: f64,
+    /// The wanted deputy orbit (working set).
+    pub wanted: Elements,
+}
+
 /// Nonlinear check: propagate with exact impulses and compare with the target at the last
-/// impulse. Returns (element error with wrapped angles, along-track error m, position error m).
+/// impulse.
 ///
 /// # Errors
 /// The failing [`Stage`].
@@ -144,34 +156,65 @@ pub(crate) fn nonlinear_error(
     dv: &XVector,
     settings: &Settings,
     seq: &mut Sequence,
-) -> Result<(Elements, f64, f64), Stage> {
+) -> Result<Miss, Stage> {
     propagate(ctx, pts, dv, ImpulseModel::Exact, settings, seq)?;
-    let chief = chief_at(ctx, seq.final_time_s);
-    let achieved = sub(&seq.end, &chief);
-    let mut err = sub(&achieved, &ctx.target);
-    for k in [RAAN, ARGP, super::elements::MA] {
-        if let Some(x) = err.get_mut(k) {
-            *x = wrap_pi(*x);
+    let model = ctx.model;
+    let (mut err, wanted) = match model.set {
+        ElementSet::Classical => {
+            let chief = chief_at(ctx, seq.final_time_s);
+            let achieved = sub(&seq.end, &chief);
+            (
+                sub(&achieved, &ctx.target),
+                super::elements::add(&chief, &ctx.target),
+            )
         }
-    }
-    let wanted = super::elements::add(&chief, &ctx.target);
-    let (f_w, ok_w) = true_anomaly(
-        wanted[super::elements::MA],
-        wanted[E],
-        settings.kepler_max_iter,
-    );
-    let (f_a, ok_a) = true_anomaly(
-        seq.end[super::elements::MA],
-        seq.end[E],
-        settings.kepler_max_iter,
-    );
+        ElementSet::Equinoctial => {
+            let wanted = target_at(ctx, seq.final_time_s);
+            (sub(&seq.end, &wanted), wanted)
+        }
+    };
+    model.wrap_angles(&mut err);
+    let (f_w, ok_w) = model.anomaly(&wanted, settings.kepler_max_iter);
+    let (f_a, ok_a) = model.anomaly(&seq.end, settings.kepler_max_iter);
     if !(ok_w && ok_a) {
         return Err(Stage::Kepler);
     }
-    let d = relative_position_rtn(&state(&wanted, f_w), &state(&seq.end, f_a));
-    let along_m = d[1] * M_PER_KM;
-    let pos_m = libm::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * M_PER_KM;
-    Ok((err, along_m, pos_m))
+    let d = relative_position_rtn(&model.state(&wanted, f_w), &model.state(&seq.end, f_a));
+    Ok(Miss {
+        err,
+        along_m: d[1] * M_PER_KM,
+        pos_m: libm::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * M_PER_KM,
+        wanted,
+    })
+}
+
+/// The terminal error `err` (working set; `end` achieved, `wanted` wanted) in the classical
+/// and the equinoctial sets, angles wrapped.
+fn both_sets(
+    model: &Model,
+    end: &Elements,
+    wanted: &Elements,
+    err: &Elements,
+) -> (Elements, Elements) {
+    let classical_model = Model {
+        set: ElementSet::Classical,
+        phase: model.phase,
+    };
+    let eq_model = Model {
+        set: ElementSet::Equinoctial,
+        phase: model.phase,
+    };
+    let mut classical = match model.set {
+        ElementSet::Classical => *err,
+        ElementSet::Equinoctial => sub(&model.classical_of(end), &model.classical_of(wanted)),
+    };
+    classical_model.wrap_angles(&mut classical);
+    let mut equinoctial = match model.set {
+        ElementSet::Classical => sub(&model.equinoctial_of(end), &model.equinoctial_of(wanted)),
+        ElementSet::Equinoctial => *err,
+    };
+    eq_model.wrap_angles(&mut equinoctial);
+    (classical, equinoctial)
 }
 
 /// Largest of `|da|/a, |de|, |di|, |dOmega|, |domega|, |dM|`.
@@ -347,7 +390,7 @@ fn correct(
 ) -> Result<bool, Stage> {
     let columns = pts.n.saturating_mul(3);
     let mut dv = rep.dv;
-    let (err, _, _) = nonlinear_error(ctx, pts, &dv, settings, seq)?;
+    let err = nonlinear_error(ctx, pts, &dv, settings, seq)?.err;
     if scaled_error(&err, ctx.chief0[A]) <= settings.correction_tol {
         return Ok(true);
     }
@@ -359,7 +402,7 @@ fn correct(
         rep.correction_steps = rep.correction_steps.saturating_add(1);
         rep.correction_used = true;
         rep.dv = dv;
-        let (err, _, _) = nonlinear_error(ctx, pts, &dv, settings, seq)?;
+        let err = nonlinear_error(ctx, pts, &dv, settings, seq)?.err;
         if scaled_error(&err, ctx.chief0[A]) <= settings.correction_tol {
             return Ok(true);
         }
@@ -402,7 +445,7 @@ fn defect_jacobian(
         if let Some(x) = probe.get_mut(j) {
             *x += DEFECT_STEP_KM_S;
         }
-        let (e, _, _) = nonlinear_error(ctx, pts, &probe, settings, seq)?;
+        let e = nonlinear_error(ctx, pts, &probe, settings, seq)?.err;
         for ((c, a), b) in col.iter_mut().zip(e.iter()).zip(err.iter()) {
             *c = (*a - *b) / DEFECT_STEP_KM_S;
         }
@@ -413,7 +456,7 @@ fn defect_jacobian(
 /// The first transfer arc (1-based) of the exact propagation in `seq` whose perigee is below
 /// `min_km`, with that perigee altitude: arc k < N is the deputy after impulse k (`steps[k]`'s
 /// starting state), arc N the orbit after the last impulse.
-fn unsafe_arc(seq: &Sequence, n: usize, min_km: f64) -> Option<(u8, f64)> {
+fn unsafe_arc(model: &Model, seq: &Sequence, n: usize, min_km: f64) -> Option<(u8, f64)> {
     let after_impulses = seq
         .steps
         .iter()
@@ -422,7 +465,7 @@ fn unsafe_arc(seq: &Sequence, n: usize, min_km: f64) -> Option<(u8, f64)> {
         .map(|s| &s.before)
         .chain(core::iter::once(&seq.end));
     for (k, el) in after_impulses.enumerate() {
-        let perigee = perigee_altitude_km(el);
+        let perigee = model.perigee_altitude_km(el);
         // NaN fails the comparison and is caught by the non-finite scan.
         if perigee < min_km {
             return Some((index_u8(k.saturating_add(1)), perigee));
@@ -501,9 +544,12 @@ pub(crate) fn write_solution(
     // Times and latitudes from the model the impulses were solved for: the exact one when the
     // correction was applied, else the paper's linear one (left in `seq` by the solve).
     let linear_steps = seq.steps;
+    let mut errors_both = ([f64::NAN; 6], [f64::NAN; 6]);
     let linear_final_time_s = seq.final_time_s;
     let (err, along_m, pos_m) = match nonlinear_error(ctx, pts, &rep.dv, settings, seq) {
-        Ok(v) => {
+        Ok(miss) => {
+            let v = (miss.err, miss.along_m, miss.pos_m);
+            errors_both = both_sets(&ctx.model, &seq.end, &miss.wanted, &miss.err);
             match status {
                 SolveStatus::Solved
                     if scaled_error(&v.0, ctx.chief0[A])
@@ -519,7 +565,7 @@ pub(crate) fn write_solution(
             }
             if !failed(&status) {
                 if let Some((arc, perigee)) =
-                    unsafe_arc(seq, pts.n, settings.min_perigee_altitude_km)
+                    unsafe_arc(&ctx.model, seq, pts.n, settings.min_perigee_altitude_km)
                 {
                     status = SolveStatus::UnsafePerigee {
                         arc,
@@ -546,8 +592,10 @@ pub(crate) fn write_solution(
         let comp = |j: usize| rep.dv.get(c.saturating_add(j)).copied().unwrap_or(0.0) * M_PER_KM;
         let imp = Impulse {
             time_s: step.time_s,
-            arg_latitude_rad: wrap_two_pi(step.at[ARGP] + step.at[super::elements::MA]),
-            true_arg_latitude_rad: wrap_two_pi(step.at[ARGP] + step.true_anomaly_rad),
+            arg_latitude_rad: wrap_two_pi(ctx.model.phase_rad(&step.at)),
+            true_arg_latitude_rad: wrap_two_pi(
+                ctx.model.true_phase_rad(&step.at, step.true_anomaly_rad),
+            ),
             revolutions: point.revolutions,
             dv_rtn_mps: [comp(0), comp(1), comp(2)],
         };
@@ -560,7 +608,17 @@ pub(crate) fn write_solution(
     out.final_time_s = seq.final_time_s;
     out.terminal_error_m = along_m;
     out.terminal_position_error_m = pos_m;
-    out.terminal_error_elements = to_relative(&err);
+    let _ = err;
+    let (classical_err, eq_err) = errors_both;
+    out.terminal_error_elements = to_relative(&classical_err);
+    out.terminal_error_equinoctial = EquinoctialElements {
+        sma_km: eq_err[0],
+        mean_longitude_rad: eq_err[1],
+        ex: eq_err[2],
+        ey: eq_err[3],
+        hx: eq_err[4],
+        hy: eq_err[5],
+    };
     out.info.iterations = rep.iterations;
     out.info.min_fuel_iterations = rep.min_fuel_steps;
     out.info.min_fuel_gap_mps = if rep.min_fuel_used {
@@ -592,6 +650,7 @@ mod tests {
     use super::*;
     use crate::impulsive::elements::{from_mean, from_relative};
     use crate::impulsive::types::{ImpulsePoint, MeanElements, RelativeElements};
+    use crate::impulsive::validate::perigee_altitude_km;
 
     fn deg(x: f64) -> f64 {
         x.to_radians()
@@ -622,6 +681,10 @@ mod tests {
             -1.6389e-4, 5.5597e-4, 4.3361e-3, 7.1228e-2, -6.3572e-2, 3.1718e-2,
         ]));
         Context {
+            model: crate::impulsive::model::Model {
+                set: ElementSet::Classical,
+                phase: crate::impulsive::model::Phase::ArgLatitude,
+            },
             chief0,
             deputy0: super::super::elements::add(&chief0, &initial),
             initial,
@@ -633,7 +696,7 @@ mod tests {
     fn fixed_point_converges_quickly_on_table_2() {
         let ctx = paper_context();
         let pts = table_2_points();
-        let settings = Settings::default();
+        let settings = Settings::paper_classical();
         let mut seq = Sequence::new();
         let mut dv = XVector::zeros();
         let mut changes = [0.0; 12];
@@ -665,7 +728,7 @@ mod tests {
     fn a_transfer_arc_below_the_perigee_limit_is_unsafe_and_named() {
         let ctx = paper_context();
         let pts = table_2_points();
-        let settings = Settings::default();
+        let settings = Settings::paper_classical();
         let mut seq = Sequence::new();
         let rep = solve_points(&ctx, &pts, &settings, &mut seq);
         let mut out = Solution::new();
@@ -707,7 +770,7 @@ mod tests {
     fn non_finite_numbers_never_leave_and_say_numerical_failure() {
         let ctx = paper_context();
         let pts = table_2_points();
-        let settings = Settings::default();
+        let settings = Settings::paper_classical();
         let mut seq = Sequence::new();
         let mut rep = solve_points(&ctx, &pts, &settings, &mut seq);
         rep.min_norm_total_km_s = f64::NAN;
@@ -725,7 +788,7 @@ mod tests {
     fn solved_is_rechecked_on_the_returned_impulses() {
         let ctx = paper_context();
         let pts = table_2_points();
-        let settings = Settings::default();
+        let settings = Settings::paper_classical();
         let mut seq = Sequence::new();
         let mut rep = solve_points(&ctx, &pts, &settings, &mut seq);
         assert_eq!(rep.status, SolveStatus::Solved);

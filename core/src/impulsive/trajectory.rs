@@ -117,16 +117,17 @@ pub fn relative_position_rtn_km(
             since = (step.time_s, after);
         }
     }
-    let deputy = drift(&since.1, t_s - since.0);
+    let model = ctx.model;
+    let deputy = model.drift(&since.1, t_s - since.0);
     let chief = chief_at(&ctx, t_s);
-    let (f_d, ok_d) = true_anomaly(deputy[MA], deputy[E], settings.kepler_max_iter);
-    let (f_c, ok_c) = true_anomaly(chief[MA], chief[E], settings.kepler_max_iter);
+    let (f_d, ok_d) = model.anomaly(&deputy, settings.kepler_max_iter);
+    let (f_c, ok_c) = model.anomaly(&chief, settings.kepler_max_iter);
     if !(ok_d && ok_c) {
         return Err(TrajectoryError::Numerical(Stage::Kepler));
     }
     Ok(relative_position_rtn(
-        &state(&chief, f_c),
-        &state(&deputy, f_d),
+        &model.state(&chief, f_c),
+        &model.state(&deputy, f_d),
     ))
 }
 

@@ -1,15 +1,10 @@
 //! Impulse timing (Wang 2018, eq. 7), the propagated impulse sequence (eq. 6), and the linear
 //! end condition `F dX = dY` (eq. 9-12, with the paper's `I_3` read as `I_6`).
 
-use super::elements::{
-    mean_arg_latitude_rad, sub, wrap_pi, wrap_two_pi, Elements, A, E, EARTH_RADIUS_KM, I, MA,
-    TWO_PI,
-};
-use super::gve::impulse_matrix;
-use super::kepler::true_anomaly;
-use super::nonlinear::apply_impulse;
-use super::secular::{arg_latitude_rate_rad_s, rates, rates_jacobian};
-use super::settings::Settings;
+use super::elements::{add, sub, wrap_pi, wrap_two_pi, Elements, TWO_PI};
+use super::model::Model;
+use super::secular::rates;
+use super::settings::{ElementSet, Settings};
 use super::status::Stage;
 use super::types::ImpulsePoint;
 use crate::capacity::MAX_IMPULSES;
@@ -25,13 +20,17 @@ pub(crate) type XVector = SVector<f64, MAX_UNKNOWNS>;
 /// The validated request in working units.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Context {
+    /// Working element set and impulse-point phase; every element vector below is in it.
+    pub model: Model,
     /// Chief at the initial epoch.
     pub chief0: Elements,
     /// Deputy at the initial epoch (chief + initial).
     pub deputy0: Elements,
     /// Initial relative elements.
     pub initial: Elements,
-    /// Target relative elements (at the last impulse).
+    /// Target relative elements (at the last impulse). Equinoctial set: the target deputy as
+    /// it would be at the epoch minus the chief there; it drifts with the chief's rates (see
+    /// [`target_at`]).
     pub target: Elements,
 }
 
@@ -116,29 +115,26 @@ pub(crate) enum ImpulseModel {
     Exact,
 }
 
-/// Time from the deputy's state to the next impulse point, s (Wang 2018, eq. 7):
+/// Time from the deputy's state to the next impulse point, s (Wang 2018, eq. 7), with `u` the
+/// model's phase (mean argument of latitude, or mean longitude for an equatorial chief):
 /// `dt = (wrap_2pi(u_k - u_{k-1}) + 2 pi dN_k - wrap_pi(u_now - u_{k-1})) / n_J2`.
 ///
 /// `u_{k-1}` is the previous *point* and `u_now` the deputy's mean argument of latitude after
 /// the previous impulse; this equals the issue's `(wrap_2pi(u_k - u_now) + 2 pi dN_k) / n_J2`
 /// except that it stays continuous when an impulse's small jump in `u` crosses `u_k` (coincident
 /// points). A negative gap (the jump overshot a coincident point) is clamped to zero.
-pub(crate) fn time_to_point_s(el: &Elements, prev_point_rad: f64, point: &ImpulsePoint) -> f64 {
-    let u_now = mean_arg_latitude_rad(el);
+pub(crate) fn time_to_point_s(
+    model: &Model,
+    el: &Elements,
+    prev_point_rad: f64,
+    point: &ImpulsePoint,
+) -> f64 {
+    let u_now = model.phase_rad(el);
     let gap = wrap_two_pi(point.arg_latitude_rad - prev_point_rad)
         + TWO_PI * f64::from(point.revolutions)
         - wrap_pi(u_now - prev_point_rad);
     let gap = if gap > 0.0 { gap } else { 0.0 };
-    gap / arg_latitude_rate_rad_s(el)
-}
-
-/// `el` is inside the domain the model is valid on (thresholds from the settings).
-pub(crate) fn in_domain(el: &Elements, settings: &Settings) -> bool {
-    el.iter().all(|x| x.is_finite())
-        && el[A] > EARTH_RADIUS_KM
-        && el[E] >= settings.min_eccentricity
-        && el[E] < 1.0
-        && libm::fabs(libm::sin(el[I])) >= settings.min_sin_inclination
+    gap / model.phase_rate_rad_s(el)
 }
 
 /// Propagate the deputy through the impulse sequence (eq. 6) with impulses `dv` (km/s, RTN).
@@ -155,7 +151,8 @@ pub(crate) fn propagate(
 ) -> Result<(), Stage> {
     let mut s = ctx.deputy0;
     let mut t = 0.0;
-    let mut prev_point = mean_arg_latitude_rad(&s);
+    let working = ctx.model;
+    let mut prev_point = working.phase_rad(&s);
     for (k, (step, point)) in seq
         .steps
         .iter_mut()
@@ -163,21 +160,18 @@ pub(crate) fn propagate(
         .enumerate()
         .take(pts.n)
     {
-        let dt = time_to_point_s(&s, prev_point, point);
+        let dt = time_to_point_s(&working, &s, prev_point, point);
         step.before = s;
-        let d = rates(&s);
-        for (x, r) in s.iter_mut().zip(d.iter()) {
-            *x += *r * dt;
-        }
+        s = working.drift(&s, dt);
         t += dt;
-        let (f, ok) = true_anomaly(s[MA], s[E], settings.kepler_max_iter);
+        let (f, ok) = working.anomaly(&s, settings.kepler_max_iter);
         if !ok {
             return Err(Stage::Kepler);
         }
         step.at = s;
         step.true_anomaly_rad = f;
         step.time_s = t;
-        let b = impulse_matrix(&s, f);
+        let b = working.impulse_matrix(&s, f);
         step.b = b;
         let c = k.saturating_mul(3);
         let dv_k = [
@@ -195,9 +189,11 @@ pub(crate) fn propagate(
                 }
                 next
             }
-            ImpulseModel::Exact => apply_impulse(&s, f, &dv_k).ok_or(Stage::SingularState)?,
+            ImpulseModel::Exact => working
+                .apply_impulse(&s, f, &dv_k)
+                .ok_or(Stage::SingularState)?,
         };
-        if !in_domain(&s, settings) {
+        if !working.in_domain(&s, settings) {
             return Err(Stage::SingularState);
         }
         prev_point = point.arg_latitude_rad;
@@ -212,45 +208,65 @@ pub(crate) fn build_system(ctx: &Context, pts: &Points, seq: &mut Sequence) {
     let t_n = seq.final_time_s;
     seq.f.fill(0.0);
     for (k, step) in seq.steps.iter().enumerate().take(pts.n) {
-        let b = step.b;
-        // P_k = I_6 + dD(sigma_{k-1}) (t_N - t_k); dD depends on (a, e, i) only, which do not
-        // drift, so sigma_{k-1} and sigma_{k,0} give the same P.
-        let mut p_b = b;
-        p_b.gemm(t_n - step.time_s, &rates_jacobian(&step.before), &b, 1.0);
+        // P_k B_k: the impulse carried to t_N by the drift's state transition (classical: the
+        // paper's I_6 + dD(sigma_{k-1}) (t_N - t_k); dD depends on (a, e, i) only, which do not
+        // drift, so sigma_{k-1} and sigma_{k,0} give the same P).
+        let p_b = ctx
+            .model
+            .transition_times(&step.before, &step.at, t_n - step.time_s, &step.b);
         let c = k.saturating_mul(3);
         if c < MAX_UNKNOWNS {
             seq.f.fixed_view_mut::<6, 3>(0, c).copy_from(&p_b);
         }
     }
-    let drift = sub(&rates(&ctx.deputy0), &rates(&ctx.chief0));
-    let dy = sub(
-        &sub(&ctx.target, &ctx.initial),
-        &[
-            drift[0] * t_n,
-            drift[1] * t_n,
-            drift[2] * t_n,
-            drift[3] * t_n,
-            drift[4] * t_n,
-            drift[5] * t_n,
-        ],
-    );
+    let dy = match ctx.model.set {
+        ElementSet::Classical => {
+            let drift = sub(&rates(&ctx.deputy0), &rates(&ctx.chief0));
+            sub(
+                &sub(&ctx.target, &ctx.initial),
+                &[
+                    drift[0] * t_n,
+                    drift[1] * t_n,
+                    drift[2] * t_n,
+                    drift[3] * t_n,
+                    drift[4] * t_n,
+                    drift[5] * t_n,
+                ],
+            )
+        }
+        // The target at t_N minus the deputy drifted there without impulses.
+        ElementSet::Equinoctial => sub(&target_at(ctx, t_n), &ctx.model.drift(&ctx.deputy0, t_n)),
+    };
     seq.dy = SVector::<f64, 6>::from(dy);
 }
 
 /// The chief at time `t_s` (J2 secular drift only).
 pub(crate) fn chief_at(ctx: &Context, t_s: f64) -> Elements {
-    let d = rates(&ctx.chief0);
-    let mut c = ctx.chief0;
-    for (x, r) in c.iter_mut().zip(d.iter()) {
-        *x += *r * t_s;
+    ctx.model.drift(&ctx.chief0, t_s)
+}
+
+/// The deputy's target orbit at time `t_s`: the target relative elements on the chief there.
+pub(crate) fn target_at(ctx: &Context, t_s: f64) -> Elements {
+    match ctx.model.set {
+        ElementSet::Classical => add(&chief_at(ctx, t_s), &ctx.target),
+        ElementSet::Equinoctial => {
+            ctx.model
+                .drift_with(&add(&ctx.chief0, &ctx.target), &ctx.chief0, t_s)
+        }
     }
-    c
 }
 
 #[cfg(test)]
 #[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
 mod tests {
     use super::*;
+    use crate::impulsive::model::Phase;
+    use crate::impulsive::secular::arg_latitude_rate_rad_s;
+
+    const CLASSICAL: Model = Model {
+        set: ElementSet::Classical,
+        phase: Phase::ArgLatitude,
+    };
 
     #[test]
     fn timing_counts_revolutions_and_wraps() {
@@ -260,16 +276,18 @@ mod tests {
             arg_latitude_rad: 1.0,
             revolutions: 2,
         };
-        assert!((time_to_point_s(&el, 0.0, &p) - (1.0 + 2.0 * TWO_PI) / n).abs() < 1e-9);
+        assert!(
+            (time_to_point_s(&CLASSICAL, &el, 0.0, &p) - (1.0 + 2.0 * TWO_PI) / n).abs() < 1e-9
+        );
         // Point behind the current u: wraps forward.
         let el2 = [7178.137, 0.0678, 1.1071, 1.95, 0.0, 2.0];
         let p = ImpulsePoint {
             arg_latitude_rad: 1.0,
             revolutions: 0,
         };
-        assert!((time_to_point_s(&el2, 2.0, &p) - (TWO_PI - 1.0) / n).abs() < 1e-9);
+        assert!((time_to_point_s(&CLASSICAL, &el2, 2.0, &p) - (TWO_PI - 1.0) / n).abs() < 1e-9);
         // Coincident point just overshot by the impulse: zero, not a revolution.
         let el3 = [7178.137, 0.0678, 1.1071, 1.95, 0.0, 1.0 + 1e-9];
-        assert_eq!(time_to_point_s(&el3, 1.0, &p), 0.0);
+        assert_eq!(time_to_point_s(&CLASSICAL, &el3, 1.0, &p), 0.0);
     }
 }

@@ -21,6 +21,25 @@ pub struct MeanElements {
     pub mean_anomaly_rad: f64,
 }
 
+/// Mean equinoctial elements (Broucke & Cefola's direct set), regular at e = 0 and i = 0:
+/// `lambda = M + omega + Omega`, `(ex, ey) = e (cos, sin)(omega + Omega)`,
+/// `(hx, hy) = tan(i/2) (cos, sin) Omega`. Also used for differences of two such sets.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct EquinoctialElements {
+    /// Semi-major axis a, km.
+    pub sma_km: f64,
+    /// Mean longitude lambda, rad.
+    pub mean_longitude_rad: f64,
+    /// `e cos(omega + Omega)`.
+    pub ex: f64,
+    /// `e sin(omega + Omega)`.
+    pub ey: f64,
+    /// `tan(i/2) cos Omega`.
+    pub hx: f64,
+    /// `tan(i/2) sin Omega`.
+    pub hy: f64,
+}
+
 /// Deputy-minus-chief mean elements, same order and units as [`MeanElements`].
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RelativeElements {

@@ -2,8 +2,10 @@
 //! element ranges, perigee altitudes of the chief and the deputy's initial and target orbits,
 //! and the impulse points; builds the solve's [`Context`].
 
-use super::elements::{from_mean, from_relative, Elements, A, E, EARTH_RADIUS_KM, I};
+use super::elements::{from_mean, from_relative, sub, Elements, A, E, EARTH_RADIUS_KM, I};
 use super::error::{Orbit, PlanError, Quantity, MAX_ANGLE_RAD, MAX_SMA_KM};
+use super::model::{Model, Phase};
+use super::settings::ElementSet;
 use super::settings::Settings;
 use super::transfer::Context;
 use super::types::{ImpulsePlan, Problem};
@@ -29,8 +31,9 @@ pub(crate) fn perigee_altitude_km(el: &Elements) -> f64 {
 }
 
 /// The orbit is an ellipse the model holds on: e in [0, 1), a in (Re + min altitude,
-/// MAX_SMA_KM], i in [0, pi], perigee above the minimum altitude, and away from the classical
-/// elements' singularities (checked in that order).
+/// MAX_SMA_KM], i in [0, pi], perigee above the minimum altitude, and away from the working
+/// set's singularities (checked in that order): e = 0 and sin i = 0 for the classical set,
+/// retrograde equatorial (i near pi) for the equinoctial set.
 fn check_orbit(el: &Elements, orbit: Orbit, settings: &Settings) -> Result<(), PlanError> {
     let ecc = el[E];
     if !(0.0..1.0).contains(&ecc) {
@@ -59,15 +62,18 @@ fn check_orbit(el: &Elements, orbit: Orbit, settings: &Settings) -> Result<(), P
             min_km: settings.min_perigee_altitude_km,
         });
     }
-    if ecc < settings.min_eccentricity {
+    let classical = settings.element_set == ElementSet::Classical;
+    if classical && ecc < settings.min_eccentricity {
         return Err(PlanError::EccentricityTooSmall {
             orbit,
             ecc,
             min: settings.min_eccentricity,
         });
     }
+    // The classical set is singular at sin i = 0; the equinoctial one only at i = pi.
     let sin_inc = libm::fabs(libm::sin(el[I]));
-    if sin_inc < settings.min_sin_inclination {
+    let singular = classical || el[I] > core::f64::consts::FRAC_PI_2;
+    if singular && sin_inc < settings.min_sin_inclination {
         return Err(PlanError::InclinationSingular {
             orbit,
             sin_inc,
@@ -173,10 +179,37 @@ pub(crate) fn validate(problem: &Problem, settings: &Settings) -> Result<Context
             }
         }
     }
+    let (sin_i, cos_i) = (libm::sin(chief0[I]), libm::cos(chief0[I]));
+    let phase = if settings.element_set == ElementSet::Equinoctial
+        && cos_i > 0.0
+        && sin_i < settings.min_sin_inclination
+    {
+        Phase::MeanLongitude
+    } else {
+        Phase::ArgLatitude
+    };
+    let model = Model {
+        set: settings.element_set,
+        phase,
+    };
+    if model.set == ElementSet::Classical {
+        return Ok(Context {
+            model,
+            chief0,
+            deputy0,
+            initial,
+            target,
+        });
+    }
+    // The working set: differences of the converted orbits.
+    let chief_w = model.working_of_classical(&chief0);
+    let deputy_w = model.working_of_classical(&deputy0);
+    let target_w = model.working_of_classical(&deputy_target);
     Ok(Context {
-        chief0,
-        deputy0,
-        initial,
-        target,
+        model,
+        chief0: chief_w,
+        deputy0: deputy_w,
+        initial: sub(&deputy_w, &chief_w),
+        target: sub(&target_w, &chief_w),
     })
 }

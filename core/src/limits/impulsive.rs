@@ -166,6 +166,7 @@ impl Limits {
             search_fixed_point_max_iter,
             search_screen_tol_mps,
             search_tol_mps,
+            element_set: _, // either set: the same loops and bounds
         } = *s;
         use Setting as S;
         let l = self;
