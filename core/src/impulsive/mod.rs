@@ -29,6 +29,7 @@ mod min_fuel;
 mod model;
 mod nonlinear;
 mod pinv;
+mod returned;
 mod search;
 mod secular;
 mod settings;
@@ -102,7 +103,7 @@ pub fn solve(
         }
     };
     let report = solver::solve_points(&ctx, &workspace.points, settings, &mut workspace.seq);
-    solver::write_solution(
+    returned::write_solution(
         &ctx,
         &workspace.points,
         settings,

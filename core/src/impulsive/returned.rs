@@ -1,0 +1,234 @@
+//! The checks of a returned plan and its writing-out: the nonlinear check re-run on the
+//! returned impulses, the transfer arcs' perigees, the terminal error in both element sets,
+//! and the scrub of non-finite numbers (split from `solver`, which finds the plan).
+
+use super::elements::{sub, to_relative, wrap_two_pi, Elements, A, M_PER_KM};
+use super::min_fuel::total;
+use super::model::Model;
+use super::settings::{ElementSet, Settings};
+use super::solution::{Impulse, Solution};
+use super::solver::{nonlinear_error, scaled_error, Report};
+use super::status::{SolveStatus, Stage};
+use super::transfer::{Context, Points, Sequence};
+use super::types::EquinoctialElements;
+use super::validate::index_u8;
+
+/// The terminal error `err` (working set; `end` achieved, `wanted` wanted) in the classical
+/// and the equinoctial sets, angles wrapped.
+fn both_sets(
+    model: &Model,
+    end: &Elements,
+    wanted: &Elements,
+    err: &Elements,
+) -> (Elements, Elements) {
+    let classical_model = Model {
+        set: ElementSet::Classical,
+        phase: model.phase,
+    };
+    let eq_model = Model {
+        set: ElementSet::Equinoctial,
+        phase: model.phase,
+    };
+    let mut classical = match model.set {
+        ElementSet::Classical => *err,
+        ElementSet::Equinoctial => sub(&model.classical_of(end), &model.classical_of(wanted)),
+    };
+    classical_model.wrap_angles(&mut classical);
+    let mut equinoctial = match model.set {
+        ElementSet::Classical => sub(&model.equinoctial_of(end), &model.equinoctial_of(wanted)),
+        ElementSet::Equinoctial => *err,
+    };
+    eq_model.wrap_angles(&mut equinoctial);
+    (classical, equinoctial)
+}
+
+/// The first transfer arc (1-based) of the exact propagation in `seq` whose perigee is below
+/// `min_km`, with that perigee altitude: arc k < N is the deputy after impulse k (`steps[k]`'s
+/// starting state), arc N the orbit after the last impulse.
+fn unsafe_arc(model: &Model, seq: &Sequence, n: usize, min_km: f64) -> Option<(u8, f64)> {
+    let after_impulses = seq
+        .steps
+        .iter()
+        .take(n)
+        .skip(1)
+        .map(|s| &s.before)
+        .chain(core::iter::once(&seq.end));
+    for (k, el) in after_impulses.enumerate() {
+        let perigee = model.perigee_altitude_km(el);
+        // NaN fails the comparison and is caught by the non-finite scan.
+        if perigee < min_km {
+            return Some((index_u8(k.saturating_add(1)), perigee));
+        }
+    }
+    None
+}
+
+/// Replace a non-finite number by 0; true when it was not finite.
+fn scrub(x: &mut f64) -> bool {
+    if x.is_finite() {
+        false
+    } else {
+        *x = 0.0;
+        true
+    }
+}
+
+/// Every number of `out` finite: non-finite ones are written as 0. True when one was not.
+fn scrub_solution(out: &mut Solution) -> bool {
+    let mut bad = false;
+    for imp in out.impulses.iter_mut() {
+        bad |= scrub(&mut imp.time_s);
+        bad |= scrub(&mut imp.arg_latitude_rad);
+        bad |= scrub(&mut imp.true_arg_latitude_rad);
+        for x in imp.dv_rtn_mps.iter_mut() {
+            bad |= scrub(x);
+        }
+    }
+    let e = &mut out.terminal_error_elements;
+    for x in [
+        &mut out.total_dv_mps,
+        &mut out.min_norm_total_dv_mps,
+        &mut out.linear_total_dv_mps,
+        &mut out.final_time_s,
+        &mut out.terminal_error_m,
+        &mut out.terminal_position_error_m,
+        &mut e.dsma_km,
+        &mut e.decc,
+        &mut e.dinc_rad,
+        &mut e.draan_rad,
+        &mut e.dargp_rad,
+        &mut e.dmean_anomaly_rad,
+        &mut out.info.condition_number,
+    ] {
+        bad |= scrub(x);
+    }
+    if let SolveStatus::Linearised { miss_m } = &mut out.info.status {
+        bad |= scrub(miss_m);
+    }
+    if let SolveStatus::UnsafePerigee {
+        perigee_altitude_km,
+        ..
+    } = &mut out.info.status
+    {
+        bad |= scrub(perigee_altitude_km);
+    }
+    bad
+}
+
+/// Write a report into `out`: impulses (m/s, RTN), totals, nonlinear terminal errors. The
+/// status is settled here on the returned impulses: the nonlinear check is re-run on them
+/// (`Solved` needs its error within `correction_tol`; `Linearised` gets its miss), every
+/// transfer arc's perigee is checked, and any non-finite number makes it `NumericalFailure`.
+pub(crate) fn write_solution(
+    ctx: &Context,
+    pts: &Points,
+    settings: &Settings,
+    seq: &mut Sequence,
+    rep: &Report,
+    evaluations: u32,
+    out: &mut Solution,
+) {
+    let mut status = rep.status;
+    let failed = |s: &SolveStatus| matches!(s, SolveStatus::NumericalFailure(_));
+    // Times and latitudes from the model the impulses were solved for: the exact one when the
+    // correction was applied, else the paper's linear one (left in `seq` by the solve).
+    let linear_steps = seq.steps;
+    let mut errors_both = ([f64::NAN; 6], [f64::NAN; 6]);
+    let linear_final_time_s = seq.final_time_s;
+    let (err, along_m, pos_m) = match nonlinear_error(ctx, pts, &rep.dv, settings, seq) {
+        Ok(miss) => {
+            let v = (miss.err, miss.along_m, miss.pos_m);
+            errors_both = both_sets(&ctx.model, &seq.end, &miss.wanted, &miss.err);
+            match status {
+                SolveStatus::Solved
+                    if scaled_error(&v.0, ctx.chief0[A])
+                        .partial_cmp(&settings.correction_tol)
+                        .is_none_or(core::cmp::Ordering::is_gt) =>
+                {
+                    status = SolveStatus::CorrectionNotConverged;
+                }
+                SolveStatus::Linearised { .. } => {
+                    status = SolveStatus::Linearised { miss_m: v.2 };
+                }
+                _ => {}
+            }
+            if !failed(&status) {
+                if let Some((arc, perigee)) =
+                    unsafe_arc(&ctx.model, seq, pts.n, settings.min_perigee_altitude_km)
+                {
+                    status = SolveStatus::UnsafePerigee {
+                        arc,
+                        perigee_altitude_km: perigee,
+                    };
+                }
+            }
+            v
+        }
+        Err(stage) => {
+            if !failed(&status) {
+                status = SolveStatus::NumericalFailure(stage);
+            }
+            ([f64::NAN; 6], f64::NAN, f64::NAN)
+        }
+    };
+    if !rep.correction_used {
+        seq.steps = linear_steps;
+        seq.final_time_s = linear_final_time_s;
+    }
+    out.impulses.clear();
+    for (k, (step, point)) in seq.steps.iter().zip(pts.at.iter()).enumerate().take(pts.n) {
+        let c = k.saturating_mul(3);
+        let comp = |j: usize| rep.dv.get(c.saturating_add(j)).copied().unwrap_or(0.0) * M_PER_KM;
+        let imp = Impulse {
+            time_s: step.time_s,
+            arg_latitude_rad: wrap_two_pi(ctx.model.phase_rad(&step.at)),
+            true_arg_latitude_rad: wrap_two_pi(
+                ctx.model.true_phase_rad(&step.at, step.true_anomaly_rad),
+            ),
+            revolutions: point.revolutions,
+            dv_rtn_mps: [comp(0), comp(1), comp(2)],
+        };
+        // Capacity equals MAX_IMPULSES and pts.n <= MAX_IMPULSES, so this cannot fail.
+        let _ = out.impulses.push(imp);
+    }
+    out.total_dv_mps = total(&rep.dv) * M_PER_KM;
+    out.min_norm_total_dv_mps = rep.min_norm_total_km_s * M_PER_KM;
+    out.linear_total_dv_mps = rep.linear_total_km_s * M_PER_KM;
+    out.final_time_s = seq.final_time_s;
+    out.terminal_error_m = along_m;
+    out.terminal_position_error_m = pos_m;
+    let _ = err;
+    let (classical_err, eq_err) = errors_both;
+    out.terminal_error_elements = to_relative(&classical_err);
+    out.terminal_error_equinoctial = EquinoctialElements {
+        sma_km: eq_err[0],
+        mean_longitude_rad: eq_err[1],
+        ex: eq_err[2],
+        ey: eq_err[3],
+        hx: eq_err[4],
+        hy: eq_err[5],
+    };
+    out.info.iterations = rep.iterations;
+    out.info.min_fuel_iterations = rep.min_fuel_steps;
+    out.info.min_fuel_gap_mps = if rep.min_fuel_used {
+        rep.min_fuel_gap_km_s * M_PER_KM
+    } else {
+        0.0
+    };
+    out.info.correction_iterations = rep.correction_steps;
+    out.info.rank = rep.conditioning.rank;
+    // Rank-deficient F has no finite condition number; the largest f64 says so in a finite
+    // number (the rank field carries the fact).
+    out.info.condition_number = if rep.conditioning.rank < 6 {
+        f64::MAX
+    } else {
+        rep.conditioning.condition_number
+    };
+    out.info.min_fuel_used = rep.min_fuel_used;
+    out.info.correction_used = rep.correction_used;
+    out.info.evaluations = evaluations;
+    out.info.status = status;
+    if scrub_solution(out) && !failed(&out.info.status) {
+        out.info.status = SolveStatus::NumericalFailure(Stage::NonFinite);
+    }
+}
