@@ -380,3 +380,48 @@ fn corrected_two_impulse_plans_match_the_exact_model_oracle() {
         }
     }
 }
+
+#[test]
+fn circular_and_equatorial_fixtures_match_the_equinoctial_oracle() {
+    // Circular (e = 0) and circular equatorial (GEO, e = 0, i = 0) chiefs, which the classical
+    // elements refuse: Solved by the default (equinoctial) core with a nonlinear miss <= 1 mm,
+    // and equal to the root of the exact end condition computed independently in equinoctial
+    // elements by tests/oracle/planner_b_nonsingular.py (which also reproduces the classical
+    // oracle's plans for the e = 1e-3 and the paper's fixtures).
+    let text =
+        std::fs::read_to_string(fixtures_dir().join("golden/planner-b-nonsingular.json")).unwrap();
+    let g: serde_json::Value = serde_json::from_str(&text).unwrap();
+    for name in [
+        "sso-leo-pair-e0-2imp",
+        "geo-colocation-e0-i0-2imp",
+        "sso-leo-pair-e1e-3-2imp",
+        "wang2018-gco-to-pco-2imp",
+    ] {
+        let s = run(&problem(name), &Settings::default());
+        assert_eq!(s.info.status, SolveStatus::Solved, "{name}");
+        assert!(s.terminal_position_error_m <= 1e-3, "{name}");
+        let o = &g[name];
+        let total = o["total_dv_mps"].as_f64().unwrap();
+        assert!(
+            (s.total_dv_mps - total).abs() < 1e-8,
+            "{name}: {} vs oracle {total}",
+            s.total_dv_mps
+        );
+        for (k, imp) in s.impulses.iter().enumerate() {
+            let t = o["times_s"][k].as_f64().unwrap();
+            assert!((imp.time_s - t).abs() < 1e-5, "{name} {k}: {}", imp.time_s);
+            for axis in 0..3 {
+                let v = o["dv_rtn_mps"][k][axis].as_f64().unwrap();
+                assert!(
+                    (imp.dv_rtn_mps[axis] - v).abs() < 1e-8,
+                    "{name} impulse {k} axis {axis}: {} vs {v}",
+                    imp.dv_rtn_mps[axis]
+                );
+            }
+        }
+        println!(
+            "{name}: {:.10} m/s (oracle {total:.10}), miss {:.2e} m, {} correction steps",
+            s.total_dv_mps, s.terminal_position_error_m, s.info.correction_iterations
+        );
+    }
+}

@@ -47,6 +47,7 @@ pub use elements::{
     wrap_pi, wrap_two_pi, EARTH_J2, EARTH_MU_KM3_S2, EARTH_RADIUS_KM, M_PER_KM, TWO_PI,
 };
 pub use error::{Orbit, PlanError, Quantity, SettingsError, MAX_ANGLE_RAD, MAX_SMA_KM};
+pub use model::{point_phase, Phase};
 pub use settings::{ElementSet, Settings, MAX_SEARCH_STARTS};
 pub use socp::{least_fuel_rows, LeastFuel, SocpStatus};
 pub use solution::{Impulse, Solution};

@@ -13,17 +13,36 @@ use super::elements::{Elements, A, ARGP, E, EARTH_RADIUS_KM, I, MA, RAAN};
 use super::equinoctial as eq;
 use super::equinoctial_drift as eq_drift;
 use super::settings::{ElementSet, Settings};
+use super::types::MeanElements;
 use super::{gve, kepler, nonlinear, secular};
 use crate::vec3::Vec3;
 use nalgebra::SMatrix;
 
-/// The phase convention of the impulse points.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Phase {
+/// The phase convention of the impulse points (`ImpulsePoint::arg_latitude_rad` and
+/// `Impulse::arg_latitude_rad` hold this angle): see [`point_phase`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Phase {
     /// Mean argument of latitude `omega + M`.
     ArgLatitude,
     /// Mean longitude `M + omega + Omega` (equatorial chief).
     MeanLongitude,
+}
+
+/// The phase the impulse points of a problem with chief `chief` are counted in under
+/// `settings`: the mean longitude for a prograde chief with `|sin i|` below
+/// `settings.min_sin_inclination` in the equinoctial set (the node is not defined there), else
+/// the mean argument of latitude.
+pub fn point_phase(chief: &MeanElements, settings: &Settings) -> Phase {
+    let (sin_i, cos_i) = (libm::sin(chief.inc_rad), libm::cos(chief.inc_rad));
+    if settings.element_set == ElementSet::Equinoctial
+        && cos_i > 0.0
+        && libm::fabs(sin_i) < settings.min_sin_inclination
+    {
+        Phase::MeanLongitude
+    } else {
+        Phase::ArgLatitude
+    }
 }
 
 /// The working set and the phase convention of one solve.

@@ -10,9 +10,11 @@ use serde::{Deserialize, Serialize};
 pub struct Impulse {
     /// Time from the initial epoch, s.
     pub time_s: f64,
-    /// The deputy's mean argument of latitude `u = omega + M` at the impulse, rad in `[0, 2 pi)`.
+    /// The deputy's mean argument of latitude `u = omega + M` at the impulse, rad in `[0, 2 pi)`
+    /// (its mean longitude when [`super::point_phase`] says so, for an equatorial chief).
     pub arg_latitude_rad: f64,
-    /// The deputy's true argument of latitude `omega + f` at the impulse, rad in `[0, 2 pi)`.
+    /// The deputy's true argument of latitude `omega + f` at the impulse, rad in `[0, 2 pi)`
+    /// (its true longitude for an equatorial chief).
     pub true_arg_latitude_rad: f64,
     /// Whole revolutions since the previous impulse (Wang 2018, eq. 7).
     pub revolutions: i32,

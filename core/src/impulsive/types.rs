@@ -58,10 +58,13 @@ pub struct RelativeElements {
 }
 
 /// Where one impulse is applied: mean argument of latitude and whole revolutions since the
-/// previous impulse (Wang 2018, eq. 7).
+/// previous impulse (Wang 2018, eq. 7). For an equatorial chief in the equinoctial set the
+/// angle is the mean longitude instead (see [`super::point_phase`]); the field keeps its name on
+/// the wire.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ImpulsePoint {
-    /// Mean argument of latitude u_k = omega + M at the impulse, rad.
+    /// Mean argument of latitude u_k = omega + M at the impulse, rad (mean longitude
+    /// `M + omega + Omega` when [`super::point_phase`] says so).
     pub arg_latitude_rad: f64,
     /// Whole revolutions dN_k added to the phase from the previous impulse (negative is an error).
     pub revolutions: i32,

@@ -4,7 +4,7 @@
 
 use super::elements::{from_mean, from_relative, sub, Elements, A, E, EARTH_RADIUS_KM, I};
 use super::error::{Orbit, PlanError, Quantity, MAX_ANGLE_RAD, MAX_SMA_KM};
-use super::model::{Model, Phase};
+use super::model::{point_phase, Model};
 use super::settings::ElementSet;
 use super::settings::Settings;
 use super::transfer::Context;
@@ -179,15 +179,7 @@ pub(crate) fn validate(problem: &Problem, settings: &Settings) -> Result<Context
             }
         }
     }
-    let (sin_i, cos_i) = (libm::sin(chief0[I]), libm::cos(chief0[I]));
-    let phase = if settings.element_set == ElementSet::Equinoctial
-        && cos_i > 0.0
-        && sin_i < settings.min_sin_inclination
-    {
-        Phase::MeanLongitude
-    } else {
-        Phase::ArgLatitude
-    };
+    let phase = point_phase(&problem.chief, settings);
     let model = Model {
         set: settings.element_set,
         phase,

@@ -3,7 +3,7 @@
 use crate::cli::solve::{report_rejection, EXIT_NOT_USABLE, EXIT_USABLE};
 use crate::fixture::impulsive::ImpulsiveFixture;
 use anyhow::Result;
-use reconfig_core::impulsive::{solve, ImpulsePlan, Solution, Workspace};
+use reconfig_core::impulsive::{point_phase, solve, ImpulsePlan, Phase, Solution, Workspace};
 use serde_json::json;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -21,21 +21,40 @@ pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
         return Ok(report_rejection(&fixture.name, &err, json));
     }
     let s = &solution;
+    // The angle the impulse points are counted in (mean longitude for an equatorial chief).
+    let equatorial = point_phase(&fixture.problem.chief, &settings) == Phase::MeanLongitude;
+    let (mean_key, true_key, mean_head, true_head) = if equatorial {
+        (
+            "mean_longitude_deg",
+            "true_longitude_deg",
+            "l mean [deg]",
+            "l true [deg]",
+        )
+    } else {
+        (
+            "arg_latitude_deg",
+            "true_arg_latitude_deg",
+            "u mean [deg]",
+            "u true [deg]",
+        )
+    };
     if json {
         let impulses: Vec<_> = s
             .impulses
             .iter()
             .map(|i| {
-                json!({
+                let mut entry = json!({
                     "time_s": i.time_s,
-                    "arg_latitude_deg": i.arg_latitude_rad.to_degrees(),
-                    "true_arg_latitude_deg": i.true_arg_latitude_rad.to_degrees(),
                     "revolutions": i.revolutions,
                     "dv_rtn_mps": i.dv_rtn_mps,
-                })
+                });
+                entry[mean_key] = json!(i.arg_latitude_rad.to_degrees());
+                entry[true_key] = json!(i.true_arg_latitude_rad.to_degrees());
+                entry
             })
             .collect();
         let e = &s.terminal_error_elements;
+        let q = &s.terminal_error_equinoctial;
         println!(
             "{}",
             serde_json::to_string_pretty(&json!({
@@ -49,6 +68,8 @@ pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
                 "terminal_error_m": s.terminal_error_m,
                 "terminal_position_error_m": s.terminal_position_error_m,
                 "terminal_error_elements": [e.dsma_km, e.decc, e.dinc_rad, e.draan_rad, e.dargp_rad, e.dmean_anomaly_rad],
+                "terminal_error_equinoctial": [q.sma_km, q.mean_longitude_rad, q.ex, q.ey, q.hx, q.hy],
+                "element_set": format!("{:?}", settings.element_set),
                 "iterations": s.info.iterations,
                 "min_fuel_iterations": s.info.min_fuel_iterations,
                 "correction_iterations": s.info.correction_iterations,
@@ -72,7 +93,7 @@ pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
         };
         println!("{} ({plan})", fixture.name);
         println!("status {:?}", s.info.status);
-        println!("  k      t [s]   u mean [deg]  u true [deg]  dN   dv radial   along-track      normal [m/s]   |dv|");
+        println!("  k      t [s]   {mean_head}  {true_head}  dN   dv radial   along-track      normal [m/s]   |dv|");
         for (k, i) in s.impulses.iter().enumerate() {
             let d = i.dv_rtn_mps;
             println!(
