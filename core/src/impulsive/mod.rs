@@ -23,11 +23,13 @@ mod elements;
 mod equinoctial;
 mod equinoctial_drift;
 mod error;
+mod forms;
 mod gve;
 mod kepler;
 mod min_fuel;
 mod model;
 mod nonlinear;
+mod osculating;
 mod pinv;
 mod returned;
 mod search;
@@ -47,6 +49,11 @@ pub use elements::{
     wrap_pi, wrap_two_pi, EARTH_J2, EARTH_MU_KM3_S2, EARTH_RADIUS_KM, M_PER_KM, TWO_PI,
 };
 pub use error::{Orbit, PlanError, Quantity, SettingsError, MAX_ANGLE_RAD, MAX_SMA_KM};
+pub use forms::{
+    classical_of, deputy_of, equinoctial_of, mean_drifted, mean_of_osculating_state,
+    osculating_state_of_mean, relative_between, relative_of_roe, roe_of, CartesianState, FormError,
+    Roe, OSCULATING_MAX_ITER, OSCULATING_TOL,
+};
 pub use model::{point_phase, Phase};
 pub use settings::{ElementSet, Settings, MAX_SEARCH_STARTS};
 pub use socp::{least_fuel_rows, LeastFuel, SocpStatus};
