@@ -6,7 +6,6 @@
 use super::elements::{from_mean, wrap_pi, Elements, ARGP, E, I, MA, RAAN};
 use super::equinoctial::{self as eq, from_classical, to_classical};
 use super::osculating::{mean_to_osculating, osculating_to_mean};
-use super::secular;
 use super::types::{EquinoctialElements, MeanElements, RelativeElements};
 
 /// Most fixed-point steps of the osculating-to-mean inverse (it contracts by O(J2) ~ 1e-3 a
@@ -269,18 +268,6 @@ pub fn roe_of(chief: &MeanElements, rel: &RelativeElements) -> Roe {
         dix_m: a * rel.dinc_rad,
         diy_m: a * rel.draan_rad * sin_i,
     }
-}
-
-/// Mean classical elements of `el` drifted `t_s` with the J2 secular rates (the planner's
-/// model between impulses): for writing an end state in the input's form.
-pub fn mean_drifted(el: &MeanElements, t_s: f64) -> MeanElements {
-    let v = from_mean(el);
-    let d = secular::rates(&v);
-    let mut out = v;
-    for (x, r) in out.iter_mut().zip(d.iter()) {
-        *x += *r * t_s;
-    }
-    classical(&out)
 }
 
 #[cfg(test)]

@@ -50,9 +50,9 @@ pub use elements::{
 };
 pub use error::{Orbit, PlanError, Quantity, SettingsError, MAX_ANGLE_RAD, MAX_SMA_KM};
 pub use forms::{
-    classical_of, deputy_of, equinoctial_of, mean_drifted, mean_of_osculating_state,
-    osculating_state_of_mean, relative_between, relative_of_roe, roe_of, CartesianState, FormError,
-    Roe, OSCULATING_MAX_ITER, OSCULATING_TOL,
+    classical_of, deputy_of, equinoctial_of, mean_of_osculating_state, osculating_state_of_mean,
+    relative_between, relative_of_roe, roe_of, CartesianState, FormError, Roe, OSCULATING_MAX_ITER,
+    OSCULATING_TOL,
 };
 pub use model::{point_phase, Phase};
 pub use settings::{ElementSet, Settings, MAX_SEARCH_STARTS};

@@ -1,6 +1,7 @@
 //! `reconfig solve` for planner-B fixtures: a readable report, or `--json`.
 
 use crate::cli::solve::{report_rejection, EXIT_NOT_USABLE, EXIT_USABLE};
+use crate::fixture::impulsive::forms::end_state;
 use crate::fixture::impulsive::ImpulsiveFixture;
 use anyhow::Result;
 use reconfig_core::impulsive::{point_phase, solve, ImpulsePlan, Phase, Solution, Workspace};
@@ -38,6 +39,13 @@ pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
             "u true [deg]",
         )
     };
+    // The end state in the form the fixture gave the relative state (or the deputy) in.
+    let end = end_state(
+        &fixture.problem.chief,
+        &fixture.problem.target,
+        s,
+        fixture.end_form,
+    )?;
     if json {
         let impulses: Vec<_> = s
             .impulses
@@ -69,6 +77,7 @@ pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
                 "terminal_position_error_m": s.terminal_position_error_m,
                 "terminal_error_elements": [e.dsma_km, e.decc, e.dinc_rad, e.draan_rad, e.dargp_rad, e.dmean_anomaly_rad],
                 "terminal_error_equinoctial": [q.sma_km, q.mean_longitude_rad, q.ex, q.ey, q.hx, q.hy],
+                "end_state": end,
                 "element_set": format!("{:?}", settings.element_set),
                 "iterations": s.info.iterations,
                 "min_fuel_iterations": s.info.min_fuel_iterations,
@@ -129,6 +138,7 @@ pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
             "min fuel used {}, nonlinear correction used {}, evaluations {}, solve time {:.6} s",
             s.info.min_fuel_used, s.info.correction_used, s.info.evaluations, solve_time_s
         );
+        println!("end state           {end}");
         println!("frame: dv in the deputy's local frame (radial, along-track, normal)");
     }
     Ok(ExitCode::from(if s.info.status.is_usable() {
