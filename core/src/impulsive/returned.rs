@@ -133,44 +133,45 @@ pub(crate) fn write_solution(
     // Times and latitudes from the model the impulses were solved for: the exact one when the
     // correction was applied, else the paper's linear one (left in `seq` by the solve).
     let linear_steps = seq.steps;
-    let mut errors_both = ([f64::NAN; 6], [f64::NAN; 6]);
     let linear_final_time_s = seq.final_time_s;
-    let (err, along_m, pos_m) = match nonlinear_error(ctx, pts, &rep.dv, settings, seq) {
-        Ok(miss) => {
-            let v = (miss.err, miss.along_m, miss.pos_m);
-            errors_both = both_sets(&ctx.model, &seq.end, &miss.wanted, &miss.err);
-            match status {
-                SolveStatus::Solved
-                    if scaled_error(&v.0, ctx.chief0[A])
-                        .partial_cmp(&settings.correction_tol)
-                        .is_none_or(core::cmp::Ordering::is_gt) =>
-                {
-                    status = SolveStatus::CorrectionNotConverged;
+    // The terminal error in the classical and the equinoctial sets, and the position misses.
+    let (classical_err, eq_err, along_m, pos_m) =
+        match nonlinear_error(ctx, pts, &rep.dv, settings, seq) {
+            Ok(miss) => {
+                let (classical, equinoctial) =
+                    both_sets(&ctx.model, &seq.end, &miss.wanted, &miss.err);
+                match status {
+                    SolveStatus::Solved
+                        if scaled_error(&miss.err, ctx.chief0[A])
+                            .partial_cmp(&settings.correction_tol)
+                            .is_none_or(core::cmp::Ordering::is_gt) =>
+                    {
+                        status = SolveStatus::CorrectionNotConverged;
+                    }
+                    SolveStatus::Linearised { .. } => {
+                        status = SolveStatus::Linearised { miss_m: miss.pos_m };
+                    }
+                    _ => {}
                 }
-                SolveStatus::Linearised { .. } => {
-                    status = SolveStatus::Linearised { miss_m: v.2 };
+                if !failed(&status) {
+                    if let Some((arc, perigee)) =
+                        unsafe_arc(&ctx.model, seq, pts.n, settings.min_perigee_altitude_km)
+                    {
+                        status = SolveStatus::UnsafePerigee {
+                            arc,
+                            perigee_altitude_km: perigee,
+                        };
+                    }
                 }
-                _ => {}
+                (classical, equinoctial, miss.along_m, miss.pos_m)
             }
-            if !failed(&status) {
-                if let Some((arc, perigee)) =
-                    unsafe_arc(&ctx.model, seq, pts.n, settings.min_perigee_altitude_km)
-                {
-                    status = SolveStatus::UnsafePerigee {
-                        arc,
-                        perigee_altitude_km: perigee,
-                    };
+            Err(stage) => {
+                if !failed(&status) {
+                    status = SolveStatus::NumericalFailure(stage);
                 }
+                ([f64::NAN; 6], [f64::NAN; 6], f64::NAN, f64::NAN)
             }
-            v
-        }
-        Err(stage) => {
-            if !failed(&status) {
-                status = SolveStatus::NumericalFailure(stage);
-            }
-            ([f64::NAN; 6], f64::NAN, f64::NAN)
-        }
-    };
+        };
     if !rep.correction_used {
         seq.steps = linear_steps;
         seq.final_time_s = linear_final_time_s;
@@ -197,8 +198,6 @@ pub(crate) fn write_solution(
     out.final_time_s = seq.final_time_s;
     out.terminal_error_m = along_m;
     out.terminal_position_error_m = pos_m;
-    let _ = err;
-    let (classical_err, eq_err) = errors_both;
     out.terminal_error_elements = to_relative(&classical_err);
     out.terminal_error_equinoctial = EquinoctialElements {
         sma_km: eq_err[0],
