@@ -11,6 +11,14 @@
 //! Linearising the drift gives `F dX = dY` (eq. 11-12); `dX = F^+ dY` (eq. 14) iterated to a
 //! fixed point, since F depends on the impulses.
 //!
+//! ## Element sets
+//! The paper's classical sigma is singular at e = 0 and sin i = 0. By default the model is
+//! written in equinoctial elements `(a, lambda, e cos(omega+Omega), e sin(omega+Omega),
+//! tan(i/2) cos Omega, tan(i/2) sin Omega)`, regular at e = 0 and i = 0 (`equinoctial`,
+//! `equinoctial_drift`, dispatched by `model`); `Settings::element_set = Classical` is the
+//! paper-reproduction mode. Requests stay in classical mean elements (`forms` converts other
+//! input forms).
+//!
 //! ## Units and frame
 //! Lengths in km, times in s, angles in rad inside the core; impulses in m/s
 //! (`dv_rtn_mps`: radial, along-track, normal in the deputy's local frame at the impulse).
@@ -73,8 +81,9 @@ pub use workspace::Workspace;
 /// A [`PlanError`] when the request is rejected before iterating (bad settings, NaN or
 /// infinite input, angles beyond [`MAX_ANGLE_RAD`], an orbit that is not an ellipse, a
 /// semi-major axis outside `(Re + min_perigee_altitude_km, MAX_SMA_KM]`, an inclination outside
-/// `[0, pi]`, a perigee below `min_perigee_altitude_km`, eccentricity or `sin i` below the
-/// singularity thresholds, negative or excessive revolution counts, no impulses or more than
+/// `[0, pi]`, a perigee below `min_perigee_altitude_km`, a retrograde equatorial orbit, in the
+/// classical set eccentricity or `sin i` below the singularity thresholds, negative or
+/// excessive revolution counts, no impulses or more than
 /// [`crate::capacity::MAX_IMPULSES`]); `out` and `workspace` are then untouched. Once accepted,
 /// every number written to `out` is finite (see [`SolveStatus`]).
 pub fn solve(
