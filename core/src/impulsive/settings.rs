@@ -60,7 +60,8 @@ pub struct Settings {
     pub svd_max_iter: u16,
     /// Singular values below `rank_rcond * sigma_max` count as zero (rank, pseudo-inverse).
     pub rank_rcond: f64,
-    /// Reject (and stop at) eccentricities below this: the GVE's `1/e` terms.
+    /// Classical set only: reject (and stop at) eccentricities below this (the GVE's `1/e`
+    /// terms); the equinoctial set has no such limit.
     pub min_eccentricity: f64,
     /// Reject (and stop at) `|sin i|` below this: the GVE's `1/sin i` terms. In the
     /// equinoctial set, only a retrograde orbit (`cos i < 0`) this close to equatorial is
