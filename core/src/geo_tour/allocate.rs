@@ -50,7 +50,7 @@ impl Pick {
 
 fn drift_pick(t: &LegTable, price: f64, s: &Settings) -> Option<Pick> {
     let d = t.drift.as_ref()?;
-    let x = d.model.depth_for_price(price, d.x_max_km, s.root_max_iter);
+    let x = d.curve.depth_for_price(&d.model, price, s.root_max_iter);
     let p = d.model.at(x);
     Some(Pick {
         choice: Choice::Drift,
@@ -132,7 +132,7 @@ fn drift_allocate(
             (Choice::Drift, Some(d)) => {
                 any = true;
                 fastest += d.t_min_s;
-                top = top.max(d.model.price_at(d.x_max_km));
+                top = top.max(d.curve.top_price);
             }
             (Choice::Drift, None) => return None,
             (Choice::Point(_), _) => fixed += p.duration_s,

@@ -138,6 +138,18 @@ pub(crate) fn coincidence_s(g: &Geo, dir: Direction, phase_rad: f64, m: u16) -> 
     (TWO_PI * f64::from(m) - dir.sign() * phase_rad) / g.n0
 }
 
+/// The window well `m` is searched on: `[tau_m - T0/4, tau_m - T0 * 1e-9]`, at least 1 s.
+fn well_window_s(g: &Geo, dir: Direction, phase_rad: f64, m: u16) -> (f64, f64) {
+    let hi = coincidence_s(g, dir, phase_rad, m) - g.t0 * 1e-9;
+    ((hi - 0.25 * g.t0).max(1.0), hi)
+}
+
+/// The earliest duration any well of the leg is searched at (well 1's window starts first:
+/// the windows move one period later per well), s.
+pub(crate) fn wells_earliest_s(g: &Geo, dir: Direction, phase_rad: f64) -> f64 {
+    well_window_s(g, dir, phase_rad, 1).0
+}
+
 /// Minimise `dv(tau) + price * tau` over well `m` (K = m - 1 revolutions,
 /// `tau in [tau_m - T0/4, tau_m - T0 * 1e-9]`) by golden section, `iterations` steps; burns
 /// within `cap_mps`. Returns the best manoeuvre found (cap-violating or failed points are
@@ -167,8 +179,7 @@ pub(crate) fn well_minimum(
     if tangential_mps.is_nan() || tangential_mps > 1.25 * cap_mps {
         return None;
     }
-    let hi0 = tau_m - g.t0 * 1e-9;
-    let lo0 = (hi0 - 0.25 * g.t0).max(1.0);
+    let (lo0, hi0) = well_window_s(g, dir, phase_rad, m);
     if hi0.is_nan() || hi0 <= lo0 {
         return None;
     }

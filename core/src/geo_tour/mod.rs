@@ -28,6 +28,7 @@ mod geo;
 mod hohmann;
 mod lambert_phasing;
 mod maneuver;
+mod price_curve;
 mod radial;
 mod root;
 mod solution;
@@ -80,11 +81,17 @@ pub fn solve(
     validate::problem(problem)?;
     let g = Geo::standard();
     match problem.sweep {
-        SweepChoice::East => solve_sweep(&g, Direction::East, problem, settings, workspace, out),
-        SweepChoice::West => solve_sweep(&g, Direction::West, problem, settings, workspace, out),
+        SweepChoice::East => {
+            solve_sweep(&g, Direction::East, problem, settings, workspace, out, true);
+        }
+        SweepChoice::West => {
+            solve_sweep(&g, Direction::West, problem, settings, workspace, out, true);
+        }
         SweepChoice::Cheaper => {
-            solve_sweep(&g, Direction::East, problem, settings, workspace, out);
+            solve_sweep(&g, Direction::East, problem, settings, workspace, out, true);
             let mut other = core::mem::take(&mut workspace.other);
+            // The west plan replaces the east one only when it is solved, so its status
+            // matters only then: a west sweep that cannot fit the mission time is cut short.
             solve_sweep(
                 &g,
                 Direction::West,
@@ -92,6 +99,7 @@ pub fn solve(
                 settings,
                 workspace,
                 &mut other,
+                false,
             );
             let solved = |s: &Solution| s.info.status == SolveStatus::Solved;
             let iterations = out.info.price_iterations;
@@ -107,7 +115,10 @@ pub fn solve(
     Ok(())
 }
 
-/// Plan one sweep (inputs already validated).
+/// Plan one sweep (inputs already validated). With `name_failure` false a sweep whose
+/// fastest tour provably exceeds the mission time stops before its Lambert wells are built,
+/// with the status `MissionTooShort` naming the leg of the largest lower bound on its fastest
+/// duration (the caller discards it: it only uses a solved plan of this sweep).
 fn solve_sweep(
     g: &Geo,
     dir: Direction,
@@ -115,6 +126,7 @@ fn solve_sweep(
     s: &Settings,
     ws: &mut Workspace,
     out: &mut Solution,
+    name_failure: bool,
 ) {
     *out = Solution::new();
     out.info.direction = Some(dir);
@@ -174,17 +186,38 @@ fn solve_sweep(
                 problem.policy,
                 s,
             );
-            fastest += t.fastest_s;
-            fastest_uncapped += t.fastest_uncapped_s;
         }
         prev_off = off;
         prev_lon = to;
     }
-    out.info.fastest_tour_s = fastest;
     let Some(tables) = ws.tables.get_mut(..n) else {
         out.info.status = SolveStatus::CheckFailed { leg: 0 };
         return;
     };
+    if !name_failure {
+        let mut bound = 0.0;
+        let mut worst = (0usize, f64::NEG_INFINITY);
+        for (j, t) in tables.iter().enumerate() {
+            let b = table::fastest_lower_bound_s(g, t, problem.policy);
+            bound += b;
+            if b > worst.1 {
+                worst = (j, b);
+            }
+        }
+        if bound > problem.mission_time_s {
+            out.info.fastest_tour_s = bound;
+            out.info.status = SolveStatus::MissionTooShort {
+                leg: u8::try_from(worst.0).unwrap_or(u8::MAX),
+            };
+            return;
+        }
+    }
+    for t in tables.iter_mut() {
+        table::add_wells(g, t, problem.policy, s);
+        fastest += t.fastest_s;
+        fastest_uncapped += t.fastest_uncapped_s;
+    }
+    out.info.fastest_tour_s = fastest;
     if fastest.is_nan() || fastest > problem.mission_time_s {
         out.info.status = infeasible(tables, problem, s, fastest_uncapped);
         return;
