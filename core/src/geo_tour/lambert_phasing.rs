@@ -184,32 +184,44 @@ pub(crate) fn well_minimum(
         return None;
     }
     let r = 0.5 * (libm::sqrt(5.0) - 1.0);
-    let branch = if revs == 0 {
-        Branch::Left
-    } else {
-        let mut best = (f64::INFINITY, Branch::Left);
-        for t in [hi0 - r * (hi0 - lo0), lo0 + r * (hi0 - lo0)] {
-            for br in [Branch::Left, Branch::Right] {
-                if let Some((_, dv)) = arc(g, dir, phase_rad, t, revs, br, b) {
-                    if dv < best.0 {
-                        best = (dv, br);
-                    }
-                }
-            }
-        }
-        best.1
-    };
-    let score = |t: f64| -> (f64, Option<Maneuver>) {
-        match arc(g, dir, phase_rad, t, revs, branch, b) {
+    let (mut lo, mut hi) = (lo0, hi0);
+    let mut c = hi - r * (hi - lo);
+    let mut d = lo + r * (hi - lo);
+    let score_arc = |t: f64, a: Option<(Maneuver, f64)>| -> (f64, Option<Maneuver>) {
+        match a {
             Some((mv, dv)) if mv.max_burn_mps <= cap_mps => (dv + price * t, Some(mv)),
             _ => (f64::INFINITY, None),
         }
     };
-    let (mut lo, mut hi) = (lo0, hi0);
-    let mut c = hi - r * (hi - lo);
-    let mut d = lo + r * (hi - lo);
-    let (mut fc, mut mc) = score(c);
-    let (mut fd, mut md) = score(d);
+    // The two first golden points, on the branch chosen there (the arcs of the chosen branch
+    // are the section's first two evaluations).
+    let at = |t: f64, br: Branch| arc(g, dir, phase_rad, t, revs, br, b);
+    let (branch, (mut fc, mut mc), (mut fd, mut md)) = if revs == 0 {
+        let left = Branch::Left;
+        (left, score_arc(c, at(c, left)), score_arc(d, at(d, left)))
+    } else {
+        let arcs = [
+            (Branch::Left, at(c, Branch::Left), at(d, Branch::Left)),
+            (Branch::Right, at(c, Branch::Right), at(d, Branch::Right)),
+        ];
+        // Cheapest single arc over both points, as the branch choice always was (Left on
+        // ties and when nothing solves).
+        let mut best = (f64::INFINITY, 0usize);
+        for point in 0..2 {
+            for (i, (_, ac, ad)) in arcs.iter().enumerate() {
+                let a = if point == 0 { ac } else { ad };
+                if let Some((_, dv)) = a {
+                    if *dv < best.0 {
+                        best = (*dv, i);
+                    }
+                }
+            }
+        }
+        let [l, rr] = arcs;
+        let (br, ac, ad) = if best.1 == 0 { l } else { rr };
+        (br, score_arc(c, ac), score_arc(d, ad))
+    };
+    let score = |t: f64| score_arc(t, at(t, branch));
     let mut best: Option<(f64, Maneuver)> = None;
     let keep = |f: f64, m: &Option<Maneuver>, best: &mut Option<(f64, Maneuver)>| {
         if let Some(mv) = m {
