@@ -1,5 +1,7 @@
-//! GEO servicing tour wall-clock benchmarks: the published case (11 clients, 60 d) and the
-//! 16-client capacity case (80 d), both sweeps planned (`sweep = "cheaper"`), and east only.
+//! GEO servicing tour wall-clock benchmarks: the published case (11 clients, 60 d), the
+//! 16-client capacity case (80 d) and the slowest request found within the default limits
+//! (`fixtures/worst-case/geo-16-clients-0p7deg-200d.toml`), both sweeps planned
+//! (`sweep = "cheaper"`), and east only.
 //!
 //! `cargo bench -p reconfig-host --bench geo_tour`
 
@@ -24,7 +26,11 @@ fn tours(c: &mut Criterion) {
         .measurement_time(Duration::from_secs(3));
     let mut ws = Box::new(Workspace::new());
     let mut out = Box::new(Solution::new());
-    for name in ["geo-servicing-published-60d", "geo-servicing-16-targets"] {
+    for name in [
+        "geo-servicing-published-60d",
+        "geo-servicing-16-targets",
+        "worst-case/geo-16-clients-0p7deg-200d",
+    ] {
         let f = fixture(name);
         group.bench_function(format!("{name}/cheaper"), |b| {
             b.iter(|| solve(black_box(&f.problem), &f.settings, &mut ws, &mut out))
