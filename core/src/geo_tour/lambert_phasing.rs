@@ -150,6 +150,16 @@ pub(crate) fn wells_earliest_s(g: &Geo, dir: Direction, phase_rad: f64) -> f64 {
     well_window_s(g, dir, phase_rad, 1).0
 }
 
+/// Whether well `m` is skipped outright: the tangential m-revolution phasing orbit at its end
+/// (which the bottom undercuts by about 1 %) needs burns above 1.25 times the cap.
+pub(crate) fn well_skipped(g: &Geo, dir: Direction, phase_rad: f64, m: u16, cap_mps: f64) -> bool {
+    let tau_m = coincidence_s(g, dir, phase_rad, m);
+    let period = tau_m / f64::from(m.max(1));
+    let a_m = libm::cbrt(g.mu * (period / TWO_PI) * (period / TWO_PI));
+    let tangential_mps = (g.vis_viva(g.a0, a_m) - g.v0).abs() * M_PER_KM;
+    tangential_mps.is_nan() || tangential_mps > 1.25 * cap_mps
+}
+
 /// Minimise `dv(tau) + price * tau` over well `m` (K = m - 1 revolutions,
 /// `tau in [tau_m - T0/4, tau_m - T0 * 1e-9]`) by golden section, `iterations` steps; burns
 /// within `cap_mps`. Returns the best manoeuvre found (cap-violating or failed points are
@@ -172,11 +182,7 @@ pub(crate) fn well_minimum(
     b: LambertBounds,
 ) -> Option<Maneuver> {
     let revs = m.saturating_sub(1);
-    let tau_m = coincidence_s(g, dir, phase_rad, m);
-    let period = tau_m / f64::from(m.max(1));
-    let a_m = libm::cbrt(g.mu * (period / TWO_PI) * (period / TWO_PI));
-    let tangential_mps = (g.vis_viva(g.a0, a_m) - g.v0).abs() * M_PER_KM;
-    if tangential_mps.is_nan() || tangential_mps > 1.25 * cap_mps {
+    if well_skipped(g, dir, phase_rad, m, cap_mps) {
         return None;
     }
     let (lo0, hi0) = well_window_s(g, dir, phase_rad, m);

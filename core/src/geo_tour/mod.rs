@@ -82,16 +82,21 @@ pub fn solve(
     let g = Geo::standard();
     match problem.sweep {
         SweepChoice::East => {
-            solve_sweep(&g, Direction::East, problem, settings, workspace, out, true);
+            solve_sweep(&g, Direction::East, problem, settings, workspace, out, None);
         }
         SweepChoice::West => {
-            solve_sweep(&g, Direction::West, problem, settings, workspace, out, true);
+            solve_sweep(&g, Direction::West, problem, settings, workspace, out, None);
         }
         SweepChoice::Cheaper => {
-            solve_sweep(&g, Direction::East, problem, settings, workspace, out, true);
+            solve_sweep(&g, Direction::East, problem, settings, workspace, out, None);
             let mut other = core::mem::take(&mut workspace.other);
-            // The west plan replaces the east one only when it is solved, so its status
-            // matters only then: a west sweep that cannot fit the mission time is cut short.
+            // The west plan replaces the east one only when it is solved and strictly
+            // cheaper, so a west sweep that provably is neither is cut short.
+            let beat = if out.info.status == SolveStatus::Solved {
+                out.total_dv_mps
+            } else {
+                f64::INFINITY
+            };
             solve_sweep(
                 &g,
                 Direction::West,
@@ -99,7 +104,7 @@ pub fn solve(
                 settings,
                 workspace,
                 &mut other,
-                false,
+                Some(beat),
             );
             let solved = |s: &Solution| s.info.status == SolveStatus::Solved;
             let iterations = out.info.price_iterations;
@@ -115,10 +120,12 @@ pub fn solve(
     Ok(())
 }
 
-/// Plan one sweep (inputs already validated). With `name_failure` false a sweep whose
-/// fastest tour provably exceeds the mission time stops before its Lambert wells are built,
-/// with the status `MissionTooShort` naming the leg of the largest lower bound on its fastest
-/// duration (the caller discards it: it only uses a solved plan of this sweep).
+/// Plan one sweep (inputs already validated). With `beat` given, a sweep that provably cannot
+/// fit the mission time, or provably costs at least `beat` m/s, stops before its Lambert wells
+/// are built, with the status `Unsolved` (the caller only uses a solved plan cheaper than
+/// `beat`): its fastest tour is bounded below by the legs' fastest options other than wells
+/// and the start of their wells' search windows, and its cost by each leg's cheapest option
+/// within the time the other legs leave it at their fastest (0 for a leg with wells).
 fn solve_sweep(
     g: &Geo,
     dir: Direction,
@@ -126,7 +133,7 @@ fn solve_sweep(
     s: &Settings,
     ws: &mut Workspace,
     out: &mut Solution,
-    name_failure: bool,
+    beat: Option<f64>,
 ) {
     *out = Solution::new();
     out.info.direction = Some(dir);
@@ -194,21 +201,21 @@ fn solve_sweep(
         out.info.status = SolveStatus::CheckFailed { leg: 0 };
         return;
     };
-    if !name_failure {
-        let mut bound = 0.0;
-        let mut worst = (0usize, f64::NEG_INFINITY);
-        for (j, t) in tables.iter().enumerate() {
-            let b = table::fastest_lower_bound_s(g, t, problem.policy);
-            bound += b;
-            if b > worst.1 {
-                worst = (j, b);
-            }
-        }
-        if bound > problem.mission_time_s {
-            out.info.fastest_tour_s = bound;
-            out.info.status = SolveStatus::MissionTooShort {
-                leg: u8::try_from(worst.0).unwrap_or(u8::MAX),
-            };
+    if let Some(beat) = beat {
+        let fastest_lb = |t: &table::LegTable| table::fastest_lower_bound_s(g, t, problem.policy);
+        let bound: f64 = tables.iter().map(fastest_lb).sum();
+        let dominated = bound > problem.mission_time_s || {
+            let dv_lb: f64 = tables
+                .iter()
+                .map(|t| {
+                    let avail_s = problem.mission_time_s - (bound - fastest_lb(t));
+                    table::dv_lower_bound_mps(g, t, problem.policy, s, avail_s)
+                })
+                .sum();
+            dv_lb >= beat
+        };
+        if dominated {
+            out.info.status = SolveStatus::Unsolved;
             return;
         }
     }

@@ -5,7 +5,9 @@
 use super::drift::Drift;
 use super::geo::Geo;
 use super::hohmann::hohmann;
-use super::lambert_phasing::{lambert_revs, well_minimum, wells_earliest_s, LambertBounds};
+use super::lambert_phasing::{
+    lambert_revs, well_minimum, well_skipped, wells_earliest_s, LambertBounds,
+};
 use super::maneuver::{Direction, Maneuver, Method};
 use super::price_curve::PriceCurve;
 use super::radial::radial;
@@ -273,4 +275,42 @@ pub(crate) fn fastest_lower_bound_s(g: &Geo, t: &LegTable, policy: MethodPolicy)
     } else {
         t.fastest_s
     }
+}
+
+/// A lower bound on the Δv of the leg of table `t` (wells not yet added) when it may take at
+/// most `avail_s`: 0 when any of its wells may exist (a well is not priced before it is
+/// built), else the cheapest option that fits: a point of duration <= `avail_s` (a longer leg
+/// waits), or the drift at `avail_s` (its cost falls with its duration). Infinite when nothing
+/// fits.
+pub(crate) fn dv_lower_bound_mps(
+    g: &Geo,
+    t: &LegTable,
+    policy: MethodPolicy,
+    s: &Settings,
+    avail_s: f64,
+) -> f64 {
+    if has_wells(t, policy) {
+        let dir = direction_of(t);
+        let any = (1..=s.lambert_max_revolutions.saturating_add(1))
+            .any(|m| !well_skipped(g, dir, t.phase_rad, m, t.cap_mps));
+        if any {
+            return 0.0;
+        }
+    }
+    let mut best = f64::INFINITY;
+    for p in &t.points {
+        if p.duration_s <= avail_s {
+            best = best.min(p.dv_mps);
+        }
+    }
+    if let Some(d) = t.drift.as_ref() {
+        if avail_s >= d.t_min_s {
+            let x = d
+                .model
+                .depth_for_duration(avail_s, d.x_max_km, s.root_max_iter);
+            // The root is bracketed to rounding; the margin keeps the bound below D(avail_s).
+            best = best.min(d.model.at(x).dv_mps * (1.0 - 1e-9));
+        }
+    }
+    best
 }
