@@ -1,7 +1,7 @@
 //! GEO servicing tour wall-clock benchmarks, each fixture as given (`<name>/as-given`: the
 //! published case, 11 clients, 60 d, and the 16-client capacity case, 80 d, plan both sweeps;
 //! the slowest request found within the default limits,
-//! `fixtures/worst-case/geo-16-clients-0p13deg-150d-west.toml`, fixes the west sweep) and east
+//! `fixtures/worst-case/geo-16-clients-0p7deg-200d-west.toml`, fixes the west sweep) and east
 //! only (`<name>/east`).
 //!
 //! `cargo bench -p reconfig-host --bench geo_tour`
@@ -30,7 +30,7 @@ fn tours(c: &mut Criterion) {
     for name in [
         "geo-servicing-published-60d",
         "geo-servicing-16-targets",
-        "worst-case/geo-16-clients-0p13deg-150d-west",
+        "worst-case/geo-16-clients-0p7deg-200d-west",
     ] {
         let f = fixture(name);
         group.bench_function(format!("{name}/as-given"), |b| {
