@@ -858,7 +858,13 @@ fn build_image(bin: &str, features: &str) -> Result<PathBuf, String> {
 fn geo_firmware_run() -> &'static Result<Run, String> {
     GEO_RUN.get_or_init(|| {
         check_prerequisites().map_err(|e| format!("SKIP: {e}"))?;
-        let elf = build_image(GEO_BIN, "geo_tour")?;
+        let built = build_image(GEO_BIN, "geo_tour")?;
+        // A folder of its own: run_firmware writes QEMU's output beside the ELF and
+        // build_plugin builds relative to it, while the default image's run may be under way.
+        let dir = built.parent().ok_or("odd target path")?.join("geo-image");
+        std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        let elf = dir.join(GEO_BIN);
+        std::fs::copy(&built, &elf).map_err(|e| format!("{}: {e}", elf.display()))?;
         let plugin = build_plugin(&elf)
             .map_err(|e| notice(&format!("note: no instruction counts: {e}")))
             .ok();
@@ -1047,5 +1053,43 @@ fn geo_figures_are_within_budget() {
         over.is_empty(),
         "GEO image figures over budget:\n{}",
         over.join("\n")
+    );
+}
+
+#[test]
+fn geo_no_fused_multiply_add_in_the_firmware() {
+    let test = "geo_no_fused_multiply_add_in_the_firmware";
+    let Some(run) = geo_run_or_skip(test) else {
+        return;
+    };
+    let output = match Command::new("arm-none-eabi-objdump")
+        .arg("-d")
+        .arg(&run.elf)
+        .output()
+    {
+        Ok(o) if o.status.success() => o,
+        _ => {
+            skip(
+                test,
+                "arm-none-eabi-objdump is not installed. Install it with \
+                 `sudo apt-get install binutils-arm-none-eabi`.",
+            );
+            return;
+        }
+    };
+    let text = String::from_utf8_lossy(&output.stdout);
+    let fused: Vec<&str> = text
+        .lines()
+        .filter(|line| {
+            let mnemonic = line.split('\t').nth(2).unwrap_or("").trim();
+            ["vfma", "vfms", "vfnma", "vfnms"]
+                .iter()
+                .any(|m| mnemonic.starts_with(m))
+        })
+        .collect();
+    assert!(
+        fused.is_empty(),
+        "fused multiply-add in the GEO image breaks bit-identity with the host:\n{}",
+        fused.join("\n")
     );
 }
