@@ -48,11 +48,13 @@ fn main() {
     // A one-planner image (cargo features) carries only that planner's fixtures.
     let has = |feature: &str| std::env::var_os(format!("CARGO_FEATURE_{feature}")).is_some();
     let (with_a, with_b) = (has("PSEUDOSPECTRAL"), has("IMPULSIVE"));
+    let with_geo = has("GEO_TOUR");
     for f in &fixtures {
         println!("cargo:rerun-if-changed={}", f.file.display());
         let carried = match f.planner {
             fixture_set::Planner::Pseudospectral => with_a,
             fixture_set::Planner::Impulsive | fixture_set::Planner::ImpulsiveFixedPoint => with_b,
+            fixture_set::Planner::GeoTour => with_geo,
         };
         if !carried {
             continue;
@@ -61,6 +63,7 @@ fn main() {
             fixture_set::Planner::Pseudospectral => "Planner::Pseudospectral",
             fixture_set::Planner::Impulsive => "Planner::Impulsive",
             fixture_set::Planner::ImpulsiveFixedPoint => "Planner::ImpulsiveFixedPoint",
+            fixture_set::Planner::GeoTour => "Planner::GeoTour",
         };
         writeln!(
             code,

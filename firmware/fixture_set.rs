@@ -21,6 +21,9 @@ pub enum Planner {
     /// Planner B with `Settings::fixed_point_only()`: the fixed-point plan the 2 M instruction
     /// budget is for. Every fixed-point planner-B fixture also runs as `<name>+fixed-point`.
     ImpulsiveFixedPoint,
+    /// The GEO servicing tour, `reconfig_core::geo_tour`, with the fixture's settings: carried
+    /// only by the GEO image (`cargo firmware-geo`).
+    GeoTour,
 }
 
 impl Planner {
@@ -29,6 +32,7 @@ impl Planner {
         match self {
             Self::Pseudospectral => "pseudospectral",
             Self::Impulsive | Self::ImpulsiveFixedPoint => "impulsive",
+            Self::GeoTour => "geo-tour",
         }
     }
 }
@@ -42,7 +46,8 @@ pub struct EncodedFixture {
     pub file: PathBuf,
     /// Which planner.
     pub planner: Planner,
-    /// `postcard` encoding of the planner's core `Problem`.
+    /// `postcard` encoding of the planner's core `Problem` (GEO tour: of the pair
+    /// `(Problem, Settings)`, since its fixtures may set their settings).
     pub problem: Vec<u8>,
 }
 
@@ -63,6 +68,20 @@ pub fn fixture_files(dir: &Path) -> Result<Vec<PathBuf>, String> {
     Ok(files)
 }
 
+/// Append `fixture` unless its name is taken.
+fn push_unique(out: &mut Vec<EncodedFixture>, fixture: EncodedFixture) -> Result<(), String> {
+    if let Some(other) = out.iter().find(|f| f.name == fixture.name) {
+        return Err(format!(
+            "fixture name {:?} is used by both {} and {}",
+            fixture.name,
+            other.file.display(),
+            fixture.file.display()
+        ));
+    }
+    out.push(fixture);
+    Ok(())
+}
+
 /// Parse and encode every fixture in `dir`.
 ///
 /// # Errors
@@ -72,9 +91,20 @@ pub fn encode_all(dir: &Path) -> Result<Vec<EncodedFixture>, String> {
     use reconfig_host::fixture::{load, Fixture};
     let mut out: Vec<EncodedFixture> = Vec::new();
     for file in fixture_files(dir)? {
-        // GEO-tour fixtures are not run on the M7 yet (docs/geo-tour.md): not baked in.
         let text = std::fs::read_to_string(&file).unwrap_or_default();
         if reconfig_host::fixture::geo_tour::is_geo_tour(&text) {
+            let f = reconfig_host::fixture::geo_tour::load(&file).map_err(|e| format!("{e:#}"))?;
+            let problem = postcard::to_stdvec(&(&f.problem, &f.settings))
+                .map_err(|e| format!("{}: {e}", f.name))?;
+            push_unique(
+                &mut out,
+                EncodedFixture {
+                    name: f.name,
+                    file,
+                    planner: Planner::GeoTour,
+                    problem,
+                },
+            )?;
             continue;
         }
         let fixture = load(&file).map_err(|e| format!("{e:#}"))?;

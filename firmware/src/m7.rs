@@ -6,6 +6,7 @@
 //! reconfig-firmware version=0.1.0 fixtures=5
 //! binary text_bytes=.. rodata_bytes=.. data_bytes=.. bss_bytes=.. uninit_bytes=.. static_ram_bytes=..
 //! planners pseudospectral_workspace_bytes=.. pseudospectral_solution_bytes=.. impulsive_workspace_bytes=.. impulsive_solution_bytes=..
+//! planners geo_tour_workspace_bytes=.. geo_tour_solution_bytes=..   (GEO image only)
 //! fixture index=0 name=.. planner=pseudospectral outcome=ok|error stack_bytes=.. systick_instructions=..
 //! result index=0 hex=..
 //! done fixtures=5
@@ -25,6 +26,8 @@ use core::ptr::addr_of_mut;
 
 use cortex_m_rt::{entry, exception, ExceptionFrame};
 use cortex_m_semihosting::{debug, hio};
+#[cfg(feature = "geo_tour")]
+use reconfig_core::geo_tour;
 use reconfig_core::{impulsive, pseudospectral};
 
 /// Which planner a baked-in fixture is for.
@@ -37,6 +40,8 @@ pub enum Planner {
     Impulsive,
     /// Planner B, `Settings::fixed_point_only()`.
     ImpulsiveFixedPoint,
+    /// The GEO servicing tour (the GEO image); its bytes carry `(Problem, Settings)`.
+    GeoTour,
 }
 
 /// A fixture baked in by `build.rs`: the postcard bytes of the planner's `Problem`.
@@ -294,6 +299,12 @@ fn main() -> ! {
     #[cfg(feature = "impulsive")]
     static mut IM_SOLUTION: impulsive::Solution = impulsive::Solution::new();
 
+    // The GEO image (`cargo firmware-geo`) carries the GEO tour's alone.
+    #[cfg(feature = "geo_tour")]
+    static mut GEO_WORKSPACE: geo_tour::Workspace = geo_tour::Workspace::new();
+    #[cfg(feature = "geo_tour")]
+    static mut GEO_SOLUTION: geo_tour::Solution = geo_tour::Solution::new();
+
     let mut out = Out::new();
     let _ = writeln!(
         out,
@@ -323,6 +334,14 @@ fn main() -> ! {
         core::mem::size_of::<pseudospectral::Solution>(),
         core::mem::size_of::<impulsive::Workspace>(),
         core::mem::size_of::<impulsive::Solution>(),
+    );
+
+    #[cfg(feature = "geo_tour")]
+    let _ = writeln!(
+        out,
+        "planners geo_tour_workspace_bytes={} geo_tour_solution_bytes={}",
+        core::mem::size_of::<geo_tour::Workspace>(),
+        core::mem::size_of::<geo_tour::Solution>(),
     );
 
     systick::start();
@@ -410,6 +429,33 @@ fn main() -> ! {
                     stack_bytes,
                     ticks,
                 );
+                print_result(&mut out, index, &encoded);
+            }
+            #[cfg(feature = "geo_tour")]
+            Planner::GeoTour => {
+                *GEO_SOLUTION = geo_tour::Solution::new();
+                repaint_stack();
+                let (problem, settings): (geo_tour::Problem, geo_tour::Settings) =
+                    match postcard::from_bytes(fixture.problem) {
+                        Ok(p) => p,
+                        Err(_) => panic!("fixture {} does not decode", fixture.name),
+                    };
+                let ticks_before = systick::now();
+                reconfig_measure_start(marker);
+                let result = geo_tour::solve(
+                    black_box(&problem),
+                    black_box(&settings),
+                    black_box(&mut *GEO_WORKSPACE),
+                    black_box(&mut *GEO_SOLUTION),
+                );
+                black_box(&result);
+                reconfig_measure_stop(marker);
+                let ticks = systick::now() - ticks_before;
+                let stack_bytes = stack_high_water();
+                let ok = result.is_ok();
+                let encoded: Result<&geo_tour::Solution, geo_tour::PlanError> =
+                    result.map(|()| &*GEO_SOLUTION);
+                report(&mut out, index, fixture, "geo-tour", ok, stack_bytes, ticks);
                 print_result(&mut out, index, &encoded);
             }
             // build.rs bakes only the fixtures of the planners this image carries.

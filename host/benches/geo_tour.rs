@@ -1,5 +1,8 @@
-//! GEO servicing tour wall-clock benchmarks: the published case (11 clients, 60 d) and the
-//! 16-client capacity case (80 d), both sweeps planned (`sweep = "cheaper"`), and east only.
+//! GEO servicing tour wall-clock benchmarks, each fixture as given (`<name>/as-given`: the
+//! published case, 11 clients, 60 d, and the 16-client capacity case, 80 d, plan both sweeps;
+//! the slowest request found within the default limits,
+//! `fixtures/worst-case/geo-16-clients-0p7deg-200d-west.toml`, fixes the west sweep) and east
+//! only (`<name>/east`).
 //!
 //! `cargo bench -p reconfig-host --bench geo_tour`
 
@@ -24,9 +27,13 @@ fn tours(c: &mut Criterion) {
         .measurement_time(Duration::from_secs(3));
     let mut ws = Box::new(Workspace::new());
     let mut out = Box::new(Solution::new());
-    for name in ["geo-servicing-published-60d", "geo-servicing-16-targets"] {
+    for name in [
+        "geo-servicing-published-60d",
+        "geo-servicing-16-targets",
+        "worst-case/geo-16-clients-0p7deg-200d-west",
+    ] {
         let f = fixture(name);
-        group.bench_function(format!("{name}/cheaper"), |b| {
+        group.bench_function(format!("{name}/as-given"), |b| {
             b.iter(|| solve(black_box(&f.problem), &f.settings, &mut ws, &mut out))
         });
         let mut east = f.problem.clone();

@@ -142,6 +142,94 @@ pub fn update_docs() -> Result<bool, String> {
     Ok(false)
 }
 
+/// Start marker of the GEO image's generated table.
+pub const GEO_BEGIN: &str =
+    "<!-- m7-geo-figures:begin (generated from fixtures/golden/m7-figures.toml; do not edit) -->";
+/// End marker of the GEO image's generated table.
+pub const GEO_END: &str = "<!-- m7-geo-figures:end -->";
+
+/// The generated Markdown (without the markers) for the record's GEO image part
+/// (`[geo_binary]`, `[[geo_fixture]]`).
+///
+/// # Errors
+/// The record does not parse or lacks a figure.
+pub fn render_geo(record: &str) -> Result<String, String> {
+    let file: toml::Table = toml::from_str(record).map_err(|e| format!("{RECORD_FILE}: {e}"))?;
+    let binary = file
+        .get("geo_binary")
+        .and_then(toml::Value::as_table)
+        .ok_or_else(|| format!("{RECORD_FILE}: no [geo_binary]"))?;
+    let fixtures = file
+        .get("geo_fixture")
+        .and_then(toml::Value::as_array)
+        .ok_or_else(|| format!("{RECORD_FILE}: no [[geo_fixture]]"))?;
+    let mut md = String::from(
+        "| GEO fixture | instructions | budget | stack bytes | RAM bytes (static + stack) | RAM budget |\n\
+         | --- | ---: | ---: | ---: | ---: | ---: |\n",
+    );
+    for f in fixtures {
+        let f = f.as_table().ok_or("a [[geo_fixture]] is not a table")?;
+        let name = f
+            .get("name")
+            .and_then(toml::Value::as_str)
+            .ok_or("GEO fixture without name")?;
+        let _ = writeln!(
+            md,
+            "| {name} | {} | {} | {} | {} | {} |",
+            grouped(int(f, "instructions")?),
+            grouped(int(f, "instructions_budget")?),
+            grouped(int(f, "stack_bytes")?),
+            grouped(int(f, "ram_bytes")?),
+            grouped(int(f, "ram_bytes_budget")?),
+        );
+    }
+    let _ = write!(
+        md,
+        "\nGEO image: `.text` {} B; static RAM {} B, of which the GEO tour's `Workspace` {} B and \
+         `Solution` {} B.\n",
+        grouped(int(binary, "text_bytes")?),
+        grouped(int(binary, "static_ram_bytes")?),
+        grouped(int(binary, "geo_tour_workspace_bytes")?),
+        grouped(int(binary, "geo_tour_solution_bytes")?),
+    );
+    Ok(md)
+}
+
+/// `docs` with its GEO table replaced by `generated`.
+///
+/// # Errors
+/// The GEO markers are missing or out of order.
+pub fn splice_geo(docs: &str, generated: &str) -> Result<String, String> {
+    let start = docs
+        .find(GEO_BEGIN)
+        .ok_or_else(|| format!("{DOCS_FILE} lacks the marker {GEO_BEGIN}"))?;
+    let end = docs
+        .find(GEO_END)
+        .filter(|&e| e > start)
+        .ok_or_else(|| format!("{DOCS_FILE} lacks the marker {GEO_END} after its begin marker"))?;
+    Ok(format!(
+        "{}{GEO_BEGIN}\n{generated}{}",
+        &docs[..start],
+        &docs[end..]
+    ))
+}
+
+/// Regenerate the docs' GEO table from the record on disk; returns whether it changed.
+///
+/// # Errors
+/// A file cannot be read or written, or does not parse.
+pub fn update_geo_docs() -> Result<bool, String> {
+    let record = std::fs::read_to_string(root().join(RECORD_FILE)).map_err(|e| e.to_string())?;
+    let docs_path = root().join(DOCS_FILE);
+    let docs = std::fs::read_to_string(&docs_path).map_err(|e| e.to_string())?;
+    let new = splice_geo(&docs, &render_geo(&record)?)?;
+    if new != docs {
+        std::fs::write(&docs_path, &new).map_err(|e| e.to_string())?;
+        return Ok(true);
+    }
+    Ok(false)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -26,3 +26,18 @@ fn the_docs_tables_are_the_record() {
         "{DOCS_FILE} differs from what {RECORD_FILE} generates; regenerate with\n  {UPDATE_DOCS_COMMAND}"
     );
 }
+
+#[test]
+fn the_docs_geo_table_is_the_record() {
+    if std::env::var("RECONFIG_UPDATE_DOCS").as_deref() == Ok("1") {
+        m7_record::update_geo_docs().expect("regenerate the docs");
+    }
+    let record = std::fs::read_to_string(m7_record::root().join(RECORD_FILE)).expect("record");
+    let docs = std::fs::read_to_string(m7_record::root().join(DOCS_FILE)).expect("docs");
+    let generated = m7_record::render_geo(&record).expect("render the GEO part");
+    let expected = m7_record::splice_geo(&docs, &generated).expect("GEO markers");
+    assert!(
+        expected == docs,
+        "{DOCS_FILE}'s GEO table differs from what {RECORD_FILE} generates; regenerate with\n  {UPDATE_DOCS_COMMAND}"
+    );
+}

@@ -26,11 +26,11 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
-use std::sync::OnceLock;
+use std::sync::{Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
 use fixture_set::Planner;
-use reconfig_core::{impulsive, pseudospectral};
+use reconfig_core::{geo_tour, impulsive, pseudospectral};
 
 const TARGET: &str = "thumbv7em-none-eabihf";
 const FIGURES_FILE: &str = "fixtures/golden/m7-figures.toml";
@@ -509,6 +509,7 @@ fn host_result(planner: Planner, problem: &[u8]) -> Vec<u8> {
                 result.map(|()| &*solution);
             postcard::to_stdvec(&encoded).expect("encode")
         }
+        Planner::GeoTour => geo_host_result(problem),
     }
 }
 
@@ -518,6 +519,11 @@ fn results_are_bit_identical_to_the_host() {
         return;
     };
     let fixtures = fixture_set::encode_all(&root().join("fixtures")).expect("fixtures load");
+    // The GEO tour runs in its own image (geo_results_are_bit_identical_to_the_host).
+    let fixtures: Vec<_> = fixtures
+        .into_iter()
+        .filter(|f| f.planner != Planner::GeoTour)
+        .collect();
     let host_names: Vec<&str> = fixtures.iter().map(|f| f.name.as_str()).collect();
     let m7_names: Vec<&str> = run.fixtures.iter().map(|f| f.name.as_str()).collect();
     assert_eq!(
@@ -685,6 +691,10 @@ fn figures_are_within_budget() {
     let _ = std::fs::write(&measured_path, &text);
     let updating = std::env::var("RECONFIG_UPDATE_FIGURES").as_deref() == Ok("1");
     if updating {
+        let _lock = RECORD_LOCK.lock().unwrap_or_else(|e| e.into_inner());
+        // The GEO image's part of the record is its own test's (geo_figures_are_within_budget).
+        let existing = std::fs::read_to_string(&path).unwrap_or_default();
+        text.push_str(geo_record_part(&existing));
         std::fs::create_dir_all(path.parent().expect("has a parent")).expect("create folder");
         std::fs::write(&path, &text).unwrap_or_else(|e| panic!("{FIGURES_FILE}: {e}"));
         notice(&format!("wrote the measured figures to {FIGURES_FILE}"));
@@ -772,6 +782,314 @@ fn no_fused_multiply_add_in_the_firmware() {
     assert!(
         fused.is_empty(),
         "fused multiply-add in the firmware breaks bit-identity with the host:\n{}",
+        fused.join("\n")
+    );
+}
+
+// The GEO servicing tour's image (`cargo firmware-geo`): its own build and a short QEMU run of the
+// GEO fixtures alone, so that the default two-planner image keeps its RAM. Its figures are the
+// record's GEO part (after `GEO_RECORD_MARKER`), written by its own test.
+
+/// The GEO image's binary.
+const GEO_BIN: &str = "reconfig-firmware-geo";
+/// First line of the record's GEO part; everything after it belongs to the GEO image.
+const GEO_RECORD_MARKER: &str =
+    "# GEO servicing tour image (cargo firmware-geo): written by geo_figures_are_within_budget.";
+/// Instructions per GEO tour solve (issue 12: at most 20 M for 16 clients).
+const BUDGET_INSTRUCTIONS_GEO_TOUR: u64 = 20_000_000;
+const GEO_BINARY_FIGURES: [(&str, u64); 4] = [
+    ("text_bytes", 1024 * 1024),
+    ("static_ram_bytes", 256 * 1024),
+    ("geo_tour_workspace_bytes", 64 * 1024),
+    ("geo_tour_solution_bytes", 16 * 1024),
+];
+
+/// Both tests that may rewrite the record take this first.
+static RECORD_LOCK: Mutex<()> = Mutex::new(());
+static GEO_RUN: OnceLock<Result<Run, String>> = OnceLock::new();
+
+/// The record's GEO part (from its marker to the end; empty when absent).
+fn geo_record_part(record: &str) -> &str {
+    record
+        .find(GEO_RECORD_MARKER)
+        .map_or("", |at| &record[at..])
+}
+
+/// Build one image (`bin`, with exactly `features`) as its cargo alias does; the ELF's path.
+fn build_image(bin: &str, features: &str) -> Result<PathBuf, String> {
+    let output = Command::new(cargo())
+        .current_dir(root())
+        .args([
+            "build",
+            "--release",
+            "--target",
+            TARGET,
+            "-p",
+            "reconfig-firmware",
+            "--bin",
+            bin,
+            "--no-default-features",
+            "--features",
+            features,
+            "--message-format=json-render-diagnostics",
+        ])
+        // Flags from the environment would replace .cargo/config.toml's link flags.
+        .env_remove("RUSTFLAGS")
+        .env_remove("CARGO_ENCODED_RUSTFLAGS")
+        .env_remove("CARGO_BUILD_RUSTFLAGS")
+        .stderr(Stdio::inherit())
+        .output()
+        .map_err(|e| format!("cannot run cargo: {e}"))?;
+    if !output.status.success() {
+        return Err(format!(
+            "building {bin} failed ({}); see the compiler output above",
+            output.status
+        ));
+    }
+    String::from_utf8_lossy(&output.stdout)
+        .lines()
+        .filter_map(|line| serde_json::from_str::<serde_json::Value>(line).ok())
+        .filter(|m| m["reason"] == "compiler-artifact" && m["target"]["name"] == bin)
+        .find_map(|m| m["executable"].as_str().map(PathBuf::from))
+        .ok_or_else(|| format!("cargo did not report the {bin} executable"))
+}
+
+/// The GEO image's run (shared by the GEO tests), or why there is none.
+fn geo_firmware_run() -> &'static Result<Run, String> {
+    GEO_RUN.get_or_init(|| {
+        check_prerequisites().map_err(|e| format!("SKIP: {e}"))?;
+        let built = build_image(GEO_BIN, "geo_tour")?;
+        // A folder of its own: run_firmware writes QEMU's output beside the ELF and
+        // build_plugin builds relative to it, while the default image's run may be under way.
+        let dir = built.parent().ok_or("odd target path")?.join("geo-image");
+        std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        let elf = dir.join(GEO_BIN);
+        std::fs::copy(&built, &elf).map_err(|e| format!("{}: {e}", elf.display()))?;
+        let plugin = build_plugin(&elf)
+            .map_err(|e| notice(&format!("note: no instruction counts: {e}")))
+            .ok();
+        match run_firmware(&elf, plugin.as_deref()) {
+            Err(e) if e.starts_with("PLUGIN: ") => {
+                notice(&format!("note: no instruction counts: {}", &e[8..]));
+                run_firmware(&elf, None)
+            }
+            other => other,
+        }
+    })
+}
+
+fn geo_run_or_skip(test: &str) -> Option<&'static Run> {
+    match geo_firmware_run() {
+        Ok(run) => Some(run),
+        Err(e) => match e.strip_prefix("SKIP: ") {
+            Some(why) => {
+                skip(test, why);
+                None
+            }
+            None => panic!("{test}: {e}"),
+        },
+    }
+}
+
+/// The host's encoded GEO result: the baked `(Problem, Settings)` bytes, a fresh workspace.
+fn geo_host_result(bytes: &[u8]) -> Vec<u8> {
+    let (problem, settings): (geo_tour::Problem, geo_tour::Settings) =
+        postcard::from_bytes(bytes).expect("the baked problem decodes");
+    let mut workspace = Box::new(geo_tour::Workspace::new());
+    let mut solution = Box::new(geo_tour::Solution::new());
+    let result = geo_tour::solve(&problem, &settings, &mut workspace, &mut solution);
+    let encoded: Result<&geo_tour::Solution, geo_tour::PlanError> = result.map(|()| &*solution);
+    postcard::to_stdvec(&encoded).expect("encode")
+}
+
+fn geo_fixtures() -> Vec<fixture_set::EncodedFixture> {
+    fixture_set::encode_all(&root().join("fixtures"))
+        .expect("fixtures load")
+        .into_iter()
+        .filter(|f| f.planner == Planner::GeoTour)
+        .collect()
+}
+
+#[test]
+fn geo_results_are_bit_identical_to_the_host() {
+    let test = "geo_results_are_bit_identical_to_the_host";
+    let Some(run) = geo_run_or_skip(test) else {
+        return;
+    };
+    let fixtures = geo_fixtures();
+    assert!(!fixtures.is_empty(), "no GEO fixtures to compare");
+    let names: Vec<&str> = fixtures.iter().map(|f| f.name.as_str()).collect();
+    let m7_names: Vec<&str> = run.fixtures.iter().map(|f| f.name.as_str()).collect();
+    assert_eq!(m7_names, names, "the GEO image ran a different fixture set");
+    for (fixture, m7) in fixtures.iter().zip(&run.fixtures) {
+        assert_eq!(m7.planner, Planner::GeoTour.key(), "{}", fixture.name);
+        let host = hex(&geo_host_result(&fixture.problem));
+        assert!(
+            host == m7.hex,
+            "{}: the host and the emulated Cortex-M7 differ (host {} bytes, M7 {} bytes)",
+            fixture.name,
+            host.len() / 2,
+            m7.hex.len() / 2
+        );
+    }
+}
+
+#[test]
+fn geo_figures_are_within_budget() {
+    let test = "geo_figures_are_within_budget";
+    let Some(run) = geo_run_or_skip(test) else {
+        return;
+    };
+    let Some(instructions) = &run.instructions else {
+        skip(
+            test,
+            "the QEMU instruction-counting plugin could not be built or loaded",
+        );
+        return;
+    };
+    let path = root().join(FIGURES_FILE);
+    let record_text = std::fs::read_to_string(&path).unwrap_or_default();
+    let file: toml::Table =
+        toml::from_str(&record_text).unwrap_or_else(|e| panic!("{FIGURES_FILE}: {e}"));
+    let recorded_binary = file.get("geo_binary").and_then(|v| v.as_table());
+    let recorded_fixtures: BTreeMap<String, &toml::Table> = file
+        .get("geo_fixture")
+        .and_then(|v| v.as_array())
+        .into_iter()
+        .flatten()
+        .filter_map(|v| v.as_table())
+        .filter_map(|t| Some((t.get("name")?.as_str()?.to_owned(), t)))
+        .collect();
+    let mut figures = Vec::new();
+    let mut text =
+        format!("{GEO_RECORD_MARKER}\n# Its own QEMU run of the GEO fixtures.\n\n[geo_binary]\n");
+    for (key, default_budget) in GEO_BINARY_FIGURES {
+        let measured = *run
+            .binary
+            .get(key)
+            .unwrap_or_else(|| panic!("GEO firmware output lacks {key}"));
+        let budget = table_u64(recorded_binary, &format!("{key}_budget")).unwrap_or(default_budget);
+        let _ = writeln!(text, "{key} = {measured}\n{key}_budget = {budget}");
+        figures.push(Figure {
+            what: format!("GEO image {key}"),
+            measured,
+            recorded: table_u64(recorded_binary, key),
+            budget,
+        });
+    }
+    let static_ram = run.binary["static_ram_bytes"];
+    for (fixture, &count) in run.fixtures.iter().zip(instructions) {
+        let estimate = fixture.systick_instructions;
+        assert!(
+            estimate.abs_diff(count) <= 200 + count / 1000,
+            "{}: the plugin counted {count} instructions, the firmware's SysTick {estimate}",
+            fixture.name
+        );
+        let recorded = recorded_fixtures.get(&fixture.name).copied();
+        let _ = write!(text, "\n[[geo_fixture]]\nname = {:?}\n", fixture.name);
+        for (key, measured, default_budget) in [
+            ("instructions", count, BUDGET_INSTRUCTIONS_GEO_TOUR),
+            ("stack_bytes", fixture.stack_bytes, BUDGET_STACK_BYTES),
+            (
+                "ram_bytes",
+                static_ram + fixture.stack_bytes,
+                BUDGET_RAM_BYTES,
+            ),
+        ] {
+            let budget = table_u64(recorded, &format!("{key}_budget")).unwrap_or(default_budget);
+            let _ = writeln!(text, "{key} = {measured}\n{key}_budget = {budget}");
+            figures.push(Figure {
+                what: format!("{} {key}", fixture.name),
+                measured,
+                recorded: table_u64(recorded, key),
+                budget,
+            });
+        }
+    }
+    for f in &figures {
+        println!(
+            "{} | {} | {:?} | {}",
+            f.what, f.measured, f.recorded, f.budget
+        );
+    }
+    let updating = std::env::var("RECONFIG_UPDATE_FIGURES").as_deref() == Ok("1");
+    if updating {
+        let _lock = RECORD_LOCK.lock().unwrap_or_else(|e| e.into_inner());
+        let existing = std::fs::read_to_string(&path).unwrap_or_default();
+        let main_part = &existing[..existing.len() - geo_record_part(&existing).len()];
+        let mut record = main_part.trim_end().to_owned();
+        record.push_str("\n\n");
+        record.push_str(&text);
+        std::fs::write(&path, &record).unwrap_or_else(|e| panic!("{FIGURES_FILE}: {e}"));
+        notice(&format!("wrote the GEO image's figures to {FIGURES_FILE}"));
+        reconfig_tests::m7_record::update_geo_docs().expect("regenerate the docs");
+    }
+    let drifted: Vec<String> = figures
+        .iter()
+        .filter(|_| !updating)
+        .filter_map(|f| match f.recorded {
+            None => Some(format!(
+                "{}: measured {}, not in the record",
+                f.what, f.measured
+            )),
+            Some(r) if (f.measured as f64 - r as f64).abs() > DRIFT_TOLERANCE * r as f64 => {
+                Some(format!("{}: measured {}, recorded {r}", f.what, f.measured))
+            }
+            Some(_) => None,
+        })
+        .collect();
+    assert!(
+        drifted.is_empty(),
+        "GEO image figures drifted more than {:.0} % from {FIGURES_FILE}:\n{}\nIf intended:\n  {UPDATE_COMMAND}",
+        DRIFT_TOLERANCE * 100.0,
+        drifted.join("\n")
+    );
+    let over: Vec<String> = figures
+        .iter()
+        .filter(|f| f.measured > f.budget)
+        .map(|f| format!("{}: {} > {}", f.what, f.measured, f.budget))
+        .collect();
+    assert!(
+        over.is_empty(),
+        "GEO image figures over budget:\n{}",
+        over.join("\n")
+    );
+}
+
+#[test]
+fn geo_no_fused_multiply_add_in_the_firmware() {
+    let test = "geo_no_fused_multiply_add_in_the_firmware";
+    let Some(run) = geo_run_or_skip(test) else {
+        return;
+    };
+    let output = match Command::new("arm-none-eabi-objdump")
+        .arg("-d")
+        .arg(&run.elf)
+        .output()
+    {
+        Ok(o) if o.status.success() => o,
+        _ => {
+            skip(
+                test,
+                "arm-none-eabi-objdump is not installed. Install it with \
+                 `sudo apt-get install binutils-arm-none-eabi`.",
+            );
+            return;
+        }
+    };
+    let text = String::from_utf8_lossy(&output.stdout);
+    let fused: Vec<&str> = text
+        .lines()
+        .filter(|line| {
+            let mnemonic = line.split('\t').nth(2).unwrap_or("").trim();
+            ["vfma", "vfms", "vfnma", "vfnms"]
+                .iter()
+                .any(|m| mnemonic.starts_with(m))
+        })
+        .collect();
+    assert!(
+        fused.is_empty(),
+        "fused multiply-add in the GEO image breaks bit-identity with the host:\n{}",
         fused.join("\n")
     );
 }

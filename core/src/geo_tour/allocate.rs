@@ -50,7 +50,7 @@ impl Pick {
 
 fn drift_pick(t: &LegTable, price: f64, s: &Settings) -> Option<Pick> {
     let d = t.drift.as_ref()?;
-    let x = d.model.depth_for_price(price, d.x_max_km, s.root_max_iter);
+    let x = d.curve.depth_for_price(&d.model, price, s.root_max_iter);
     let p = d.model.at(x);
     Some(Pick {
         choice: Choice::Drift,
@@ -115,13 +115,16 @@ pub(crate) struct Allocation {
 
 /// Drift legs' time for the choices in `picks` (points fixed): the price at which their
 /// durations fill `budget_s`, durations written into `picks`. `None` when the drift legs'
-/// fastest durations exceed the budget.
+/// fastest durations exceed the budget. `hint` (a price near the answer, e.g. the current
+/// one when a single leg's choice changes) starts the bracket there, widening it
+/// geometrically, instead of from the fastest drifts.
 fn drift_allocate(
     tables: &[LegTable],
     picks: &mut [Pick],
     budget_s: f64,
     s: &Settings,
     iterations: &mut u32,
+    hint: Option<f64>,
 ) -> Option<f64> {
     let mut fixed = 0.0;
     let mut fastest = 0.0;
@@ -132,7 +135,7 @@ fn drift_allocate(
             (Choice::Drift, Some(d)) => {
                 any = true;
                 fastest += d.t_min_s;
-                top = top.max(d.model.price_at(d.x_max_km));
+                top = top.max(d.curve.top_price);
             }
             (Choice::Drift, None) => return None,
             (Choice::Point(_), _) => fixed += p.duration_s,
@@ -157,23 +160,74 @@ fn drift_allocate(
         }
         sum
     };
-    // w = 1/sqrt(price): w_a at the price where every drift leg is at its fastest (time <=
-    // budget), w_b small enough prices (long drifts) to exceed the budget.
-    let w_a = 1.0 / libm::sqrt(top);
-    let fa = drift_time(top, picks) - budget;
-    if fa >= -s.time_tol_s {
-        return Some(top);
-    }
-    let mut w_b = w_a;
-    let mut fb = fa;
-    for _ in 0..64 {
-        w_b *= 4.0;
-        fb = drift_time(1.0 / (w_b * w_b), picks) - budget;
-        if fb > 0.0 {
-            break;
+    // w = 1/sqrt(price); the drift legs' time grows with w. w_top: every drift leg at its
+    // fastest (time <= budget). The bracket [w_a, w_b] has time <= budget at w_a and above it
+    // at w_b.
+    let w_top = 1.0 / libm::sqrt(top);
+    let at_top = |picks: &mut [Pick]| drift_time(top, picks) - budget;
+    let (mut w_a, mut fa, mut w_b, mut fb) = (w_top, f64::NAN, w_top, f64::NAN);
+    let mut bracketed = false;
+    if let Some(h) = hint.filter(|h| h.is_finite() && *h > 0.0 && *h < top) {
+        // Widen from the hint by factors 1.001, 1.004, 1.016, ... until the sign changes.
+        let w0 = 1.0 / libm::sqrt(h);
+        let f0 = drift_time(h, picks) - budget;
+        let mut step = 1.001;
+        if f0 <= 0.0 {
+            (w_a, fa) = (w0, f0);
+            for _ in 0..64 {
+                let w = w_a * step;
+                let f = drift_time(1.0 / (w * w), picks) - budget;
+                if f > 0.0 {
+                    (w_b, fb, bracketed) = (w, f, true);
+                    break;
+                }
+                (w_a, fa) = (w, f);
+                step = 1.0 + 4.0 * (step - 1.0);
+            }
+        } else if f0 > 0.0 {
+            (w_b, fb) = (w0, f0);
+            for _ in 0..64 {
+                let w = w_b / step;
+                if w <= w_top {
+                    break;
+                }
+                let f = drift_time(1.0 / (w * w), picks) - budget;
+                if f <= 0.0 {
+                    (w_a, fa, bracketed) = (w, f, true);
+                    break;
+                }
+                (w_b, fb) = (w, f);
+                step = 1.0 + 4.0 * (step - 1.0);
+            }
+            if !bracketed {
+                // Down to the fastest drifts: the bracket's lower end is w_top.
+                fa = at_top(picks);
+                if fa >= -s.time_tol_s {
+                    return Some(top);
+                }
+                w_a = w_top;
+                bracketed = fa <= 0.0;
+            }
         }
     }
-    if fb.is_nan() || fb <= 0.0 {
+    if !bracketed {
+        // From the fastest drifts up by factors of 4.
+        w_a = w_top;
+        fa = at_top(picks);
+        if fa >= -s.time_tol_s {
+            return Some(top);
+        }
+        w_b = w_a;
+        fb = fa;
+        for _ in 0..64 {
+            w_b *= 4.0;
+            fb = drift_time(1.0 / (w_b * w_b), picks) - budget;
+            if fb > 0.0 {
+                break;
+            }
+        }
+    }
+    if fb.is_nan() || fb <= 0.0 || fa.is_nan() || fa > 0.0 {
         return None;
     }
     let mut n = 0u32;
@@ -296,8 +350,14 @@ pub(crate) fn allocate(
             }
         }
         assignments = assignments.saturating_add(1);
-        let Some(p) = drift_allocate(tables, trial.get_mut(..n)?, budget_s, s, &mut iterations)
-        else {
+        let Some(p) = drift_allocate(
+            tables,
+            trial.get_mut(..n)?,
+            budget_s,
+            s,
+            &mut iterations,
+            Some(price),
+        ) else {
             continue;
         };
         let (time_s, dv) = totals(trial.get(..n)?);
@@ -423,8 +483,14 @@ fn exchange(
                     *slot = *alt;
                 }
                 *exchanges = exchanges.saturating_add(1);
-                let Some(p) = drift_allocate(tables, trial.get_mut(..n)?, budget_s, s, iterations)
-                else {
+                let Some(p) = drift_allocate(
+                    tables,
+                    trial.get_mut(..n)?,
+                    budget_s,
+                    s,
+                    iterations,
+                    Some(price),
+                ) else {
                     continue;
                 };
                 let (time_s, dv) = totals(trial.get(..n)?);

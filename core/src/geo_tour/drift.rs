@@ -12,7 +12,6 @@
 
 use super::geo::{Dual, Geo, M_PER_KM, TWO_PI};
 use super::maneuver::{Burn, Direction, Maneuver, Method};
-use super::root::illinois;
 
 /// One leg's drift model.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -135,7 +134,9 @@ impl Drift {
     /// Depth minimising `D(x) + price * t(x)` on `(0, x_max]`: the root of
     /// `price_at(x) = price` (increasing in x), clipped to `x_max`. Regula falsi on
     /// `sqrt(price_at(x)) - sqrt(price)`, nearly linear in x (the first-order price is
-    /// proportional to x^2), at most `max_iter` steps.
+    /// proportional to x^2), at most `max_iter` steps, over the whole interval: the
+    /// reference the tabulated search (`PriceCurve`) is tested against.
+    #[cfg(test)]
     pub fn depth_for_price(&self, price: f64, x_max_km: f64, max_iter: u16) -> f64 {
         let top = self.price_at(x_max_km);
         if top.is_nan() || top <= price {
@@ -149,7 +150,7 @@ impl Drift {
                 libm::sqrt(self.price_at(x).max(0.0)) - sp
             }
         };
-        let (a, fa, b, fb, _) = illinois(
+        let (a, fa, b, fb, _) = super::root::illinois(
             f,
             0.0,
             -sp,

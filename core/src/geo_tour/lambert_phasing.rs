@@ -138,6 +138,28 @@ pub(crate) fn coincidence_s(g: &Geo, dir: Direction, phase_rad: f64, m: u16) -> 
     (TWO_PI * f64::from(m) - dir.sign() * phase_rad) / g.n0
 }
 
+/// The window well `m` is searched on: `[tau_m - T0/4, tau_m - T0 * 1e-9]`, at least 1 s.
+fn well_window_s(g: &Geo, dir: Direction, phase_rad: f64, m: u16) -> (f64, f64) {
+    let hi = coincidence_s(g, dir, phase_rad, m) - g.t0 * 1e-9;
+    ((hi - 0.25 * g.t0).max(1.0), hi)
+}
+
+/// The earliest duration any well of the leg is searched at (well 1's window starts first:
+/// the windows move one period later per well), s.
+pub(crate) fn wells_earliest_s(g: &Geo, dir: Direction, phase_rad: f64) -> f64 {
+    well_window_s(g, dir, phase_rad, 1).0
+}
+
+/// Whether well `m` is skipped outright: the tangential m-revolution phasing orbit at its end
+/// (which the bottom undercuts by about 1 %) needs burns above 1.25 times the cap.
+pub(crate) fn well_skipped(g: &Geo, dir: Direction, phase_rad: f64, m: u16, cap_mps: f64) -> bool {
+    let tau_m = coincidence_s(g, dir, phase_rad, m);
+    let period = tau_m / f64::from(m.max(1));
+    let a_m = libm::cbrt(g.mu * (period / TWO_PI) * (period / TWO_PI));
+    let tangential_mps = (g.vis_viva(g.a0, a_m) - g.v0).abs() * M_PER_KM;
+    tangential_mps.is_nan() || tangential_mps > 1.25 * cap_mps
+}
+
 /// Minimise `dv(tau) + price * tau` over well `m` (K = m - 1 revolutions,
 /// `tau in [tau_m - T0/4, tau_m - T0 * 1e-9]`) by golden section, `iterations` steps; burns
 /// within `cap_mps`. Returns the best manoeuvre found (cap-violating or failed points are
@@ -160,45 +182,52 @@ pub(crate) fn well_minimum(
     b: LambertBounds,
 ) -> Option<Maneuver> {
     let revs = m.saturating_sub(1);
-    let tau_m = coincidence_s(g, dir, phase_rad, m);
-    let period = tau_m / f64::from(m.max(1));
-    let a_m = libm::cbrt(g.mu * (period / TWO_PI) * (period / TWO_PI));
-    let tangential_mps = (g.vis_viva(g.a0, a_m) - g.v0).abs() * M_PER_KM;
-    if tangential_mps.is_nan() || tangential_mps > 1.25 * cap_mps {
+    if well_skipped(g, dir, phase_rad, m, cap_mps) {
         return None;
     }
-    let hi0 = tau_m - g.t0 * 1e-9;
-    let lo0 = (hi0 - 0.25 * g.t0).max(1.0);
+    let (lo0, hi0) = well_window_s(g, dir, phase_rad, m);
     if hi0.is_nan() || hi0 <= lo0 {
         return None;
     }
     let r = 0.5 * (libm::sqrt(5.0) - 1.0);
-    let branch = if revs == 0 {
-        Branch::Left
-    } else {
-        let mut best = (f64::INFINITY, Branch::Left);
-        for t in [hi0 - r * (hi0 - lo0), lo0 + r * (hi0 - lo0)] {
-            for br in [Branch::Left, Branch::Right] {
-                if let Some((_, dv)) = arc(g, dir, phase_rad, t, revs, br, b) {
-                    if dv < best.0 {
-                        best = (dv, br);
-                    }
-                }
-            }
-        }
-        best.1
-    };
-    let score = |t: f64| -> (f64, Option<Maneuver>) {
-        match arc(g, dir, phase_rad, t, revs, branch, b) {
+    let (mut lo, mut hi) = (lo0, hi0);
+    let mut c = hi - r * (hi - lo);
+    let mut d = lo + r * (hi - lo);
+    let score_arc = |t: f64, a: Option<(Maneuver, f64)>| -> (f64, Option<Maneuver>) {
+        match a {
             Some((mv, dv)) if mv.max_burn_mps <= cap_mps => (dv + price * t, Some(mv)),
             _ => (f64::INFINITY, None),
         }
     };
-    let (mut lo, mut hi) = (lo0, hi0);
-    let mut c = hi - r * (hi - lo);
-    let mut d = lo + r * (hi - lo);
-    let (mut fc, mut mc) = score(c);
-    let (mut fd, mut md) = score(d);
+    // The two first golden points, on the branch chosen there (the arcs of the chosen branch
+    // are the section's first two evaluations).
+    let at = |t: f64, br: Branch| arc(g, dir, phase_rad, t, revs, br, b);
+    let (branch, (mut fc, mut mc), (mut fd, mut md)) = if revs == 0 {
+        let left = Branch::Left;
+        (left, score_arc(c, at(c, left)), score_arc(d, at(d, left)))
+    } else {
+        let arcs = [
+            (Branch::Left, at(c, Branch::Left), at(d, Branch::Left)),
+            (Branch::Right, at(c, Branch::Right), at(d, Branch::Right)),
+        ];
+        // Cheapest single arc over both points, as the branch choice always was (Left on
+        // ties and when nothing solves).
+        let mut best = (f64::INFINITY, 0usize);
+        for point in 0..2 {
+            for (i, (_, ac, ad)) in arcs.iter().enumerate() {
+                let a = if point == 0 { ac } else { ad };
+                if let Some((_, dv)) = a {
+                    if *dv < best.0 {
+                        best = (*dv, i);
+                    }
+                }
+            }
+        }
+        let [l, rr] = arcs;
+        let (br, ac, ad) = if best.1 == 0 { l } else { rr };
+        (br, score_arc(c, ac), score_arc(d, ad))
+    };
+    let score = |t: f64| score_arc(t, at(t, branch));
     let mut best: Option<(f64, Maneuver)> = None;
     let keep = |f: f64, m: &Option<Maneuver>, best: &mut Option<(f64, Maneuver)>| {
         if let Some(mv) = m {

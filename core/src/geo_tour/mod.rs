@@ -28,6 +28,7 @@ mod geo;
 mod hohmann;
 mod lambert_phasing;
 mod maneuver;
+mod price_curve;
 mod radial;
 mod root;
 mod solution;
@@ -80,11 +81,22 @@ pub fn solve(
     validate::problem(problem)?;
     let g = Geo::standard();
     match problem.sweep {
-        SweepChoice::East => solve_sweep(&g, Direction::East, problem, settings, workspace, out),
-        SweepChoice::West => solve_sweep(&g, Direction::West, problem, settings, workspace, out),
+        SweepChoice::East => {
+            solve_sweep(&g, Direction::East, problem, settings, workspace, out, None);
+        }
+        SweepChoice::West => {
+            solve_sweep(&g, Direction::West, problem, settings, workspace, out, None);
+        }
         SweepChoice::Cheaper => {
-            solve_sweep(&g, Direction::East, problem, settings, workspace, out);
+            solve_sweep(&g, Direction::East, problem, settings, workspace, out, None);
             let mut other = core::mem::take(&mut workspace.other);
+            // The west plan replaces the east one only when it is solved and strictly
+            // cheaper, so a west sweep that provably is neither is cut short.
+            let beat = if out.info.status == SolveStatus::Solved {
+                out.total_dv_mps
+            } else {
+                f64::INFINITY
+            };
             solve_sweep(
                 &g,
                 Direction::West,
@@ -92,6 +104,7 @@ pub fn solve(
                 settings,
                 workspace,
                 &mut other,
+                Some(beat),
             );
             let solved = |s: &Solution| s.info.status == SolveStatus::Solved;
             let iterations = out.info.price_iterations;
@@ -107,7 +120,12 @@ pub fn solve(
     Ok(())
 }
 
-/// Plan one sweep (inputs already validated).
+/// Plan one sweep (inputs already validated). With `beat` given, a sweep that provably cannot
+/// fit the mission time, or provably costs at least `beat` m/s, stops before its Lambert wells
+/// are built, with the status `Unsolved` (the caller only uses a solved plan cheaper than
+/// `beat`): its fastest tour is bounded below by the legs' fastest options other than wells
+/// and the start of their wells' search windows, and its cost by each leg's cheapest option
+/// within the time the other legs leave it at their fastest (0 for a leg with wells).
 fn solve_sweep(
     g: &Geo,
     dir: Direction,
@@ -115,6 +133,7 @@ fn solve_sweep(
     s: &Settings,
     ws: &mut Workspace,
     out: &mut Solution,
+    beat: Option<f64>,
 ) {
     *out = Solution::new();
     out.info.direction = Some(dir);
@@ -174,17 +193,38 @@ fn solve_sweep(
                 problem.policy,
                 s,
             );
-            fastest += t.fastest_s;
-            fastest_uncapped += t.fastest_uncapped_s;
         }
         prev_off = off;
         prev_lon = to;
     }
-    out.info.fastest_tour_s = fastest;
     let Some(tables) = ws.tables.get_mut(..n) else {
         out.info.status = SolveStatus::CheckFailed { leg: 0 };
         return;
     };
+    if let Some(beat) = beat {
+        let fastest_lb = |t: &table::LegTable| table::fastest_lower_bound_s(g, t, problem.policy);
+        let bound: f64 = tables.iter().map(fastest_lb).sum();
+        let dominated = bound > problem.mission_time_s || {
+            let dv_lb: f64 = tables
+                .iter()
+                .map(|t| {
+                    let avail_s = problem.mission_time_s - (bound - fastest_lb(t));
+                    table::dv_lower_bound_mps(g, t, problem.policy, s, avail_s)
+                })
+                .sum();
+            dv_lb >= beat
+        };
+        if dominated {
+            out.info.status = SolveStatus::Unsolved;
+            return;
+        }
+    }
+    for t in tables.iter_mut() {
+        table::add_wells(g, t, problem.policy, s);
+        fastest += t.fastest_s;
+        fastest_uncapped += t.fastest_uncapped_s;
+    }
+    out.info.fastest_tour_s = fastest;
     if fastest.is_nan() || fastest > problem.mission_time_s {
         out.info.status = infeasible(tables, problem, s, fastest_uncapped);
         return;

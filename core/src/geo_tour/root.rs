@@ -54,6 +54,54 @@ pub(crate) fn illinois<F: FnMut(f64) -> f64>(
     (a, fa, b, fb, steps)
 }
 
+/// Root of a non-decreasing `f` on `[a, b]` given `fa = f(a) <= 0 < fb = f(b)`, for a smooth,
+/// nearly linear `f` bracketed closely: secant steps through the two latest points (order
+/// 1.6, where regula falsi keeps a stale end), kept inside the bracket (a bisection instead
+/// when the secant leaves it). Stops after `max_iter` evaluations, when `|f| <= ftol`, or
+/// when the bracket is narrower than `xtol * (1 + |a|)`. Returns the point with the smaller
+/// `|f|` (the bracket's positive end only when `a` is 0, the caller's excluded origin).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn secant_root<F: FnMut(f64) -> f64>(
+    mut f: F,
+    mut a: f64,
+    mut fa: f64,
+    mut b: f64,
+    mut fb: f64,
+    max_iter: u16,
+    xtol: f64,
+    ftol: f64,
+) -> f64 {
+    // The two latest points, (p, fp) the older.
+    let (mut p, mut fp, mut q, mut fq) = (a, fa, b, fb);
+    for _ in 0..max_iter {
+        if (b - a).abs() <= xtol * (1.0 + a.abs()) {
+            break;
+        }
+        let mut c = q - fq * (q - p) / (fq - fp);
+        if !(c > a && c < b) {
+            c = 0.5 * (a + b);
+        }
+        let fc = f(c);
+        if fc.is_nan() {
+            break;
+        }
+        if fc <= 0.0 {
+            (a, fa) = (c, fc);
+        } else {
+            (b, fb) = (c, fc);
+        }
+        (p, fp, q, fq) = (q, fq, c, fc);
+        if fc.abs() <= ftol {
+            break;
+        }
+    }
+    if fa.abs() <= fb.abs() && a > 0.0 {
+        a
+    } else {
+        b
+    }
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used, clippy::float_cmp)]
 mod tests {
@@ -67,5 +115,14 @@ mod tests {
         let step = |x: f64| if x < 0.3 { -1.0 } else { 1.0 };
         let (a, fa, b, fb, _) = illinois(step, 0.0, -1.0, 1.0, 1.0, 200, 1e-12, 0.0);
         assert!(fa <= 0.0 && fb > 0.0 && (b - a) < 1e-11 && (a - 0.3).abs() < 1e-11);
+    }
+
+    #[test]
+    fn secant_finds_smooth_roots_and_survives_a_step() {
+        let x = secant_root(|x| x * x * x - 2.0, 1.0, -1.0, 2.0, 6.0, 100, 1e-15, 0.0);
+        assert!((x - libm::cbrt(2.0)).abs() < 1e-14, "{x}");
+        let step = |x: f64| if x < 0.3 { -1.0 } else { 1.0 };
+        let x = secant_root(step, 0.1, -1.0, 1.0, 1.0, 200, 1e-12, 0.0);
+        assert!((x - 0.3).abs() < 1e-11, "{x}");
     }
 }

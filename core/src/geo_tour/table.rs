@@ -5,8 +5,11 @@
 use super::drift::Drift;
 use super::geo::Geo;
 use super::hohmann::hohmann;
-use super::lambert_phasing::{lambert_revs, well_minimum, LambertBounds};
+use super::lambert_phasing::{
+    lambert_revs, well_minimum, well_skipped, wells_earliest_s, LambertBounds,
+};
 use super::maneuver::{Direction, Maneuver, Method};
+use super::price_curve::PriceCurve;
 use super::radial::radial;
 use super::types::{MethodPolicy, Settings, MAX_LAMBERT_REVOLUTIONS};
 
@@ -44,6 +47,8 @@ pub(crate) struct DriftRange {
     pub model: Drift,
     pub x_max_km: f64,
     pub t_min_s: f64,
+    /// The leg's marginal price of time on `(0, x_max_km]`, tabulated.
+    pub curve: PriceCurve,
 }
 
 /// Everything one leg can do.
@@ -198,6 +203,7 @@ pub(crate) fn build(
                 model,
                 x_max_km: x,
                 t_min_s: t_min,
+                curve: PriceCurve::new(&model, x),
             });
         }
     }
@@ -218,7 +224,6 @@ pub(crate) fn build(
         );
     }
     if allowed(Method::Lambert) {
-        let b = bounds(s);
         let direct = lambert_revs(
             g,
             dir,
@@ -226,15 +231,86 @@ pub(crate) fn build(
             s.lambert_direct_time_s,
             0,
             f64::INFINITY,
-            b,
+            bounds(s),
         );
         push(&mut t, PointKind::Direct, direct, cap_mps);
-        if policy == MethodPolicy::ByCost {
-            for m in 1..=s.lambert_max_revolutions.saturating_add(1) {
-                let w = well_minimum(g, dir, phase_rad, m, 0.0, cap_mps, s.well_iterations, b);
-                push(&mut t, PointKind::Well(m), w, cap_mps);
-            }
-        }
     }
     t
+}
+
+/// Whether the leg of table `t` has Lambert wells under `policy` (by cost, a positive phase).
+fn has_wells(t: &LegTable, policy: MethodPolicy) -> bool {
+    policy == MethodPolicy::ByCost && t.phase_rad > 0.0
+}
+
+/// Add the Lambert wells (the dearest part of a table: a golden section of Lambert solves
+/// per well) to a table from [`build`], after its other options.
+pub(crate) fn add_wells(g: &Geo, t: &mut LegTable, policy: MethodPolicy, s: &Settings) {
+    if !has_wells(t, policy) {
+        return;
+    }
+    let (dir, phase_rad, cap_mps) = (direction_of(t), t.phase_rad, t.cap_mps);
+    for m in 1..=s.lambert_max_revolutions.saturating_add(1) {
+        let w = well_minimum(
+            g,
+            dir,
+            phase_rad,
+            m,
+            0.0,
+            cap_mps,
+            s.well_iterations,
+            bounds(s),
+        );
+        push(t, PointKind::Well(m), w, cap_mps);
+    }
+}
+
+/// A lower bound on the leg's fastest admissible duration once its wells are added: every
+/// well is searched no earlier than `wells_earliest_s`, so the table's wells cannot make the
+/// leg faster than that.
+pub(crate) fn fastest_lower_bound_s(g: &Geo, t: &LegTable, policy: MethodPolicy) -> f64 {
+    if has_wells(t, policy) {
+        t.fastest_s
+            .min(wells_earliest_s(g, direction_of(t), t.phase_rad))
+    } else {
+        t.fastest_s
+    }
+}
+
+/// A lower bound on the Δv of the leg of table `t` (wells not yet added) when it may take at
+/// most `avail_s`: 0 when any of its wells may exist (a well is not priced before it is
+/// built), else the cheapest option that fits: a point of duration <= `avail_s` (a longer leg
+/// waits), or the drift at `avail_s` (its cost falls with its duration). Infinite when nothing
+/// fits.
+pub(crate) fn dv_lower_bound_mps(
+    g: &Geo,
+    t: &LegTable,
+    policy: MethodPolicy,
+    s: &Settings,
+    avail_s: f64,
+) -> f64 {
+    if has_wells(t, policy) {
+        let dir = direction_of(t);
+        let any = (1..=s.lambert_max_revolutions.saturating_add(1))
+            .any(|m| !well_skipped(g, dir, t.phase_rad, m, t.cap_mps));
+        if any {
+            return 0.0;
+        }
+    }
+    let mut best = f64::INFINITY;
+    for p in &t.points {
+        if p.duration_s <= avail_s {
+            best = best.min(p.dv_mps);
+        }
+    }
+    if let Some(d) = t.drift.as_ref() {
+        if avail_s >= d.t_min_s {
+            let x = d
+                .model
+                .depth_for_duration(avail_s, d.x_max_km, s.root_max_iter);
+            // The root is bracketed to rounding; the margin keeps the bound below D(avail_s).
+            best = best.min(d.model.at(x).dv_mps * (1.0 - 1e-9));
+        }
+    }
+    best
 }

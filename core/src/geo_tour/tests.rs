@@ -70,3 +70,51 @@ fn published_case_is_solved_both_ways() {
         }
     }
 }
+
+/// `Cheaper` cuts the west sweep short when it provably cannot fit or cannot be cheaper: its
+/// answer must still be exactly the cheaper of the two sweeps planned on their own (east on a
+/// tie), in cases where west is infeasible, feasible but dearer, and the only sweep that fits.
+#[test]
+fn cheaper_is_the_better_of_both_sweeps_planned_alone() {
+    let row = |start: f64, spacing: f64, days: f64| {
+        let mut p = published(days, MethodPolicy::ByCost);
+        p.start_lon_rad = start * DEG;
+        p.targets_lon_rad.clear();
+        for k in 1..=16 {
+            p.targets_lon_rad
+                .push(wrap_two_pi((start + spacing * f64::from(k)) * DEG))
+                .unwrap();
+        }
+        p
+    };
+    let mut cases = std::vec![
+        published(40.0, MethodPolicy::ByCost),
+        published(120.0, MethodPolicy::ByCost),
+        row(48.0, 0.7, 200.0),
+        row(48.0, 0.13, 150.0),
+        // Clients spread just short of the full ring eastward: the west sweep wins.
+        row(48.0, 21.0, 120.0),
+    ];
+    cases.push(row(48.0, -0.7, 200.0));
+    let mut west_won = false;
+    for p in cases {
+        let cheaper = run(&p);
+        let mut e = p.clone();
+        e.sweep = SweepChoice::East;
+        let mut w = p.clone();
+        w.sweep = SweepChoice::West;
+        let (east, west) = (run(&e), run(&w));
+        let solved = |s: &Solution| s.info.status == SolveStatus::Solved;
+        let want = if solved(&west) && (!solved(&east) || west.total_dv_mps < east.total_dv_mps) {
+            west_won = true;
+            &west
+        } else {
+            &east
+        };
+        assert_eq!(cheaper.info.status, want.info.status);
+        assert_eq!(cheaper.info.direction, want.info.direction);
+        assert_eq!(cheaper.total_dv_mps, want.total_dv_mps);
+        assert_eq!(cheaper.legs, want.legs);
+    }
+    assert!(west_won, "no case where the west sweep wins");
+}
