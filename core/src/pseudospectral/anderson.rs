@@ -58,6 +58,19 @@ impl Anderson {
         self.has_last = false;
     }
 
+    /// Forget the history and lend three of its buffers as scratch (the second-order step's
+    /// CG vectors: after a Newton step the mixing history no longer describes the map).
+    pub(super) fn scratch(&mut self) -> super::newton::Scratch<'_> {
+        self.reset();
+        let [residual] = &mut self.delta_f;
+        let [direction] = &mut self.delta_g;
+        super::newton::Scratch {
+            residual,
+            direction,
+            product: &mut self.last_f,
+        }
+    }
+
     /// Given the linearisation point `x` and the QP's solution `g`, write the next
     /// linearisation point into `next`. `memory` = 0 gives plain iteration (`next = g`).
     pub fn step(

@@ -226,13 +226,17 @@ pub(super) fn linearise(ws: &mut Workspace) {
 /// Set every check's normal to the unit separation at the iterate: the constraint gradients
 /// the certificate needs (`linearise` swerves where a check is violated, even by rounding).
 pub(super) fn unit_normals(ws: &mut Workspace) {
-    let tr = &mut ws.transcription;
+    unit_normals_at(&mut ws.transcription, &ws.iterate);
+}
+
+/// Set every check's normal to the unit separation at `y`.
+pub(super) fn unit_normals_at(tr: &mut Transcription, y: &Coefficients) {
     for pair in 0..tr.pair_count {
         for c in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
             let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)).copied() else {
                 continue;
             };
-            let relative = tr.relative(pair, check.source, &ws.iterate);
+            let relative = tr.relative(pair, check.source, y);
             let length = norm3(&relative);
             if length > 0.0 {
                 if let Some(slot) = tr.checks.get_mut(pair).and_then(|row| row.get_mut(c)) {
