@@ -12,15 +12,14 @@
 //! convex-concave step, which cannot raise the cost from a point feasible at its checks). One
 //! backtrack per rejected step, each one QP of the `sqp_max_iter` budget.
 
-use super::linearise::{follow_minima, linearise};
+use super::linearise::{follow_minima, linearise, refine_moving_checks};
 use super::newton;
 use super::qp::{self, QpOutcome};
 use super::settings::Settings;
 use super::solution::Solution;
 use super::status::{SolveStatus, Stage};
-use super::transcription::{Coefficients, MAX_BLOCKS};
+use super::transcription::Coefficients;
 use super::workspace::Workspace;
-use crate::capacity::MAX_FREE_PER_AXIS;
 
 /// How the SQP loop ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -179,32 +178,30 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
         }
         have_solution = true;
         previous_cost = cost;
-        let mut next = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
         newton_used = rejections < MAX_NEWTON_REJECTIONS && newton::applies(&ws.qp);
         if newton_used {
             // The Newton step is taken at the answer, with the gradients there: the moving
-            // checks go to the answer's continuous separation minima first (the envelope
-            // theorem makes that the semi-infinite constraint's gradient).
+            // checks go to the answer's local separation minima first (the envelope theorem
+            // makes that the semi-infinite constraint's gradient).
             ws.iterate = ws.accepted;
             if settings.continuous_verification {
-                follow_minima(ws, settings);
+                refine_moving_checks(ws);
             }
             if !newton::step(
                 &mut ws.transcription,
                 &mut ws.qp,
                 &ws.accepted,
-                &mut next,
+                &mut ws.iterate,
                 ws.anderson.scratch(),
             ) {
-                next = ws.accepted;
+                ws.iterate = ws.accepted;
             }
             extrapolated = true;
         } else {
             ws.anderson
-                .step(&ws.iterate, &ws.trial, &mut next, memory, blocks, free);
+                .step(&mut ws.iterate, &ws.trial, memory, blocks, free);
             extrapolated = memory > 0;
         }
-        ws.iterate = next;
     }
     ws.iterate = ws.accepted;
     SqpEnd::MaxIterations
