@@ -58,6 +58,16 @@ impl Anderson {
         self.has_last = false;
     }
 
+    /// Forget the history and lend a square work array for the basis construction at setup
+    /// (`Basis::build`), which runs before any mixing; `None` cannot happen (24 blocks >= 21
+    /// coefficients) but is reported as a basis failure, never a panic.
+    pub(super) fn setup_scratch(
+        &mut self,
+    ) -> Option<&mut [[f64; MAX_FREE_PER_AXIS]; MAX_FREE_PER_AXIS]> {
+        self.reset();
+        self.last_g.first_chunk_mut::<MAX_FREE_PER_AXIS>()
+    }
+
     /// Forget the history and lend three of its buffers as scratch (the second-order step's
     /// CG vectors: after a Newton step the mixing history no longer describes the map).
     pub(super) fn scratch(&mut self) -> super::newton::Scratch<'_> {

@@ -108,7 +108,7 @@ fn run(
     out: &mut Solution,
 ) -> SolveStatus {
     ws.qp.reset();
-    if let Err(stage) = setup(problem, settings, ws) {
+    if let Err(stage) = setup(problem, settings, ws, &mut out.test_point_times_tu) {
         return SolveStatus::NumericalFailure(stage);
     }
     initial_iterate(ws, warm, out);
