@@ -58,13 +58,37 @@ impl Anderson {
         self.has_last = false;
     }
 
-    /// Given the linearisation point `x` and the QP's solution `g`, write the next
-    /// linearisation point into `next`. `memory` = 0 gives plain iteration (`next = g`).
+    /// Forget the history and lend a square work array for the basis construction at setup
+    /// (`Basis::build`), which runs before any mixing; `None` cannot happen (24 blocks >= 21
+    /// coefficients) but is reported as a basis failure, never a panic.
+    pub(super) fn setup_scratch(
+        &mut self,
+    ) -> Option<&mut [[f64; MAX_FREE_PER_AXIS]; MAX_FREE_PER_AXIS]> {
+        self.reset();
+        self.last_g.first_chunk_mut::<MAX_FREE_PER_AXIS>()
+    }
+
+    /// Forget the history and lend three of its buffers as scratch (the second-order step's
+    /// CG vectors: after a Newton step the mixing history no longer describes the map).
+    pub(super) fn scratch(&mut self) -> super::newton::Scratch<'_> {
+        self.reset();
+        let [residual] = &mut self.delta_f;
+        let [direction] = &mut self.delta_g;
+        super::newton::Scratch {
+            residual,
+            direction,
+            product: &mut self.last_f,
+        }
+    }
+
+    /// Given the linearisation point `point` and the QP's solution `g`, overwrite `point` with
+    /// the next linearisation point (in place: `point` is read only for the residual, and the
+    /// caller needs no second dense vector on its stack). `memory` = 0 gives plain iteration
+    /// (`point = g`).
     pub fn step(
         &mut self,
-        x: &Coefficients,
+        point: &mut Coefficients,
         g: &Coefficients,
-        next: &mut Coefficients,
         memory: usize,
         blocks: usize,
         free: usize,
@@ -72,14 +96,14 @@ impl Anderson {
         let memory = memory.min(MAX_MEMORY);
         let mut f = ZERO;
         for b in 0..blocks {
-            if let (Some(fb), Some(gb), Some(xb)) = (f.get_mut(b), g.get(b), x.get(b)) {
+            if let (Some(fb), Some(gb), Some(xb)) = (f.get_mut(b), g.get(b), point.get(b)) {
                 for ((slot, gv), xv) in fb.iter_mut().zip(gb.iter()).zip(xb.iter()).take(free) {
                     *slot = gv - xv;
                 }
             }
         }
         if memory == 0 {
-            *next = *g;
+            *point = *g;
             return;
         }
         if self.has_last {
@@ -111,7 +135,7 @@ impl Anderson {
         self.last_f = f;
         self.last_g = *g;
         self.has_last = true;
-        *next = *g;
+        *point = *g;
         let k = self.count;
         if k == 0 {
             return;
@@ -151,7 +175,7 @@ impl Anderson {
         solve_lower_transposed(&normal, k, &mut rhs);
         for (i, gamma) in rhs.iter().enumerate().take(k) {
             if let Some(dg) = self.delta_g.get(i) {
-                for (nb, db) in next.iter_mut().zip(dg.iter()).take(blocks) {
+                for (nb, db) in point.iter_mut().zip(dg.iter()).take(blocks) {
                     for (slot, d) in nb.iter_mut().zip(db.iter()).take(free) {
                         *slot -= gamma * d;
                     }

@@ -191,7 +191,7 @@ fn describe(tr: &Transcription, id: RowId) -> ActiveConstraint {
 }
 
 /// `out += sign * S v` restricted to one active keep-out check with multiplier `l`.
-fn add_curvature(
+pub(super) fn add_curvature(
     tr: &Transcription,
     y: &Coefficients,
     (pair, source): (usize, Source),
@@ -244,7 +244,7 @@ fn add_curvature(
 /// `+l f_yt f_yt^T / f_tt`. `f_yt` is kept compactly (the basis position and velocity rows at the
 /// check time and the relative state), never as a dense vector.
 #[derive(Clone, Copy, Debug)]
-struct Envelope {
+pub(super) struct Envelope {
     pair: (u8, u8),
     position_row: [f64; MAX_FREE_PER_AXIS],
     velocity_row: [f64; MAX_FREE_PER_AXIS],
@@ -252,14 +252,20 @@ struct Envelope {
     along_position: [f64; 3],
     along_velocity: [f64; 3],
     /// `l / f_tt`.
-    weight: f64,
+    pub(super) weight: f64,
 }
 
 impl Envelope {
     /// Build for the check of `pair` at `tau` with multiplier `l`; `None` when the check is not
     /// a strict minimum in time (then the correction is left out, which only lowers the
     /// reported curvature: conservative).
-    fn new(tr: &Transcription, y: &Coefficients, pair: usize, tau: f64, l: f64) -> Option<Self> {
+    pub(super) fn new(
+        tr: &Transcription,
+        y: &Coefficients,
+        pair: usize,
+        tau: f64,
+        l: f64,
+    ) -> Option<Self> {
         let &(i, j) = tr.pairs.get(pair)?;
         let free = tr.basis.free;
         let nodes = tr.grid.nodes();
@@ -323,7 +329,7 @@ impl Envelope {
     }
 
     /// `f_yt . v`.
-    fn dot(&self, tr: &Transcription, v: &Coefficients) -> f64 {
+    pub(super) fn dot(&self, tr: &Transcription, v: &Coefficients) -> f64 {
         let free = tr.basis.free;
         let (i, j) = self.pair;
         let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
@@ -341,7 +347,7 @@ impl Envelope {
     }
 
     /// `out += alpha f_yt`.
-    fn axpy(&self, tr: &Transcription, alpha: f64, out: &mut Coefficients) {
+    pub(super) fn axpy(&self, tr: &Transcription, alpha: f64, out: &mut Coefficients) {
         let free = tr.basis.free;
         let (i, j) = self.pair;
         let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
@@ -370,7 +376,7 @@ fn block(sc: u8, axis: usize) -> usize {
 }
 
 /// `x <- P x`: remove the part of `x` in the span of the active rows.
-fn project(tr: &Transcription, qp: &QpState, x: &mut Coefficients) {
+pub(super) fn project(tr: &Transcription, qp: &QpState, x: &mut Coefficients) {
     let free = tr.basis.free;
     let mut b = [0.0; MAX_ACTIVE];
     for (slot, &id) in b.iter_mut().zip(qp.active.iter()).take(qp.count) {
@@ -435,7 +441,7 @@ pub(crate) fn evaluate(
         out.second_order_evaluated = true;
         return;
     }
-    if qp.mode != Mode::Factor || !qp.refactor(tr) {
+    if qp.mode != Mode::Factor || !qp.merge_close_checks(tr) {
         return;
     }
     let blocks = tr.blocks();

@@ -1,14 +1,25 @@
-//! The convex-concave iteration (globalisation of the sequence of QPs): one QP per
-//! linearisation, Anderson-accelerated, with the cost safeguard and the fixed-point test.
+//! The SQP iteration: one convex QP per linearisation, the next linearisation point from the
+//! second-order (Newton) step on the QP's active set (`newton.rs`) or, where there is none,
+//! Anderson extrapolation; globalised by a backtracking rule on the cost, and ended by the
+//! fixed-point test.
+//!
+//! Globalisation: every QP answer meets every check whatever point it was linearised at (the
+//! linearised keep-out is a tangent half-space inside the feasible set), so the iterates stay
+//! feasible at the checks and the exact-penalty merit `J + nu sum max(0, -g_k)` equals the cost
+//! `J` on them. The line search is over the linearisation point `y + alpha p`, `alpha` in
+//! `{1, 0}`: an answer from an extrapolated point (`alpha = 1`) that raises the cost is
+//! rejected and the QP is solved again linearised at the last accepted answer (`alpha = 0`, the
+//! convex-concave step, which cannot raise the cost from a point feasible at its checks). One
+//! backtrack per rejected step, each one QP of the `sqp_max_iter` budget.
 
-use super::linearise::{follow_minima, linearise};
+use super::linearise::{follow_minima, linearise, refine_moving_checks};
+use super::newton;
 use super::qp::{self, QpOutcome};
 use super::settings::Settings;
 use super::solution::Solution;
 use super::status::{SolveStatus, Stage};
-use super::transcription::{Coefficients, MAX_BLOCKS};
+use super::transcription::Coefficients;
 use super::workspace::Workspace;
-use crate::capacity::MAX_FREE_PER_AXIS;
 
 /// How the SQP loop ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -21,6 +32,10 @@ pub(super) enum SqpEnd {
 /// A converged iterate lies within this fraction of d of its linearisation point (so the QP's
 /// rows are the constraint gradients there to about this relative accuracy).
 pub(super) const FIXED_POINT_TOL_REL: f64 = 1e-4;
+
+/// Newton points the line search may reject per round before the round falls back to
+/// Anderson extrapolation.
+pub(super) const MAX_NEWTON_REJECTIONS: u8 = 6;
 
 pub(super) fn half_norm2(y: &Coefficients, blocks: usize, free: usize) -> f64 {
     let mut sum = 0.0;
@@ -42,7 +57,13 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
     ws.anderson.reset();
     ws.accepted = ws.iterate;
     let mut have_solution = false;
-    let mut accelerated = false;
+    let mut extrapolated = false;
+    // Newton points rejected by the line search this round; past `MAX_NEWTON_REJECTIONS` the
+    // round continues with Anderson extrapolation (the active set is not settled enough for the
+    // second-order model: measured on the dense lattice, where the Newton point's QP kept
+    // changing the active set and cost more than the plain step, every other subproblem).
+    let mut rejections = 0u8;
+    let mut newton_used = false;
     let mut restarted = false;
     let mut previous_decrease = f64::INFINITY;
     for _ in 0..settings.sqp_max_iter {
@@ -68,11 +89,11 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
             QpOutcome::FactorFailure => Some(SolveStatus::NumericalFailure(Stage::QpFactor)),
         };
         if let Some(status) = failure {
-            if accelerated {
+            if extrapolated {
                 // The extrapolated point was a poor linearisation: fall back to plain iteration
                 // from the last solution.
                 ws.anderson.reset();
-                accelerated = false;
+                extrapolated = false;
                 ws.iterate = ws.accepted;
                 continue;
             }
@@ -80,6 +101,21 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
             return SqpEnd::Failed(status);
         }
         let cost = ws.transcription.base_cost + half_norm2(&ws.trial, blocks, free);
+        if extrapolated
+            && have_solution
+            && cost > previous_cost + settings.sqp_tol_cost * (1.0 + cost)
+        {
+            // Backtrack (alpha = 0): the extrapolated point gave a costlier answer; reject it
+            // and linearise at the last accepted answer.
+            ws.anderson.reset();
+            extrapolated = false;
+            ws.iterate = ws.accepted;
+            restarted = true;
+            if newton_used {
+                rejections = rejections.saturating_add(1);
+            }
+            continue;
+        }
         let mut step = 0.0f64;
         // How far the QP's answer is from the point it was linearised at (the Anderson
         // extrapolation): a fixed point needs both equal, or the rows are not the constraint
@@ -110,8 +146,10 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
             0.999
         };
         let gap = decrease.max(0.0) * rate / (1.0 - rate);
-        let small_change = decrease >= 0.0
-            && decrease <= tolerance
+        // A rise within the tolerance counts as no change: near a fixed point the Newton
+        // points' answers differ in the last digits both ways (measured: a three-cycle of
+        // +-3e-11 in J with steps of 5e-6 LU that never met a sign-sensitive test).
+        let small_change = libm::fabs(decrease) <= tolerance
             && (decrease <= 0.0 || gap <= tolerance)
             && !restarted;
         previous_decrease = decrease;
@@ -140,11 +178,30 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
         }
         have_solution = true;
         previous_cost = cost;
-        let mut next = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
-        ws.anderson
-            .step(&ws.iterate, &ws.trial, &mut next, memory, blocks, free);
-        accelerated = memory > 0;
-        ws.iterate = next;
+        newton_used = rejections < MAX_NEWTON_REJECTIONS && newton::applies(&ws.qp);
+        if newton_used {
+            // The Newton step is taken at the answer, with the gradients there: the moving
+            // checks go to the answer's local separation minima first (the envelope theorem
+            // makes that the semi-infinite constraint's gradient).
+            ws.iterate = ws.accepted;
+            if settings.continuous_verification {
+                refine_moving_checks(ws);
+            }
+            if !newton::step(
+                &mut ws.transcription,
+                &mut ws.qp,
+                &ws.accepted,
+                &mut ws.iterate,
+                ws.anderson.scratch(),
+            ) {
+                ws.iterate = ws.accepted;
+            }
+            extrapolated = true;
+        } else {
+            ws.anderson
+                .step(&mut ws.iterate, &ws.trial, memory, blocks, free);
+            extrapolated = memory > 0;
+        }
     }
     ws.iterate = ws.accepted;
     SqpEnd::MaxIterations

@@ -68,6 +68,7 @@ mod iteration;
 mod lgl;
 mod linalg;
 mod linearise;
+mod newton;
 mod output;
 mod packed;
 mod qp;

@@ -110,7 +110,6 @@ pub(super) fn write_solution(ws: &mut Workspace, settings: &Settings, out: &mut 
         }
     }
     out.cost = cost;
-    out.test_point_times_tu = ws.test_times;
     // Largest violation of a checked constraint.
     let mut violation = 0.0f64;
     for pair in 0..tr.pair_count {

@@ -155,6 +155,72 @@ impl QpState {
         cholesky(&mut self.store, self.count).is_none()
     }
 
+    /// Merge active keep-out checks of one pair closer than `CLOSE_CHECKS_TAU` into the first
+    /// of them (its multiplier takes the other's), then refactor. Why: the moving check can
+    /// sit a few 1e-5 off a node check at the same minimum (measured on the square swap: t = 5
+    /// and t = 5 - 8e-5, both active); their rows are then parallel to 1e-5, the Gram matrix
+    /// is near singular, and the null-space projector of the second-order step and of the
+    /// certificate loses the reduced Hessian. As one constraint they are what they describe:
+    /// the keep-out at that minimum. Returns false when the refactorisation fails (or in
+    /// fallback mode).
+    pub(crate) fn merge_close_checks(&mut self, tr: &Transcription) -> bool {
+        if self.mode != Mode::Factor {
+            return false;
+        }
+        let tau_of = |id: RowId| match id {
+            RowId::KeepOut { pair, check } => tr
+                .checks
+                .get(usize::from(pair))
+                .and_then(|row| row.get(usize::from(check)))
+                .map(|c| (pair, c.tau)),
+            RowId::Control { .. } => None,
+        };
+        let mut k = 0usize;
+        while k < self.count {
+            let current = self.active.get(k).copied().and_then(tau_of);
+            let mut merged_into = None;
+            if let Some((pair, tau)) = current {
+                for (e, &earlier) in self.active.iter().enumerate().take(k) {
+                    if let Some((other_pair, other_tau)) = tau_of(earlier) {
+                        if other_pair == pair
+                            && libm::fabs(other_tau - tau) < super::transcription::CLOSE_CHECKS_TAU
+                        {
+                            merged_into = Some(e);
+                            break;
+                        }
+                    }
+                }
+            }
+            match merged_into {
+                Some(e) => {
+                    let value = self.multiplier.get(k).copied().unwrap_or(0.0);
+                    if let Some(slot) = self.multiplier.get_mut(e) {
+                        *slot += value;
+                    }
+                    // Remove row k (order kept); its active flag stays off.
+                    let id = self.active.get(k).copied().unwrap_or(NO_ROW);
+                    self.mark(id, false);
+                    for m in k..self.count.saturating_sub(1) {
+                        let next = m.saturating_add(1);
+                        if let (Some(&row), Some(&mult)) =
+                            (self.active.get(next), self.multiplier.get(next))
+                        {
+                            if let Some(slot) = self.active.get_mut(m) {
+                                *slot = row;
+                            }
+                            if let Some(slot) = self.multiplier.get_mut(m) {
+                                *slot = mult;
+                            }
+                        }
+                    }
+                    self.count = self.count.saturating_sub(1);
+                }
+                None => k = k.saturating_add(1),
+            }
+        }
+        self.refactor(tr)
+    }
+
     /// Solve `G x = b` with the current Gram factor (factor mode).
     pub(crate) fn gram_solve(&self, b: &mut [f64; MAX_ACTIVE]) {
         solve_lower(&self.store, self.count, b);

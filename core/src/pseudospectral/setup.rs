@@ -15,11 +15,13 @@ use crate::capacity::{
     MAX_FREE_PER_AXIS, MAX_NODES, MAX_PAIRS, MAX_SPACECRAFT, TEST_POINTS_PER_PAIR,
 };
 
-/// Build the grid, basis, base cubics, pairs, pruning windows and check points.
+/// Build the grid, basis, base cubics, pairs, pruning windows and check points. The test-point
+/// times per pair go straight into the solution's `test_times` (no workspace copy).
 pub(super) fn setup(
     problem: &Problem,
     settings: &Settings,
     ws: &mut Workspace,
+    test_times: &mut [[f64; TEST_POINTS_PER_PAIR]; MAX_PAIRS],
 ) -> Result<(), Stage> {
     let n = usize::from(problem.degree);
     let m = problem.spacecraft.len();
@@ -27,10 +29,11 @@ pub(super) fn setup(
     if !tr.grid.build(n, settings.newton_max_iter) {
         return Err(Stage::Transcription);
     }
-    if !tr
-        .basis
-        .build(&tr.grid, problem.horizon_tu, &mut ws.basis_scratch)
-    {
+    // The basis's square work array is the (idle) Anderson memory: no buffer of its own.
+    let Some(scratch) = ws.anderson.setup_scratch() else {
+        return Err(Stage::Basis);
+    };
+    if !tr.basis.build(&tr.grid, problem.horizon_tu, scratch) {
         return Err(Stage::Basis);
     }
     if !ws.bernstein.build(&tr.grid) {
@@ -148,7 +151,7 @@ pub(super) fn setup(
         }
     }
     // Gaussian test points (eq. 27) on the analytic trajectories.
-    ws.test_times = [[0.0; TEST_POINTS_PER_PAIR]; MAX_PAIRS];
+    *test_times = [[0.0; TEST_POINTS_PER_PAIR]; MAX_PAIRS];
     if problem.test_points {
         let mut node_times = [0.0; MAX_NODES];
         for (h, slot) in node_times.iter_mut().enumerate().take(nodes) {
@@ -167,7 +170,7 @@ pub(super) fn setup(
                 problem.horizon_tu,
                 settings.refine_max_iter,
             );
-            if let Some(slot) = ws.test_times.get_mut(pair) {
+            if let Some(slot) = test_times.get_mut(pair) {
                 *slot = times;
             }
             for &t in times.iter().take(count) {

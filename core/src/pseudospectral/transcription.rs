@@ -18,6 +18,10 @@ pub(crate) const MAX_BLOCKS: usize = MAX_SPACECRAFT * 3;
 pub(crate) const MAX_POINTS: usize =
     MAX_PAIRS * (TEST_POINTS_PER_PAIR + MAX_VERIFY_POINTS_PER_PAIR);
 
+/// Two checks of one pair closer than this in normalised time (tau in [-1, 1]) are one
+/// constraint for the second-order measures (see `QpState::merge_close_checks`).
+pub(crate) const CLOSE_CHECKS_TAU: f64 = 1e-4;
+
 /// A dense vector of all free coefficients.
 pub(crate) type Coefficients = [[f64; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
 

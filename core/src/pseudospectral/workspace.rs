@@ -5,7 +5,7 @@ use super::guess::AxisLaw;
 use super::qp::QpState;
 use super::transcription::{Coefficients, Transcription, MAX_BLOCKS};
 use super::verify::Bernstein;
-use crate::capacity::{MAX_FREE_PER_AXIS, MAX_PAIRS, MAX_SPACECRAFT, TEST_POINTS_PER_PAIR};
+use crate::capacity::{MAX_FREE_PER_AXIS, MAX_PAIRS, MAX_SPACECRAFT};
 
 const NO_LAW: AxisLaw = AxisLaw {
     alpha: 0.0,
@@ -39,8 +39,6 @@ pub struct Workspace {
     pub(crate) anderson: Anderson,
     /// The last QP solution (the feasible iterate).
     pub(crate) accepted: Coefficients,
-    pub(crate) basis_scratch: [[f64; MAX_FREE_PER_AXIS]; MAX_FREE_PER_AXIS],
-    pub(crate) test_times: [[f64; TEST_POINTS_PER_PAIR]; MAX_PAIRS],
     /// Direction used for a pair's linearisation where the spacecraft coincide.
     pub(crate) fallback_normal: [[f64; 3]; MAX_PAIRS],
     /// The saddle's iterate while an escape from it is tried.
@@ -59,8 +57,6 @@ impl Workspace {
             trial: [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS],
             anderson: Anderson::new(),
             accepted: [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS],
-            basis_scratch: [[0.0; MAX_FREE_PER_AXIS]; MAX_FREE_PER_AXIS],
-            test_times: [[0.0; TEST_POINTS_PER_PAIR]; MAX_PAIRS],
             fallback_normal: [[0.0; 3]; MAX_PAIRS],
             saved: [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS],
         }
