@@ -92,7 +92,15 @@ pub struct Settings {
     pub search_screen_tol_mps: f64,
     /// Least-fuel tolerance of a local-search evaluation's cone program, m/s.
     pub search_tol_mps: f64,
+    /// Work budget of a solve, in work units (`crate::work`): past it the solve stops with
+    /// `SolveStatus::BudgetExhausted`. Part of it is kept for the final solve after a search
+    /// and for the checks of the returned plan. The default bounds the worst request within
+    /// the default limits to 400 M Cortex-M7 instructions (`docs/firmware.md`, "Work budget").
+    pub work_budget: u64,
 }
+
+/// Default work budget, in units (`docs/firmware.md`, "Work budget").
+pub const DEFAULT_WORK_BUDGET: u64 = 1_000_000_000;
 
 impl Settings {
     /// The fixed-point plan alone: the defaults without the least-fuel refinement and without
@@ -135,6 +143,7 @@ impl Default for Settings {
             search_fixed_point_max_iter: 1,
             search_screen_tol_mps: 1e-3,
             search_tol_mps: 1e-7,
+            work_budget: DEFAULT_WORK_BUDGET,
         }
     }
 }

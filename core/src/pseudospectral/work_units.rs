@@ -1,0 +1,103 @@
+//! Planner A's work units: the cost of each metered step from the transcription's sizes, about
+//! one unit per multiply-add of its inner loops (calibrated against M7 instructions in
+//! `docs/firmware.md`). The hooks charge these at their loop heads (`crate::work::Meter`).
+//!
+//! Sizes: `blocks` = 3 M coefficient blocks of `free` variables, `nodes` = N + 1, `pairs`,
+//! `checks` = keep-out rows over all pairs, `k` = rows in the QP's working set.
+
+use super::certificate::POWER_ITERATIONS;
+use super::transcription::Transcription;
+use crate::capacity::{MAX_ACTIVE, MAX_CHECKS_PER_PAIR};
+use crate::work::units;
+
+struct Size {
+    blocks: usize,
+    free: usize,
+    nodes: usize,
+    pairs: usize,
+    checks: usize,
+}
+
+fn size(tr: &Transcription) -> Size {
+    let pairs = tr.pair_count;
+    Size {
+        blocks: tr.blocks(),
+        free: tr.basis.free,
+        nodes: tr.grid.nodes(),
+        pairs,
+        checks: tr.check_count.iter().take(pairs).sum(),
+    }
+}
+
+/// Building the transcription: LGL nodes and matrices, the Bernstein conversion, the basis
+/// (cubic in the nodes), and the guess's node values.
+pub(super) fn setup(tr: &Transcription) -> u64 {
+    let s = size(tr);
+    units(&[8, s.nodes, s.nodes, s.nodes]).saturating_add(units(&[s.blocks, s.nodes, s.free]))
+}
+
+/// One SQP iteration's set-up: follow each pair's continuous minimum (a refinement over the
+/// nodes), linearise every check (its relative position over the nodes and its row over the
+/// free variables), and the Anderson step over the coefficients.
+pub(super) fn sqp_iteration(tr: &Transcription) -> u64 {
+    let s = size(tr);
+    units(&[60, s.pairs, s.nodes])
+        .saturating_add(units(&[6, s.checks, s.nodes.saturating_add(s.free)]))
+        .saturating_add(units(&[4, s.blocks, s.free]))
+}
+
+/// The QP's search for the most violated row: every control row (blocks x nodes, a dot product
+/// over `free`) and every keep-out row (six blocks' worth of `free`).
+pub(super) fn qp_scan(tr: &Transcription) -> u64 {
+    let s = size(tr);
+    units(&[s.blocks, s.nodes, s.free]).saturating_add(units(&[6, s.checks, s.free]))
+}
+
+/// One active-set step with `k` working rows: `k` row products and updates (a keep-out row spans
+/// six blocks), two triangular solves of order `k`, and the dense direction.
+pub(super) fn qp_step(tr: &Transcription, k: usize) -> u64 {
+    let s = size(tr);
+    units(&[12, k, s.free])
+        .saturating_add(units(&[2, k, k]))
+        .saturating_add(units(&[4, s.blocks, s.free]))
+}
+
+/// One sweep of the dual coordinate ascent: every control row and every keep-out row, each
+/// evaluated and (when it moves) applied.
+pub(super) fn dual_sweep(tr: &Transcription) -> u64 {
+    let s = size(tr);
+    units(&[2, s.blocks, s.nodes, s.free]).saturating_add(units(&[24, s.checks, s.free]))
+}
+
+/// One pair's continuous minimum: Bernstein coefficients of the three axes, the squared
+/// distance's product coefficients, and the branch-and-bound subdivisions (degree 2N).
+fn pair_minimum(s: &Size) -> u64 {
+    units(&[40, s.nodes, s.nodes])
+}
+
+/// One verification round: every pair's continuous minimum.
+pub(super) fn verify_round(tr: &Transcription) -> u64 {
+    let s = size(tr);
+    units(&[s.pairs]).saturating_mul(pair_minimum(&s))
+}
+
+/// The final checks of a returned iterate (`solver::finish`): the continuous verification of
+/// every pair, the node values of the solution, and the certificate's power method with a full
+/// working set. An upper bound for any working set, so it can be reserved before solving.
+pub(super) fn finish(tr: &Transcription) -> u64 {
+    let s = size(tr);
+    let working = MAX_ACTIVE;
+    let power_step = units(&[12, working, s.free])
+        .saturating_add(units(&[2, working, working]))
+        .saturating_add(units(&[6, s.blocks, s.free]))
+        .saturating_add(units(&[6, s.pairs, MAX_CHECKS_PER_PAIR, s.free]));
+    verify_round(tr)
+        .saturating_add(units(&[6, s.blocks, s.nodes, s.free]))
+        .saturating_add(power_step.saturating_mul(units(&[POWER_ITERATIONS])))
+}
+
+/// What a solve keeps back for its final checks: the check of the answer it returns, and once
+/// more for a saddle escape that fell back to the saddle's answer (`solver::run`).
+pub(super) fn reserve(tr: &Transcription) -> u64 {
+    finish(tr).saturating_mul(2)
+}
