@@ -114,6 +114,10 @@ pub fn solve(
         }
     };
     let report = solver::solve_points(&ctx, &workspace.points, settings, &mut workspace.seq);
+    workspace
+        .seq
+        .work
+        .charge(work_units::final_checks(impulses));
     solver::write_solution(
         &ctx,
         &workspace.points,

@@ -246,10 +246,11 @@ fn iterate_and_verify(ws: &mut Workspace, settings: &Settings, out: &mut Solutio
 }
 
 /// Write the solution, check its feasibility, evaluate its certificate, and return its status.
-/// `ws.trial` receives the certificate's negative-curvature direction (`ws.saved` is its
+/// `ws.trial` receives the certificate's negative-curvature direction (`ws.accepted` is its
 /// scratch): workspace buffers idle at this point, so the certificate adds nothing to the stack.
 fn finish(ws: &mut Workspace, settings: &Settings, out: &mut Solution, end: SqpEnd) -> SolveStatus {
-    ws.work.charge(work_units::finish(&ws.transcription));
+    ws.work
+        .charge(work_units::finish(&ws.transcription, ws.qp.count));
     let verified = write_solution(ws, settings, out);
     // Feasibility is checked on the returned trajectory itself, whatever the iteration says.
     let control_excess = control_excess(out, ws.transcription.max_control_fu);
@@ -268,7 +269,7 @@ fn finish(ws: &mut Workspace, settings: &Settings, out: &mut Solution, end: SqpE
             &ws.iterate,
             out.cost,
             &mut ws.trial,
-            &mut ws.saved,
+            &mut ws.accepted,
             &mut out.certificate,
         );
     }

@@ -82,11 +82,11 @@ pub(super) fn verify_round(tr: &Transcription) -> u64 {
 }
 
 /// The final checks of a returned iterate (`solver::finish`): the continuous verification of
-/// every pair, the node values of the solution, and the certificate's power method with a full
-/// working set. An upper bound for any working set, so it can be reserved before solving.
-pub(super) fn finish(tr: &Transcription) -> u64 {
+/// every pair, the node values of the solution, and the certificate's power method with
+/// `working` rows in the working set (at most `MAX_ACTIVE` in the reserve).
+pub(super) fn finish(tr: &Transcription, working: usize) -> u64 {
     let s = size(tr);
-    let working = MAX_ACTIVE;
+    let working = working.min(MAX_ACTIVE);
     let power_step = units(&[12, working, s.free])
         .saturating_add(units(&[2, working, working]))
         .saturating_add(units(&[6, s.blocks, s.free]))
@@ -96,8 +96,9 @@ pub(super) fn finish(tr: &Transcription) -> u64 {
         .saturating_add(power_step.saturating_mul(units(&[POWER_ITERATIONS])))
 }
 
-/// What a solve keeps back for its final checks: the check of the answer it returns, and once
-/// more for a saddle escape that fell back to the saddle's answer (`solver::run`).
+/// What a solve keeps back for its final checks, with a full working set: a saddle's check
+/// may overrun the loops' share, then an escape's, then the saddle's again after the escape
+/// falls back to it (`solver::run`): three checks at most after the loops stop.
 pub(super) fn reserve(tr: &Transcription) -> u64 {
-    finish(tr).saturating_mul(2)
+    finish(tr, MAX_ACTIVE).saturating_mul(3)
 }
