@@ -71,6 +71,12 @@ impl Meter {
         true
     }
 
+    /// Whether the loops' share has room left, charging nothing: `false` (and the meter
+    /// exhausted) once a final check has used it up, so that no new stage starts.
+    pub fn has_room(&mut self) -> bool {
+        self.spend(0)
+    }
+
     /// Charge `units` whatever the budget: the reserved final checks, or work whose size was
     /// known only once done (it then bounds the next `spend`).
     pub fn charge(&mut self, units: u64) {

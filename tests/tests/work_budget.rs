@@ -53,11 +53,11 @@ fn planner_a_stops_at_its_budget_with_a_truthful_status() {
     let mut usable = 0;
     let mut unusable = 0;
     let mut complete = 0;
-    // Budgets from the floor to three times the units a full solve uses (the reserve for the
+    // Budgets from the floor to six times the units a full solve uses (the reserve for three
     // final checks is a bound over any working set, so a full solve needs more than it uses).
-    for percent in (0u64..=100).step_by(5) {
+    for percent in (0u64..=100).step_by(4) {
         let settings = pseudospectral::Settings {
-            work_budget: floor + (3 * needed - floor) * percent / 100,
+            work_budget: floor + (6 * needed - floor) * percent / 100,
             ..pseudospectral::Settings::default()
         };
         let cut = solve_pseudospectral(&problem, &settings).unwrap();

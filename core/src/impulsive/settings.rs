@@ -100,7 +100,7 @@ pub struct Settings {
 }
 
 /// Default work budget, in units (`docs/firmware.md`, "Work budget").
-pub const DEFAULT_WORK_BUDGET: u64 = 1_000_000_000;
+pub const DEFAULT_WORK_BUDGET: u64 = 19_000_000;
 
 impl Settings {
     /// The fixed-point plan alone: the defaults without the least-fuel refinement and without

@@ -14,7 +14,7 @@ fn linear_propagation(n: usize) -> u64 {
 
 /// One propagation with exact impulses (state vectors and back to elements per impulse).
 fn exact_propagation(n: usize) -> u64 {
-    units(&[250, n])
+    units(&[400, n])
 }
 
 /// Building F (a 6x6 by 6x3 product per impulse) and dY.
@@ -38,7 +38,7 @@ pub(super) fn fixed_point_iteration(n: usize) -> u64 {
 /// One rank-revealing SVD of F (one-sided Jacobi sweeps), when the Cholesky solve declines
 /// and for the rank and condition of the returned plan.
 pub(super) fn svd(n: usize) -> u64 {
-    units(&[2000, n])
+    units(&[800, n])
 }
 
 /// `iterations` interior-point iterations of the least-fuel cone program (a 6x6 Cholesky, the
@@ -49,6 +49,11 @@ pub(super) fn cone_program(n: usize, iterations: u16) -> u64 {
         .saturating_mul(u64::from(iterations))
 }
 
+/// Fixed cost of a search evaluation whatever its size: the candidate's points (sorting,
+/// wrapping), the cone program's set-up, the bookkeeping of the pattern search (calibrated: the
+/// intercept of instructions against units over the 2- to 6-impulse searches).
+const EVALUATION_OVERHEAD: u64 = 1_100;
+
 /// One search evaluation's linearisations (a linear propagation and F each, a minimum-norm
 /// solve between them) and its dual bound; its cone program is charged as it is done.
 pub(super) fn evaluation(n: usize, linearisations: u16) -> u64 {
@@ -57,6 +62,7 @@ pub(super) fn evaluation(n: usize, linearisations: u16) -> u64 {
     each.saturating_mul(count)
         .saturating_add(min_norm(n).saturating_mul(count.saturating_sub(1)))
         .saturating_add(units(&[40, n]))
+        .saturating_add(EVALUATION_OVERHEAD)
 }
 
 /// One column of the finite-difference Jacobian of the defect: an exact propagation.

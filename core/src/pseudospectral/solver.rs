@@ -125,7 +125,7 @@ fn run(
     // along the curvature direction (deterministic: a fixed power-method start and sign), and
     // the iteration resumes; the better verified answer is kept.
     let mut escapes = 0u8;
-    while escapes < MAX_SADDLE_ESCAPES && is_saddle(status, end, out) && !ws.work.exhausted() {
+    while escapes < MAX_SADDLE_ESCAPES && is_saddle(status, end, out) && ws.work.has_room() {
         escapes = escapes.saturating_add(1);
         out.info.saddle_escapes = escapes;
         let saddle_cost = out.cost;

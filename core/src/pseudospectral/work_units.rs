@@ -5,10 +5,15 @@
 //! Sizes: `blocks` = 3 M coefficient blocks of `free` variables, `nodes` = N + 1, `pairs`,
 //! `checks` = keep-out rows over all pairs, `k` = rows in the QP's working set.
 
-use super::certificate::POWER_ITERATIONS;
+use super::certificate::{MAX_ENVELOPES, POWER_ITERATIONS};
 use super::transcription::Transcription;
-use crate::capacity::{MAX_ACTIVE, MAX_CHECKS_PER_PAIR};
+use super::transcription::MAX_BLOCKS;
+use crate::capacity::{MAX_ACTIVE, MAX_FREE_PER_AXIS};
 use crate::work::units;
+
+/// A coefficient vector at capacity: the loops clear and copy whole fixed-size arrays, a cost
+/// that does not shrink with the problem.
+const VECTOR: usize = MAX_BLOCKS * MAX_FREE_PER_AXIS;
 
 struct Size {
     blocks: usize,
@@ -44,13 +49,15 @@ pub(super) fn sqp_iteration(tr: &Transcription) -> u64 {
     units(&[60, s.pairs, s.nodes])
         .saturating_add(units(&[6, s.checks, s.nodes.saturating_add(s.free)]))
         .saturating_add(units(&[4, s.blocks, s.free]))
+        .saturating_add(units(&[8, VECTOR]))
 }
 
 /// The QP's search for the most violated row: every control row (blocks x nodes, a dot product
-/// over `free`) and every keep-out row (six blocks' worth of `free`).
+/// over `free`) and every keep-out row (six blocks' worth of `free`, but pruned and active rows
+/// are skipped: about half of them, calibrated).
 pub(super) fn qp_scan(tr: &Transcription) -> u64 {
     let s = size(tr);
-    units(&[s.blocks, s.nodes, s.free]).saturating_add(units(&[6, s.checks, s.free]))
+    units(&[s.blocks, s.nodes, s.free]).saturating_add(units(&[3, s.checks, s.free]))
 }
 
 /// One active-set step with `k` working rows: `k` row products and updates (a keep-out row spans
@@ -60,6 +67,7 @@ pub(super) fn qp_step(tr: &Transcription, k: usize) -> u64 {
     units(&[12, k, s.free])
         .saturating_add(units(&[2, k, k]))
         .saturating_add(units(&[4, s.blocks, s.free]))
+        .saturating_add(units(&[2, VECTOR]))
 }
 
 /// One sweep of the dual coordinate ascent: every control row and every keep-out row, each
@@ -87,18 +95,24 @@ pub(super) fn verify_round(tr: &Transcription) -> u64 {
 pub(super) fn finish(tr: &Transcription, working: usize) -> u64 {
     let s = size(tr);
     let working = working.min(MAX_ACTIVE);
-    let power_step = units(&[12, working, s.free])
+    // Per power step: the projection on the working set (row products and updates, two
+    // triangular solves), each active keep-out row's curvature (over the nodes), the envelope
+    // corrections (at most `MAX_ENVELOPES`, six blocks each way), the dense vector operations.
+    let power_step = units(&[18, working, s.free])
+        .saturating_add(units(&[6, working, s.nodes]))
         .saturating_add(units(&[2, working, working]))
-        .saturating_add(units(&[6, s.blocks, s.free]))
-        .saturating_add(units(&[6, s.pairs, MAX_CHECKS_PER_PAIR, s.free]));
+        .saturating_add(units(&[MAX_ENVELOPES, 12, s.free]))
+        .saturating_add(units(&[4, s.blocks, s.free]))
+        .saturating_add(units(&[2, VECTOR]));
     verify_round(tr)
         .saturating_add(units(&[6, s.blocks, s.nodes, s.free]))
         .saturating_add(power_step.saturating_mul(units(&[POWER_ITERATIONS])))
 }
 
-/// What a solve keeps back for its final checks, with a full working set: a saddle's check
-/// may overrun the loops' share, then an escape's, then the saddle's again after the escape
-/// falls back to it (`solver::run`): three checks at most after the loops stop.
+/// What a solve keeps back for its final checks, with a full working set: an escape's check
+/// and the saddle's again after the escape falls back to it (`solver::run`). A saddle's own
+/// check that overruns the loops' share starts no escape, so two checks at most follow the
+/// loops' share.
 pub(super) fn reserve(tr: &Transcription) -> u64 {
-    finish(tr, MAX_ACTIVE).saturating_mul(3)
+    finish(tr, MAX_ACTIVE).saturating_mul(2)
 }
