@@ -33,3 +33,4 @@ pub mod limits;
 pub mod pseudospectral;
 mod vec3;
 pub mod wire;
+pub mod work;

@@ -24,7 +24,8 @@ use serde::{Deserialize, Serialize};
 /// Protocol version carried in every frame; a frame of another version is refused.
 /// 2: planner A's solution carries its certificate, planner B's settings and solve info
 /// changed, the GEO tour joined, and the `LimitExceeded` / `Expired` outcomes were added.
-/// 3: planner B's settings gained `element_set` and its solution `terminal_error_equinoctial`.
+/// 3: planner B's settings gained `element_set` and its solution `terminal_error_equinoctial`;
+///    planners A and B gained `work_budget`, `SolveInfo::work_units` and `BudgetExhausted`.
 pub const PROTOCOL_VERSION: u16 = 3;
 /// First two bytes of a request frame.
 pub const REQUEST_MAGIC: [u8; 2] = *b"RQ";

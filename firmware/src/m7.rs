@@ -7,7 +7,7 @@
 //! binary text_bytes=.. rodata_bytes=.. data_bytes=.. bss_bytes=.. uninit_bytes=.. static_ram_bytes=..
 //! planners pseudospectral_workspace_bytes=.. pseudospectral_solution_bytes=.. impulsive_workspace_bytes=.. impulsive_solution_bytes=..
 //! planners geo_tour_workspace_bytes=.. geo_tour_solution_bytes=..   (GEO image only)
-//! fixture index=0 name=.. planner=pseudospectral outcome=ok|error stack_bytes=.. systick_instructions=..
+//! fixture index=0 name=.. planner=pseudospectral outcome=ok|error stack_bytes=.. systick_instructions=.. work_units=..
 //! result index=0 hex=..
 //! done fixtures=5
 //! ```
@@ -379,6 +379,7 @@ fn main() -> ! {
                 let ticks = systick::now() - ticks_before;
                 let stack_bytes = stack_high_water();
                 let ok = result.is_ok();
+                let work_units = PS_SOLUTION.info.work_units;
                 let encoded: Result<&pseudospectral::Solution, pseudospectral::PlanError> =
                     result.map(|()| &*PS_SOLUTION);
                 report(
@@ -388,7 +389,7 @@ fn main() -> ! {
                     "pseudospectral",
                     ok,
                     stack_bytes,
-                    ticks,
+                    (ticks, work_units),
                 );
                 print_result(&mut out, index, &encoded);
             }
@@ -418,6 +419,7 @@ fn main() -> ! {
                 let ticks = systick::now() - ticks_before;
                 let stack_bytes = stack_high_water();
                 let ok = result.is_ok();
+                let work_units = IM_SOLUTION.info.work_units;
                 let encoded: Result<&impulsive::Solution, impulsive::PlanError> =
                     result.map(|()| &*IM_SOLUTION);
                 report(
@@ -427,7 +429,7 @@ fn main() -> ! {
                     "impulsive",
                     ok,
                     stack_bytes,
-                    ticks,
+                    (ticks, work_units),
                 );
                 print_result(&mut out, index, &encoded);
             }
@@ -479,12 +481,12 @@ fn report(
     planner: &str,
     ok: bool,
     stack_bytes: usize,
-    ticks: u64,
+    (ticks, work_units): (u64, u64),
 ) {
     let _ = writeln!(
         out,
         "fixture index={index} name={} planner={planner} outcome={} stack_bytes={stack_bytes} \
-         systick_instructions={}",
+         systick_instructions={} work_units={work_units}",
         fixture.name,
         if ok { "ok" } else { "error" },
         ticks * systick::INSTRUCTIONS_PER_TICK,

@@ -62,10 +62,12 @@ pub fn render(record: &str) -> Result<String, String> {
         .and_then(toml::Value::as_array)
         .ok_or_else(|| format!("{RECORD_FILE}: no [[fixture]]"))?;
     let mut md = String::from(
-        "| fixture | instructions | budget | stack bytes | RAM bytes (static + stack) | RAM budget |\n\
-         | --- | ---: | ---: | ---: | ---: | ---: |\n",
+        "| fixture | instructions | budget | work units | stack bytes | RAM bytes (static + stack) | RAM budget |\n\
+         | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n",
     );
     let mut ram_max = 0;
+    // Instructions per work unit, (min, max) per planner key.
+    let mut per_unit: std::collections::BTreeMap<String, (f64, f64)> = Default::default();
     for f in fixtures {
         let f = f.as_table().ok_or("a [[fixture]] is not a table")?;
         let name = f
@@ -74,11 +76,24 @@ pub fn render(record: &str) -> Result<String, String> {
             .ok_or("fixture without name")?;
         let ram = int(f, "ram_bytes")?;
         ram_max = ram_max.max(ram);
+        let planner = f
+            .get("planner")
+            .and_then(toml::Value::as_str)
+            .ok_or("fixture without planner")?;
+        let units = int(f, "work_units")?;
+        if units > 0 {
+            let ratio = int(f, "instructions")? as f64 / units as f64;
+            let e = per_unit
+                .entry(planner.to_owned())
+                .or_insert((f64::INFINITY, 0.0));
+            *e = (e.0.min(ratio), e.1.max(ratio));
+        }
         let _ = writeln!(
             md,
-            "| {name} | {} | {} | {} | {} | {} |",
+            "| {name} | {} | {} | {} | {} | {} | {} |",
             grouped(int(f, "instructions")?),
             grouped(int(f, "instructions_budget")?),
+            grouped(units),
             grouped(int(f, "stack_bytes")?),
             grouped(ram),
             grouped(int(f, "ram_bytes_budget")?),
@@ -104,6 +119,34 @@ pub fn render(record: &str) -> Result<String, String> {
         kib(ram_max),
         ram_max as f64 / 2621.44,
     );
+    md.push_str(
+        "\nWork budget (`work_budget`, in work units; instructions per unit over the fixtures \
+         above):\n\n\
+         | planner | instructions per unit, min | max | max / min | default budget, units | \
+         worst case = budget x max, instructions |\n\
+         | --- | ---: | ---: | ---: | ---: | ---: |\n",
+    );
+    for (planner, budget) in [
+        (
+            "pseudospectral",
+            reconfig_core::pseudospectral::Settings::default().work_budget,
+        ),
+        (
+            "impulsive",
+            reconfig_core::impulsive::Settings::default().work_budget,
+        ),
+    ] {
+        let Some(&(min, max)) = per_unit.get(planner) else {
+            continue;
+        };
+        let _ = writeln!(
+            md,
+            "| {planner} | {min:.1} | {max:.1} | {:.2} | {} | {} |",
+            max / min,
+            grouped(budget),
+            grouped((budget as f64 * max).ceil() as u64),
+        );
+    }
     Ok(md)
 }
 

@@ -106,7 +106,14 @@ fn the_same_input_gives_bit_identical_output() {
 #[test]
 fn eight_spacecraft_crossing_is_solved_with_verified_separation() {
     let problem = pseudospectral_fixture("crossing-8-sats-n16");
-    let s = solve_pseudospectral(&problem, &Settings::default()).expect("accepted");
+    // It needs about 447 M M7 instructions, more than the default work budget allows (400 M):
+    // at the default it stops with BudgetExhausted (tests/tests/work_budget.rs), so the full
+    // solve is asked for with a larger budget.
+    let settings = Settings {
+        work_budget: 100_000_000,
+        ..Settings::default()
+    };
+    let s = solve_pseudospectral(&problem, &settings).expect("accepted");
     assert_eq!(s.info.status, SolveStatus::Solved);
     assert!(s.min_separation_lu >= 2.0 - 1e-6);
     // Above the no-keep-out optimum (8 rest-to-rest cubics of D = 12: 8 * 6 * 144 / 1000).

@@ -125,6 +125,8 @@ struct FixtureReport {
     stack_bytes: u64,
     /// The firmware's own SysTick estimate (to within 40 instructions).
     systick_instructions: u64,
+    /// Work units the solve reported (`SolveInfo::work_units`).
+    work_units: u64,
     hex: String,
 }
 
@@ -429,6 +431,7 @@ fn parse_output(elf: &Path, stdout: &str) -> Result<Run, String> {
                         .to_string(),
                     stack_bytes: number(&f, "stack_bytes")?,
                     systick_instructions: number(&f, "systick_instructions")?,
+                    work_units: number(&f, "work_units")?,
                     hex: String::new(),
                 });
             }
@@ -639,10 +642,16 @@ fn figures_are_within_budget() {
     let static_ram = run.binary["static_ram_bytes"];
     for (index, fixture) in run.fixtures.iter().enumerate() {
         let recorded = recorded_fixtures.get(&fixture.name).copied();
-        let default_instructions = if fixture.planner == Planner::Impulsive.key() {
-            BUDGET_INSTRUCTIONS_IMPULSIVE
+        let (default_instructions, work_budget) = if fixture.planner == Planner::Impulsive.key() {
+            (
+                BUDGET_INSTRUCTIONS_IMPULSIVE,
+                reconfig_core::impulsive::Settings::default().work_budget,
+            )
         } else {
-            BUDGET_INSTRUCTIONS_PSEUDOSPECTRAL
+            (
+                BUDGET_INSTRUCTIONS_PSEUDOSPECTRAL,
+                reconfig_core::pseudospectral::Settings::default().work_budget,
+            )
         };
         let _ = write!(
             text,
@@ -651,6 +660,9 @@ fn figures_are_within_budget() {
         );
         for (key, measured, default_budget) in [
             ("instructions", instructions[index], default_instructions),
+            // The work units beside the instructions (the calibration in docs/firmware.md);
+            // their budget is the planner's default `work_budget`.
+            ("work_units", fixture.work_units, work_budget),
             ("stack_bytes", fixture.stack_bytes, BUDGET_STACK_BYTES),
             (
                 "ram_bytes",

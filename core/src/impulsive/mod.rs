@@ -51,6 +51,7 @@ mod trajectory;
 mod transfer;
 mod types;
 mod validate;
+mod work_units;
 mod workspace;
 
 pub use elements::{
@@ -94,6 +95,15 @@ pub fn solve(
 ) -> Result<(), PlanError> {
     settings.validate().map_err(PlanError::InvalidSettings)?;
     let ctx = validate::validate(problem, settings)?;
+    let impulses = match &problem.plan {
+        ImpulsePlan::Fixed(points) => points.len(),
+        ImpulsePlan::Search { impulses, .. } => usize::from(*impulses),
+    };
+    workspace.seq.work = crate::work::Meter::new(settings.work_budget);
+    workspace
+        .seq
+        .work
+        .reserve(work_units::final_checks(impulses));
     let evaluations = match &problem.plan {
         ImpulsePlan::Fixed(points) => {
             workspace.points = transfer::Points::new();
@@ -107,6 +117,8 @@ pub fn solve(
             impulses,
             max_revolutions,
         } => {
+            let search_reserve = work_units::search_reserve(usize::from(*impulses), settings);
+            workspace.seq.work.reserve(search_reserve);
             let used = search::search(
                 &ctx,
                 usize::from(*impulses),
@@ -116,10 +128,17 @@ pub fn solve(
                 &mut workspace.points,
                 &mut workspace.search,
             );
+            // The final solve at the best points may spend what the search left.
+            let checks = work_units::final_checks(usize::from(*impulses));
+            workspace.seq.work.next_stage(checks);
             used.saturating_add(1)
         }
     };
     let report = solver::solve_points(&ctx, &workspace.points, settings, &mut workspace.seq);
+    workspace
+        .seq
+        .work
+        .charge(work_units::final_checks(impulses));
     returned::write_solution(
         &ctx,
         &workspace.points,
@@ -129,5 +148,12 @@ pub fn solve(
         evaluations,
         out,
     );
+    // Stopped by the budget: the status says so, and whether the plan passed the checks.
+    if workspace.seq.work.exhausted() {
+        out.info.status = SolveStatus::BudgetExhausted {
+            verified: out.info.status.is_usable(),
+        };
+    }
+    out.info.work_units = workspace.seq.work.used();
     Ok(())
 }

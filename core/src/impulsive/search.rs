@@ -32,6 +32,7 @@ use super::settings::{Settings, MAX_SEARCH_STARTS};
 use super::socp::least_fuel;
 use super::transfer::{build_system, propagate, Context, ImpulseModel, Points, Sequence, XVector};
 use super::types::ImpulsePoint;
+use super::work_units;
 use crate::capacity::MAX_IMPULSES;
 
 /// Phases of one candidate, rad; the first `n` are used.
@@ -169,6 +170,12 @@ impl Scorer<'_> {
         if points_of(phi, self.n, self.u0, self.max_revolutions, pts).is_none() {
             return INFEASIBLE;
         }
+        if !seq
+            .work
+            .spend(work_units::evaluation(self.n, linearisations))
+        {
+            return INFEASIBLE;
+        }
         let columns = self.n.saturating_mul(3);
         let mut dv = XVector::zeros();
         for j in 0..linearisations.max(1) {
@@ -205,6 +212,8 @@ impl Scorer<'_> {
         ) else {
             return INFEASIBLE;
         };
+        seq.work
+            .charge(work_units::cone_program(self.n, lf.iterations));
         // Rank-deficient points cannot reach the target; a failed cone program still returns a
         // feasible plan, whose total is an honest (upper) score.
         let cost = lf.total * M_PER_KM;
@@ -347,6 +356,9 @@ pub(crate) fn search(
 
     // Phase 1: random samples, screened by the least fuel at one linearisation.
     for _ in 0..settings.search_samples.min(budget) {
+        if seq.work.exhausted() {
+            break;
+        }
         let mut phi = [0.0; MAX_IMPULSES];
         for p in phi.iter_mut().take(n) {
             *p = rng.next_f64() * span;
@@ -392,7 +404,7 @@ pub(crate) fn search(
         let mut phi = start;
         let mut inc = scorer.score(&phi, lin, tol, None, seq, pts);
         let mut step = settings.search_step_rad;
-        while used < allowance && step >= settings.search_min_step_rad {
+        while used < allowance && step >= settings.search_min_step_rad && !seq.work.exhausted() {
             let mut improved = false;
             for k in 0..n {
                 for delta in [TWO_PI, -TWO_PI, step, -step] {

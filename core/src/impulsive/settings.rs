@@ -102,6 +102,11 @@ pub struct Settings {
     /// `|sin i| < min_sin_inclination`. Corrected plans agree between the two (the exact end
     /// condition does not depend on the coordinates).
     pub element_set: ElementSet,
+    /// Work budget of a solve, in work units (`crate::work`): past it the solve stops with
+    /// `SolveStatus::BudgetExhausted`. Part of it is kept for the final solve after a search
+    /// and for the checks of the returned plan. The default bounds the worst request within
+    /// the default limits to 400 M Cortex-M7 instructions (`docs/firmware.md`, "Work budget").
+    pub work_budget: u64,
 }
 
 /// The working mean-element set of planner B (see `Settings::element_set`).
@@ -114,6 +119,9 @@ pub enum ElementSet {
     /// tan(i/2) sin Omega]`: regular except at i = pi.
     Equinoctial,
 }
+
+/// Default work budget, in units (`docs/firmware.md`, "Work budget").
+pub const DEFAULT_WORK_BUDGET: u64 = 19_000_000;
 
 impl Settings {
     /// The paper-reproduction settings: the paper's classical elements, with the defaults
@@ -167,6 +175,7 @@ impl Default for Settings {
             search_screen_tol_mps: 1e-3,
             search_tol_mps: 1e-7,
             element_set: ElementSet::Equinoctial,
+            work_budget: DEFAULT_WORK_BUDGET,
         }
     }
 }

@@ -94,6 +94,7 @@ impl Solution {
                 correction_used: false,
                 evaluations: 0,
                 min_fuel_gap_mps: 0.0,
+                work_units: 0,
             },
         }
     }

@@ -12,6 +12,7 @@ use super::status::{SolveStatus, Stage};
 use super::transfer::{
     build_system, chief_at, propagate, target_at, Context, ImpulseModel, Points, Sequence, XVector,
 };
+use super::work_units;
 
 /// Result of a fixed-point run.
 #[derive(Clone, Copy, Debug, Default)]
@@ -53,6 +54,9 @@ pub(crate) fn fixed_point(
     } / M_PER_KM;
     let mut out = FixedPoint::default();
     for _ in 0..max_iter {
+        if !seq.work.spend(work_units::fixed_point_iteration(pts.n)) {
+            break;
+        }
         propagate(ctx, pts, dv, ImpulseModel::Linear, settings, seq)?;
         build_system(ctx, pts, seq);
         // The equilibrated Cholesky solve gives the minimum-norm impulses at full row rank;
@@ -71,6 +75,7 @@ pub(crate) fn fixed_point(
                 x
             }
             None => {
+                seq.work.charge(work_units::svd(pts.n));
                 let (x, cond) = solve_min_norm(
                     &seq.f,
                     columns,
@@ -94,6 +99,8 @@ pub(crate) fn fixed_point(
             // Exact least fuel on this linearisation (a cone program, `socp`); its impulses
             // are feasible whatever its status, and the certified gap is reported.
             let (x, lf) = solve_least_fuel(&seq.f, columns, &seq.dy, settings)?;
+            seq.work
+                .charge(work_units::cone_program(pts.n, lf.iterations));
             out.min_fuel_steps = out.min_fuel_steps.saturating_add(lf.iterations);
             out.min_fuel_gap_km_s = lf.total - lf.lower_bound;
             if total(&x) <= total(&x0) {
@@ -364,6 +371,9 @@ fn correct(
     let mut e = nalgebra::SVector::<f64, 6>::from(err);
     let mut jac = defect_jacobian(ctx, pts, &dv, &err, settings, seq)?;
     for _ in 0..settings.correction_max_iter {
+        if !seq.work.spend(work_units::correction_step(pts.n)) {
+            break;
+        }
         let d = min_norm(&jac, columns, &e, settings)?;
         dv.axpy(-1.0, &d, 1.0);
         rep.correction_steps = rep.correction_steps.saturating_add(1);
@@ -408,6 +418,9 @@ fn defect_jacobian(
     let mut jac = super::transfer::FMatrix::zeros();
     let columns = pts.n.saturating_mul(3);
     for (j, mut col) in jac.column_iter_mut().enumerate().take(columns) {
+        if !seq.work.spend(work_units::jacobian_column(pts.n)) {
+            break;
+        }
         let mut probe = *dv;
         if let Some(x) = probe.get_mut(j) {
             *x += DEFECT_STEP_KM_S;

@@ -45,6 +45,14 @@ pub enum SolveStatus {
         /// Position miss of the nonlinear check, m.
         miss_m: f64,
     } = 7,
+    /// The work budget (`Settings::work_budget`) ran out: the search, the fixed point or the
+    /// correction stopped early. The returned plan (the best points found, solved with the
+    /// budget kept for it) was checked like any other: `verified` says whether it met every
+    /// condition of `Solved` (then it may be flown; a longer search might find less fuel).
+    BudgetExhausted {
+        /// The returned plan reaches the target and has safe perigees (as `Solved`).
+        verified: bool,
+    } = 8,
 }
 
 /// Where a numerical failure happened.
@@ -63,9 +71,13 @@ pub enum Stage {
 }
 
 impl SolveStatus {
-    /// The plan reaches the target and may be flown.
+    /// The plan reaches the target and may be flown (`Solved`, or
+    /// `BudgetExhausted { verified: true }`).
     pub fn is_usable(&self) -> bool {
-        matches!(self, Self::Solved)
+        matches!(
+            self,
+            Self::Solved | Self::BudgetExhausted { verified: true }
+        )
     }
 }
 
@@ -94,6 +106,8 @@ pub struct SolveInfo {
     /// Certified optimality gap of the least-fuel impulses on the final linearisation (upper
     /// minus dual lower bound), m/s; 0 when the least-fuel plan was not used.
     pub min_fuel_gap_mps: f64,
+    /// Work units used (`Settings::work_budget`), the final checks included.
+    pub work_units: u64,
 }
 
 #[cfg(test)]
@@ -116,6 +130,7 @@ mod tests {
                 perigee_altitude_km: 50.0,
             },
             SolveStatus::Linearised { miss_m: 150.0 },
+            SolveStatus::BudgetExhausted { verified: false },
         ] {
             assert!(!s.is_usable(), "{s:?}");
         }

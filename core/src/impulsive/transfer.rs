@@ -84,6 +84,8 @@ pub(crate) struct Sequence {
     pub f: FMatrix,
     /// dY.
     pub dy: SVector<f64, 6>,
+    /// The solve's work meter (here because every metered loop holds the sequence).
+    pub work: crate::work::Meter,
 }
 
 impl Sequence {
@@ -102,6 +104,8 @@ impl Sequence {
             final_time_s: 0.0,
             f: SMatrix::from_array_storage(ArrayStorage([[0.0; 6]; MAX_UNKNOWNS])),
             dy: SMatrix::from_array_storage(ArrayStorage([[0.0; 6]; 1])),
+            // Unmetered until a solve sets its budget (the solver's unit tests run it bare).
+            work: crate::work::Meter::new(u64::MAX),
         }
     }
 }

@@ -69,6 +69,8 @@ pub struct Limits {
     pub search_screen_tol_mps: f64,
     /// Loosest least-fuel gap in the search's local moves, m/s.
     pub search_tol_mps: f64,
+    /// Largest work budget, in work units.
+    pub work_budget: u64,
 }
 
 impl Default for Limits {
@@ -101,6 +103,7 @@ impl Default for Limits {
             search_fixed_point_max_iter: d.search_fixed_point_max_iter,
             search_screen_tol_mps: d.search_screen_tol_mps,
             search_tol_mps: d.search_tol_mps,
+            work_budget: d.work_budget,
         }
     }
 }
@@ -167,6 +170,7 @@ impl Limits {
             search_screen_tol_mps,
             search_tol_mps,
             element_set: _, // either set: the same loops and bounds
+            work_budget,
         } = *s;
         use Setting as S;
         let l = self;
@@ -258,7 +262,9 @@ impl Limits {
             search_screen_tol_mps,
             l.search_screen_tol_mps,
         )?;
-        at_most(S::ImpSearchTolMps, search_tol_mps, l.search_tol_mps)
+        at_most(S::ImpSearchTolMps, search_tol_mps, l.search_tol_mps)?;
+        // Exact below 2^53 units (far above any budget).
+        at_most(S::ImpWorkBudget, work_budget as f64, l.work_budget as f64)
     }
 }
 

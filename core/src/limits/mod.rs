@@ -54,6 +54,8 @@ pub enum Setting {
     PsNewtonMaxIter = 12,
     /// Planner A: `refine_max_iter`.
     PsRefineMaxIter = 13,
+    /// Planner A: `work_budget`.
+    PsWorkBudget = 14,
     /// Planner B: impulses of the problem (fixed points, or a search's count).
     ImpImpulses = 32,
     /// Planner B: the problem asks for an impulse-point search.
@@ -108,6 +110,8 @@ pub enum Setting {
     ImpSearchScreenTolMps = 57,
     /// Planner B: `search_tol_mps`.
     ImpSearchTolMps = 58,
+    /// Planner B: `work_budget`.
+    ImpWorkBudget = 59,
     /// GEO tour: client count of the problem.
     GeoTargets = 64,
     /// GEO tour: `lambert_max_revolutions`.
@@ -153,6 +157,7 @@ impl Setting {
             Self::PsKeepOutMarginLu => "keep_out_margin_lu",
             Self::PsNewtonMaxIter => "newton_max_iter",
             Self::PsRefineMaxIter => "refine_max_iter",
+            Self::PsWorkBudget => "work_budget",
             Self::ImpImpulses => "impulses",
             Self::ImpSearch => "search",
             Self::ImpFixedPointMaxIter => "fixed_point_max_iter",
@@ -180,6 +185,7 @@ impl Setting {
             Self::ImpSearchFixedPointMaxIter => "search_fixed_point_max_iter",
             Self::ImpSearchScreenTolMps => "search_screen_tol_mps",
             Self::ImpSearchTolMps => "search_tol_mps",
+            Self::ImpWorkBudget => "work_budget",
             Self::GeoTargets => "targets",
             Self::GeoLambertMaxRevolutions => "lambert_max_revolutions",
             Self::GeoLambertMaxIter => "lambert_max_iter",

@@ -40,6 +40,8 @@ pub struct Limits {
     pub newton_max_iter: u16,
     /// Most refinement steps of a separation minimum.
     pub refine_max_iter: u16,
+    /// Largest work budget, in work units.
+    pub work_budget: u64,
 }
 
 impl Default for Limits {
@@ -60,6 +62,7 @@ impl Default for Limits {
             keep_out_margin_lu: d.keep_out_margin_lu,
             newton_max_iter: d.newton_max_iter,
             refine_max_iter: d.refine_max_iter,
+            work_budget: d.work_budget,
         }
     }
 }
@@ -116,6 +119,7 @@ impl Limits {
             keep_out_margin_lu,
             newton_max_iter,
             refine_max_iter,
+            work_budget,
         } = *s;
         use Setting as S;
         let l = self;
@@ -155,6 +159,8 @@ impl Limits {
             refine_max_iter.into(),
             l.refine_max_iter.into(),
         )?;
+        // Exact below 2^53 units (far above any budget).
+        at_most(S::PsWorkBudget, work_budget as f64, l.work_budget as f64)?;
         Ok(())
     }
 }

@@ -19,6 +19,7 @@ use super::settings::Settings;
 use super::solution::Solution;
 use super::status::{SolveStatus, Stage};
 use super::transcription::Coefficients;
+use super::work_units;
 use super::workspace::Workspace;
 
 /// How the SQP loop ended.
@@ -67,6 +68,9 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
     let mut restarted = false;
     let mut previous_decrease = f64::INFINITY;
     for _ in 0..settings.sqp_max_iter {
+        if !ws.work.spend(work_units::sqp_iteration(&ws.transcription)) {
+            break;
+        }
         if settings.continuous_verification {
             follow_minima(ws, settings);
         }
@@ -78,6 +82,7 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
             settings.qp_max_iter,
             settings.qp_tol_feas,
             &mut out.info.qp_iterations,
+            &mut ws.work,
         );
         out.info.sqp_iterations = out.info.sqp_iterations.saturating_add(1);
         let active = u16::try_from(ws.qp.peak).unwrap_or(u16::MAX);
@@ -184,6 +189,8 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
             // checks go to the answer's local separation minima first (the envelope theorem
             // makes that the semi-infinite constraint's gradient).
             ws.iterate = ws.accepted;
+            ws.work
+                .charge(work_units::newton_step(&ws.transcription, ws.qp.count));
             if settings.continuous_verification {
                 refine_moving_checks(ws);
             }

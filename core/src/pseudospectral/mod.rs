@@ -78,3 +78,4 @@ mod solver;
 mod transcription;
 mod validate;
 mod verify;
+mod work_units;

@@ -13,7 +13,9 @@ use super::packed::{self, cholesky, set, solve_lower, solve_lower_transposed};
 use super::transcription::{
     block_dot, row_axpy, row_dot, rows_dot, Coefficients, RowId, Transcription, MAX_BLOCKS,
 };
+use super::work_units;
 use crate::capacity::{MAX_ACTIVE, MAX_CHECKS_PER_PAIR, MAX_FREE_PER_AXIS, MAX_NODES, MAX_PAIRS};
+use crate::work::Meter;
 
 /// How a QP ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -410,6 +412,7 @@ pub(crate) fn solve(
     max_iter: u16,
     tol: f64,
     iterations: &mut u32,
+    work: &mut Meter,
 ) -> QpOutcome {
     let free = tr.basis.free;
     let blocks = tr.blocks();
@@ -424,6 +427,9 @@ pub(crate) fn solve(
     let mut g = [0.0; MAX_ACTIVE];
     let mut r = [0.0; MAX_ACTIVE];
     loop {
+        if !work.spend(work_units::qp_scan(tr)) {
+            return QpOutcome::IterationLimit;
+        }
         let hinted = most_violated_hint(tr, state, y, hint.get(..hint_count).unwrap_or(&[]), tol);
         let Some((p, violation)) = hinted.or_else(|| most_violated(tr, state, y)) else {
             return QpOutcome::Optimal;
@@ -435,7 +441,7 @@ pub(crate) fn solve(
         let norm2_p = vp.norm * vp.norm;
         let mut multiplier_p = 0.0;
         loop {
-            if steps >= max_iter {
+            if steps >= max_iter || !work.spend(work_units::qp_step(tr, state.count)) {
                 return QpOutcome::IterationLimit;
             }
             steps = steps.saturating_add(1);
@@ -509,6 +515,7 @@ pub(crate) fn solve(
                         max_iter,
                         tol,
                         iterations,
+                        work,
                     );
                 }
                 for (c, value) in l.iter().enumerate().take(k) {

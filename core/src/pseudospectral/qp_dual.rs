@@ -75,6 +75,8 @@ fn control_step(control: f64, umax: f64, norm2: f64, multiplier: f64) -> f64 {
 /// Continue a QP without a factor. `entering` is the row the active-set method was adding and
 /// its multiplier so far. On return `state.mode` is `Dual` and `state.store` holds every
 /// multiplier.
+// The active-set method's arguments, carried on unchanged, plus its entering row.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn solve(
     tr: &Transcription,
     state: &mut QpState,
@@ -83,6 +85,7 @@ pub(crate) fn solve(
     max_sweeps: u16,
     tol: f64,
     iterations: &mut u32,
+    work: &mut crate::work::Meter,
 ) -> QpOutcome {
     let free = tr.basis.free;
     // Load the active-set method's multipliers (it is dual feasible: `y = A^T l`).
@@ -109,6 +112,9 @@ pub(crate) fn solve(
     });
     let mut sweeps: u16 = 0;
     loop {
+        if !work.spend(super::work_units::dual_sweep(tr)) {
+            return QpOutcome::IterationLimit;
+        }
         let mut worst = 0.0f64;
         let mut largest_move = 0.0f64;
         for block in 0..tr.blocks() {

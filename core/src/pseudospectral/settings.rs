@@ -6,6 +6,9 @@ use serde::{Deserialize, Serialize};
 /// Most verification rounds a solve may be set to.
 pub const MAX_VERIFY_ROUNDS: u8 = 8;
 
+/// Default work budget, in units (`docs/firmware.md`, "Work budget").
+pub const DEFAULT_WORK_BUDGET: u64 = 22_000_000;
+
 /// Loop bounds and tolerances. Plain `Copy` data; all fields take effect per solve.
 ///
 /// The worst case of a solve is bounded by
@@ -46,6 +49,11 @@ pub struct Settings {
     pub newton_max_iter: u16,
     /// Bisection / Newton steps when refining a separation minimum between check points.
     pub refine_max_iter: u16,
+    /// Work budget of a solve, in work units (`crate::work`): past it the solve stops with
+    /// `SolveStatus::BudgetExhausted`. Part of it is kept for the checks of the returned
+    /// answer. The default bounds the worst request within the default limits to 400 M
+    /// Cortex-M7 instructions (`docs/firmware.md`, "Work budget").
+    pub work_budget: u64,
 }
 
 impl Default for Settings {
@@ -63,6 +71,7 @@ impl Default for Settings {
             keep_out_margin_lu: 0.0,
             newton_max_iter: 60,
             refine_max_iter: 80,
+            work_budget: DEFAULT_WORK_BUDGET,
         }
     }
 }

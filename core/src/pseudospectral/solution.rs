@@ -68,6 +68,7 @@ impl Solution {
                 keep_out_checks: 0,
                 max_active: 0,
                 warm_start_used: false,
+                work_units: 0,
                 max_violation: 0.0,
                 saddle_escapes: 0,
             },

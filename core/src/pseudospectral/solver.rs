@@ -15,8 +15,10 @@ use super::setup::{initial_iterate, setup};
 use super::solution::Solution;
 use super::status::SolveStatus;
 use super::validate;
+use super::work_units;
 use super::workspace::Workspace;
 use crate::capacity::MAX_SPACECRAFT;
+use crate::work::Meter;
 
 pub(super) fn u8_of(value: usize) -> u8 {
     u8::try_from(value).unwrap_or(u8::MAX)
@@ -96,6 +98,7 @@ pub(crate) fn solve(
     out.horizon_tu = problem.horizon_tu;
     let status = run(problem, settings, ws, warm, out);
     out.info.status = status;
+    out.info.work_units = ws.work.used();
     Ok(())
 }
 
@@ -108,9 +111,13 @@ fn run(
     out: &mut Solution,
 ) -> SolveStatus {
     ws.qp.reset();
-    if let Err(stage) = setup(problem, settings, ws, &mut out.test_point_times_tu) {
+    ws.work = Meter::new(settings.work_budget);
+    let setup_result = setup(problem, settings, ws, &mut out.test_point_times_tu);
+    ws.work.charge(work_units::setup(&ws.transcription));
+    if let Err(stage) = setup_result {
         return SolveStatus::NumericalFailure(stage);
     }
+    ws.work.reserve(work_units::reserve(&ws.transcription));
     initial_iterate(ws, warm, out);
     let mut end = iterate_and_verify(ws, settings, out);
     let mut status = finish(ws, settings, out, end);
@@ -118,7 +125,7 @@ fn run(
     // along the curvature direction (deterministic: a fixed power-method start and sign), and
     // the iteration resumes; the better verified answer is kept.
     let mut escapes = 0u8;
-    while escapes < MAX_SADDLE_ESCAPES && is_saddle(status, end, out) {
+    while escapes < MAX_SADDLE_ESCAPES && is_saddle(status, end, out) && ws.work.has_room() {
         escapes = escapes.saturating_add(1);
         out.info.saddle_escapes = escapes;
         let saddle_cost = out.cost;
@@ -133,6 +140,12 @@ fn run(
             status = finish(ws, settings, out, end);
             break;
         }
+    }
+    // Stopped by the budget: the status says so, and whether the answer passed the checks.
+    if ws.work.exhausted() {
+        status = SolveStatus::BudgetExhausted {
+            verified: status.is_usable(),
+        };
     }
     status
 }
@@ -188,6 +201,9 @@ fn iterate_and_verify(ws: &mut Workspace, settings: &Settings, out: &mut Solutio
         if rounds >= settings.verify_max_rounds || !settings.continuous_verification {
             break;
         }
+        if !ws.work.spend(work_units::verify_round(&ws.transcription)) {
+            break;
+        }
         // Continuous verification: add a check where a pair dips below d, then re-solve.
         // Changes this round: points added, and margins raised.
         let mut added = 0u16;
@@ -230,9 +246,11 @@ fn iterate_and_verify(ws: &mut Workspace, settings: &Settings, out: &mut Solutio
 }
 
 /// Write the solution, check its feasibility, evaluate its certificate, and return its status.
-/// `ws.trial` receives the certificate's negative-curvature direction (`ws.saved` is its
+/// `ws.trial` receives the certificate's negative-curvature direction (`ws.accepted` is its
 /// scratch): workspace buffers idle at this point, so the certificate adds nothing to the stack.
 fn finish(ws: &mut Workspace, settings: &Settings, out: &mut Solution, end: SqpEnd) -> SolveStatus {
+    ws.work
+        .charge(work_units::finish(&ws.transcription, ws.qp.count));
     let verified = write_solution(ws, settings, out);
     // Feasibility is checked on the returned trajectory itself, whatever the iteration says.
     let control_excess = control_excess(out, ws.transcription.max_control_fu);
@@ -251,7 +269,7 @@ fn finish(ws: &mut Workspace, settings: &Settings, out: &mut Solution, end: SqpE
             &ws.iterate,
             out.cost,
             &mut ws.trial,
-            &mut ws.saved,
+            &mut ws.accepted,
             &mut out.certificate,
         );
     }

@@ -44,6 +44,14 @@ pub enum SolveStatus {
     /// example a saddle the escape could not leave). May be flown; it may cost more than a
     /// local optimum.
     Feasible = 7,
+    /// The work budget (`Settings::work_budget`) ran out before the iteration ended. The
+    /// returned trajectory is the last QP solution (or the guess), checked like any other with
+    /// the budget kept for it: `verified` says whether it passed the feasibility checks above
+    /// (then it may be flown, not certified optimal); otherwise it makes no promise.
+    BudgetExhausted {
+        /// The returned trajectory is verified feasible (as above).
+        verified: bool,
+    } = 8,
 }
 
 /// Where a numerical failure happened.
@@ -60,10 +68,13 @@ pub enum Stage {
 }
 
 impl SolveStatus {
-    /// The trajectory was verified to meet every constraint and may be flown (`Solved` or
-    /// `Feasible`).
+    /// The trajectory was verified to meet every constraint and may be flown (`Solved`,
+    /// `Feasible`, or `BudgetExhausted { verified: true }`).
     pub fn is_usable(&self) -> bool {
-        matches!(self, Self::Solved | Self::Feasible)
+        matches!(
+            self,
+            Self::Solved | Self::Feasible | Self::BudgetExhausted { verified: true }
+        )
     }
 
     /// The trajectory is also certified a local optimum (`Solved`).
@@ -96,4 +107,6 @@ pub struct SolveInfo {
     /// Saddle escapes tried (a step along negative reduced curvature, then the iteration
     /// again); at most `MAX_SADDLE_ESCAPES` (2).
     pub saddle_escapes: u8,
+    /// Work units used (`Settings::work_budget`), the final checks included.
+    pub work_units: u64,
 }

@@ -43,6 +43,8 @@ pub struct Workspace {
     pub(crate) fallback_normal: [[f64; 3]; MAX_PAIRS],
     /// The saddle's iterate while an escape from it is tried.
     pub(crate) saved: Coefficients,
+    /// The solve's work meter.
+    pub(crate) work: crate::work::Meter,
 }
 
 impl Workspace {
@@ -59,6 +61,7 @@ impl Workspace {
             accepted: [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS],
             fallback_normal: [[0.0; 3]; MAX_PAIRS],
             saved: [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS],
+            work: crate::work::Meter::new(0),
         }
     }
 }

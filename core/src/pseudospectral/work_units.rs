@@ -1,0 +1,140 @@
+//! Planner A's work units: the cost of each metered step from the transcription's sizes, about
+//! one unit per multiply-add of its inner loops (calibrated against M7 instructions in
+//! `docs/firmware.md`). The hooks charge these at their loop heads (`crate::work::Meter`).
+//!
+//! Sizes: `blocks` = 3 M coefficient blocks of `free` variables, `nodes` = N + 1, `pairs`,
+//! `checks` = keep-out rows over all pairs, `k` = rows in the QP's working set.
+
+use super::certificate::{MAX_ENVELOPES, POWER_ITERATIONS};
+use super::transcription::Transcription;
+use super::transcription::MAX_BLOCKS;
+use crate::capacity::{MAX_ACTIVE, MAX_FREE_PER_AXIS};
+use crate::work::units;
+
+/// A coefficient vector at capacity: the loops clear and copy whole fixed-size arrays, a cost
+/// that does not shrink with the problem.
+const VECTOR: usize = MAX_BLOCKS * MAX_FREE_PER_AXIS;
+
+struct Size {
+    blocks: usize,
+    free: usize,
+    nodes: usize,
+    pairs: usize,
+    checks: usize,
+}
+
+fn size(tr: &Transcription) -> Size {
+    let pairs = tr.pair_count;
+    Size {
+        blocks: tr.blocks(),
+        free: tr.basis.free,
+        nodes: tr.grid.nodes(),
+        pairs,
+        checks: tr.check_count.iter().take(pairs).sum(),
+    }
+}
+
+/// Building the transcription: LGL nodes and matrices, the Bernstein conversion, the basis
+/// (cubic in the nodes), and the guess's node values.
+pub(super) fn setup(tr: &Transcription) -> u64 {
+    let s = size(tr);
+    units(&[8, s.nodes, s.nodes, s.nodes]).saturating_add(units(&[s.blocks, s.nodes, s.free]))
+}
+
+/// One SQP iteration's set-up: follow each pair's continuous minimum (a refinement over the
+/// nodes), linearise every check (its relative position over the nodes and its row over the
+/// free variables), and the Anderson step over the coefficients.
+pub(super) fn sqp_iteration(tr: &Transcription) -> u64 {
+    let s = size(tr);
+    units(&[60, s.pairs, s.nodes])
+        .saturating_add(units(&[6, s.checks, s.nodes.saturating_add(s.free)]))
+        .saturating_add(units(&[4, s.blocks, s.free]))
+        .saturating_add(units(&[8, VECTOR]))
+}
+
+/// The QP's search for the most violated row: every control row (blocks x nodes, a dot product
+/// over `free`) and every keep-out row (six blocks' worth of `free`, but pruned and active rows
+/// are skipped: about half of them, calibrated).
+pub(super) fn qp_scan(tr: &Transcription) -> u64 {
+    let s = size(tr);
+    units(&[s.blocks, s.nodes, s.free]).saturating_add(units(&[3, s.checks, s.free]))
+}
+
+/// One active-set step with `k` working rows: `k` row products and updates (a keep-out row spans
+/// six blocks), two triangular solves of order `k`, and the dense direction.
+pub(super) fn qp_step(tr: &Transcription, k: usize) -> u64 {
+    let s = size(tr);
+    units(&[12, k, s.free])
+        .saturating_add(units(&[2, k, k]))
+        .saturating_add(units(&[4, s.blocks, s.free]))
+        .saturating_add(units(&[2, VECTOR]))
+}
+
+/// One sweep of the dual coordinate ascent: every control row and every keep-out row, each
+/// evaluated and (when it moves) applied.
+pub(super) fn dual_sweep(tr: &Transcription) -> u64 {
+    let s = size(tr);
+    units(&[2, s.blocks, s.nodes, s.free]).saturating_add(units(&[24, s.checks, s.free]))
+}
+
+/// One pair's continuous minimum: Bernstein coefficients of the three axes, the squared
+/// distance's product coefficients, and the branch-and-bound subdivisions (degree 2N).
+fn pair_minimum(s: &Size) -> u64 {
+    units(&[40, s.nodes, s.nodes])
+}
+
+/// One verification round: every pair's continuous minimum.
+pub(super) fn verify_round(tr: &Transcription) -> u64 {
+    let s = size(tr);
+    units(&[s.pairs]).saturating_mul(pair_minimum(&s))
+}
+
+/// The final checks of a returned iterate (`solver::finish`): the continuous verification of
+/// every pair, the node values of the solution, and the certificate's power method with
+/// `working` rows in the working set (at most `MAX_ACTIVE` in the reserve).
+pub(super) fn finish(tr: &Transcription, working: usize) -> u64 {
+    let s = size(tr);
+    let working = working.min(MAX_ACTIVE);
+    // Per power step: the projection on the working set (row products and updates, two
+    // triangular solves), each active keep-out row's curvature (over the nodes), the envelope
+    // corrections (at most `MAX_ENVELOPES`, six blocks each way), the dense vector operations.
+    let power_step = projected_curvature(&s, working);
+    verify_round(tr)
+        .saturating_add(units(&[6, s.blocks, s.nodes, s.free]))
+        .saturating_add(power_step.saturating_mul(units(&[POWER_ITERATIONS])))
+}
+
+/// One product with the Lagrangian's curvature projected on the null space of `working` rows
+/// (a power step of the certificate, a conjugate-gradient step of the Newton step): the
+/// projection (row products and updates, two triangular solves), each active keep-out row's
+/// curvature (over the nodes), the envelope corrections (at most `MAX_ENVELOPES`, six blocks
+/// each way), the dense vector operations.
+fn projected_curvature(s: &Size, working: usize) -> u64 {
+    units(&[18, working, s.free])
+        .saturating_add(units(&[6, working, s.nodes]))
+        .saturating_add(units(&[2, working, working]))
+        .saturating_add(units(&[MAX_ENVELOPES, 12, s.free]))
+        .saturating_add(units(&[4, s.blocks, s.free]))
+        .saturating_add(units(&[2, VECTOR]))
+}
+
+/// The second-order step (`newton::step`) with `working` rows in the QP's working set: the
+/// moving checks' local refinement in time (over the nodes), the range step and its Gram solve,
+/// and at most `2 working + 2` conjugate-gradient iterations (its bound: twice the curved
+/// checks plus two), each one projected curvature product. Charged at its bound, so the meter
+/// never undercounts a step that ends early.
+pub(super) fn newton_step(tr: &Transcription, working: usize) -> u64 {
+    let s = size(tr);
+    let working = working.min(MAX_ACTIVE);
+    let iterations = working.saturating_mul(2).saturating_add(4);
+    units(&[20, s.checks, s.nodes])
+        .saturating_add(units(&[iterations]).saturating_mul(projected_curvature(&s, working)))
+}
+
+/// What a solve keeps back for its final checks, with a full working set: an escape's check
+/// and the saddle's again after the escape falls back to it (`solver::run`). A saddle's own
+/// check that overruns the loops' share starts no escape, so two checks at most follow the
+/// loops' share.
+pub(super) fn reserve(tr: &Transcription) -> u64 {
+    finish(tr, MAX_ACTIVE).saturating_mul(2)
+}

@@ -1,0 +1,183 @@
+//! The work budget (`Settings::work_budget`, `reconfig_core::work`): a budget too small for a
+//! solve stops it with `BudgetExhausted { verified }`, the answer returned is usable exactly
+//! when it passed the planner's checks, the units used stay within the budget, and the stop is
+//! deterministic (same input, same units, bit-identical answer).
+
+use reconfig_core::{impulsive, pseudospectral};
+use reconfig_tests::{impulsive_fixture, pseudospectral_fixture, solve_pseudospectral};
+
+fn solve_impulsive(
+    problem: &impulsive::Problem,
+    settings: &impulsive::Settings,
+) -> impulsive::Solution {
+    let mut workspace = Box::new(impulsive::Workspace::new());
+    let mut out = impulsive::Solution::new();
+    impulsive::solve(problem, settings, &mut workspace, &mut out).expect("accepted");
+    out
+}
+
+/// Planner A's usability, checked from the returned trajectory's own measures: continuous
+/// separation at least d (within the verification tolerance) and no control above Umax.
+fn a_is_feasible(problem: &pseudospectral::Problem, s: &pseudospectral::Solution) -> bool {
+    let settings = pseudospectral::Settings::default();
+    let nodes = usize::from(problem.degree) + 1;
+    let controls_ok = s
+        .controls_fu
+        .iter()
+        .take(problem.spacecraft.len())
+        .flat_map(|sc| sc.iter().take(nodes))
+        .flatten()
+        .all(|u| u.abs() <= problem.max_control_fu * (1.0 + 1e-9));
+    controls_ok && s.min_separation_lu >= problem.keep_out_lu - settings.verify_tol_lu
+}
+
+#[test]
+fn planner_a_stops_at_its_budget_with_a_truthful_status() {
+    let problem = pseudospectral_fixture("square-swap-4-sats-n16");
+    let full = solve_pseudospectral(&problem, &pseudospectral::Settings::default()).unwrap();
+    assert_eq!(full.info.status, pseudospectral::SolveStatus::Solved);
+    let needed = full.info.work_units;
+    assert!(needed > 0 && needed <= pseudospectral::Settings::default().work_budget);
+    // No budget at all still pays the set-up and the check of the returned guess: the floor.
+    let floor = solve_pseudospectral(
+        &problem,
+        &pseudospectral::Settings {
+            work_budget: 0,
+            ..pseudospectral::Settings::default()
+        },
+    )
+    .unwrap()
+    .info
+    .work_units;
+    assert!(floor > 0 && floor < needed / 2, "{floor} of {needed}");
+    let mut usable = 0;
+    let mut unusable = 0;
+    let mut complete = 0;
+    // Budgets from the floor to six times the units a full solve uses (the reserve for three
+    // final checks is a bound over any working set, so a full solve needs more than it uses).
+    for percent in (0u64..=100).step_by(4) {
+        let settings = pseudospectral::Settings {
+            work_budget: floor + (6 * needed - floor) * percent / 100,
+            ..pseudospectral::Settings::default()
+        };
+        let cut = solve_pseudospectral(&problem, &settings).unwrap();
+        let again = solve_pseudospectral(&problem, &settings).unwrap();
+        let pseudospectral::SolveStatus::BudgetExhausted { verified } = cut.info.status else {
+            // Not stopped: the meter changed nothing.
+            assert_eq!(*cut, *full, "{percent} %");
+            complete += 1;
+            continue;
+        };
+        println!(
+            "A {percent} %: verified {verified}, units {} of {}, J {}",
+            cut.info.work_units, settings.work_budget, cut.cost
+        );
+        assert_eq!(cut.info.status.is_usable(), verified);
+        assert!(!cut.info.status.is_certified());
+        assert_eq!(verified, a_is_feasible(&problem, &cut), "{percent} %");
+        assert!(
+            cut.info.work_units <= settings.work_budget,
+            "{percent} %: {} units over a budget of {}",
+            cut.info.work_units,
+            settings.work_budget
+        );
+        // Deterministic: the same units and the same bits.
+        assert_eq!(cut.info.work_units, again.info.work_units);
+        assert_eq!(
+            postcard::to_allocvec(&*cut).unwrap(),
+            postcard::to_allocvec(&*again).unwrap()
+        );
+        if verified {
+            usable += 1;
+            // A verified answer costs at least the optimum.
+            assert!(cut.cost >= full.cost - 1e-9 * full.cost, "{percent} %");
+        } else {
+            unusable += 1;
+        }
+    }
+    // The smallest budget stops before any QP solution; larger ones return a verified one.
+    assert!(
+        unusable >= 1 && usable >= 1 && complete >= 1,
+        "{unusable} / {usable} / {complete}"
+    );
+}
+
+#[test]
+fn planner_b_search_stops_at_its_budget_and_still_returns_a_verified_plan() {
+    let problem = impulsive_fixture("wang2018-gco-to-pco-search-3imp");
+    let defaults = impulsive::Settings::default();
+    let full = solve_impulsive(&problem, &defaults);
+    assert_eq!(full.info.status, impulsive::SolveStatus::Solved);
+    let needed = full.info.work_units;
+    assert!(needed > 0 && needed <= defaults.work_budget);
+    for percent in [30u64, 60, 90] {
+        let settings = impulsive::Settings {
+            work_budget: needed * percent / 100,
+            ..defaults
+        };
+        let cut = solve_impulsive(&problem, &settings);
+        let again = solve_impulsive(&problem, &settings);
+        println!(
+            "B {percent} %: {:?}, units {} of {}, evaluations {}, total {} m/s",
+            cut.info.status,
+            cut.info.work_units,
+            settings.work_budget,
+            cut.info.evaluations,
+            cut.total_dv_mps
+        );
+        // The search stops early; the final solve at its best points has the budget kept for
+        // it, and its plan reaches the target.
+        assert_eq!(
+            cut.info.status,
+            impulsive::SolveStatus::BudgetExhausted { verified: true },
+            "{percent} %"
+        );
+        assert!(cut.info.status.is_usable());
+        assert!(cut.terminal_position_error_m.abs() < 1e-3, "{percent} %");
+        assert!(cut.info.work_units <= settings.work_budget);
+        assert!(cut.total_dv_mps >= full.total_dv_mps - 1e-6, "{percent} %");
+        assert_eq!(cut.info.work_units, again.info.work_units);
+        assert_eq!(
+            postcard::to_allocvec(&cut).unwrap(),
+            postcard::to_allocvec(&again).unwrap()
+        );
+    }
+}
+
+#[test]
+fn planner_b_fixed_point_cut_short_is_not_usable() {
+    let problem = impulsive_fixture("wang2018-gco-to-pco-3imp");
+    let defaults = impulsive::Settings::default();
+    let full = solve_impulsive(&problem, &defaults);
+    assert_eq!(full.info.status, impulsive::SolveStatus::Solved);
+    // No budget at all still pays the checks of the returned plan: the floor.
+    let floor = solve_impulsive(
+        &problem,
+        &impulsive::Settings {
+            work_budget: 0,
+            ..defaults
+        },
+    )
+    .info
+    .work_units;
+    assert!(floor > 0 && floor < full.info.work_units / 2);
+    // Room for the checks and a tenth of the rest: a few fixed-point iterations, no correction.
+    let settings = impulsive::Settings {
+        work_budget: floor + (full.info.work_units - floor) / 10,
+        ..defaults
+    };
+    let cut = solve_impulsive(&problem, &settings);
+    println!(
+        "B fixed point: {:?}, units {} of {}, miss {} m",
+        cut.info.status, cut.info.work_units, settings.work_budget, cut.terminal_position_error_m
+    );
+    assert_eq!(
+        cut.info.status,
+        impulsive::SolveStatus::BudgetExhausted { verified: false }
+    );
+    assert!(!cut.info.status.is_usable());
+    // Not usable because it is not there: the linear plan misses the target by metres.
+    assert!(cut.terminal_position_error_m.abs() > 1.0);
+    assert!(cut.info.work_units <= settings.work_budget);
+    assert_eq!(solve_impulsive(&problem, &settings), cut);
+}
