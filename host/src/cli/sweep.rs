@@ -397,7 +397,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
             let stored = oracle.as_ref().and_then(|(golden, problems)| {
                 let same = problems
                     .get(this)
-                    .is_some_and(|(f, q)| f == family && *q == p);
+                    .is_some_and(|(f, q)| f == family && sweep_oracle::same_problem(q, &p));
                 if same {
                     golden.get(&this)
                 } else {

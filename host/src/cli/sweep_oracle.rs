@@ -118,6 +118,26 @@ pub fn load_problems(path: &Path) -> Result<Vec<(String, Problem)>> {
     Ok(out)
 }
 
+/// The same problem up to the last bit or two of each number: the JSON text round trip may move
+/// a float by an ulp (serde_json's default parser), which must not hide the oracle's answer.
+pub fn same_problem(a: &Problem, b: &Problem) -> bool {
+    let close = |x: f64, y: f64| (x - y).abs() <= 1e-12 * (1.0 + x.abs().max(y.abs()));
+    a.degree == b.degree
+        && a.test_points == b.test_points
+        && close(a.horizon_tu, b.horizon_tu)
+        && close(a.max_control_fu, b.max_control_fu)
+        && close(a.keep_out_lu, b.keep_out_lu)
+        && a.spacecraft.len() == b.spacecraft.len()
+        && a.spacecraft.iter().zip(b.spacecraft.iter()).all(|(p, q)| {
+            close(p.mass_mu, q.mass_mu)
+                && p.initial_state
+                    .iter()
+                    .zip(q.initial_state.iter())
+                    .chain(p.final_state.iter().zip(q.final_state.iter()))
+                    .all(|(x, y)| close(*x, *y))
+        })
+}
+
 /// The value at quantile `q` of sorted values (nearest rank), NaN when empty.
 pub fn percentile(sorted: &[f64], q: f64) -> f64 {
     if sorted.is_empty() {
