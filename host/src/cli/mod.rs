@@ -11,3 +11,4 @@ pub mod solve_geo_tour;
 pub mod solve_impulsive;
 pub mod solve_pseudospectral;
 pub mod sweep;
+pub mod sweep_oracle;

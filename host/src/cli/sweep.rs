@@ -9,14 +9,19 @@
 //! problems; `--write` stores them as JSON (one problem per line) for other tools.
 //!
 //! Per family the table gives the statuses, the largest QP working set, the saddle escapes and
-//! the solve time (median, worst). No oracle costs are compared here yet (issue 9 item 7 is not
-//! done): the cost column is the median and worst J.
+//! the solve time (median, worst). When the oracle's golden file is found (`--golden`, default
+//! `fixtures/golden/planner-a-oracle.jsonl`) and the generated problems are the checked-in ones
+//! (`fixtures/generated/planner-a-families.jsonl`, compared problem by problem), a second table
+//! gives per family the cost gap to the oracle's best, the Solved / usable rates of the problems
+//! the oracle solves and the time against IPOPT's (`sweep_oracle.rs`).
 
 use crate::cli::solve_pseudospectral::solve_timed;
+use crate::cli::sweep_oracle::{self, relative_gap, OracleAnswer, GAP_REPORT_REL};
 use anyhow::{Context, Result};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use reconfig_core::pseudospectral::{Problem, Settings, SolveStatus, Spacecraft};
+use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -33,6 +38,31 @@ pub struct Args {
     /// Also write the generated problems here (JSON, one `{family, problem}` per line).
     #[arg(long)]
     pub write: Option<PathBuf>,
+    /// Also write our answers here (JSON, one `{index, family, status, cost, time_ms, nodes}` per
+    /// line; `nodes` = node positions per spacecraft, for the oracle's restart from ours).
+    #[arg(long)]
+    pub write_answers: Option<PathBuf>,
+    /// The oracle's golden answers (`tests/oracle/planner_a_ipopt.py`); the default path is used
+    /// when it exists.
+    #[arg(long, default_value = sweep_oracle::GOLDEN_DEFAULT)]
+    pub golden: PathBuf,
+    /// The problems the golden answers belong to (`reconfig sweep --write`); a generated
+    /// problem is compared with the oracle only when it equals the stored one.
+    #[arg(long, default_value = sweep_oracle::PROBLEMS_DEFAULT)]
+    pub problems: PathBuf,
+}
+
+/// One generated problem's outcome, for the oracle table.
+struct Outcome {
+    family: &'static str,
+    /// Oracle's best cost when the problem is the stored one and the oracle solved it.
+    oracle: Option<f64>,
+    /// IPOPT's time for one solve, ms.
+    ipopt_ms: Option<f64>,
+    /// `Some(status)` when the planner accepted the problem.
+    status: Option<SolveStatus>,
+    cost: f64,
+    time_ms: f64,
 }
 
 /// The family names, in table order.
@@ -198,12 +228,128 @@ pub fn generate(family: &str, rng: &mut ChaCha8Rng) -> Problem {
     }
 }
 
-fn percentile(sorted: &[f64], q: f64) -> f64 {
-    if sorted.is_empty() {
-        return f64::NAN;
+use sweep_oracle::percentile;
+
+/// The oracle's answers by problem index, and the stored problems they belong to.
+type OracleData = (BTreeMap<usize, OracleAnswer>, Vec<(String, Problem)>);
+
+/// The golden answers and stored problems, when both are there.
+fn load_oracle(args: &Args) -> Option<OracleData> {
+    if !args.golden.exists() || !args.problems.exists() {
+        return None;
     }
-    let index = ((sorted.len() - 1) as f64 * q).round() as usize;
-    sorted[index.min(sorted.len() - 1)]
+    match (
+        sweep_oracle::load_golden(&args.golden),
+        sweep_oracle::load_problems(&args.problems),
+    ) {
+        (Ok(g), Ok(p)) => Some((g, p)),
+        (Err(e), _) | (_, Err(e)) => {
+            eprintln!("oracle comparison skipped: {e:#}");
+            None
+        }
+    }
+}
+
+fn pct(part: usize, whole: usize) -> String {
+    if whole == 0 {
+        "-".to_string()
+    } else {
+        format!("{:.1} %", 100.0 * part as f64 / whole as f64)
+    }
+}
+
+/// The oracle table: per family and in all, over the problems the oracle solves.
+fn print_oracle_table(outcomes: &[Outcome]) {
+    println!();
+    println!(
+        "| family | oracle solves | Solved | Solved or Feasible | gap median | gap p95 | gap worst | Solved > 0.5 % above | ours ms median / worst | IPOPT ms median | IPOPT / ours (medians) |"
+    );
+    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+    let mut rows: Vec<&str> = FAMILIES.to_vec();
+    rows.push("all");
+    for family in rows {
+        let set: Vec<&Outcome> = outcomes
+            .iter()
+            .filter(|o| o.oracle.is_some() && (family == "all" || o.family == family))
+            .collect();
+        let solved = set
+            .iter()
+            .filter(|o| o.status == Some(SolveStatus::Solved))
+            .count();
+        let usable = set
+            .iter()
+            .filter(|o| o.status.is_some_and(|s| s.is_usable()))
+            .count();
+        let mut gaps: Vec<f64> = set
+            .iter()
+            .filter(|o| o.status.is_some_and(|s| s.is_usable()))
+            .filter_map(|o| o.oracle.map(|j| relative_gap(o.cost, j)))
+            .collect();
+        gaps.sort_by(f64::total_cmp);
+        let above = set
+            .iter()
+            .filter(|o| o.status == Some(SolveStatus::Solved))
+            .filter(|o| {
+                o.oracle
+                    .is_some_and(|j| relative_gap(o.cost, j) > GAP_REPORT_REL)
+            })
+            .count();
+        let mut ours: Vec<f64> = set
+            .iter()
+            .filter(|o| o.status.is_some())
+            .map(|o| o.time_ms)
+            .collect();
+        ours.sort_by(f64::total_cmp);
+        let mut ipopt: Vec<f64> = set.iter().filter_map(|o| o.ipopt_ms).collect();
+        ipopt.sort_by(f64::total_cmp);
+        let ours_median = percentile(&ours, 0.5);
+        let ipopt_median = percentile(&ipopt, 0.5);
+        println!(
+            "| {family} | {} | {solved} ({}) | {usable} ({}) | {:.4} % | {:.4} % | {:.4} % | {above} of {solved} | {:.2} / {:.2} | {:.0} | {:.0}x |",
+            set.len(),
+            pct(solved, set.len()),
+            pct(usable, set.len()),
+            100.0 * percentile(&gaps, 0.5),
+            100.0 * percentile(&gaps, 0.95),
+            100.0 * gaps.last().copied().unwrap_or(f64::NAN),
+            ours_median,
+            ours.last().copied().unwrap_or(f64::NAN),
+            ipopt_median,
+            ipopt_median / ours_median,
+        );
+    }
+}
+
+/// One answer as JSON: status, cost, time and the node positions of every spacecraft.
+fn answer_json(
+    index: usize,
+    family: &str,
+    p: &Problem,
+    s: &reconfig_core::pseudospectral::Solution,
+    time_s: f64,
+) -> serde_json::Value {
+    let nodes = usize::from(s.degree) + 1;
+    let positions: Vec<Vec<[f64; 3]>> = s
+        .states
+        .iter()
+        .take(p.spacecraft.len())
+        .map(|craft| {
+            craft
+                .iter()
+                .take(nodes)
+                .map(|x| [x[0], x[1], x[2]])
+                .collect()
+        })
+        .collect();
+    serde_json::json!({
+        "index": index,
+        "family": family,
+        "status": format!("{:?}", s.info.status),
+        "cost": s.cost,
+        "min_separation_lu": s.min_separation_lu,
+        "time_ms": time_s * 1e3,
+        "nodes": positions,
+    })
 }
 
 /// Run the sweep and print the tables.
@@ -218,6 +364,15 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         ),
         None => None,
     };
+    let mut answers = match &args.write_answers {
+        Some(path) => Some(
+            std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))?,
+        ),
+        None => None,
+    };
+    let mut index = 0usize;
+    let oracle = load_oracle(args);
+    let mut outcomes: Vec<Outcome> = Vec::new();
     let settings = Settings::default();
     println!(
         "| family | problems | Solved | Feasible | other (status: count) | rejected | largest working set | saddle escapes (helped) | J median / worst | ms median / worst |"
@@ -236,6 +391,27 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         let mut helped = 0usize;
         for _ in 0..args.per_family {
             let p = generate(family, &mut rng);
+            let this = index;
+            index += 1;
+            // The oracle's answer counts only for the very problem it solved.
+            let stored = oracle.as_ref().and_then(|(golden, problems)| {
+                let same = problems
+                    .get(this)
+                    .is_some_and(|(f, q)| f == family && sweep_oracle::same_problem(q, &p));
+                if same {
+                    golden.get(&this)
+                } else {
+                    None
+                }
+            });
+            let mut outcome = Outcome {
+                family,
+                oracle: stored.and_then(|a| a.cost),
+                ipopt_ms: stored.and_then(|a| a.ipopt_time_ms),
+                status: None,
+                cost: f64::NAN,
+                time_ms: f64::NAN,
+            };
             if let Some(f) = file.as_mut() {
                 writeln!(
                     f,
@@ -246,6 +422,13 @@ pub fn run(args: &Args) -> Result<ExitCode> {
             let timed = match solve_timed(&p, &settings) {
                 Ok(timed) => timed,
                 Err(e) => {
+                    if let Some(f) = answers.as_mut() {
+                        writeln!(
+                            f,
+                            "{}",
+                            serde_json::json!({ "index": this, "family": family, "status": "Rejected", "error": e.to_string() })
+                        )?;
+                    }
                     rejected += 1;
                     // Name the refusal class from the core's message.
                     let text = e.to_string();
@@ -258,11 +441,23 @@ pub fn run(args: &Args) -> Result<ExitCode> {
                     }
                     .to_string();
                     *reasons.entry(class).or_default() += 1;
+                    outcomes.push(outcome);
                     continue;
                 }
             };
             let s = &timed.solution;
+            if let Some(f) = answers.as_mut() {
+                writeln!(
+                    f,
+                    "{}",
+                    answer_json(this, family, &p, s, timed.solve_time_s)
+                )?;
+            }
             times.push(timed.solve_time_s * 1e3);
+            outcome.status = Some(s.info.status);
+            outcome.cost = s.cost;
+            outcome.time_ms = timed.solve_time_s * 1e3;
+            outcomes.push(outcome);
             working = working.max(s.info.max_active);
             if s.info.saddle_escapes > 0 {
                 escapes += 1;
@@ -295,6 +490,15 @@ pub fn run(args: &Args) -> Result<ExitCode> {
             costs.last().copied().unwrap_or(f64::NAN),
             percentile(&times, 0.5),
             times.last().copied().unwrap_or(f64::NAN),
+        );
+    }
+    if oracle.is_some() {
+        print_oracle_table(&outcomes);
+    } else {
+        eprintln!(
+            "no oracle comparison: {} or {} not found",
+            args.golden.display(),
+            args.problems.display()
         );
     }
     Ok(ExitCode::SUCCESS)

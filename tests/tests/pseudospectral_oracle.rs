@@ -1,0 +1,181 @@
+//! Planner A against the independent CasADi + IPOPT oracle (`tests/oracle/planner_a_ipopt.py`)
+//! on the checked-in generated families (`fixtures/generated/planner-a-families.jsonl`, written
+//! by `reconfig sweep --write`; answers in `fixtures/golden/planner-a-oracle.jsonl`).
+//!
+//! Per problem the oracle solved: our status is usable (Solved or Feasible) unless the problem is
+//! a recorded exception (`fixtures/golden/planner-a-oracle-bars.toml`, with the reason, so a
+//! regression shows as a NEW exception), and our cost is never below the oracle's best by more
+//! than a valid answer's tolerance (a lower cost would mean an infeasible answer). In aggregate:
+//! the Solved and usable rates and the share of Solved answers more than 0.5 % above the oracle
+//! are held at the recorded floors and ceiling (all in the bars file: tighten them there).
+//!
+//! The oracle's best includes IPOPT restarted from our answers of the time, so it is at or below
+//! those; a solver change that finds a lower optimum legitimately trips the below-check, and the
+//! golden file is then regenerated with a restart from the new answers.
+//!
+//! CI runtime: by default every `ci_stride`-th problem of the golden file runs (a fixed,
+//! representative subset across the six families); `RECONFIG_ORACLE_ALL=1` runs all of them
+//! against the `[all]` bars.
+
+use reconfig_core::pseudospectral::{Settings, SolveStatus};
+use reconfig_host::cli::sweep_oracle::{self, relative_gap, GAP_REPORT_REL};
+use reconfig_tests::{fixtures_dir, solve_pseudospectral};
+use std::collections::BTreeMap;
+
+struct Bars {
+    min_solved_rate: f64,
+    min_usable_rate: f64,
+    max_solved_above_rate: f64,
+}
+
+struct Config {
+    below_tolerance_rel: f64,
+    ci_stride: usize,
+    ci: Bars,
+    all: Bars,
+    /// Known exceptions: problem index -> (status we return, reason).
+    exceptions: BTreeMap<usize, (String, String)>,
+}
+
+fn bars(table: &toml::Table, key: &str) -> Bars {
+    let t = table[key].as_table().expect("bars table");
+    Bars {
+        min_solved_rate: t["min_solved_rate"].as_float().expect("float"),
+        min_usable_rate: t["min_usable_rate"].as_float().expect("float"),
+        max_solved_above_rate: t["max_solved_above_rate"].as_float().expect("float"),
+    }
+}
+
+fn config() -> Config {
+    let path = fixtures_dir()
+        .join("golden")
+        .join("planner-a-oracle-bars.toml");
+    let text = std::fs::read_to_string(&path).expect("bars file");
+    let table: toml::Table = toml::from_str(&text).expect("bars toml");
+    let mut exceptions = BTreeMap::new();
+    if let Some(list) = table.get("exception").and_then(toml::Value::as_array) {
+        for e in list {
+            let index = usize::try_from(e["index"].as_integer().expect("index")).expect("index");
+            exceptions.insert(
+                index,
+                (
+                    e["status"].as_str().expect("status").to_string(),
+                    e["reason"].as_str().expect("reason").to_string(),
+                ),
+            );
+        }
+    }
+    Config {
+        below_tolerance_rel: table["below_tolerance_rel"].as_float().expect("float"),
+        ci_stride: usize::try_from(table["ci_stride"].as_integer().expect("int")).expect("stride"),
+        ci: bars(&table, "ci"),
+        all: bars(&table, "all"),
+        exceptions,
+    }
+}
+
+#[test]
+fn planner_a_meets_the_oracle_on_the_generated_families() {
+    let cfg = config();
+    let golden =
+        sweep_oracle::load_golden(&fixtures_dir().join("golden").join("planner-a-oracle.jsonl"))
+            .expect("golden");
+    let problems = sweep_oracle::load_problems(
+        &fixtures_dir()
+            .join("generated")
+            .join("planner-a-families.jsonl"),
+    )
+    .expect("problems");
+    let all = std::env::var("RECONFIG_ORACLE_ALL").is_ok_and(|v| v == "1");
+    let bars = if all { &cfg.all } else { &cfg.ci };
+    let settings = Settings::default();
+
+    let (mut count, mut solved, mut usable, mut above) = (0usize, 0usize, 0usize, 0usize);
+    let mut failures: Vec<String> = Vec::new();
+    let mut seen_exceptions = 0usize;
+    for (position, (index, answer)) in golden.iter().enumerate() {
+        if !all && position % cfg.ci_stride != 0 {
+            continue;
+        }
+        let Some(oracle_cost) = answer.cost else {
+            continue; // the oracle found no feasible answer: not counted
+        };
+        let (family, problem) = &problems[*index];
+        assert_eq!(family, &answer.family, "problem {index}: family mismatch");
+        count += 1;
+        let ours = match solve_pseudospectral(problem, &settings) {
+            Ok(s) => s,
+            Err(e) => {
+                if !cfg.exceptions.contains_key(index) {
+                    failures.push(format!(
+                        "NEW exception: problem {index} ({family}) rejected ({e}) but the oracle solved it (J = {oracle_cost})"
+                    ));
+                } else {
+                    seen_exceptions += 1;
+                }
+                continue;
+            }
+        };
+        let status = ours.info.status;
+        if status == SolveStatus::Solved {
+            solved += 1;
+        }
+        if status.is_usable() {
+            usable += 1;
+            let gap = relative_gap(ours.cost, oracle_cost);
+            if gap < -cfg.below_tolerance_rel {
+                failures.push(format!(
+                    "problem {index} ({family}): our J = {} is below the oracle's best {oracle_cost} by {:.3e} (relative): an infeasible answer, or a better optimum than any the oracle found (then re-run the oracle restarted from our answers and say so in the golden file's commit)",
+                    ours.cost, -gap
+                ));
+            }
+            if status == SolveStatus::Solved && gap > GAP_REPORT_REL {
+                above += 1;
+            }
+        }
+        match cfg.exceptions.get(index) {
+            Some((known, reason)) if !status.is_usable() => {
+                seen_exceptions += 1;
+                if *known != format!("{status:?}") {
+                    failures.push(format!(
+                        "problem {index} ({family}): known exception ({reason}) changed status: {known} -> {status:?}"
+                    ));
+                }
+            }
+            Some(_) => {} // an exception that now works: welcome; drop it from the list
+            None if !status.is_usable() => failures.push(format!(
+                "NEW exception: problem {index} ({family}) ends {status:?} (J = {}, min separation {}) but the oracle solved it (J = {oracle_cost})",
+                ours.cost, ours.min_separation_lu
+            )),
+            None => {}
+        }
+    }
+    assert!(count > 0, "no problem ran");
+    let rate = |k: usize| k as f64 / count as f64;
+    println!(
+        "{} problems the oracle solves: Solved {solved} ({:.3}), usable {usable} ({:.3}), Solved > 0.5 % above {above} ({:.3}), known exceptions seen {seen_exceptions}",
+        count,
+        rate(solved),
+        rate(usable),
+        rate(above)
+    );
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    assert!(
+        rate(solved) >= bars.min_solved_rate,
+        "Solved rate {} fell below the floor {}",
+        rate(solved),
+        bars.min_solved_rate
+    );
+    assert!(
+        rate(usable) >= bars.min_usable_rate,
+        "usable rate {} fell below the floor {}",
+        rate(usable),
+        bars.min_usable_rate
+    );
+    assert!(
+        rate(above) <= bars.max_solved_above_rate,
+        "share of Solved answers > 0.5 % above the oracle {} rose above {}",
+        rate(above),
+        bars.max_solved_above_rate
+    );
+}
