@@ -7,7 +7,7 @@
 //! binary text_bytes=.. rodata_bytes=.. data_bytes=.. bss_bytes=.. uninit_bytes=.. static_ram_bytes=..
 //! planners pseudospectral_workspace_bytes=.. pseudospectral_solution_bytes=.. impulsive_workspace_bytes=.. impulsive_solution_bytes=..
 //! planners geo_tour_workspace_bytes=.. geo_tour_solution_bytes=..   (GEO image only)
-//! fixture index=0 name=.. planner=pseudospectral outcome=ok|error stack_bytes=.. systick_instructions=.. work_units=..
+//! fixture index=0 name=.. planner=pseudospectral outcome=ok|error stack_bytes=.. systick_instructions=.. work_units=.. (no work_units on the GEO image)
 //! result index=0 hex=..
 //! done fixtures=5
 //! ```
@@ -357,81 +357,27 @@ fn main() -> ! {
         let marker = u32::try_from(index).unwrap_or(u32::MAX);
         match fixture.planner {
             #[cfg(feature = "pseudospectral")]
-            Planner::Pseudospectral => {
-                // A fresh output buffer, as the host gets; the workspace is reused on purpose
-                // (no result may depend on what an earlier solve left in it).
-                *PS_SOLUTION = pseudospectral::Solution::new();
-                repaint_stack();
-                let problem: pseudospectral::Problem = match postcard::from_bytes(fixture.problem) {
-                    Ok(p) => p,
-                    Err(_) => panic!("fixture {} does not decode", fixture.name),
-                };
-                let ticks_before = systick::now();
-                reconfig_measure_start(marker);
-                let result = pseudospectral::solve(
-                    black_box(&problem),
-                    black_box(&ps_settings),
-                    black_box(&mut *PS_WORKSPACE),
-                    black_box(&mut *PS_SOLUTION),
-                );
-                black_box(&result);
-                reconfig_measure_stop(marker);
-                let ticks = systick::now() - ticks_before;
-                let stack_bytes = stack_high_water();
-                let ok = result.is_ok();
-                let work_units = PS_SOLUTION.info.work_units;
-                let encoded: Result<&pseudospectral::Solution, pseudospectral::PlanError> =
-                    result.map(|()| &*PS_SOLUTION);
-                report(
-                    &mut out,
-                    index,
-                    fixture,
-                    "pseudospectral",
-                    ok,
-                    stack_bytes,
-                    (ticks, work_units),
-                );
-                print_result(&mut out, index, &encoded);
-            }
+            Planner::Pseudospectral => run_pseudospectral(
+                &mut out,
+                (index, marker, fixture),
+                &ps_settings,
+                &mut *PS_WORKSPACE,
+                &mut *PS_SOLUTION,
+            ),
             #[cfg(feature = "impulsive")]
             Planner::Impulsive | Planner::ImpulsiveFixedPoint => {
-                let im_settings = if matches!(fixture.planner, Planner::ImpulsiveFixedPoint) {
-                    im_fixed_point_settings
+                let settings = if matches!(fixture.planner, Planner::ImpulsiveFixedPoint) {
+                    &im_fixed_point_settings
                 } else {
-                    im_settings
+                    &im_settings
                 };
-                *IM_SOLUTION = impulsive::Solution::new();
-                repaint_stack();
-                let problem: impulsive::Problem = match postcard::from_bytes(fixture.problem) {
-                    Ok(p) => p,
-                    Err(_) => panic!("fixture {} does not decode", fixture.name),
-                };
-                let ticks_before = systick::now();
-                reconfig_measure_start(marker);
-                let result = impulsive::solve(
-                    black_box(&problem),
-                    black_box(&im_settings),
-                    black_box(&mut *IM_WORKSPACE),
-                    black_box(&mut *IM_SOLUTION),
-                );
-                black_box(&result);
-                reconfig_measure_stop(marker);
-                let ticks = systick::now() - ticks_before;
-                let stack_bytes = stack_high_water();
-                let ok = result.is_ok();
-                let work_units = IM_SOLUTION.info.work_units;
-                let encoded: Result<&impulsive::Solution, impulsive::PlanError> =
-                    result.map(|()| &*IM_SOLUTION);
-                report(
+                run_impulsive(
                     &mut out,
-                    index,
-                    fixture,
-                    "impulsive",
-                    ok,
-                    stack_bytes,
-                    (ticks, work_units),
+                    (index, marker, fixture),
+                    settings,
+                    &mut *IM_WORKSPACE,
+                    &mut *IM_SOLUTION,
                 );
-                print_result(&mut out, index, &encoded);
             }
             #[cfg(feature = "geo_tour")]
             Planner::GeoTour => {
@@ -457,7 +403,16 @@ fn main() -> ! {
                 let ok = result.is_ok();
                 let encoded: Result<&geo_tour::Solution, geo_tour::PlanError> =
                     result.map(|()| &*GEO_SOLUTION);
-                report(&mut out, index, fixture, "geo-tour", ok, stack_bytes, ticks);
+                // The GEO tour has no work meter: its line carries no `work_units`.
+                report(
+                    &mut out,
+                    index,
+                    fixture,
+                    "geo-tour",
+                    ok,
+                    stack_bytes,
+                    (ticks, None),
+                );
                 print_result(&mut out, index, &encoded);
             }
             // build.rs bakes only the fixtures of the planners this image carries.
@@ -481,16 +436,116 @@ fn report(
     planner: &str,
     ok: bool,
     stack_bytes: usize,
-    (ticks, work_units): (u64, u64),
+    (ticks, work_units): (u64, Option<u64>),
 ) {
-    let _ = writeln!(
+    let _ = write!(
         out,
         "fixture index={index} name={} planner={planner} outcome={} stack_bytes={stack_bytes} \
-         systick_instructions={} work_units={work_units}",
+         systick_instructions={}",
         fixture.name,
         if ok { "ok" } else { "error" },
         ticks * systick::INSTRUCTIONS_PER_TICK,
     );
+    match work_units {
+        Some(units) => {
+            let _ = writeln!(out, " work_units={units}");
+        }
+        None => {
+            let _ = writeln!(out);
+        }
+    }
+}
+
+// Each planner's fixture runs in a function of its own (never inlined), so that `main`'s frame
+// does not hold every planner's decoded problem at once: the stack high-water of a fixture in
+// the default two-planner image is then that planner's, as in its one-planner image
+// (docs/firmware.md, "RAM per image").
+
+#[cfg(feature = "pseudospectral")]
+#[inline(never)]
+fn run_pseudospectral(
+    out: &mut Out,
+    (index, marker, fixture): (usize, u32, &Fixture),
+    settings: &pseudospectral::Settings,
+    workspace: &mut pseudospectral::Workspace,
+    solution: &mut pseudospectral::Solution,
+) {
+    // A fresh output buffer, as the host gets; the workspace is reused on purpose
+    // (no result may depend on what an earlier solve left in it).
+    *solution = pseudospectral::Solution::new();
+    repaint_stack();
+    let problem: pseudospectral::Problem = match postcard::from_bytes(fixture.problem) {
+        Ok(p) => p,
+        Err(_) => panic!("fixture {} does not decode", fixture.name),
+    };
+    let ticks_before = systick::now();
+    reconfig_measure_start(marker);
+    let result = pseudospectral::solve(
+        black_box(&problem),
+        black_box(settings),
+        black_box(&mut *workspace),
+        black_box(&mut *solution),
+    );
+    black_box(&result);
+    reconfig_measure_stop(marker);
+    let ticks = systick::now() - ticks_before;
+    let stack_bytes = stack_high_water();
+    let ok = result.is_ok();
+    let work_units = solution.info.work_units;
+    let encoded: Result<&pseudospectral::Solution, pseudospectral::PlanError> =
+        result.map(|()| &*solution);
+    report(
+        out,
+        index,
+        fixture,
+        "pseudospectral",
+        ok,
+        stack_bytes,
+        (ticks, Some(work_units)),
+    );
+    print_result(out, index, &encoded);
+}
+
+#[cfg(feature = "impulsive")]
+#[inline(never)]
+fn run_impulsive(
+    out: &mut Out,
+    (index, marker, fixture): (usize, u32, &Fixture),
+    settings: &impulsive::Settings,
+    workspace: &mut impulsive::Workspace,
+    solution: &mut impulsive::Solution,
+) {
+    *solution = impulsive::Solution::new();
+    repaint_stack();
+    let problem: impulsive::Problem = match postcard::from_bytes(fixture.problem) {
+        Ok(p) => p,
+        Err(_) => panic!("fixture {} does not decode", fixture.name),
+    };
+    let ticks_before = systick::now();
+    reconfig_measure_start(marker);
+    let result = impulsive::solve(
+        black_box(&problem),
+        black_box(settings),
+        black_box(&mut *workspace),
+        black_box(&mut *solution),
+    );
+    black_box(&result);
+    reconfig_measure_stop(marker);
+    let ticks = systick::now() - ticks_before;
+    let stack_bytes = stack_high_water();
+    let ok = result.is_ok();
+    let work_units = solution.info.work_units;
+    let encoded: Result<&impulsive::Solution, impulsive::PlanError> = result.map(|()| &*solution);
+    report(
+        out,
+        index,
+        fixture,
+        "impulsive",
+        ok,
+        stack_bytes,
+        (ticks, Some(work_units)),
+    );
+    print_result(out, index, &encoded);
 }
 
 #[panic_handler]

@@ -1,6 +1,7 @@
 //! The M7 figures record (`fixtures/golden/m7-figures.toml`, written by the QEMU test) and the
 //! tables of `docs/firmware.md` generated from it, between the markers
-//! `<!-- m7-figures:begin -->` and `<!-- m7-figures:end -->`.
+//! `<!-- m7-figures:begin -->` and `<!-- m7-figures:end -->` (the default image),
+//! `<!-- m7-geo-figures:... -->` (the GEO image) and `<!-- m7-images:... -->` (RAM per image).
 //!
 //! `tests/tests/m7_docs.rs` fails when the docs differ from what the record generates;
 //! `RECONFIG_UPDATE_DOCS=1 cargo test -p reconfig-tests --test m7_docs` rewrites them (the QEMU
@@ -169,20 +170,13 @@ pub fn splice(docs: &str, generated: &str) -> Result<String, String> {
     ))
 }
 
-/// Regenerate the docs from the record on disk; returns whether they changed.
+/// Regenerate the docs' generated parts (all of them) from the record on disk; returns whether
+/// they changed.
 ///
 /// # Errors
 /// A file cannot be read or written, or does not parse.
 pub fn update_docs() -> Result<bool, String> {
-    let record = std::fs::read_to_string(root().join(RECORD_FILE)).map_err(|e| e.to_string())?;
-    let docs_path = root().join(DOCS_FILE);
-    let docs = std::fs::read_to_string(&docs_path).map_err(|e| e.to_string())?;
-    let new = splice(&docs, &render(&record)?)?;
-    if new != docs {
-        std::fs::write(&docs_path, &new).map_err(|e| e.to_string())?;
-        return Ok(true);
-    }
-    Ok(false)
+    update_all()
 }
 
 /// Start marker of the GEO image's generated table.
@@ -257,15 +251,150 @@ pub fn splice_geo(docs: &str, generated: &str) -> Result<String, String> {
     ))
 }
 
-/// Regenerate the docs' GEO table from the record on disk; returns whether it changed.
+/// Regenerate the docs' generated parts (all of them, the GEO table among them) from the record
+/// on disk; returns whether they changed.
 ///
 /// # Errors
 /// A file cannot be read or written, or does not parse.
 pub fn update_geo_docs() -> Result<bool, String> {
+    update_all()
+}
+
+/// Start marker of the generated RAM-per-image table.
+pub const IMAGES_BEGIN: &str =
+    "<!-- m7-images:begin (generated from fixtures/golden/m7-figures.toml; do not edit) -->";
+/// End marker of the generated RAM-per-image table.
+pub const IMAGES_END: &str = "<!-- m7-images:end -->";
+
+/// One row of the RAM-per-image table.
+fn image_row(md: &mut String, image: &str, t: &toml::Table) -> Result<(), String> {
+    let ram = int(t, "ram_bytes")?;
+    let budget = int(t, "ram_bytes_budget")?;
+    let margin = if ram <= budget {
+        format!("within, {} B to spare", grouped(budget - ram))
+    } else {
+        format!("**over by {} B**", grouped(ram - budget))
+    };
+    let _ = writeln!(
+        md,
+        "| {image} | {} | {} | {} ({:.1} %) | {} | {margin} |",
+        grouped(int(t, "static_ram_bytes")?),
+        grouped(int(t, "stack_bytes")?),
+        grouped(ram),
+        ram as f64 / 2621.44,
+        grouped(budget),
+    );
+    Ok(())
+}
+
+/// The generated RAM-per-image table (without the markers): the default two-planner image
+/// (`[binary]` and the largest `[[fixture]]` stack), each one-planner image (`[[image]]`) and
+/// the GEO image (`[geo_image]`, when recorded).
+///
+/// # Errors
+/// The record does not parse or lacks a figure.
+pub fn render_images(record: &str) -> Result<String, String> {
+    let file: toml::Table = toml::from_str(record).map_err(|e| format!("{RECORD_FILE}: {e}"))?;
+    let binary = file
+        .get("binary")
+        .and_then(toml::Value::as_table)
+        .ok_or_else(|| format!("{RECORD_FILE}: no [binary]"))?;
+    let fixtures = file
+        .get("fixture")
+        .and_then(toml::Value::as_array)
+        .ok_or_else(|| format!("{RECORD_FILE}: no [[fixture]]"))?;
+    let images = file
+        .get("image")
+        .and_then(toml::Value::as_array)
+        .ok_or_else(|| format!("{RECORD_FILE}: no [[image]]"))?;
+    let mut md = String::from(
+        "| image | static RAM | stack high-water | RAM (% of 256 KiB) | budget | against the budget |\n\
+         | --- | ---: | ---: | ---: | ---: | --- |\n",
+    );
+    // The default image: its RAM figure and budget are per fixture; the row takes the largest.
+    let (mut stack, mut ram, mut budget) = (0, 0, u64::MAX);
+    for f in fixtures {
+        let f = f.as_table().ok_or("a [[fixture]] is not a table")?;
+        stack = stack.max(int(f, "stack_bytes")?);
+        ram = ram.max(int(f, "ram_bytes")?);
+        budget = budget.min(int(f, "ram_bytes_budget")?);
+    }
+    let mut both = toml::Table::new();
+    for (key, value) in [
+        ("static_ram_bytes", int(binary, "static_ram_bytes")?),
+        ("stack_bytes", stack),
+        ("ram_bytes", ram),
+        ("ram_bytes_budget", budget),
+    ] {
+        let value = i64::try_from(value).map_err(|e| e.to_string())?;
+        both.insert(key.to_owned(), toml::Value::Integer(value));
+    }
+    image_row(
+        &mut md,
+        "both planners (`cargo firmware`, the QEMU tests' instruction run)",
+        &both,
+    )?;
+    let geo = file.get("geo_image").and_then(toml::Value::as_table);
+    for t in images
+        .iter()
+        .map(|i| i.as_table().ok_or("an [[image]] is not a table"))
+        .chain(geo.map(Ok))
+    {
+        let t = t?;
+        let field = |key: &str| {
+            t.get(key)
+                .and_then(toml::Value::as_str)
+                .ok_or_else(|| format!("{RECORD_FILE}: an image without `{key}`"))
+        };
+        let name = format!("{} alone (`{}`)", field("planner")?, field("command")?);
+        image_row(&mut md, &name, t)?;
+    }
+    Ok(md)
+}
+
+/// `docs` with the part between `begin` and `end` replaced by `generated`.
+///
+/// # Errors
+/// The markers are missing or out of order.
+pub fn splice_between(
+    docs: &str,
+    begin: &str,
+    end: &str,
+    generated: &str,
+) -> Result<String, String> {
+    let start = docs
+        .find(begin)
+        .ok_or_else(|| format!("{DOCS_FILE} lacks the marker {begin}"))?;
+    let stop = docs
+        .find(end)
+        .filter(|&e| e > start)
+        .ok_or_else(|| format!("{DOCS_FILE} lacks the marker {end} after its begin marker"))?;
+    Ok(format!(
+        "{}{begin}\n{generated}{}",
+        &docs[..start],
+        &docs[stop..]
+    ))
+}
+
+/// Regenerate the docs' generated parts (all of them, the RAM-per-image table among them) from
+/// the record on disk; returns whether they changed.
+///
+/// # Errors
+/// A file cannot be read or written, or does not parse.
+pub fn update_images_docs() -> Result<bool, String> {
+    update_all()
+}
+
+/// Regenerate every generated part of the docs from the record on disk; returns whether the
+/// docs changed. Each `update_*` does all of them, so that tests updating at the same time all
+/// write the same file.
+fn update_all() -> Result<bool, String> {
     let record = std::fs::read_to_string(root().join(RECORD_FILE)).map_err(|e| e.to_string())?;
     let docs_path = root().join(DOCS_FILE);
     let docs = std::fs::read_to_string(&docs_path).map_err(|e| e.to_string())?;
-    let new = splice_geo(&docs, &render_geo(&record)?)?;
+    let new = splice(&docs, &render(&record)?)?;
+    let new = splice_geo(&new, &render_geo(&record)?)?;
+    let new = splice_between(&new, IMAGES_BEGIN, IMAGES_END, &render_images(&record)?)?;
     if new != docs {
         std::fs::write(&docs_path, &new).map_err(|e| e.to_string())?;
         return Ok(true);

@@ -41,3 +41,25 @@ fn the_docs_geo_table_is_the_record() {
         "{DOCS_FILE}'s GEO table differs from what {RECORD_FILE} generates; regenerate with\n  {UPDATE_DOCS_COMMAND}"
     );
 }
+
+#[test]
+fn the_docs_ram_per_image_table_is_the_record() {
+    if std::env::var("RECONFIG_UPDATE_DOCS").as_deref() == Ok("1") {
+        m7_record::update_images_docs().expect("regenerate the docs");
+    }
+    let record = std::fs::read_to_string(m7_record::root().join(RECORD_FILE)).expect("record");
+    let docs = std::fs::read_to_string(m7_record::root().join(DOCS_FILE)).expect("docs");
+    let generated = m7_record::render_images(&record).expect("render the RAM-per-image table");
+    let expected = m7_record::splice_between(
+        &docs,
+        m7_record::IMAGES_BEGIN,
+        m7_record::IMAGES_END,
+        &generated,
+    )
+    .expect("RAM-per-image markers");
+    assert!(
+        expected == docs,
+        "{DOCS_FILE}'s RAM-per-image table differs from what {RECORD_FILE} generates; \
+         regenerate with\n  {UPDATE_DOCS_COMMAND}"
+    );
+}

@@ -125,8 +125,8 @@ struct FixtureReport {
     stack_bytes: u64,
     /// The firmware's own SysTick estimate (to within 40 instructions).
     systick_instructions: u64,
-    /// Work units the solve reported (`SolveInfo::work_units`).
-    work_units: u64,
+    /// Work units the solve reported (`SolveInfo::work_units`); the GEO tour has none.
+    work_units: Option<u64>,
     hex: String,
 }
 
@@ -138,6 +138,68 @@ struct Run {
     fixtures: Vec<FixtureReport>,
     /// Instructions per solve, by fixture index; `None` without the plugin.
     instructions: Option<Vec<u64>>,
+    /// The one-planner images' runs (default image only; empty for the others).
+    images: Vec<OnePlannerImage>,
+}
+
+/// A one-planner image (docs/firmware.md, "One image per planner"): its planner's key, the
+/// cargo features and alias that build it.
+const ONE_PLANNER_IMAGES: [(&str, &str, &str); 2] = [
+    ("pseudospectral", "pseudospectral", "cargo firmware-a"),
+    ("impulsive", "impulsive", "cargo firmware-b"),
+];
+/// RAM (static + stack high-water) of each one-planner image: 230 KiB, 90 % of 256 KiB.
+const BUDGET_ONE_PLANNER_IMAGE_RAM_BYTES: u64 = 230 * 1024;
+
+/// One one-planner image's run, without the instruction plugin (its figures of interest are its
+/// RAM: the solves are the default image's, compared byte for byte).
+#[derive(Debug)]
+struct OnePlannerImage {
+    planner: &'static str,
+    command: &'static str,
+    run: Run,
+}
+
+impl OnePlannerImage {
+    /// Static RAM, as the image prints it from its linker symbols (`__euninit - __sdata`).
+    fn static_ram_bytes(&self) -> u64 {
+        self.run
+            .binary
+            .get("static_ram_bytes")
+            .copied()
+            .unwrap_or(0)
+    }
+
+    /// The largest stack high-water over the image's fixtures.
+    fn stack_bytes(&self) -> u64 {
+        self.run
+            .fixtures
+            .iter()
+            .map(|f| f.stack_bytes)
+            .max()
+            .unwrap_or(0)
+    }
+}
+
+/// Build and run one one-planner image (no plugin: about a second of QEMU), in a folder of its
+/// own so that its QEMU output does not meet the default image's.
+fn one_planner_image(
+    (planner, features, command): (&'static str, &str, &'static str),
+) -> Result<OnePlannerImage, String> {
+    let built = build_image("reconfig-firmware", features)?;
+    let dir = built
+        .parent()
+        .ok_or("odd target path")?
+        .join(format!("{planner}-image"));
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let elf = dir.join("reconfig-firmware");
+    std::fs::copy(&built, &elf).map_err(|e| format!("{}: {e}", elf.display()))?;
+    let run = run_firmware(&elf, None)?;
+    Ok(OnePlannerImage {
+        planner,
+        command,
+        run,
+    })
 }
 
 static RUN: OnceLock<Result<Run, String>> = OnceLock::new();
@@ -147,6 +209,12 @@ static RUN: OnceLock<Result<Run, String>> = OnceLock::new();
 fn firmware_run() -> &'static Result<Run, String> {
     RUN.get_or_init(|| {
         check_prerequisites().map_err(|e| format!("SKIP: {e}"))?;
+        // The one-planner images first: they share the default image's output path, so the
+        // default image is built last and its ELF stays in place for the other tests.
+        let images = ONE_PLANNER_IMAGES
+            .into_iter()
+            .map(one_planner_image)
+            .collect::<Result<Vec<_>, String>>()?;
         let elf = build_firmware()?;
         let plugin = match build_plugin(&elf) {
             Ok(p) => Some(p),
@@ -155,14 +223,16 @@ fn firmware_run() -> &'static Result<Run, String> {
                 None
             }
         };
-        match run_firmware(&elf, plugin.as_deref()) {
+        let mut run = match run_firmware(&elf, plugin.as_deref()) {
             // A QEMU built without TCG plugin support: run again without counting.
             Err(e) if e.starts_with("PLUGIN: ") => {
                 notice(&format!("note: no instruction counts: {}", &e[8..]));
                 run_firmware(&elf, None)
             }
             other => other,
-        }
+        }?;
+        run.images = images;
+        Ok(run)
     })
 }
 
@@ -431,7 +501,10 @@ fn parse_output(elf: &Path, stdout: &str) -> Result<Run, String> {
                         .to_string(),
                     stack_bytes: number(&f, "stack_bytes")?,
                     systick_instructions: number(&f, "systick_instructions")?,
-                    work_units: number(&f, "work_units")?,
+                    work_units: match f.get("work_units") {
+                        Some(_) => Some(number(&f, "work_units")?),
+                        None => None,
+                    },
                     hex: String::new(),
                 });
             }
@@ -454,6 +527,7 @@ fn parse_output(elf: &Path, stdout: &str) -> Result<Run, String> {
         binary,
         fixtures,
         instructions: None,
+        images: Vec::new(),
     })
 }
 
@@ -560,6 +634,40 @@ fn results_are_bit_identical_to_the_host() {
     );
 }
 
+#[test]
+fn one_planner_images_give_the_default_images_results() {
+    let Some(run) = run_or_skip("one_planner_images_give_the_default_images_results") else {
+        return;
+    };
+    assert_eq!(run.images.len(), ONE_PLANNER_IMAGES.len());
+    for image in &run.images {
+        // Exactly its planner's fixtures, in the default image's order, with the same bytes.
+        let expected: Vec<&FixtureReport> = run
+            .fixtures
+            .iter()
+            .filter(|f| f.planner == image.planner)
+            .collect();
+        let names =
+            |fs: &[&FixtureReport]| -> Vec<String> { fs.iter().map(|f| f.name.clone()).collect() };
+        let got: Vec<&FixtureReport> = image.run.fixtures.iter().collect();
+        assert_eq!(
+            names(&got),
+            names(&expected),
+            "{} ran another fixture set than the default image's {} fixtures",
+            image.command,
+            image.planner
+        );
+        for (one, both) in got.iter().zip(&expected) {
+            assert!(
+                one.hex == both.hex,
+                "{}: {} and the default image give different results",
+                one.name,
+                image.command
+            );
+        }
+    }
+}
+
 /// One figure: what was measured and what it may be.
 struct Figure {
     what: String,
@@ -662,7 +770,13 @@ fn figures_are_within_budget() {
             ("instructions", instructions[index], default_instructions),
             // The work units beside the instructions (the calibration in docs/firmware.md);
             // their budget is the planner's default `work_budget`.
-            ("work_units", fixture.work_units, work_budget),
+            (
+                "work_units",
+                fixture.work_units.unwrap_or_else(|| {
+                    panic!("{}: the firmware printed no work_units", fixture.name)
+                }),
+                work_budget,
+            ),
             ("stack_bytes", fixture.stack_bytes, BUDGET_STACK_BYTES),
             (
                 "ram_bytes",
@@ -674,6 +788,55 @@ fn figures_are_within_budget() {
             let _ = writeln!(text, "{key} = {measured}\n{key}_budget = {budget}");
             figures.push(Figure {
                 what: format!("{} {key}", fixture.name),
+                measured,
+                recorded: table_u64(recorded, key),
+                budget,
+            });
+        }
+    }
+
+    // The one-planner images' RAM (static + the largest stack over their fixtures), each
+    // measured in its own image: its `main` frame differs from the default image's.
+    let recorded_images: BTreeMap<String, &toml::Table> = file
+        .get("image")
+        .and_then(|v| v.as_array())
+        .into_iter()
+        .flatten()
+        .filter_map(|v| v.as_table())
+        .filter_map(|t| Some((t.get("planner")?.as_str()?.to_owned(), t)))
+        .collect();
+    if !run.images.is_empty() {
+        text.push_str(
+            "\n# One-planner images (docs/firmware.md): static RAM from the image's linker \
+             symbols,\n# stack_bytes the largest over its fixtures in its own run, ram_bytes \
+             their sum.\n",
+        );
+    }
+    for image in &run.images {
+        let recorded = recorded_images.get(image.planner).copied();
+        let _ = write!(
+            text,
+            "\n[[image]]\nplanner = {:?}\ncommand = {:?}\n",
+            image.planner, image.command
+        );
+        let (static_ram, stack) = (image.static_ram_bytes(), image.stack_bytes());
+        for (key, measured, default_budget) in [
+            (
+                "static_ram_bytes",
+                static_ram,
+                BUDGET_ONE_PLANNER_IMAGE_RAM_BYTES,
+            ),
+            ("stack_bytes", stack, BUDGET_STACK_BYTES),
+            (
+                "ram_bytes",
+                static_ram + stack,
+                BUDGET_ONE_PLANNER_IMAGE_RAM_BYTES,
+            ),
+        ] {
+            let budget = table_u64(recorded, &format!("{key}_budget")).unwrap_or(default_budget);
+            let _ = writeln!(text, "{key} = {measured}\n{key}_budget = {budget}");
+            figures.push(Figure {
+                what: format!("{} image {key}", image.planner),
                 measured,
                 recorded: table_u64(recorded, key),
                 budget,
@@ -706,12 +869,17 @@ fn figures_are_within_budget() {
         let _lock = RECORD_LOCK.lock().unwrap_or_else(|e| e.into_inner());
         // The GEO image's part of the record is its own test's (geo_figures_are_within_budget).
         let existing = std::fs::read_to_string(&path).unwrap_or_default();
-        text.push_str(geo_record_part(&existing));
+        let geo_part = geo_record_part(&existing);
+        if !geo_part.is_empty() {
+            text.push('\n');
+            text.push_str(geo_part);
+        }
         std::fs::create_dir_all(path.parent().expect("has a parent")).expect("create folder");
         std::fs::write(&path, &text).unwrap_or_else(|e| panic!("{FIGURES_FILE}: {e}"));
         notice(&format!("wrote the measured figures to {FIGURES_FILE}"));
         let changed = reconfig_tests::m7_record::update_docs().expect("regenerate the docs");
-        if changed {
+        let images = reconfig_tests::m7_record::update_images_docs().expect("regenerate the docs");
+        if changed || images {
             notice("regenerated the tables of docs/firmware.md from the record");
         }
     }
@@ -989,7 +1157,39 @@ fn geo_figures_are_within_budget() {
             budget,
         });
     }
+    // The GEO image's RAM as one image among the others (`[[image]]` of the main part): the
+    // same three figures, the same 230 KiB budget.
+    let recorded_image = file.get("geo_image").and_then(|v| v.as_table());
     let static_ram = run.binary["static_ram_bytes"];
+    let stack = run
+        .fixtures
+        .iter()
+        .map(|f| f.stack_bytes)
+        .max()
+        .unwrap_or(0);
+    text.push_str("\n[geo_image]\nplanner = \"geo-tour\"\ncommand = \"cargo firmware-geo\"\n");
+    for (key, measured, default_budget) in [
+        (
+            "static_ram_bytes",
+            static_ram,
+            BUDGET_ONE_PLANNER_IMAGE_RAM_BYTES,
+        ),
+        ("stack_bytes", stack, BUDGET_STACK_BYTES),
+        (
+            "ram_bytes",
+            static_ram + stack,
+            BUDGET_ONE_PLANNER_IMAGE_RAM_BYTES,
+        ),
+    ] {
+        let budget = table_u64(recorded_image, &format!("{key}_budget")).unwrap_or(default_budget);
+        let _ = writeln!(text, "{key} = {measured}\n{key}_budget = {budget}");
+        figures.push(Figure {
+            what: format!("GEO image {key} (image)"),
+            measured,
+            recorded: table_u64(recorded_image, key),
+            budget,
+        });
+    }
     for (fixture, &count) in run.fixtures.iter().zip(instructions) {
         let estimate = fixture.systick_instructions;
         assert!(
@@ -1035,6 +1235,7 @@ fn geo_figures_are_within_budget() {
         std::fs::write(&path, &record).unwrap_or_else(|e| panic!("{FIGURES_FILE}: {e}"));
         notice(&format!("wrote the GEO image's figures to {FIGURES_FILE}"));
         reconfig_tests::m7_record::update_geo_docs().expect("regenerate the docs");
+        reconfig_tests::m7_record::update_images_docs().expect("regenerate the docs");
     }
     let drifted: Vec<String> = figures
         .iter()
