@@ -29,6 +29,8 @@ struct Bars {
 }
 
 struct Config {
+    /// Planner A's work budget for this comparison (`Settings::work_budget`).
+    work_budget: u64,
     below_tolerance_rel: f64,
     ci_stride: usize,
     ci: Bars,
@@ -66,6 +68,8 @@ fn config() -> Config {
         }
     }
     Config {
+        work_budget: u64::try_from(table["work_budget"].as_integer().expect("int"))
+            .expect("budget"),
         below_tolerance_rel: table["below_tolerance_rel"].as_float().expect("float"),
         ci_stride: usize::try_from(table["ci_stride"].as_integer().expect("int")).expect("stride"),
         ci: bars(&table, "ci"),
@@ -88,7 +92,10 @@ fn planner_a_meets_the_oracle_on_the_generated_families() {
     .expect("problems");
     let all = std::env::var("RECONFIG_ORACLE_ALL").is_ok_and(|v| v == "1");
     let bars = if all { &cfg.all } else { &cfg.ci };
-    let settings = Settings::default();
+    let settings = Settings {
+        work_budget: cfg.work_budget,
+        ..Settings::default()
+    };
 
     let (mut count, mut solved, mut usable, mut above) = (0usize, 0usize, 0usize, 0usize);
     let mut failures: Vec<String> = Vec::new();

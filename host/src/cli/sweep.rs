@@ -50,6 +50,11 @@ pub struct Args {
     /// problem is compared with the oracle only when it equals the stored one.
     #[arg(long, default_value = sweep_oracle::PROBLEMS_DEFAULT)]
     pub problems: PathBuf,
+    /// Planner A's work budget in work units (`Settings::work_budget`); default: the core's
+    /// default, which bounds a solve to 400 M Cortex-M7 instructions. A larger budget measures
+    /// the planner's answers without the on-board time bound.
+    #[arg(long)]
+    pub work_budget: Option<u64>,
 }
 
 /// One generated problem's outcome, for the oracle table.
@@ -373,7 +378,11 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     let mut index = 0usize;
     let oracle = load_oracle(args);
     let mut outcomes: Vec<Outcome> = Vec::new();
-    let settings = Settings::default();
+    let mut settings = Settings::default();
+    if let Some(budget) = args.work_budget {
+        settings.work_budget = budget;
+    }
+    println!("work budget: {} units", settings.work_budget);
     println!(
         "| family | problems | Solved | Feasible | other (status: count) | rejected | largest working set | saddle escapes (helped) | J median / worst | ms median / worst |"
     );
