@@ -181,16 +181,7 @@ pub(crate) fn from_state(pos_km: &Vec3, vel_km_s: &Vec3, near: &Elements) -> Opt
 /// at true longitude `L`.
 pub(crate) fn apply_impulse(q: &Elements, true_longitude_rad: f64, dv: &Vec3) -> Option<Elements> {
     let s = state(q, true_longitude_rad);
-    let mut vel = s.vel_km_s;
-    for (((v, r), t), n) in vel
-        .iter_mut()
-        .zip(s.radial.iter())
-        .zip(s.along.iter())
-        .zip(s.normal.iter())
-    {
-        *v += dv[0] * *r + dv[1] * *t + dv[2] * *n;
-    }
-    from_state(&s.pos_km, &vel, q)
+    from_state(&s.pos_km, &s.velocity_after(dv), q)
 }
 
 /// `B(q)` at true longitude `L`: rows (a km, lambda rad, ex, ey, hx, hy) per km/s of (radial,

@@ -25,6 +25,23 @@ pub(crate) struct State {
     pub normal: Vec3,
 }
 
+impl State {
+    /// The inertial velocity just after an impulse `dv_rtn_km_s` (km/s: radial, along-track,
+    /// normal) applied at this state.
+    pub(crate) fn velocity_after(&self, dv_rtn_km_s: &Vec3) -> Vec3 {
+        let mut vel = self.vel_km_s;
+        for (((v, r), t), n) in vel
+            .iter_mut()
+            .zip(self.radial.iter())
+            .zip(self.along.iter())
+            .zip(self.normal.iter())
+        {
+            *v += dv_rtn_km_s[0] * *r + dv_rtn_km_s[1] * *t + dv_rtn_km_s[2] * *n;
+        }
+        vel
+    }
+}
+
 /// The two-body state of `el` at true anomaly `f`.
 pub(crate) fn state(el: &Elements, true_anomaly_rad: f64) -> State {
     let (a, e, i, raan, w) = (el[A], el[E], el[I], el[RAAN], el[ARGP]);
@@ -117,16 +134,7 @@ pub(crate) fn apply_impulse(
     dv_rtn_km_s: &Vec3,
 ) -> Option<Elements> {
     let s = state(el, true_anomaly_rad);
-    let mut vel = s.vel_km_s;
-    for (((v, r), t), n) in vel
-        .iter_mut()
-        .zip(s.radial.iter())
-        .zip(s.along.iter())
-        .zip(s.normal.iter())
-    {
-        *v += dv_rtn_km_s[0] * *r + dv_rtn_km_s[1] * *t + dv_rtn_km_s[2] * *n;
-    }
-    elements_from_state(&s.pos_km, &vel, el)
+    elements_from_state(&s.pos_km, &s.velocity_after(dv_rtn_km_s), el)
 }
 
 /// Position difference `b - a` in the local frame of `a` (radial, along-track, normal), km.
