@@ -676,6 +676,41 @@ struct Figure {
     budget: u64,
 }
 
+/// One firmware image's RAM figures (static RAM, its largest stack, their sum), written under
+/// the image's table in `text` with their budgets (the recorded ones, else the one-planner-image
+/// defaults) and pushed as figures labelled `"{planner} image {key}"`.
+fn record_image_ram(
+    text: &mut String,
+    figures: &mut Vec<Figure>,
+    recorded: Option<&toml::Table>,
+    planner: &str,
+    static_ram: u64,
+    stack: u64,
+) {
+    for (key, measured, default_budget) in [
+        (
+            "static_ram_bytes",
+            static_ram,
+            BUDGET_ONE_PLANNER_IMAGE_RAM_BYTES,
+        ),
+        ("stack_bytes", stack, BUDGET_STACK_BYTES),
+        (
+            "ram_bytes",
+            static_ram + stack,
+            BUDGET_ONE_PLANNER_IMAGE_RAM_BYTES,
+        ),
+    ] {
+        let budget = table_u64(recorded, &format!("{key}_budget")).unwrap_or(default_budget);
+        let _ = writeln!(text, "{key} = {measured}\n{key}_budget = {budget}");
+        figures.push(Figure {
+            what: format!("{planner} image {key}"),
+            measured,
+            recorded: table_u64(recorded, key),
+            budget,
+        });
+    }
+}
+
 fn table_u64(table: Option<&toml::Table>, key: &str) -> Option<u64> {
     table?
         .get(key)?
@@ -819,29 +854,14 @@ fn figures_are_within_budget() {
             "\n[[image]]\nplanner = {:?}\ncommand = {:?}\n",
             image.planner, image.command
         );
-        let (static_ram, stack) = (image.static_ram_bytes(), image.stack_bytes());
-        for (key, measured, default_budget) in [
-            (
-                "static_ram_bytes",
-                static_ram,
-                BUDGET_ONE_PLANNER_IMAGE_RAM_BYTES,
-            ),
-            ("stack_bytes", stack, BUDGET_STACK_BYTES),
-            (
-                "ram_bytes",
-                static_ram + stack,
-                BUDGET_ONE_PLANNER_IMAGE_RAM_BYTES,
-            ),
-        ] {
-            let budget = table_u64(recorded, &format!("{key}_budget")).unwrap_or(default_budget);
-            let _ = writeln!(text, "{key} = {measured}\n{key}_budget = {budget}");
-            figures.push(Figure {
-                what: format!("{} image {key}", image.planner),
-                measured,
-                recorded: table_u64(recorded, key),
-                budget,
-            });
-        }
+        record_image_ram(
+            &mut text,
+            &mut figures,
+            recorded,
+            image.planner,
+            image.static_ram_bytes(),
+            image.stack_bytes(),
+        );
     }
 
     let mut report = String::from("figure | measured | recorded | budget\n");
@@ -1168,28 +1188,14 @@ fn geo_figures_are_within_budget() {
         .max()
         .unwrap_or(0);
     text.push_str("\n[geo_image]\nplanner = \"geo-tour\"\ncommand = \"cargo firmware-geo\"\n");
-    for (key, measured, default_budget) in [
-        (
-            "static_ram_bytes",
-            static_ram,
-            BUDGET_ONE_PLANNER_IMAGE_RAM_BYTES,
-        ),
-        ("stack_bytes", stack, BUDGET_STACK_BYTES),
-        (
-            "ram_bytes",
-            static_ram + stack,
-            BUDGET_ONE_PLANNER_IMAGE_RAM_BYTES,
-        ),
-    ] {
-        let budget = table_u64(recorded_image, &format!("{key}_budget")).unwrap_or(default_budget);
-        let _ = writeln!(text, "{key} = {measured}\n{key}_budget = {budget}");
-        figures.push(Figure {
-            what: format!("GEO image {key} (image)"),
-            measured,
-            recorded: table_u64(recorded_image, key),
-            budget,
-        });
-    }
+    record_image_ram(
+        &mut text,
+        &mut figures,
+        recorded_image,
+        "geo-tour",
+        static_ram,
+        stack,
+    );
     for (fixture, &count) in run.fixtures.iter().zip(instructions) {
         let estimate = fixture.systick_instructions;
         assert!(
