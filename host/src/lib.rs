@@ -8,3 +8,4 @@ pub mod limits;
 pub mod plot;
 pub mod plot_geo;
 pub mod scenario;
+pub mod truth;
