@@ -37,6 +37,8 @@ enum Command {
     Fairness(reconfig_host::cli::fairness::Args),
     /// Planner A over seeded generated problem families: a table per family.
     Sweep(reconfig_host::cli::sweep::Args),
+    /// Planner-B fixtures: fly the plan in the high-fidelity truth model and report the miss.
+    Truth(reconfig_host::cli::truth::Args),
 }
 
 fn main() -> ExitCode {
@@ -53,6 +55,7 @@ fn main() -> ExitCode {
         Command::Plot(args) => reconfig_host::cli::plot::run(&args),
         Command::Fairness(args) => reconfig_host::cli::fairness::run(&args),
         Command::Sweep(args) => reconfig_host::cli::sweep::run(&args),
+        Command::Truth(args) => reconfig_host::cli::truth::run(&args),
     };
     match result {
         Ok(code) => code,

@@ -12,3 +12,4 @@ pub mod solve_impulsive;
 pub mod solve_pseudospectral;
 pub mod sweep;
 pub mod sweep_oracle;
+pub mod truth;

@@ -20,7 +20,9 @@ pub mod forces;
 pub mod gravity;
 pub mod gravity_model;
 pub mod integrator;
+pub mod plan_check;
 pub mod propagate;
+pub mod record;
 
 #[cfg(test)]
 mod validation_tests;
