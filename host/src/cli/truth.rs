@@ -63,6 +63,16 @@ pub fn parse_epoch(text: &str) -> Result<f64> {
             bail!("--epoch {text:?}: {name} {value} outside [{lo}, {hi}]");
         }
     }
+    let leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
+    let days_in_month = match month {
+        2 if leap => 29,
+        2 => 28,
+        4 | 6 | 9 | 11 => 30,
+        _ => 31,
+    };
+    if day > days_in_month {
+        bail!("--epoch {text:?}: day {day} outside [1, {days_in_month}] for month {month}");
+    }
     Ok(julian_date(year, month, day, hour, minute, second))
 }
 
@@ -142,6 +152,9 @@ mod tests {
         let err = parse_epoch("2025-13-01T00:00:00").unwrap_err().to_string();
         assert!(err.contains("month 13"), "{err}");
         assert!(parse_epoch("2025-01-01").is_err());
+        let err = parse_epoch("2025-02-29T00:00:00").unwrap_err().to_string();
+        assert!(err.contains("day 29 outside [1, 28]"), "{err}");
+        assert!(parse_epoch("2024-02-29T00:00:00").is_ok());
         let err = check_ballistic("deputy-ballistic-m2-kg", -1.0)
             .unwrap_err()
             .to_string();
