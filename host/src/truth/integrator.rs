@@ -3,7 +3,7 @@
 //! on a mixed absolute and relative tolerance, stopping exactly at a given time. Deterministic:
 //! the same call gives the same bits (no clock, no threads).
 
-use anyhow::{bail, Result};
+use anyhow::{bail, Context, Result};
 
 /// A first-order system of six states (position km, velocity km/s).
 pub type State6 = [f64; 6];
@@ -83,13 +83,19 @@ const E: [f64; 7] = [
     -1.0 / 40.0,
 ];
 
+/// A check of each accepted state: `Err` stops the integration with that message.
+pub type Guard<'a> = &'a dyn Fn(&State6) -> Result<()>;
+
 /// Integrate `y' = f(t, y)` from `t0_s` to `t1_s >= t0_s` starting at `y`, with a first step of
-/// `*step_s` (updated to the controller's next step, to carry on in the next call).
+/// `*step_s` (updated to the controller's next step, to carry on in the next call); `guard`
+/// checks every accepted state.
 ///
 /// # Errors
-/// A non-finite state or step, or more than `tol.max_steps` steps.
+/// A non-finite state or step, more than `tol.max_steps` steps, or the guard's error.
+#[allow(clippy::too_many_arguments)]
 pub fn integrate(
     f: &dyn Fn(f64, &State6) -> State6,
+    guard: Guard<'_>,
     t0_s: f64,
     t1_s: f64,
     y: &mut State6,
@@ -157,6 +163,7 @@ pub fn integrate(
         let factor = (0.9 * err.powf(-0.2)).clamp(0.2, 5.0);
         if err <= 1.0 {
             t = if last { t1_s } else { t + h_now };
+            guard(&y_new).with_context(|| format!("at {} s", t))?;
             *y = y_new;
             k[0] = k[6];
             counters.accepted += 1;
@@ -195,7 +202,17 @@ mod tests {
         let mut h = 10.0;
         let mut c = Counters::default();
         let t1 = 86_400.0;
-        integrate(&f, 0.0, t1, &mut y, &mut h, &Tolerance::TRUTH, &mut c).unwrap();
+        integrate(
+            &f,
+            &|_| Ok(()),
+            0.0,
+            t1,
+            &mut y,
+            &mut h,
+            &Tolerance::TRUTH,
+            &mut c,
+        )
+        .unwrap();
         let want = [
             7000.0 * (w * t1).cos(),
             7.0 / w * (w * t1).sin(),
@@ -222,8 +239,9 @@ mod tests {
             ..Tolerance::TRUTH
         };
         let mut c = Counters::default();
-        let err = integrate(&f, 0.0, 1000.0, &mut y, &mut h, &tight, &mut c).unwrap_err();
+        let err =
+            integrate(&f, &|_| Ok(()), 0.0, 1000.0, &mut y, &mut h, &tight, &mut c).unwrap_err();
         assert!(err.to_string().contains("more than 10"), "{err}");
-        assert!(integrate(&f, 5.0, 1.0, &mut y, &mut h, &tight, &mut c).is_err());
+        assert!(integrate(&f, &|_| Ok(()), 5.0, 1.0, &mut y, &mut h, &tight, &mut c).is_err());
     }
 }

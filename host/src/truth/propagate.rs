@@ -59,6 +59,24 @@ fn unit(a: &[f64; 3]) -> [f64; 3] {
     [a[0] / n, a[1] / n, a[2] / n]
 }
 
+/// Below this geocentric distance (the equatorial radius plus 80 km, where the exponential
+/// atmosphere's drag makes an orbit re-enter within a revolution) a propagation stops with an
+/// error rather than fly on through a model that no longer describes an orbit.
+pub const MIN_RADIUS_KM: f64 = super::atmosphere::EARTH_RADIUS_KM + 80.0;
+
+/// `Err` naming the altitude when `y` is below [`MIN_RADIUS_KM`].
+fn check_altitude(y: &State6) -> Result<()> {
+    let r_km = (y[0] * y[0] + y[1] * y[1] + y[2] * y[2]).sqrt();
+    if r_km < MIN_RADIUS_KM {
+        bail!(
+            "altitude {:.1} km below the {:.0} km the truth model flies",
+            r_km - super::atmosphere::EARTH_RADIUS_KM,
+            MIN_RADIUS_KM - super::atmosphere::EARTH_RADIUS_KM
+        );
+    }
+    Ok(())
+}
+
 /// The end of a propagation.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Propagated {
@@ -73,7 +91,8 @@ pub struct Propagated {
 /// bounded by `tol.max_steps`.
 ///
 /// # Errors
-/// Burns out of order or outside `[0, end_s]`, a non-finite burn, or an integration error.
+/// Burns out of order or outside `[0, end_s]`, a non-finite burn, an integration error, or the
+/// spacecraft below [`MIN_RADIUS_KM`] at the start or at any accepted step.
 pub fn propagate(
     model: &ForceModel,
     start: &EciState,
@@ -89,6 +108,7 @@ pub fn propagate(
         [y[3], y[4], y[5], a[0], a[1], a[2]]
     };
     let mut y = start.to_array();
+    check_altitude(&y).context("at the start")?;
     let mut t = 0.0;
     let mut h = 10.0;
     let mut counters = Counters::default();
@@ -101,8 +121,17 @@ pub fn propagate(
                 burn.time_s
             );
         }
-        integrate(&f, t, burn.time_s, &mut y, &mut h, tol, &mut counters)
-            .with_context(|| format!("coasting to burn {}", k + 1))?;
+        integrate(
+            &f,
+            &check_altitude,
+            t,
+            burn.time_s,
+            &mut y,
+            &mut h,
+            tol,
+            &mut counters,
+        )
+        .with_context(|| format!("coasting to burn {}", k + 1))?;
         let state = EciState::from_array(&y);
         let axes = state.rtn_axes();
         for (axis, dv) in axes.iter().zip(burn.dv_rtn_mps.iter()) {
@@ -112,7 +141,17 @@ pub fn propagate(
         }
         t = burn.time_s;
     }
-    integrate(&f, t, end_s, &mut y, &mut h, tol, &mut counters).context("coasting to the end")?;
+    integrate(
+        &f,
+        &check_altitude,
+        t,
+        end_s,
+        &mut y,
+        &mut h,
+        tol,
+        &mut counters,
+    )
+    .context("coasting to the end")?;
     Ok(Propagated {
         end: EciState::from_array(&y),
         counters,

@@ -273,3 +273,28 @@ fn j2_alone_moves_a_formation_as_the_cores_drift_says() {
         "{miss} m from the core's drift ({drift} m of drift)"
     );
 }
+
+/// A start inside the atmosphere's last 80 km is refused with its altitude, and a decaying orbit
+/// stops with an error at the first accepted step below the floor.
+#[test]
+fn an_orbit_below_the_floor_is_refused() {
+    let g = GravityModel::jgm3().unwrap();
+    let model = ForceModel::full(g, julian_date(2025, 1, 1, 0, 0, 0.0), 0.022);
+    let low = EciState {
+        pos_km: [6378.137 + 50.0, 0.0, 0.0],
+        vel_km_s: [0.0, 7.8, 0.0],
+    };
+    let err = propagate(&model, &low, &[], 100.0, &Tolerance::TRUTH).unwrap_err();
+    assert!(format!("{err:#}").contains("altitude 50.0 km"), "{err:#}");
+    // Perigee ~ 100 km: re-enters within a day.
+    let decaying = start_of(&MeanElements {
+        sma_km: 6378.137 + 300.0,
+        ecc: 0.03,
+        inc_rad: 0.9,
+        raan_rad: 0.0,
+        argp_rad: 0.0,
+        mean_anomaly_rad: 0.0,
+    });
+    let err = propagate(&model, &decaying, &[], DAY_S, &Tolerance::TRUTH).unwrap_err();
+    assert!(format!("{err:#}").contains("below the 80 km"), "{err:#}");
+}
