@@ -50,7 +50,11 @@ impl Pick {
 
 fn drift_pick(t: &LegTable, price: f64, s: &Settings) -> Option<Pick> {
     let d = t.drift.as_ref()?;
-    let x = d.curve.depth_for_price(&d.model, price, s.root_max_iter);
+    // Every table is finished (curve built) before the allocation runs.
+    let x = d
+        .curve
+        .as_ref()?
+        .depth_for_price(&d.model, price, s.root_max_iter);
     let p = d.model.at(x);
     Some(Pick {
         choice: Choice::Drift,
@@ -135,7 +139,7 @@ fn drift_allocate(
             (Choice::Drift, Some(d)) => {
                 any = true;
                 fastest += d.t_min_s;
-                top = top.max(d.curve.top_price);
+                top = top.max(d.curve.as_ref()?.top_price);
             }
             (Choice::Drift, None) => return None,
             (Choice::Point(_), _) => fixed += p.duration_s,
