@@ -71,12 +71,18 @@ impl Drift {
 
     /// Marginal cost of time at depth `x_km`: `-dD/dt`, m/s per s (positive).
     pub fn price_at(&self, x_km: f64) -> f64 {
+        self.price_and_point(x_km).0
+    }
+
+    /// [`Drift::price_at`] with the cost and the duration at the same depth, from one
+    /// evaluation (the value parts are computed exactly as [`Drift::at`] computes them).
+    pub fn price_and_point(&self, x_km: f64) -> (f64, f64, f64) {
         let (b1, b2, tt, td) = self.burns_dual(Dual::var(x_km));
         // |b| = -s b for both burns (east: both retrograde).
         let s = self.dir.sign();
         let dd = -2.0 * s * (b1.d + b2.d);
         let dt = tt.d + td.d;
-        -dd / dt
+        (-dd / dt, 2.0 * (b1.v.abs() + b2.v.abs()), tt.v + td.v)
     }
 
     /// Deepest admissible drift orbit: every burn within `cap_mps`, a non-negative drift time,

@@ -148,10 +148,20 @@ fn well_window_s(g: &Geo, dir: Direction, phase_rad: f64, m: u16) -> (f64, f64) 
     ((hi - 0.25 * g.t0).max(1.0), hi)
 }
 
-/// The earliest duration any well of the leg is searched at (well 1's window starts first:
-/// the windows move one period later per well), s.
-pub(crate) fn wells_earliest_s(g: &Geo, dir: Direction, phase_rad: f64) -> f64 {
-    well_window_s(g, dir, phase_rad, 1).0
+/// The earliest duration any well of the leg up to well `max_well` is searched at, counting
+/// only the wells not skipped outright under `cap_mps` (the windows move one period later per
+/// well, so the first such well's window starts first), s; infinite when every well is
+/// skipped.
+pub(crate) fn wells_earliest_s(
+    g: &Geo,
+    dir: Direction,
+    phase_rad: f64,
+    max_well: u16,
+    cap_mps: f64,
+) -> f64 {
+    (1..=max_well)
+        .find(|&m| !well_skipped(g, dir, phase_rad, m, cap_mps))
+        .map_or(f64::INFINITY, |m| well_window_s(g, dir, phase_rad, m).0)
 }
 
 /// Whether well `m` is skipped outright: the tangential m-revolution phasing orbit at its end

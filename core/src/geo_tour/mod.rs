@@ -201,7 +201,8 @@ fn solve_sweep(
         return;
     };
     if let Some(beat) = beat {
-        let fastest_lb = |t: &table::LegTable| table::fastest_lower_bound_s(g, t, problem.policy);
+        let fastest_lb =
+            |t: &table::LegTable| table::fastest_lower_bound_s(g, t, problem.policy, s);
         let bound: f64 = tables.iter().map(fastest_lb).sum();
         let dominated = bound > problem.mission_time_s || {
             let dv_lb: f64 = tables

@@ -290,12 +290,23 @@ pub(crate) fn finish(g: &Geo, t: &mut LegTable, policy: MethodPolicy, s: &Settin
 }
 
 /// A lower bound on the leg's fastest admissible duration once its wells are added: every
-/// well is searched no earlier than `wells_earliest_s`, so the table's wells cannot make the
-/// leg faster than that.
-pub(crate) fn fastest_lower_bound_s(g: &Geo, t: &LegTable, policy: MethodPolicy) -> f64 {
+/// well is searched no earlier than its window's start, and a well skipped outright under the
+/// cap adds nothing, so the wells cannot make the leg faster than `wells_earliest_s`.
+pub(crate) fn fastest_lower_bound_s(
+    g: &Geo,
+    t: &LegTable,
+    policy: MethodPolicy,
+    s: &Settings,
+) -> f64 {
     if has_wells(t, policy) {
-        t.fastest_s
-            .min(wells_earliest_s(g, direction_of(t), t.phase_rad))
+        let last_well = s.lambert_max_revolutions.saturating_add(1);
+        t.fastest_s.min(wells_earliest_s(
+            g,
+            direction_of(t),
+            t.phase_rad,
+            last_well,
+            t.cap_mps,
+        ))
     } else {
         t.fastest_s
     }
