@@ -54,6 +54,8 @@ pub struct LambertSolution {
     pub v2_kmps: Vec3,
     /// Householder steps used.
     pub iterations: u16,
+    /// Izzo's x at the solution: a starting point for a nearby solve ([`solve_from`]).
+    pub x: f64,
 }
 
 fn finite(a: &Vec3) -> bool {
@@ -149,6 +151,35 @@ fn min_tof(lam: f64, revs: f64, max_iter: u16, tol: f64) -> Option<f64> {
     t.is_finite().then_some(t)
 }
 
+/// Izzo's initial guess of x (eq. 30 and the multi-revolution guesses).
+fn izzo_guess(lam: f64, t_nd: f64, revs: u16, branch: Branch) -> f64 {
+    let m = f64::from(revs);
+    let pi = core::f64::consts::PI;
+    if revs == 0 {
+        let t0 = libm::acos(lam) + lam * libm::sqrt((1.0 - lam * lam).max(0.0));
+        let t1 = 2.0 * (1.0 - lam * lam * lam) / 3.0;
+        // z^(2/3) as cbrt(z^2) and lambda^5 as a product: several times cheaper than pow,
+        // and only the starting point moves (the iteration converges to the same root).
+        if t_nd >= t0 {
+            two_thirds_power(t0 / t_nd) - 1.0
+        } else if t_nd < t1 {
+            let l2 = lam * lam;
+            2.5 * t1 / t_nd * (t1 - t_nd) / (1.0 - l2 * l2 * lam) + 1.0
+        } else {
+            libm::pow(t0 / t_nd, libm::log2(t1 / t0)) - 1.0
+        }
+    } else {
+        let a = two_thirds_power((m * pi + pi) / (8.0 * t_nd));
+        let xl = (a - 1.0) / (a + 1.0);
+        let b = two_thirds_power(8.0 * t_nd / (m * pi));
+        let xr = (b - 1.0) / (b + 1.0);
+        match branch {
+            Branch::Left => xl.max(xr),
+            Branch::Right => xl.min(xr),
+        }
+    }
+}
+
 /// Solve Lambert's problem.
 ///
 /// * `mu_km3_s2`: gravitational parameter.
@@ -173,6 +204,34 @@ pub fn solve(
     normal: &Vec3,
     max_iter: u16,
     tol: f64,
+) -> Result<LambertSolution, LambertError> {
+    solve_from(
+        mu_km3_s2, r1_km, r2_km, tof_s, revs, branch, normal, max_iter, tol, None,
+    )
+}
+
+/// [`solve`] started from `guess` (the `x` of a solution of a nearby problem, e.g. the same
+/// family a little earlier or later) instead of Izzo's initial guess: the same root to the
+/// tolerance in fewer Householder steps. The guess is kept only when the iteration converges
+/// from it on the requested branch (K >= 1: the left solution is where the time of flight
+/// grows with x, the right one where it falls); otherwise the solve starts again from Izzo's
+/// guess, so the answer is the one [`solve`] gives, to the tolerance, at most `2 max_iter`
+/// Householder steps.
+///
+/// # Errors
+/// As [`solve`].
+#[allow(clippy::too_many_arguments)]
+pub fn solve_from(
+    mu_km3_s2: f64,
+    r1_km: &Vec3,
+    r2_km: &Vec3,
+    tof_s: f64,
+    revs: u16,
+    branch: Branch,
+    normal: &Vec3,
+    max_iter: u16,
+    tol: f64,
+    guess: Option<f64>,
 ) -> Result<LambertSolution, LambertError> {
     let r1n = norm(r1_km);
     let r2n = norm(r2_km);
@@ -220,65 +279,65 @@ pub fn solve(
     let t_nd = libm::sqrt(2.0 * mu_km3_s2 / (s * s * s)) * tof_s;
     let m = f64::from(revs);
     let pi = core::f64::consts::PI;
-    // T(x = 0) = acos(lambda) + lambda sqrt(1 - lambda^2) + K pi bounds the least time of the
-    // K-revolution family from above: only shorter times need the Halley search for it.
-    let t_00 = libm::acos(lam) + lam * libm::sqrt((1.0 - lam * lam).max(0.0)) + m * pi;
-    if revs > 0 && t_nd < t_00 {
-        let t_min = min_tof(lam, m, max_iter, tol).ok_or(LambertError::NotConverged)?;
-        if t_nd < t_min {
-            return Err(LambertError::NoSolution);
+    // Householder from x0 (Izzo eq. 22-23): the converged x, or None.
+    let householder = |x0: f64, used: &mut u16| -> Option<f64> {
+        let mut x = x0;
+        for _ in 0..max_iter {
+            *used = used.saturating_add(1);
+            let y = compute_y(x, lam);
+            let t = tof(x, y, lam, m);
+            let f = t - t_nd;
+            let (d1, d2, d3) = tof_derivatives(x, y, t, lam);
+            let den = d1 * (d1 * d1 - f * d2) + d3 * f * f / 6.0;
+            if den == 0.0 || !den.is_finite() {
+                return None;
+            }
+            let next = x - f * (d1 * d1 - f * d2 * 0.5) / den;
+            let step = (next - x).abs();
+            x = next;
+            if !x.is_finite() {
+                return None;
+            }
+            if step <= tol * (1.0 + x.abs()) {
+                return (x > -1.0 || revs == 0).then_some(x);
+            }
         }
-    }
-    // Initial guess (Izzo eq. 30 and the multi-revolution guesses).
-    let mut x = if revs == 0 {
-        let t0 = libm::acos(lam) + lam * libm::sqrt((1.0 - lam * lam).max(0.0));
-        let t1 = 2.0 * (1.0 - lam * lam * lam) / 3.0;
-        // z^(2/3) as cbrt(z^2) and lambda^5 as a product: several times cheaper than pow,
-        // and only the starting point moves (the iteration converges to the same root).
-        if t_nd >= t0 {
-            two_thirds_power(t0 / t_nd) - 1.0
-        } else if t_nd < t1 {
-            let l2 = lam * lam;
-            2.5 * t1 / t_nd * (t1 - t_nd) / (1.0 - l2 * l2 * lam) + 1.0
-        } else {
-            libm::pow(t0 / t_nd, libm::log2(t1 / t0)) - 1.0
-        }
-    } else {
-        let a = two_thirds_power((m * pi + pi) / (8.0 * t_nd));
-        let xl = (a - 1.0) / (a + 1.0);
-        let b = two_thirds_power(8.0 * t_nd / (m * pi));
-        let xr = (b - 1.0) / (b + 1.0);
-        match branch {
-            Branch::Left => xl.max(xr),
-            Branch::Right => xl.min(xr),
-        }
+        None
     };
     let mut used = 0u16;
-    let mut converged = false;
-    for _ in 0..max_iter {
-        used = used.saturating_add(1);
-        let y = compute_y(x, lam);
-        let t = tof(x, y, lam, m);
-        let f = t - t_nd;
-        let (d1, d2, d3) = tof_derivatives(x, y, t, lam);
-        let den = d1 * (d1 * d1 - f * d2) + d3 * f * f / 6.0;
-        if den == 0.0 || !den.is_finite() {
-            break;
+    // A warm start is kept when it converged on the requested branch: the time of flight
+    // grows with x at the left solution and falls at the right one (a converged root also
+    // shows the K-revolution family reaches this time, so no least-time search is needed).
+    let warm = guess
+        .filter(|g| g.is_finite() && *g > -1.0)
+        .and_then(|g| householder(g, &mut used))
+        .filter(|&x| {
+            revs == 0 || {
+                let y = compute_y(x, lam);
+                let (d1, _, _) = tof_derivatives(x, y, tof(x, y, lam, m), lam);
+                match branch {
+                    Branch::Left => d1 > 0.0,
+                    Branch::Right => d1 < 0.0,
+                }
+            }
+        });
+    let x = match warm {
+        Some(x) => x,
+        None => {
+            // T(x = 0) = acos(lambda) + lambda sqrt(1 - lambda^2) + K pi bounds the least
+            // time of the K-revolution family from above: only shorter times need the Halley
+            // search for it.
+            let t_00 = libm::acos(lam) + lam * libm::sqrt((1.0 - lam * lam).max(0.0)) + m * pi;
+            if revs > 0 && t_nd < t_00 {
+                let t_min = min_tof(lam, m, max_iter, tol).ok_or(LambertError::NotConverged)?;
+                if t_nd < t_min {
+                    return Err(LambertError::NoSolution);
+                }
+            }
+            householder(izzo_guess(lam, t_nd, revs, branch), &mut used)
+                .ok_or(LambertError::NotConverged)?
         }
-        let next = x - f * (d1 * d1 - f * d2 * 0.5) / den;
-        let step = (next - x).abs();
-        x = next;
-        if !x.is_finite() {
-            break;
-        }
-        if step <= tol * (1.0 + x.abs()) {
-            converged = true;
-            break;
-        }
-    }
-    if !converged || x <= -1.0 && revs > 0 {
-        return Err(LambertError::NotConverged);
-    }
+    };
     let y = compute_y(x, lam);
     let gamma = libm::sqrt(mu_km3_s2 * s / 2.0);
     // rho = (r1 - r2) / c; with equal radii it is 0 however small the chord (GEO phasing).
@@ -300,6 +359,7 @@ pub fn solve(
             v1_kmps: v1,
             v2_kmps: v2,
             iterations: used,
+            x,
         })
     } else {
         Err(LambertError::NotConverged)

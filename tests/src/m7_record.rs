@@ -48,58 +48,123 @@ fn int(t: &toml::Table, key: &str) -> Result<u64, String> {
         .ok_or_else(|| format!("{RECORD_FILE}: missing or bad `{key}`"))
 }
 
-/// The generated Markdown (without the markers) for a record's text.
-///
-/// # Errors
-/// The record does not parse or lacks a figure.
-pub fn render(record: &str) -> Result<String, String> {
+/// One image's part of the record and its table: which tables hold its binary and its
+/// fixtures, how the table's first column is headed, and whether it has a work-units column.
+struct FixtureTable {
+    binary: &'static str,
+    fixtures: &'static str,
+    label: &'static str,
+    work_units: bool,
+}
+
+/// The two-planner image: `[binary]`, `[[fixture]]`, with work units.
+const DEFAULT_TABLE: FixtureTable = FixtureTable {
+    binary: "binary",
+    fixtures: "fixture",
+    label: "fixture",
+    work_units: true,
+};
+
+/// The GEO image: `[geo_binary]`, `[[geo_fixture]]`.
+const GEO_TABLE: FixtureTable = FixtureTable {
+    binary: "geo_binary",
+    fixtures: "geo_fixture",
+    label: "GEO fixture",
+    work_units: false,
+};
+
+/// An image's fixture table, rendered.
+struct Rendered {
+    /// The table's Markdown.
+    md: String,
+    /// The image's `[binary]`-like table.
+    binary: toml::Table,
+    /// Largest RAM figure over the fixtures, bytes.
+    ram_max: u64,
+    /// Instructions per work unit, (min, max) per planner key (fixtures with work units).
+    per_unit: std::collections::BTreeMap<String, (f64, f64)>,
+}
+
+/// The per-fixture table of one image (`spec`): one renderer for every image's section.
+fn fixture_table(record: &str, spec: &FixtureTable) -> Result<Rendered, String> {
     let file: toml::Table = toml::from_str(record).map_err(|e| format!("{RECORD_FILE}: {e}"))?;
     let binary = file
-        .get("binary")
+        .get(spec.binary)
         .and_then(toml::Value::as_table)
-        .ok_or_else(|| format!("{RECORD_FILE}: no [binary]"))?;
+        .ok_or_else(|| format!("{RECORD_FILE}: no [{}]", spec.binary))?
+        .clone();
     let fixtures = file
-        .get("fixture")
+        .get(spec.fixtures)
         .and_then(toml::Value::as_array)
-        .ok_or_else(|| format!("{RECORD_FILE}: no [[fixture]]"))?;
-    let mut md = String::from(
-        "| fixture | instructions | budget | work units | stack bytes | RAM bytes (static + stack) | RAM budget |\n\
-         | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n",
+        .ok_or_else(|| format!("{RECORD_FILE}: no [[{}]]", spec.fixtures))?;
+    let (units_head, units_rule) = if spec.work_units {
+        (" work units |", " ---: |")
+    } else {
+        ("", "")
+    };
+    let mut md = format!(
+        "| {} | instructions | budget |{units_head} stack bytes | RAM bytes (static + stack) | RAM budget |\n\
+         | --- | ---: | ---: |{units_rule} ---: | ---: | ---: |\n",
+        spec.label
     );
     let mut ram_max = 0;
-    // Instructions per work unit, (min, max) per planner key.
     let mut per_unit: std::collections::BTreeMap<String, (f64, f64)> = Default::default();
     for f in fixtures {
-        let f = f.as_table().ok_or("a [[fixture]] is not a table")?;
+        let f = f
+            .as_table()
+            .ok_or_else(|| format!("a [[{}]] is not a table", spec.fixtures))?;
         let name = f
             .get("name")
             .and_then(toml::Value::as_str)
-            .ok_or("fixture without name")?;
+            .ok_or_else(|| format!("{} without name", spec.label))?;
         let ram = int(f, "ram_bytes")?;
         ram_max = ram_max.max(ram);
-        let planner = f
-            .get("planner")
-            .and_then(toml::Value::as_str)
-            .ok_or("fixture without planner")?;
-        let units = int(f, "work_units")?;
-        if units > 0 {
-            let ratio = int(f, "instructions")? as f64 / units as f64;
-            let e = per_unit
-                .entry(planner.to_owned())
-                .or_insert((f64::INFINITY, 0.0));
-            *e = (e.0.min(ratio), e.1.max(ratio));
-        }
+        let units = if spec.work_units {
+            let planner = f
+                .get("planner")
+                .and_then(toml::Value::as_str)
+                .ok_or_else(|| format!("{} without planner", spec.label))?;
+            let units = int(f, "work_units")?;
+            if units > 0 {
+                let ratio = int(f, "instructions")? as f64 / units as f64;
+                let e = per_unit
+                    .entry(planner.to_owned())
+                    .or_insert((f64::INFINITY, 0.0));
+                *e = (e.0.min(ratio), e.1.max(ratio));
+            }
+            format!(" {} |", grouped(units))
+        } else {
+            String::new()
+        };
         let _ = writeln!(
             md,
-            "| {name} | {} | {} | {} | {} | {} | {} |",
+            "| {name} | {} | {} |{units} {} | {} | {} |",
             grouped(int(f, "instructions")?),
             grouped(int(f, "instructions_budget")?),
-            grouped(units),
             grouped(int(f, "stack_bytes")?),
             grouped(ram),
             grouped(int(f, "ram_bytes_budget")?),
         );
     }
+    Ok(Rendered {
+        md,
+        binary,
+        ram_max,
+        per_unit,
+    })
+}
+
+/// The generated Markdown (without the markers) for a record's text.
+///
+/// # Errors
+/// The record does not parse or lacks a figure.
+pub fn render(record: &str) -> Result<String, String> {
+    let Rendered {
+        mut md,
+        binary,
+        ram_max,
+        per_unit,
+    } = fixture_table(record, &DEFAULT_TABLE)?;
     let kib = |v: u64| v as f64 / 1024.0;
     let _ = write!(
         md,
@@ -107,15 +172,15 @@ pub fn render(record: &str) -> Result<String, String> {
          which planner A's `Workspace` {} B and `Solution` {} B, planner B's `Workspace` {} B and \
          `Solution` {} B. Largest RAM (static + stack) over the fixtures: {} B = {:.1} KiB, {:.1} % \
          of 256 KiB.\n",
-        grouped(int(binary, "text_bytes")?),
-        grouped(int(binary, "rodata_bytes")?),
-        grouped(int(binary, "data_bytes")?),
-        grouped(int(binary, "bss_bytes")?),
-        grouped(int(binary, "static_ram_bytes")?),
-        grouped(int(binary, "pseudospectral_workspace_bytes")?),
-        grouped(int(binary, "pseudospectral_solution_bytes")?),
-        grouped(int(binary, "impulsive_workspace_bytes")?),
-        grouped(int(binary, "impulsive_solution_bytes")?),
+        grouped(int(&binary, "text_bytes")?),
+        grouped(int(&binary, "rodata_bytes")?),
+        grouped(int(&binary, "data_bytes")?),
+        grouped(int(&binary, "bss_bytes")?),
+        grouped(int(&binary, "static_ram_bytes")?),
+        grouped(int(&binary, "pseudospectral_workspace_bytes")?),
+        grouped(int(&binary, "pseudospectral_solution_bytes")?),
+        grouped(int(&binary, "impulsive_workspace_bytes")?),
+        grouped(int(&binary, "impulsive_solution_bytes")?),
         grouped(ram_max),
         kib(ram_max),
         ram_max as f64 / 2621.44,
@@ -156,18 +221,7 @@ pub fn render(record: &str) -> Result<String, String> {
 /// # Errors
 /// The markers are missing or out of order.
 pub fn splice(docs: &str, generated: &str) -> Result<String, String> {
-    let start = docs
-        .find(BEGIN)
-        .ok_or_else(|| format!("{DOCS_FILE} lacks the marker {BEGIN}"))?;
-    let end = docs
-        .find(END)
-        .filter(|&e| e > start)
-        .ok_or_else(|| format!("{DOCS_FILE} lacks the marker {END} after the begin marker"))?;
-    Ok(format!(
-        "{}{BEGIN}\n{generated}{}",
-        &docs[..start],
-        &docs[end..]
-    ))
+    splice_between(docs, BEGIN, END, generated)
 }
 
 /// Regenerate the docs' generated parts (all of them) from the record on disk; returns whether
@@ -191,43 +245,15 @@ pub const GEO_END: &str = "<!-- m7-geo-figures:end -->";
 /// # Errors
 /// The record does not parse or lacks a figure.
 pub fn render_geo(record: &str) -> Result<String, String> {
-    let file: toml::Table = toml::from_str(record).map_err(|e| format!("{RECORD_FILE}: {e}"))?;
-    let binary = file
-        .get("geo_binary")
-        .and_then(toml::Value::as_table)
-        .ok_or_else(|| format!("{RECORD_FILE}: no [geo_binary]"))?;
-    let fixtures = file
-        .get("geo_fixture")
-        .and_then(toml::Value::as_array)
-        .ok_or_else(|| format!("{RECORD_FILE}: no [[geo_fixture]]"))?;
-    let mut md = String::from(
-        "| GEO fixture | instructions | budget | stack bytes | RAM bytes (static + stack) | RAM budget |\n\
-         | --- | ---: | ---: | ---: | ---: | ---: |\n",
-    );
-    for f in fixtures {
-        let f = f.as_table().ok_or("a [[geo_fixture]] is not a table")?;
-        let name = f
-            .get("name")
-            .and_then(toml::Value::as_str)
-            .ok_or("GEO fixture without name")?;
-        let _ = writeln!(
-            md,
-            "| {name} | {} | {} | {} | {} | {} |",
-            grouped(int(f, "instructions")?),
-            grouped(int(f, "instructions_budget")?),
-            grouped(int(f, "stack_bytes")?),
-            grouped(int(f, "ram_bytes")?),
-            grouped(int(f, "ram_bytes_budget")?),
-        );
-    }
+    let Rendered { mut md, binary, .. } = fixture_table(record, &GEO_TABLE)?;
     let _ = write!(
         md,
         "\nGEO image: `.text` {} B; static RAM {} B, of which the GEO tour's `Workspace` {} B and \
          `Solution` {} B.\n",
-        grouped(int(binary, "text_bytes")?),
-        grouped(int(binary, "static_ram_bytes")?),
-        grouped(int(binary, "geo_tour_workspace_bytes")?),
-        grouped(int(binary, "geo_tour_solution_bytes")?),
+        grouped(int(&binary, "text_bytes")?),
+        grouped(int(&binary, "static_ram_bytes")?),
+        grouped(int(&binary, "geo_tour_workspace_bytes")?),
+        grouped(int(&binary, "geo_tour_solution_bytes")?),
     );
     Ok(md)
 }
@@ -237,18 +263,7 @@ pub fn render_geo(record: &str) -> Result<String, String> {
 /// # Errors
 /// The GEO markers are missing or out of order.
 pub fn splice_geo(docs: &str, generated: &str) -> Result<String, String> {
-    let start = docs
-        .find(GEO_BEGIN)
-        .ok_or_else(|| format!("{DOCS_FILE} lacks the marker {GEO_BEGIN}"))?;
-    let end = docs
-        .find(GEO_END)
-        .filter(|&e| e > start)
-        .ok_or_else(|| format!("{DOCS_FILE} lacks the marker {GEO_END} after its begin marker"))?;
-    Ok(format!(
-        "{}{GEO_BEGIN}\n{generated}{}",
-        &docs[..start],
-        &docs[end..]
-    ))
+    splice_between(docs, GEO_BEGIN, GEO_END, generated)
 }
 
 /// Regenerate the docs' generated parts (all of them, the GEO table among them) from the record

@@ -50,7 +50,11 @@ impl Pick {
 
 fn drift_pick(t: &LegTable, price: f64, s: &Settings) -> Option<Pick> {
     let d = t.drift.as_ref()?;
-    let x = d.curve.depth_for_price(&d.model, price, s.root_max_iter);
+    // Every table is finished (curve built) before the allocation runs.
+    let x = d
+        .curve
+        .as_ref()?
+        .depth_for_price(&d.model, price, s.root_max_iter);
     let p = d.model.at(x);
     Some(Pick {
         choice: Choice::Drift,
@@ -69,16 +73,36 @@ fn point_pick(i: usize, p: &Point) -> Pick {
     }
 }
 
-/// The leg's best option at `price` (ties: drift first, then the table's order).
+/// Whether the leg's drift option provably scores more than `score` at `price` (its root
+/// then need not be searched): the price curve's lower bound on its best score exceeds it.
+fn drift_beaten(t: &LegTable, price: f64, score: f64) -> bool {
+    t.drift
+        .as_ref()
+        .and_then(|d| d.curve.as_ref())
+        .is_some_and(|c| score < c.score_lower_bound(price))
+}
+
+/// The leg's best option at `price` (ties: drift first, then the table's order). The drift's
+/// root is searched only when the best point does not provably beat it.
 fn pick(t: &LegTable, price: f64, s: &Settings) -> Option<Pick> {
-    let mut best = drift_pick(t, price, s);
+    let score = |b: &Pick| b.dv_mps + price * b.duration_s;
+    let mut best_point: Option<Pick> = None;
     for (i, p) in t.points.iter().enumerate() {
-        let score = p.dv_mps + price * p.duration_s;
-        if best.is_none_or(|b| score < b.dv_mps + price * b.duration_s) {
-            best = Some(point_pick(i, p));
+        let candidate = point_pick(i, p);
+        if best_point.is_none_or(|b| score(&candidate) < score(&b)) {
+            best_point = Some(candidate);
         }
     }
-    best
+    if let Some(bp) = best_point {
+        if drift_beaten(t, price, score(&bp)) {
+            return best_point;
+        }
+    }
+    match (drift_pick(t, price, s), best_point) {
+        (Some(d), Some(bp)) if score(&bp) < score(&d) => Some(bp),
+        (Some(d), _) => Some(d),
+        (None, bp) => bp,
+    }
 }
 
 /// Every leg's best option at `price` into `picks`; returns the tour's time.
@@ -135,7 +159,7 @@ fn drift_allocate(
             (Choice::Drift, Some(d)) => {
                 any = true;
                 fastest += d.t_min_s;
-                top = top.max(d.curve.top_price);
+                top = top.max(d.curve.as_ref()?.top_price);
             }
             (Choice::Drift, None) => return None,
             (Choice::Point(_), _) => fixed += p.duration_s,
@@ -436,7 +460,8 @@ fn alternatives(
             let _ = out.push(alt);
         }
     }
-    if cur.choice != Choice::Drift {
+    let cur_score = cur.dv_mps + price * cur.duration_s;
+    if cur.choice != Choice::Drift && !drift_beaten(t, price, cur_score) {
         if let Some(d) = drift_pick(t, price, s) {
             let est = (d.dv_mps - cur.dv_mps) + price * (d.duration_s - cur.duration_s);
             if est < 0.0 {

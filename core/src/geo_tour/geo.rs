@@ -57,7 +57,9 @@ impl Geo {
     /// Greenwich meridian; z = Earth's axis).
     pub fn slot_state(&self, lon_rad: f64, t_s: f64) -> (Vec3, Vec3) {
         let th = lon_rad + self.n0 * t_s;
-        let (s, c) = (libm::sin(th), libm::cos(th));
+        // One argument reduction for both (the same kernels as `sin` and `cos`, so the same
+        // bits).
+        let (s, c) = libm::sincos(th);
         (
             [self.a0 * c, self.a0 * s, 0.0],
             [-self.v0 * s, self.v0 * c, 0.0],

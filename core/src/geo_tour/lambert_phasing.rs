@@ -26,8 +26,10 @@ pub(crate) struct LambertBounds {
 }
 
 /// The two burns of the K-revolution arc of duration `tau_s` on `branch`, inertial frame
-/// at the departure slot (longitude 0 at epoch 0, by symmetry of the ring): `None` if the
-/// family has no solution for this time.
+/// at the departure slot (longitude 0 at epoch 0, by symmetry of the ring), with its cost and
+/// Izzo's x (a warm start for a nearby arc of the same family, `guess`): `None` if the family
+/// has no solution for this time.
+#[allow(clippy::too_many_arguments)]
 fn arc(
     g: &Geo,
     dir: Direction,
@@ -36,10 +38,11 @@ fn arc(
     revs: u16,
     branch: Branch,
     b: LambertBounds,
-) -> Option<(Maneuver, f64)> {
+    guess: Option<f64>,
+) -> Option<(Maneuver, f64, f64)> {
     let (r1, v1c) = g.slot_state(0.0, 0.0);
     let (r2, v2c) = g.slot_state(dir.sign() * phase_rad, tau_s);
-    let sol: LambertSolution = lambert::solve(
+    let sol: LambertSolution = lambert::solve_from(
         g.mu,
         &r1,
         &r2,
@@ -49,6 +52,7 @@ fn arc(
         &[0.0, 0.0, 1.0],
         b.max_iter,
         b.tol,
+        guess,
     )
     .ok()?;
     let d1 = [
@@ -77,7 +81,7 @@ fn arc(
     let sma = -g.mu / (2.0 * energy);
     let m = Maneuver::from_burns(Method::Lambert, tau_s, sma, revs, &burns);
     let dv = m.dv_mps;
-    dv.is_finite().then_some((m, dv))
+    dv.is_finite().then_some((m, dv, sol.x))
 }
 
 /// Cheapest Lambert phasing of duration `tau_s` with exactly `revs` revolutions (both branches
@@ -98,7 +102,7 @@ pub(crate) fn lambert_revs(
         &[Branch::Left, Branch::Right]
     };
     for &br in branches {
-        if let Some((m, dv)) = arc(g, dir, phase_rad, tau_s, revs, br, b) {
+        if let Some((m, dv, _)) = arc(g, dir, phase_rad, tau_s, revs, br, b, None) {
             let better = best.as_ref().is_none_or(|x| dv < x.dv_mps);
             if m.max_burn_mps <= cap_mps && better {
                 best = Some(m);
@@ -144,10 +148,20 @@ fn well_window_s(g: &Geo, dir: Direction, phase_rad: f64, m: u16) -> (f64, f64) 
     ((hi - 0.25 * g.t0).max(1.0), hi)
 }
 
-/// The earliest duration any well of the leg is searched at (well 1's window starts first:
-/// the windows move one period later per well), s.
-pub(crate) fn wells_earliest_s(g: &Geo, dir: Direction, phase_rad: f64) -> f64 {
-    well_window_s(g, dir, phase_rad, 1).0
+/// The earliest duration any well of the leg up to well `max_well` is searched at, counting
+/// only the wells not skipped outright under `cap_mps` (the windows move one period later per
+/// well, so the first such well's window starts first), s; infinite when every well is
+/// skipped.
+pub(crate) fn wells_earliest_s(
+    g: &Geo,
+    dir: Direction,
+    phase_rad: f64,
+    max_well: u16,
+    cap_mps: f64,
+) -> f64 {
+    (1..=max_well)
+        .find(|&m| !well_skipped(g, dir, phase_rad, m, cap_mps))
+        .map_or(f64::INFINITY, |m| well_window_s(g, dir, phase_rad, m).0)
 }
 
 /// Whether well `m` is skipped outright: the tangential m-revolution phasing orbit at its end
@@ -193,16 +207,20 @@ pub(crate) fn well_minimum(
     let (mut lo, mut hi) = (lo0, hi0);
     let mut c = hi - r * (hi - lo);
     let mut d = lo + r * (hi - lo);
-    let score_arc = |t: f64, a: Option<(Maneuver, f64)>| -> (f64, Option<Maneuver>) {
+    // Score, admissible manoeuvre, and Izzo's x of the arc (kept even when the arc breaks
+    // the cap: it still warm-starts the neighbouring solve).
+    type Scored = (f64, Option<Maneuver>, Option<f64>);
+    let score_arc = |t: f64, a: Option<(Maneuver, f64, f64)>| -> Scored {
         match a {
-            Some((mv, dv)) if mv.max_burn_mps <= cap_mps => (dv + price * t, Some(mv)),
-            _ => (f64::INFINITY, None),
+            Some((mv, dv, x)) if mv.max_burn_mps <= cap_mps => (dv + price * t, Some(mv), Some(x)),
+            Some((_, _, x)) => (f64::INFINITY, None, Some(x)),
+            None => (f64::INFINITY, None, None),
         }
     };
     // The two first golden points, on the branch chosen there (the arcs of the chosen branch
     // are the section's first two evaluations).
-    let at = |t: f64, br: Branch| arc(g, dir, phase_rad, t, revs, br, b);
-    let (branch, (mut fc, mut mc), (mut fd, mut md)) = if revs == 0 {
+    let at = |t: f64, br: Branch| arc(g, dir, phase_rad, t, revs, br, b, None);
+    let (branch, (mut fc, mut mc, mut xc), (mut fd, mut md, mut xd)) = if revs == 0 {
         let left = Branch::Left;
         (left, score_arc(c, at(c, left)), score_arc(d, at(d, left)))
     } else {
@@ -216,7 +234,7 @@ pub(crate) fn well_minimum(
         for point in 0..2 {
             for (i, (_, ac, ad)) in arcs.iter().enumerate() {
                 let a = if point == 0 { ac } else { ad };
-                if let Some((_, dv)) = a {
+                if let Some((_, dv, _)) = a {
                     if *dv < best.0 {
                         best = (*dv, i);
                     }
@@ -227,7 +245,12 @@ pub(crate) fn well_minimum(
         let (br, ac, ad) = if best.1 == 0 { l } else { rr };
         (br, score_arc(c, ac), score_arc(d, ad))
     };
-    let score = |t: f64| score_arc(t, at(t, branch));
+    // Later points start Lambert's iteration from the x of the interior point the section
+    // keeps, the nearest solved arc of the same family (`lambert::solve_from`: the same root
+    // to the tolerance, about half the Householder steps).
+    let score = |t: f64, guess: Option<f64>| {
+        score_arc(t, arc(g, dir, phase_rad, t, revs, branch, b, guess))
+    };
     let mut best: Option<(f64, Maneuver)> = None;
     let keep = |f: f64, m: &Option<Maneuver>, best: &mut Option<(f64, Maneuver)>| {
         if let Some(mv) = m {
@@ -244,16 +267,18 @@ pub(crate) fn well_minimum(
             d = c;
             fd = fc;
             md = mc;
+            xd = xc;
             c = hi - r * (hi - lo);
-            (fc, mc) = score(c);
+            (fc, mc, xc) = score(c, xd);
             keep(fc, &mc, &mut best);
         } else {
             lo = c;
             c = d;
             fc = fd;
             mc = md;
+            xc = xd;
             d = lo + r * (hi - lo);
-            (fd, md) = score(d);
+            (fd, md, xd) = score(d, xc);
             keep(fd, &md, &mut best);
         }
     }

@@ -122,7 +122,7 @@ pub fn solve(
 
 /// Plan one sweep (inputs already validated). With `beat` given, a sweep that provably cannot
 /// fit the mission time, or provably costs at least `beat` m/s, stops before its Lambert wells
-/// are built, with the status `Unsolved` (the caller only uses a solved plan cheaper than
+/// and price curves are built, with the status `Unsolved` (the caller only uses a solved plan cheaper than
 /// `beat`): its fastest tour is bounded below by the legs' fastest options other than wells
 /// and the start of their wells' search windows, and its cost by each leg's cheapest option
 /// within the time the other legs leave it at their fastest (0 for a leg with wells).
@@ -173,7 +173,6 @@ fn solve_sweep(
     let mut prev_off = 0.0;
     let mut prev_lon = start;
     let mut fastest = 0.0;
-    let mut fastest_uncapped = 0.0;
     for (leg, &i) in order.iter().take(n).enumerate() {
         let off = key(i);
         let to = problem
@@ -202,7 +201,8 @@ fn solve_sweep(
         return;
     };
     if let Some(beat) = beat {
-        let fastest_lb = |t: &table::LegTable| table::fastest_lower_bound_s(g, t, problem.policy);
+        let fastest_lb =
+            |t: &table::LegTable| table::fastest_lower_bound_s(g, t, problem.policy, s);
         let bound: f64 = tables.iter().map(fastest_lb).sum();
         let dominated = bound > problem.mission_time_s || {
             let dv_lb: f64 = tables
@@ -220,13 +220,12 @@ fn solve_sweep(
         }
     }
     for t in tables.iter_mut() {
-        table::add_wells(g, t, problem.policy, s);
+        table::finish(g, t, problem.policy, s);
         fastest += t.fastest_s;
-        fastest_uncapped += t.fastest_uncapped_s;
     }
     out.info.fastest_tour_s = fastest;
     if fastest.is_nan() || fastest > problem.mission_time_s {
-        out.info.status = infeasible(tables, problem, s, fastest_uncapped);
+        out.info.status = infeasible(g, tables, problem, s);
         return;
     }
     let Some(alloc) = allocate(
@@ -305,11 +304,16 @@ fn solve_sweep(
 
 /// Which leg makes the request infeasible, and why.
 fn infeasible(
-    tables: &[table::LegTable],
+    g: &Geo,
+    tables: &mut [table::LegTable],
     problem: &Problem,
-    _s: &Settings,
-    fastest_uncapped: f64,
+    s: &Settings,
 ) -> SolveStatus {
+    let mut fastest_uncapped = 0.0;
+    for t in tables.iter_mut() {
+        table::add_uncapped_drift(g, t, s);
+        fastest_uncapped += t.fastest_uncapped_s;
+    }
     let idx = |j: usize| u8::try_from(j).unwrap_or(u8::MAX);
     if fastest_uncapped <= problem.mission_time_s {
         // The cap is what fails: name the leg it slows most (infinite: nothing admissible).

@@ -21,6 +21,10 @@ pub(crate) const PRICE_NODES: usize = 32;
 pub(crate) struct PriceCurve {
     /// `sqrt(max(p, 0))` at depth `x_max_km * (i + 1) / PRICE_NODES`, i = 0..PRICE_NODES.
     root_price: [f64; PRICE_NODES],
+    /// The leg's cost `D` (m/s) and duration `t` (s) at the same depths: they bound the
+    /// leg's best score `D + price t` from below before its root is searched.
+    dv_mps: [f64; PRICE_NODES],
+    duration_s: [f64; PRICE_NODES],
     /// Deepest admissible depth, km.
     x_max_km: f64,
     /// Marginal price at `x_max_km` (m/s per s): beyond it the leg stays at its fastest.
@@ -39,15 +43,66 @@ impl PriceCurve {
     /// Tabulate `model`'s price on `(0, x_max_km]` (`PRICE_NODES` evaluations).
     pub fn new(model: &Drift, x_max_km: f64) -> Self {
         let mut root_price = [0.0; PRICE_NODES];
+        let mut dv_mps = [0.0; PRICE_NODES];
+        let mut duration_s = [0.0; PRICE_NODES];
         let mut k = 0.0;
-        for r in &mut root_price {
+        for ((r, d), t) in root_price
+            .iter_mut()
+            .zip(dv_mps.iter_mut())
+            .zip(duration_s.iter_mut())
+        {
             k += 1.0;
-            *r = libm::sqrt(model.price_at(node_depth(x_max_km, k)).max(0.0));
+            let (price, dv, duration) = model.price_and_point(node_depth(x_max_km, k));
+            *r = libm::sqrt(price.max(0.0));
+            (*d, *t) = (dv, duration);
         }
         Self {
             root_price,
+            dv_mps,
+            duration_s,
             x_max_km,
             top_price: model.price_at(x_max_km),
+        }
+    }
+
+    /// A lower bound on the leg's best score `min D(x) + price t(x)` over `(0, x_max]`, from
+    /// the nodes alone: the minimiser [`PriceCurve::depth_for_price`] returns lies between the
+    /// two nodes that bracket the price (or is `x_max`), where `D` is at least its value at
+    /// the shallower node (0 at depth 0) and `t` at least its value at the deeper one. Lowered
+    /// by 1e-12 relative so that rounding in the root's own evaluation cannot cross it.
+    pub fn score_lower_bound(&self, price: f64) -> f64 {
+        let sp = libm::sqrt(price.max(0.0));
+        // Shallower node's cost, deeper node's duration (the deepest node is x_max).
+        let [.., dv_top] = self.dv_mps;
+        let [.., t_top] = self.duration_s;
+        let mut dv_lo = 0.0;
+        let mut t_hi = t_top;
+        if !(self.top_price.is_nan() || self.top_price <= price) {
+            for ((&r, &d), &t) in self
+                .root_price
+                .iter()
+                .zip(self.dv_mps.iter())
+                .zip(self.duration_s.iter())
+            {
+                if r - sp <= 0.0 {
+                    dv_lo = d;
+                } else {
+                    // As in `depth_for_price`: a NaN node leaves the outer end.
+                    if r - sp > 0.0 {
+                        t_hi = t;
+                    }
+                    break;
+                }
+            }
+        } else {
+            dv_lo = dv_top;
+        }
+        let bound = dv_lo + price * t_hi;
+        // NaN (cannot happen on an admissible range) gives -inf: no option is ever skipped.
+        if bound.is_nan() {
+            f64::NEG_INFINITY
+        } else {
+            bound - 1e-12 * bound.abs()
         }
     }
 
@@ -123,6 +178,13 @@ mod tests {
                         q.dv_mps + price * q.duration_s,
                     );
                     assert!((sp - sq).abs() <= 1e-9, "{phase} {price}: {sp} {sq}");
+                    // The node bound never exceeds the best score (the allocation skips the
+                    // drift's root only when a point scores below it).
+                    let bound = curve.score_lower_bound(price);
+                    assert!(
+                        bound.is_finite() && bound <= sp,
+                        "{phase} {price}: {bound} {sp}"
+                    );
                 }
             }
         }

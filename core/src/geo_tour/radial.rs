@@ -40,8 +40,23 @@ pub fn radial(
     if !(phase_rad.is_finite() && phase_rad >= 0.0) || arc(g, dir, e_max).1 < phase_rad {
         return None;
     }
-    // Phase gained grows with e: bisection.
+    // Phase gained grows with e: Illinois regula falsi (smooth, so a few steps), then
+    // bisection on the same test down to adjacent floats, as a plain bisection over the whole
+    // range ends (at most `2 max_iter` evaluations).
     let (mut lo, mut hi) = (0.0_f64, e_max);
+    let gain = |e: f64| arc(g, dir, e).1 - phase_rad;
+    let (f_lo, f_hi) = (gain(lo), gain(hi));
+    if f_lo < 0.0 && f_hi >= 0.0 {
+        // illinois keeps f(a) <= 0 < f(b); the bisection below keeps gain(lo) < 0 <= gain(hi).
+        let (a, fa, b, fb, _) =
+            super::root::illinois(gain, lo, f_lo, hi, f_hi, max_iter, 1e-15, 0.0);
+        if fa < 0.0 {
+            lo = a;
+        }
+        if fb >= 0.0 && b > lo {
+            hi = b;
+        }
+    }
     for _ in 0..max_iter {
         let mid = 0.5 * (lo + hi);
         if mid <= lo || mid >= hi {

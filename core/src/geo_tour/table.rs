@@ -47,8 +47,9 @@ pub(crate) struct DriftRange {
     pub model: Drift,
     pub x_max_km: f64,
     pub t_min_s: f64,
-    /// The leg's marginal price of time on `(0, x_max_km]`, tabulated.
-    pub curve: PriceCurve,
+    /// The leg's marginal price of time on `(0, x_max_km]`, tabulated; added by [`finish`]
+    /// (a sweep cut short by its bounds never needs it).
+    pub curve: Option<PriceCurve>,
 }
 
 /// Everything one leg can do.
@@ -66,8 +67,12 @@ pub(crate) struct LegTable {
     pub points: heapless::Vec<Point, MAX_POINTS>,
     /// Fastest admissible duration (infinite when nothing is admissible), s.
     pub fastest_s: f64,
-    /// Fastest duration ignoring the cap, s.
+    /// Fastest duration ignoring the cap, s: the point options' only, until
+    /// [`add_uncapped_drift`] adds the drift's (needed only to say why a request is
+    /// infeasible).
     pub fastest_uncapped_s: f64,
+    /// The policy allows the drift method on this leg.
+    pub drift_allowed: bool,
 }
 
 impl LegTable {
@@ -83,6 +88,7 @@ impl LegTable {
             points: heapless::Vec::new(),
             fastest_s: f64::INFINITY,
             fastest_uncapped_s: f64::INFINITY,
+            drift_allowed: false,
         }
     }
 }
@@ -188,14 +194,12 @@ pub(crate) fn build(
         MethodPolicy::PaperRule => rule_method(phase_rad, s) == m,
     };
     if allowed(Method::Drift) {
+        t.drift_allowed = true;
         let model = Drift {
             g: *g,
             dir,
             phase_rad,
         };
-        if let Some(x) = model.max_depth_km(f64::INFINITY, s.min_radius_km, s.root_max_iter) {
-            t.fastest_uncapped_s = t.fastest_uncapped_s.min(model.at(x).duration_s);
-        }
         if let Some(x) = model.max_depth_km(cap_mps, s.min_radius_km, s.root_max_iter) {
             let t_min = model.at(x).duration_s;
             t.fastest_s = t.fastest_s.min(t_min);
@@ -203,7 +207,7 @@ pub(crate) fn build(
                 model,
                 x_max_km: x,
                 t_min_s: t_min,
-                curve: PriceCurve::new(&model, x),
+                curve: None,
             });
         }
     }
@@ -238,14 +242,34 @@ pub(crate) fn build(
     t
 }
 
+/// Add the drift's fastest duration ignoring the cap to `t.fastest_uncapped_s` (a second
+/// search for the deepest drift orbit, left out of [`build`] because only an infeasible
+/// request needs it).
+pub(crate) fn add_uncapped_drift(g: &Geo, t: &mut LegTable, s: &Settings) {
+    if !t.drift_allowed {
+        return;
+    }
+    let model = Drift {
+        g: *g,
+        dir: direction_of(t),
+        phase_rad: t.phase_rad,
+    };
+    if let Some(x) = model.max_depth_km(f64::INFINITY, s.min_radius_km, s.root_max_iter) {
+        t.fastest_uncapped_s = t.fastest_uncapped_s.min(model.at(x).duration_s);
+    }
+}
+
 /// Whether the leg of table `t` has Lambert wells under `policy` (by cost, a positive phase).
 fn has_wells(t: &LegTable, policy: MethodPolicy) -> bool {
     policy == MethodPolicy::ByCost && t.phase_rad > 0.0
 }
 
-/// Add the Lambert wells (the dearest part of a table: a golden section of Lambert solves
-/// per well) to a table from [`build`], after its other options.
-pub(crate) fn add_wells(g: &Geo, t: &mut LegTable, policy: MethodPolicy, s: &Settings) {
+/// Complete a table from [`build`] with its dear parts, once the sweep is known to be needed:
+/// the drift's price curve and the Lambert wells (a golden section of Lambert solves per well).
+pub(crate) fn finish(g: &Geo, t: &mut LegTable, policy: MethodPolicy, s: &Settings) {
+    if let Some(d) = t.drift.as_mut() {
+        d.curve = Some(PriceCurve::new(&d.model, d.x_max_km));
+    }
     if !has_wells(t, policy) {
         return;
     }
@@ -266,12 +290,23 @@ pub(crate) fn add_wells(g: &Geo, t: &mut LegTable, policy: MethodPolicy, s: &Set
 }
 
 /// A lower bound on the leg's fastest admissible duration once its wells are added: every
-/// well is searched no earlier than `wells_earliest_s`, so the table's wells cannot make the
-/// leg faster than that.
-pub(crate) fn fastest_lower_bound_s(g: &Geo, t: &LegTable, policy: MethodPolicy) -> f64 {
+/// well is searched no earlier than its window's start, and a well skipped outright under the
+/// cap adds nothing, so the wells cannot make the leg faster than `wells_earliest_s`.
+pub(crate) fn fastest_lower_bound_s(
+    g: &Geo,
+    t: &LegTable,
+    policy: MethodPolicy,
+    s: &Settings,
+) -> f64 {
     if has_wells(t, policy) {
-        t.fastest_s
-            .min(wells_earliest_s(g, direction_of(t), t.phase_rad))
+        let last_well = s.lambert_max_revolutions.saturating_add(1);
+        t.fastest_s.min(wells_earliest_s(
+            g,
+            direction_of(t),
+            t.phase_rad,
+            last_well,
+            t.cap_mps,
+        ))
     } else {
         t.fastest_s
     }
