@@ -273,12 +273,22 @@ fn finish(ws: &mut Workspace, settings: &Settings, out: &mut Solution, end: SqpE
             &mut out.certificate,
         );
     }
-    let certified = end == SqpEnd::Converged && out.certificate.certifies_local_optimum();
+    // The certificate is measured on the returned iterate with the constraint gradients there,
+    // whatever the iteration says; it needs the QP state to be the iterate's own (the last QP's
+    // answer), which holds at a fixed point and at an iteration limit reached on an accepted
+    // answer. Measured on the dense lattice (issue 9): 10 of its Feasible answers met every
+    // tolerance of the certificate but had used their `sqp_max_iter` sliding along the
+    // keep-out by parts per million of J per step.
+    let own_qp = matches!(
+        end,
+        SqpEnd::Converged | SqpEnd::MaxIterations { at_answer: true }
+    );
+    let certified = own_qp && out.certificate.certifies_local_optimum();
     match end {
         _ if feasible && certified => SolveStatus::Solved,
         _ if feasible => SolveStatus::Feasible,
         SqpEnd::Failed(status) => status,
-        SqpEnd::MaxIterations => SolveStatus::MaxIterations,
+        SqpEnd::MaxIterations { .. } => SolveStatus::MaxIterations,
         SqpEnd::Converged => SolveStatus::SeparationNotVerified,
     }
 }
