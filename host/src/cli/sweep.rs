@@ -367,6 +367,7 @@ fn answer_json(
         "max_violation": s.certificate.max_violation,
         "first_order_evaluated": s.certificate.first_order_evaluated,
         "second_order_evaluated": s.certificate.second_order_evaluated,
+        "flat_direction_probed": s.certificate.flat_direction_probed,
         "nodes": positions,
     })
 }
