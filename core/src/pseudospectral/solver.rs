@@ -521,6 +521,38 @@ mod tests {
     }
 
     #[test]
+    fn an_answer_at_the_iteration_limit_is_certified_on_its_own_measures() {
+        // The paper's case converges at the 8th subproblem. Stopped at the 6th (on an accepted
+        // QP answer), the answer already meets the certificate (stationarity 4.3e-4, J within
+        // 4e-8 of the optimum) and is Solved; stopped at the 5th it does not (stationarity
+        // 1.2e-2) and is Feasible. Before `SqpEnd::MaxIterations { at_answer }` both were
+        // Feasible.
+        let limited = |k: u16| {
+            run(
+                &paper_case(10, true),
+                &Settings {
+                    sqp_max_iter: k,
+                    verify_max_rounds: 0,
+                    ..Settings::default()
+                },
+            )
+        };
+        let six = limited(6);
+        assert_eq!(six.info.sqp_iterations, 6);
+        assert_eq!(
+            six.info.status,
+            SolveStatus::Solved,
+            "{:?}",
+            six.certificate
+        );
+        assert!(six.certificate.stationarity <= certificate::STATIONARITY_TOL);
+        assert!((six.cost - 6.743183).abs() < 1e-5, "J = {}", six.cost);
+        let five = limited(5);
+        assert_eq!(five.info.status, SolveStatus::Feasible);
+        assert!(five.certificate.stationarity > certificate::STATIONARITY_TOL);
+    }
+
+    #[test]
     fn head_on_swap_is_certified_through_the_flat_direction_probe() {
         // Two spacecraft swap through the centre: the passing side is a continuous symmetry,
         // so the reduced Hessian is singular (eigenvalue ~1e-10) at every optimum. The probe
