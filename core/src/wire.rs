@@ -26,7 +26,8 @@ use serde::{Deserialize, Serialize};
 /// changed, the GEO tour joined, and the `LimitExceeded` / `Expired` outcomes were added.
 /// 3: planner B's settings gained `element_set` and its solution `terminal_error_equinoctial`;
 ///    planners A and B gained `work_budget`, `SolveInfo::work_units` and `BudgetExhausted`.
-pub const PROTOCOL_VERSION: u16 = 3;
+/// 4: planner A's certificate gained `flat_direction_probed`.
+pub const PROTOCOL_VERSION: u16 = 4;
 /// First two bytes of a request frame.
 pub const REQUEST_MAGIC: [u8; 2] = *b"RQ";
 /// First two bytes of a response frame.
@@ -42,7 +43,7 @@ pub const CRC_BYTES: usize = 4;
 pub const REQUEST_MAX_BYTES: usize = 1024;
 /// Largest request body, in bytes.
 pub const REQUEST_BODY_MAX_BYTES: usize = REQUEST_MAX_BYTES - REQUEST_HEADER_BYTES - CRC_BYTES;
-/// Largest response frame, in bytes. A planner-A solution at capacity takes 17 342 body bytes
+/// Largest response frame, in bytes. A planner-A solution at capacity takes 17 345 body bytes
 /// (16 241 before its optimality certificate, which lists up to 56 multipliers).
 pub const RESPONSE_MAX_BYTES: usize = 18 * 1024;
 /// Largest response body, in bytes.

@@ -45,6 +45,10 @@ pub const COMPLEMENTARITY_TOL: f64 = 1e-7;
 /// `Solved` needs the smallest reduced-Hessian eigenvalue at or above this (positive definite
 /// with a margin; the identity part is 1).
 pub const CURVATURE_TOL: f64 = 1e-6;
+/// The flat-direction probe (`Certificate::flat_direction_probed`) counts a probe's answer as
+/// lower only when it is below the probed cost by more than this, relative to `1 + J` (the
+/// iteration stops on a relative cost change of 1e-8, so equal-cost answers agree to ~1e-8).
+pub const FLAT_PROBE_TOL_REL: f64 = 1e-6;
 /// Power-method steps for the reduced Hessian's smallest eigenvalue.
 pub const POWER_ITERATIONS: usize = 120;
 /// Active keep-out checks whose envelope correction the second-order test holds at once
@@ -108,6 +112,13 @@ pub struct Certificate {
     pub multipliers_complete: bool,
     /// Multipliers of the active keep-out checks and control bounds.
     pub multipliers: heapless::Vec<Multiplier, MAX_ACTIVE>,
+    /// The reduced Hessian is singular within `CURVATURE_TOL` (a flat direction, as a
+    /// continuous symmetry of the problem gives: two spacecraft swapping through the centre
+    /// may pass on any side at the same cost) and the solver probed it: stepping along the
+    /// flat direction both ways and iterating again found no lower cost (by more than
+    /// `FLAT_PROBE_TOL_REL`) and came back to a flat point. Then the second-order necessary
+    /// condition (eigenvalue `>= -CURVATURE_TOL`) certifies, with this flag saying so.
+    pub flat_direction_probed: bool,
 }
 
 impl Certificate {
@@ -122,6 +133,7 @@ impl Certificate {
             min_reduced_eigenvalue: 0.0,
             multipliers_complete: false,
             multipliers: heapless::Vec::new(),
+            flat_direction_probed: false,
         }
     }
 
@@ -131,7 +143,20 @@ impl Certificate {
             && self.second_order_evaluated
             && self.stationarity <= STATIONARITY_TOL
             && self.complementarity <= COMPLEMENTARITY_TOL
-            && self.min_reduced_eigenvalue >= CURVATURE_TOL
+            && (self.min_reduced_eigenvalue >= CURVATURE_TOL
+                || (self.flat_direction_probed && self.min_reduced_eigenvalue >= -CURVATURE_TOL))
+    }
+
+    /// First-order conditions and feasibility-independent measures met, and the reduced
+    /// Hessian singular within `CURVATURE_TOL` (neither positive definite nor a saddle): the
+    /// point the flat-direction probe examines.
+    pub(crate) fn is_flat(&self) -> bool {
+        self.first_order_evaluated
+            && self.second_order_evaluated
+            && self.stationarity <= STATIONARITY_TOL
+            && self.complementarity <= COMPLEMENTARITY_TOL
+            && self.min_reduced_eigenvalue >= -CURVATURE_TOL
+            && self.min_reduced_eigenvalue < CURVATURE_TOL
     }
 }
 
@@ -403,6 +428,7 @@ pub(crate) fn evaluate(
     let free = tr.basis.free;
     let size = (tr.blocks(), free);
     out.first_order_evaluated = true;
+    out.flat_direction_probed = false;
     out.multipliers.clear();
     out.multipliers_complete = true;
     // Stationarity and complementarity.

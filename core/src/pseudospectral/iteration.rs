@@ -26,7 +26,14 @@ use super::workspace::Workspace;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum SqpEnd {
     Converged,
-    MaxIterations,
+    /// `sqp_max_iter` subproblems (or the work budget) used before the fixed-point test held.
+    /// `at_answer`: the returned iterate is the answer of the last QP solved (not a point the
+    /// line search fell back to), so the QP state (active rows and multipliers) is that
+    /// answer's and the certificate, which measures the conditions on the iterate itself with
+    /// the constraint gradients there, may certify it like a converged one.
+    MaxIterations {
+        at_answer: bool,
+    },
     Failed(SolveStatus),
 }
 
@@ -67,6 +74,8 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
     let mut newton_used = false;
     let mut restarted = false;
     let mut previous_decrease = f64::INFINITY;
+    // The last QP solved was accepted: its answer is `ws.accepted` (see `SqpEnd::MaxIterations`).
+    let mut at_answer = false;
     for _ in 0..settings.sqp_max_iter {
         if !ws.work.spend(work_units::sqp_iteration(&ws.transcription)) {
             break;
@@ -75,6 +84,7 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
             follow_minima(ws, settings);
         }
         linearise(ws);
+        at_answer = false;
         let outcome = qp::solve(
             &ws.transcription,
             &mut ws.qp,
@@ -139,6 +149,7 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
             }
         }
         ws.accepted = ws.trial;
+        at_answer = true;
         // Convergence: the cost decrease and the remaining gap it predicts are both small. The
         // convex-concave tail is linear; with rate rho = dJ_k / dJ_(k-1) the remaining gap is
         // about dJ_k rho / (1 - rho), which stays large while the iterate slides slowly along
@@ -211,5 +222,5 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
         }
     }
     ws.iterate = ws.accepted;
-    SqpEnd::MaxIterations
+    SqpEnd::MaxIterations { at_answer }
 }

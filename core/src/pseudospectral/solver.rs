@@ -130,7 +130,7 @@ fn run(
         out.info.saddle_escapes = escapes;
         let saddle_cost = out.cost;
         ws.saved = ws.iterate;
-        step_along(ws);
+        step_along(ws, 1.0);
         end = iterate_and_verify(ws, settings, out);
         status = finish(ws, settings, out, end);
         if !status.is_usable() || out.cost >= saddle_cost {
@@ -139,6 +139,53 @@ fn run(
             end = iterate_and_verify(ws, settings, out);
             status = finish(ws, settings, out, end);
             break;
+        }
+    }
+    // Flat direction: a feasible first-order point whose reduced Hessian is singular within
+    // the tolerance (measured on the symmetric family: eigenvalue ~1e-9 where two or three
+    // spacecraft swap through the centre, whose passing side is a continuous symmetry) is
+    // neither a certified minimum nor a saddle. Probe it: step along the flat direction both
+    // ways (as the saddle escape does) and iterate again; a lower answer is kept, and when
+    // neither side is lower the point is certified on the second-order necessary condition
+    // (`Certificate::flat_direction_probed`). At most 2 probes and 2 returns, each one run of
+    // the iteration, charged by it.
+    if status == SolveStatus::Feasible && end == SqpEnd::Converged && out.certificate.is_flat() {
+        let flat_cost = out.cost;
+        let tolerance = certificate::FLAT_PROBE_TOL_REL * (1.0 + flat_cost);
+        let mut flat = true;
+        for sign in [1.0, -1.0] {
+            if !ws.work.has_room() {
+                flat = false;
+                break;
+            }
+            ws.saved = ws.iterate;
+            step_along(ws, sign);
+            end = iterate_and_verify(ws, settings, out);
+            status = finish(ws, settings, out, end);
+            if status.is_usable() && out.cost < flat_cost - tolerance {
+                // Not flat after all: the lower answer is kept (with its own status).
+                flat = false;
+                break;
+            }
+            let probe_usable = status.is_usable();
+            // Back to the flat point (a fixed point: it re-converges at once, and the
+            // certificate's direction is again the flat one for the other sign).
+            ws.iterate = ws.saved;
+            end = iterate_and_verify(ws, settings, out);
+            status = finish(ws, settings, out, end);
+            let back = status == SolveStatus::Feasible
+                && end == SqpEnd::Converged
+                && out.certificate.is_flat();
+            if !probe_usable || !back {
+                flat = false;
+                break;
+            }
+        }
+        if flat {
+            out.certificate.flat_direction_probed = true;
+            if out.certificate.certifies_local_optimum() {
+                status = SolveStatus::Solved;
+            }
         }
     }
     // Stopped by the budget: the status says so, and whether the answer passed the checks.
@@ -164,9 +211,10 @@ fn is_saddle(status: SolveStatus, end: SqpEnd, out: &Solution) -> bool {
 }
 
 /// `y <- y + alpha v` with `v` the unit negative-curvature direction, signed so that its
-/// largest component is positive (deterministic), and `alpha` a quarter of `|y|` (at least
-/// 0.1): large enough to leave the saddle's neighbourhood, small enough to stay in its basin.
-fn step_along(ws: &mut Workspace) {
+/// largest component has the sign of `side` (deterministic), and `alpha` a quarter of `|y|` (at
+/// least 0.1): large enough to leave the saddle's neighbourhood, small enough to stay in its
+/// basin.
+fn step_along(ws: &mut Workspace, side: f64) {
     let direction = &ws.trial;
     let mut largest = 0.0f64;
     let mut norm2 = 0.0;
@@ -178,7 +226,7 @@ fn step_along(ws: &mut Workspace) {
             norm2 += y * y;
         }
     }
-    let sign = if largest < 0.0 { -1.0 } else { 1.0 };
+    let sign = if largest < 0.0 { -side } else { side };
     let alpha = sign * (0.25 * libm::sqrt(norm2)).max(0.1);
     for (row, values) in direction.iter().zip(ws.iterate.iter_mut()) {
         for (d, y) in row.iter().zip(values.iter_mut()) {
@@ -273,12 +321,22 @@ fn finish(ws: &mut Workspace, settings: &Settings, out: &mut Solution, end: SqpE
             &mut out.certificate,
         );
     }
-    let certified = end == SqpEnd::Converged && out.certificate.certifies_local_optimum();
+    // The certificate is measured on the returned iterate with the constraint gradients there,
+    // whatever the iteration says; it needs the QP state to be the iterate's own (the last QP's
+    // answer), which holds at a fixed point and at an iteration limit reached on an accepted
+    // answer. Measured on the dense lattice (issue 9): 10 of its Feasible answers met every
+    // tolerance of the certificate but had used their `sqp_max_iter` sliding along the
+    // keep-out by parts per million of J per step.
+    let own_qp = matches!(
+        end,
+        SqpEnd::Converged | SqpEnd::MaxIterations { at_answer: true }
+    );
+    let certified = own_qp && out.certificate.certifies_local_optimum();
     match end {
         _ if feasible && certified => SolveStatus::Solved,
         _ if feasible => SolveStatus::Feasible,
         SqpEnd::Failed(status) => status,
-        SqpEnd::MaxIterations => SolveStatus::MaxIterations,
+        SqpEnd::MaxIterations { .. } => SolveStatus::MaxIterations,
         SqpEnd::Converged => SolveStatus::SeparationNotVerified,
     }
 }
@@ -460,6 +518,83 @@ mod tests {
             .map(|s| s[2].abs())
             .fold(0.0f64, f64::max);
         assert!(out_of_plane > 0.1, "{out_of_plane}");
+    }
+
+    #[test]
+    fn an_answer_at_the_iteration_limit_is_certified_on_its_own_measures() {
+        // The paper's case converges at the 8th subproblem. Stopped at the 6th (on an accepted
+        // QP answer), the answer already meets the certificate (stationarity 4.3e-4, J within
+        // 4e-8 of the optimum) and is Solved; stopped at the 5th it does not (stationarity
+        // 1.2e-2) and is Feasible. Before `SqpEnd::MaxIterations { at_answer }` both were
+        // Feasible.
+        let limited = |k: u16| {
+            run(
+                &paper_case(10, true),
+                &Settings {
+                    sqp_max_iter: k,
+                    verify_max_rounds: 0,
+                    ..Settings::default()
+                },
+            )
+        };
+        let six = limited(6);
+        assert_eq!(six.info.sqp_iterations, 6);
+        assert_eq!(
+            six.info.status,
+            SolveStatus::Solved,
+            "{:?}",
+            six.certificate
+        );
+        assert!(six.certificate.stationarity <= certificate::STATIONARITY_TOL);
+        assert!((six.cost - 6.743183).abs() < 1e-5, "J = {}", six.cost);
+        let five = limited(5);
+        assert_eq!(five.info.status, SolveStatus::Feasible);
+        assert!(five.certificate.stationarity > certificate::STATIONARITY_TOL);
+    }
+
+    #[test]
+    fn head_on_swap_is_certified_through_the_flat_direction_probe() {
+        // Two spacecraft swap through the centre: the passing side is a continuous symmetry,
+        // so the reduced Hessian is singular (eigenvalue ~1e-10) at every optimum. The probe
+        // steps along the flat direction both ways, finds the same cost, and certifies.
+        let craft = |a: [f64; 3], b: [f64; 3]| Spacecraft {
+            mass_mu: 1.0,
+            initial_state: [a[0], a[1], a[2], 0.0, 0.0, 0.0],
+            final_state: [b[0], b[1], b[2], 0.0, 0.0, 0.0],
+        };
+        let mut spacecraft = heapless::Vec::new();
+        spacecraft
+            .push(craft([6.0, 0.0, 0.0], [-6.0, 0.0, 0.0]))
+            .unwrap();
+        spacecraft
+            .push(craft([-6.0, 0.0, 0.0], [6.0, 0.0, 0.0]))
+            .unwrap();
+        let p = Problem {
+            horizon_tu: 10.0,
+            max_control_fu: 1.0,
+            keep_out_lu: 2.0,
+            degree: 16,
+            test_points: true,
+            spacecraft,
+        };
+        let out = run(&p, &Settings::default());
+        let c = &out.certificate;
+        assert_eq!(out.info.status, SolveStatus::Solved, "{c:?}");
+        assert!(c.flat_direction_probed);
+        assert!(
+            c.min_reduced_eigenvalue.abs() < certificate::CURVATURE_TOL,
+            "{}",
+            c.min_reduced_eigenvalue
+        );
+        assert!(
+            out.min_separation_lu >= 2.0 - 1e-7,
+            "{}",
+            out.min_separation_lu
+        );
+        // Without the probe the same point was Feasible: the flag is what certifies it.
+        let mut unprobed = c.clone();
+        unprobed.flat_direction_probed = false;
+        assert!(!unprobed.certifies_local_optimum());
     }
 
     #[test]

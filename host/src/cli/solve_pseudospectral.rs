@@ -132,7 +132,12 @@ pub fn run(fixture: &PseudospectralFixture, json_output: bool) -> Result<ExitCod
             c.stationarity,
             c.complementarity,
             c.max_violation,
-            if c.second_order_evaluated {
+            if c.second_order_evaluated && c.flat_direction_probed {
+                format!(
+                    "{:.1e} (flat: probed both ways, no lower cost)",
+                    c.min_reduced_eigenvalue
+                )
+            } else if c.second_order_evaluated {
                 format!("{:.4}", c.min_reduced_eigenvalue)
             } else {
                 "not evaluated".to_string()

@@ -325,7 +325,8 @@ fn print_oracle_table(outcomes: &[Outcome]) {
     }
 }
 
-/// One answer as JSON: status, cost, time and the node positions of every spacecraft.
+/// One answer as JSON: status, cost, time, the iteration counters and certificate measures, and
+/// the node positions of every spacecraft.
 fn answer_json(
     index: usize,
     family: &str,
@@ -353,6 +354,20 @@ fn answer_json(
         "cost": s.cost,
         "min_separation_lu": s.min_separation_lu,
         "time_ms": time_s * 1e3,
+        // Why an answer is not Solved (the diagnosis of issue 9): the iteration's counters and
+        // the certificate's measures.
+        "sqp_iterations": s.info.sqp_iterations,
+        "max_active": s.info.max_active,
+        "verify_rounds": s.info.verify_rounds,
+        "saddle_escapes": s.info.saddle_escapes,
+        "work_units": s.info.work_units,
+        "stationarity": s.certificate.stationarity,
+        "complementarity": s.certificate.complementarity,
+        "min_reduced_eigenvalue": s.certificate.min_reduced_eigenvalue,
+        "max_violation": s.certificate.max_violation,
+        "first_order_evaluated": s.certificate.first_order_evaluated,
+        "second_order_evaluated": s.certificate.second_order_evaluated,
+        "flat_direction_probed": s.certificate.flat_direction_probed,
         "nodes": positions,
     })
 }
