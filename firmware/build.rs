@@ -53,7 +53,10 @@ fn main() {
         println!("cargo:rerun-if-changed={}", f.file.display());
         let carried = match f.planner {
             fixture_set::Planner::Pseudospectral => with_a,
-            fixture_set::Planner::Impulsive | fixture_set::Planner::ImpulsiveFixedPoint => with_b,
+            fixture_set::Planner::Impulsive
+            | fixture_set::Planner::ImpulsiveFixedPoint
+            | fixture_set::Planner::ImpulsiveForm
+            | fixture_set::Planner::ImpulsiveFormFixedPoint => with_b,
             fixture_set::Planner::GeoTour => with_geo,
         };
         if !carried {
@@ -63,6 +66,8 @@ fn main() {
             fixture_set::Planner::Pseudospectral => "Planner::Pseudospectral",
             fixture_set::Planner::Impulsive => "Planner::Impulsive",
             fixture_set::Planner::ImpulsiveFixedPoint => "Planner::ImpulsiveFixedPoint",
+            fixture_set::Planner::ImpulsiveForm => "Planner::ImpulsiveForm",
+            fixture_set::Planner::ImpulsiveFormFixedPoint => "Planner::ImpulsiveFormFixedPoint",
             fixture_set::Planner::GeoTour => "Planner::GeoTour",
         };
         writeln!(

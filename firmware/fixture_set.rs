@@ -21,6 +21,11 @@ pub enum Planner {
     /// Planner B with `Settings::fixed_point_only()`: the fixed-point plan the 2 M instruction
     /// budget is for. Every fixed-point planner-B fixture also runs as `<name>+fixed-point`.
     ImpulsiveFixedPoint,
+    /// Planner B on a fixture in other input forms (ROE, an osculating state, ...): the bytes
+    /// are its `impulsive::FormProblem`, converted on board by `impulsive::solve_form`.
+    ImpulsiveForm,
+    /// [`Planner::ImpulsiveForm`] with `Settings::fixed_point_only()`.
+    ImpulsiveFormFixedPoint,
     /// The GEO servicing tour, `reconfig_core::geo_tour`, with the fixture's settings: carried
     /// only by the GEO image (`cargo firmware-geo`).
     GeoTour,
@@ -31,7 +36,10 @@ impl Planner {
     pub fn key(self) -> &'static str {
         match self {
             Self::Pseudospectral => "pseudospectral",
-            Self::Impulsive | Self::ImpulsiveFixedPoint => "impulsive",
+            Self::Impulsive
+            | Self::ImpulsiveFixedPoint
+            | Self::ImpulsiveForm
+            | Self::ImpulsiveFormFixedPoint => "impulsive",
             Self::GeoTour => "geo-tour",
         }
     }
@@ -121,13 +129,17 @@ pub fn encode_all(dir: &Path) -> Result<Vec<EncodedFixture>, String> {
                 Planner::Pseudospectral,
                 postcard::to_stdvec(&f.problem).map_err(|e| format!("{name}: {e}"))?,
             ),
-            Fixture::Impulsive(f) => {
-                let problem = &f.problem;
-                (
+            // A fixture in other input forms is baked in them: the M7 converts it.
+            Fixture::Impulsive(f) => match &f.form {
+                Some(form) => (
+                    Planner::ImpulsiveForm,
+                    postcard::to_stdvec(form).map_err(|e| format!("{name}: {e}"))?,
+                ),
+                None => (
                     Planner::Impulsive,
-                    postcard::to_stdvec(problem).map_err(|e| format!("{name}: {e}"))?,
-                )
-            }
+                    postcard::to_stdvec(&f.problem).map_err(|e| format!("{name}: {e}"))?,
+                ),
+            },
         };
         let fixed_point = matches!(
             &fixture,
@@ -137,7 +149,11 @@ pub fn encode_all(dir: &Path) -> Result<Vec<EncodedFixture>, String> {
             out.push(EncodedFixture {
                 name: format!("{name}+fixed-point"),
                 file: file.clone(),
-                planner: Planner::ImpulsiveFixedPoint,
+                planner: if planner == Planner::ImpulsiveForm {
+                    Planner::ImpulsiveFormFixedPoint
+                } else {
+                    Planner::ImpulsiveFixedPoint
+                },
                 problem: problem.clone(),
             });
         }

@@ -26,7 +26,9 @@ use serde::{Deserialize, Serialize};
 /// changed, the GEO tour joined, and the `LimitExceeded` / `Expired` outcomes were added.
 /// 3: planner B's settings gained `element_set` and its solution `terminal_error_equinoctial`;
 ///    planners A and B gained `work_budget`, `SolveInfo::work_units` and `BudgetExhausted`.
-/// 4: planner A's certificate gained `flat_direction_probed`.
+/// 4: planner A's certificate gained `flat_direction_probed`; planner-B requests in the user's
+///    input forms (`Request::ImpulsiveForm`, answered by `Outcome::ImpulsiveForm` with the end
+///    state in the same form), `PlanError::InputForm`, and the limits' form checks (`Rule::Below`).
 pub const PROTOCOL_VERSION: u16 = 4;
 /// First two bytes of a request frame.
 pub const REQUEST_MAGIC: [u8; 2] = *b"RQ";
@@ -77,6 +79,15 @@ pub enum Request {
         /// Loop bounds, tolerances and the paper's rule.
         settings: geo_tour::Settings,
     },
+    /// Planner B with its orbits in the forms the user gave (equinoctial elements, osculating
+    /// ECI states, ROE, the deputy's own orbits), converted in the service by the core's
+    /// `impulsive::forms`.
+    ImpulsiveForm {
+        /// The problem, in the user's forms.
+        problem: impulsive::FormProblem,
+        /// Loop bounds and tolerances.
+        settings: impulsive::Settings,
+    },
 }
 
 impl Request {
@@ -84,7 +95,7 @@ impl Request {
     pub fn planner(&self) -> Planner {
         match self {
             Self::Pseudospectral { .. } => Planner::Pseudospectral,
-            Self::Impulsive { .. } => Planner::Impulsive,
+            Self::Impulsive { .. } | Self::ImpulsiveForm { .. } => Planner::Impulsive,
             Self::GeoTour { .. } => Planner::GeoTour,
         }
     }
@@ -126,6 +137,15 @@ pub enum Outcome {
     GeoTour(geo_tour::Solution),
     /// The GEO tour rejected the request.
     GeoTourRejected(geo_tour::PlanError),
+    /// Planner B iterated on a [`Request::ImpulsiveForm`]; the solution's `info.status` says how
+    /// it ended, the end state is in the form the request gave its target in. (A rejection is
+    /// [`Outcome::ImpulsiveRejected`].)
+    ImpulsiveForm {
+        /// The plan.
+        solution: impulsive::Solution,
+        /// The plan's end state in the user's form.
+        end_state: impulsive::EndState,
+    },
 }
 
 /// How long an expired request waited and the deadline it had, in microseconds.
@@ -158,6 +178,13 @@ pub enum OutcomeRef<'a> {
     GeoTour(&'a geo_tour::Solution),
     /// See [`Outcome::GeoTourRejected`].
     GeoTourRejected(geo_tour::PlanError),
+    /// See [`Outcome::ImpulsiveForm`].
+    ImpulsiveForm {
+        /// The plan.
+        solution: &'a impulsive::Solution,
+        /// The plan's end state in the user's form.
+        end_state: impulsive::EndState,
+    },
 }
 
 /// Why a frame was refused. Sizes in bytes.
@@ -560,6 +587,13 @@ impl Outcome {
             Self::Expired(x) => OutcomeRef::Expired(*x),
             Self::GeoTour(s) => OutcomeRef::GeoTour(s),
             Self::GeoTourRejected(e) => OutcomeRef::GeoTourRejected(*e),
+            Self::ImpulsiveForm {
+                solution,
+                end_state,
+            } => OutcomeRef::ImpulsiveForm {
+                solution,
+                end_state: *end_state,
+            },
         }
     }
 }
@@ -644,5 +678,109 @@ mod tests {
             decode_request(&big),
             Err(FrameError::Oversized { .. })
         ));
+    }
+
+    #[test]
+    #[allow(clippy::unreachable)]
+    fn impulsive_form_requests_and_outcomes_round_trip_in_every_form() {
+        use impulsive::{
+            CartesianState, EndState, EquinoctialElements, FormProblem, OrbitForm, RelativeForm,
+            Roe,
+        };
+        let Request::Impulsive { problem, settings } = request() else {
+            unreachable!()
+        };
+        let classical = OrbitForm::Classical(problem.chief);
+        let equinoctial = OrbitForm::Equinoctial(EquinoctialElements {
+            sma_km: 7078.1,
+            mean_longitude_rad: -1.25,
+            ex: 1e-3,
+            ey: -2e-3,
+            hx: 0.7,
+            hy: -1.1,
+        });
+        let state = OrbitForm::State(CartesianState {
+            pos_km: [505.3, -875.2, 7008.5],
+            vel_km_s: [-6.49, -3.75, -1.4e-14],
+        });
+        let roe = Roe {
+            da_m: 0.4,
+            dlambda_m: -9.3e-3,
+            dex_m: -996.9,
+            dey_m: -136.8,
+            dix_m: -135.7,
+            diy_m: 1726.7,
+        };
+        let relatives = [
+            RelativeForm::Elements {
+                initial: problem.initial,
+                target: problem.target,
+            },
+            RelativeForm::Roe {
+                initial: roe,
+                target: roe,
+            },
+            RelativeForm::Deputy {
+                initial: state,
+                target: equinoctial,
+            },
+            RelativeForm::Deputy {
+                initial: classical,
+                target: state,
+            },
+        ];
+        let mut buf = [0u8; REQUEST_MAX_BYTES];
+        for chief in [classical, equinoctial, state] {
+            for relative in relatives {
+                let req = Request::ImpulsiveForm {
+                    problem: FormProblem {
+                        chief,
+                        relative,
+                        plan: problem.plan.clone(),
+                    },
+                    settings,
+                };
+                let n = encode_request(7, &req, &mut buf).unwrap();
+                let frame = decode_request(&buf[..n]).unwrap();
+                assert_eq!(frame.request, req);
+                assert_eq!(frame.request.planner(), Planner::Impulsive);
+            }
+        }
+        let solution = impulsive::Solution::new();
+        let mut out = [0u8; RESPONSE_MAX_BYTES];
+        for end_state in [
+            EndState::Elements(problem.target),
+            EndState::Roe(roe),
+            EndState::DeputyEquinoctial(EquinoctialElements {
+                sma_km: 7078.1,
+                mean_longitude_rad: 0.5,
+                ex: 0.0,
+                ey: 0.0,
+                hx: 0.0,
+                hy: 0.0,
+            }),
+            EndState::DeputyClassical(problem.chief),
+            EndState::DeputyState(CartesianState {
+                pos_km: [1.0, 2.0, 3.0],
+                vel_km_s: [4.0, 5.0, 6.0],
+            }),
+            EndState::Unavailable(impulsive::FormError::Kepler),
+        ] {
+            let outcome = Outcome::ImpulsiveForm {
+                solution: solution.clone(),
+                end_state,
+            };
+            let n = encode_response(3, 9, &outcome.as_ref(), &mut out).unwrap();
+            assert_eq!(decode_response(&out[..n]).unwrap().outcome, outcome);
+        }
+        let rejected = Outcome::ImpulsiveRejected(impulsive::PlanError::InputForm {
+            part: impulsive::FormPart::Target,
+            error: impulsive::FormError::RoeEquatorialChief {
+                sin_inc: 1e-5,
+                min: 1e-3,
+            },
+        });
+        let n = encode_response(4, 0, &rejected.as_ref(), &mut out).unwrap();
+        assert_eq!(decode_response(&out[..n]).unwrap().outcome, rejected);
     }
 }

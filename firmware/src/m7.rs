@@ -40,6 +40,11 @@ pub enum Planner {
     Impulsive,
     /// Planner B, `Settings::fixed_point_only()`.
     ImpulsiveFixedPoint,
+    /// Planner B in other input forms, default settings; its bytes carry an
+    /// `impulsive::FormProblem`, converted on board.
+    ImpulsiveForm,
+    /// Planner B in other input forms, `Settings::fixed_point_only()`.
+    ImpulsiveFormFixedPoint,
     /// The GEO servicing tour (the GEO image); its bytes carry `(Problem, Settings)`.
     GeoTour,
 }
@@ -379,6 +384,21 @@ fn main() -> ! {
                     &mut *IM_SOLUTION,
                 );
             }
+            #[cfg(feature = "impulsive")]
+            Planner::ImpulsiveForm | Planner::ImpulsiveFormFixedPoint => {
+                let settings = if matches!(fixture.planner, Planner::ImpulsiveFormFixedPoint) {
+                    &im_fixed_point_settings
+                } else {
+                    &im_settings
+                };
+                run_impulsive_form(
+                    &mut out,
+                    (index, marker, fixture),
+                    settings,
+                    &mut *IM_WORKSPACE,
+                    &mut *IM_SOLUTION,
+                );
+            }
             #[cfg(feature = "geo_tour")]
             Planner::GeoTour => {
                 *GEO_SOLUTION = geo_tour::Solution::new();
@@ -536,6 +556,51 @@ fn run_impulsive(
     let ok = result.is_ok();
     let work_units = solution.info.work_units;
     let encoded: Result<&impulsive::Solution, impulsive::PlanError> = result.map(|()| &*solution);
+    report(
+        out,
+        index,
+        fixture,
+        "impulsive",
+        ok,
+        stack_bytes,
+        (ticks, Some(work_units)),
+    );
+    print_result(out, index, &encoded);
+}
+
+/// [`run_impulsive`] for a fixture in other input forms: the conversion runs inside the
+/// measured span, and the result carries the end state in the fixture's form.
+#[cfg(feature = "impulsive")]
+#[inline(never)]
+fn run_impulsive_form(
+    out: &mut Out,
+    (index, marker, fixture): (usize, u32, &Fixture),
+    settings: &impulsive::Settings,
+    workspace: &mut impulsive::Workspace,
+    solution: &mut impulsive::Solution,
+) {
+    *solution = impulsive::Solution::new();
+    repaint_stack();
+    let problem: impulsive::FormProblem = match postcard::from_bytes(fixture.problem) {
+        Ok(p) => p,
+        Err(_) => panic!("fixture {} does not decode", fixture.name),
+    };
+    let ticks_before = systick::now();
+    reconfig_measure_start(marker);
+    let result = impulsive::solve_form(
+        black_box(&problem),
+        black_box(settings),
+        black_box(&mut *workspace),
+        black_box(&mut *solution),
+    );
+    black_box(&result);
+    reconfig_measure_stop(marker);
+    let ticks = systick::now() - ticks_before;
+    let stack_bytes = stack_high_water();
+    let ok = result.is_ok();
+    let work_units = solution.info.work_units;
+    let encoded: Result<(&impulsive::Solution, impulsive::EndState), impulsive::PlanError> =
+        result.map(|end| (&*solution, end));
     report(
         out,
         index,

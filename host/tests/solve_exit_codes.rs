@@ -88,6 +88,48 @@ fn rejected_inputs_exit_2_in_both_planners() {
 }
 
 #[test]
+fn input_forms_follow_the_same_exit_codes() {
+    // ROE and osculating-state fixtures: usable plans.
+    for stem in ["wang2018-gco-to-pco-2imp-roe", "sso-leo-pair-e0-2imp-state"] {
+        let (code, out) = solve(&root().join(format!("fixtures/{stem}.toml")));
+        assert_eq!(code, 0, "{stem}: {out}");
+        assert!(out.contains("\"Solved\""), "{stem}: {out}");
+    }
+    // A deputy target state on a circular orbit 80 km up: refused by the limits, named.
+    let low = variant(
+        "sso-leo-pair-e0-2imp-state",
+        &[
+            (
+                "position_km = [5.098384213295808e+02, -8.731802585719231e+02, 7.007699951799621e+03]",
+                "position_km = [6458.137, 0.0, 0.0]",
+            ),
+            (
+                "velocity_km_s = [-6.492361942238023e+00, -3.749228045151948e+00, 5.175444545022945e-03]",
+                "velocity_km_s = [0.0, 0.0, 7.856249384601716]",
+            ),
+        ],
+        "low-target",
+    );
+    let (code, out) = solve(&low);
+    assert_eq!(code, 2, "{out}");
+    assert!(
+        out.contains("\"LimitExceeded\"") && out.contains("deputy.target.perigee_altitude_km"),
+        "{out}"
+    );
+    // A hyperbolic chief state: no mean elements exist; refused while loading, exit code 2.
+    let hyperbolic = variant(
+        "sso-leo-pair-e0-2imp-state",
+        &[(
+            "velocity_km_s = [-6.492087282796920e+00, -3.748208340325339e+00, -1.465494392505207e-14]",
+            "velocity_km_s = [-12.0, -3.748208340325339e+00, -1.465494392505207e-14]",
+        )],
+        "hyperbolic-chief",
+    );
+    let (code, out) = solve(&hyperbolic);
+    assert_eq!(code, 2, "{out}");
+}
+
+#[test]
 fn help_states_the_exit_codes() {
     let out = Command::new(env!("CARGO_BIN_EXE_reconfig"))
         .args(["solve", "--help"])

@@ -124,11 +124,16 @@ def scaled(err, a):
     return max(abs(err[0]) / a, *(abs(x) for x in err[1:]))
 
 
-def solve(case):
+def solve(case, fly_case=None):
+    """Newton on the exact end condition from dv = 0, central-difference Jacobian, to a scaled
+    residual below 1e-13. `fly_case(case, dv) -> (err, times)` is the exact model (this file's
+    `fly` unless given: planner_b_nonsingular.py passes its equinoctial one); case[0][0] is a
+    and case[3] the impulse points."""
+    fly_case = fly if fly_case is None else fly_case
     a = case[0][0]
     dv = np.zeros(3 * len(case[3]))
     for it in range(40):
-        err, times = fly(case, dv)
+        err, times = fly_case(case, dv)
         if scaled(err, a) < 1e-13:
             return dv, times, it
         J = np.zeros((6, dv.size))
@@ -136,7 +141,7 @@ def solve(case):
         for j in range(dv.size):
             p = dv.copy(); m = dv.copy()
             p[j] += h; m[j] -= h
-            J[:, j] = (fly(case, p)[0] - fly(case, m)[0]) / (2 * h)
+            J[:, j] = (fly_case(case, p)[0] - fly_case(case, m)[0]) / (2 * h)
         dv = dv - np.linalg.solve(J, err)
     raise RuntimeError("Newton did not converge")
 

@@ -348,6 +348,41 @@ fn the_correction_converges_in_a_few_broyden_steps() {
     }
 }
 
+/// Solve `name` with the default settings and check it against the oracle plan `oracle`: Solved,
+/// nonlinear miss <= 1 mm, total and every impulse component within `tol` m/s, and (when
+/// `check_times`) every impulse time within 1e-5 s. Returns the solution.
+fn check_against_oracle(
+    name: &str,
+    oracle: &serde_json::Value,
+    tol: f64,
+    check_times: bool,
+) -> Solution {
+    let s = run(&problem(name), &Settings::default());
+    assert_eq!(s.info.status, SolveStatus::Solved, "{name}");
+    assert!(s.terminal_position_error_m <= 1e-3, "{name}");
+    let total = oracle["total_dv_mps"].as_f64().unwrap();
+    assert!(
+        (s.total_dv_mps - total).abs() < tol,
+        "{name}: {} vs oracle {total}",
+        s.total_dv_mps
+    );
+    for (k, imp) in s.impulses.iter().enumerate() {
+        if check_times {
+            let t = oracle["times_s"][k].as_f64().unwrap();
+            assert!((imp.time_s - t).abs() < 1e-5, "{name} {k}: {}", imp.time_s);
+        }
+        for axis in 0..3 {
+            let v = oracle["dv_rtn_mps"][k][axis].as_f64().unwrap();
+            assert!(
+                (imp.dv_rtn_mps[axis] - v).abs() < tol,
+                "{name} impulse {k} axis {axis}: {} vs {v}",
+                imp.dv_rtn_mps[axis]
+            );
+        }
+    }
+    s
+}
+
 #[test]
 fn corrected_two_impulse_plans_match_the_exact_model_oracle() {
     // Two impulses: the corrected plan is the unique root of the exact end condition, computed
@@ -356,28 +391,7 @@ fn corrected_two_impulse_plans_match_the_exact_model_oracle() {
         std::fs::read_to_string(fixtures_dir().join("golden/planner-b-corrected.json")).unwrap();
     let g: serde_json::Value = serde_json::from_str(&text).unwrap();
     for name in ["sso-leo-pair-e1e-3-2imp", "wang2018-gco-to-pco-2imp"] {
-        let s = run(&problem(name), &Settings::default());
-        assert_eq!(s.info.status, SolveStatus::Solved, "{name}");
-        assert!(s.terminal_position_error_m <= 1e-3, "{name}");
-        let o = &g[name];
-        let total = o["total_dv_mps"].as_f64().unwrap();
-        assert!(
-            (s.total_dv_mps - total).abs() < 1e-8,
-            "{name}: {} vs oracle {total}",
-            s.total_dv_mps
-        );
-        for (k, imp) in s.impulses.iter().enumerate() {
-            let t = o["times_s"][k].as_f64().unwrap();
-            assert!((imp.time_s - t).abs() < 1e-5, "{name} {k}: {}", imp.time_s);
-            for axis in 0..3 {
-                let v = o["dv_rtn_mps"][k][axis].as_f64().unwrap();
-                assert!(
-                    (imp.dv_rtn_mps[axis] - v).abs() < 1e-8,
-                    "{name} impulse {k} axis {axis}: {} vs {v}",
-                    imp.dv_rtn_mps[axis]
-                );
-            }
-        }
+        check_against_oracle(name, &g[name], 1e-8, true);
     }
 }
 
@@ -397,28 +411,8 @@ fn circular_and_equatorial_fixtures_match_the_equinoctial_oracle() {
         "sso-leo-pair-e1e-3-2imp",
         "wang2018-gco-to-pco-2imp",
     ] {
-        let s = run(&problem(name), &Settings::default());
-        assert_eq!(s.info.status, SolveStatus::Solved, "{name}");
-        assert!(s.terminal_position_error_m <= 1e-3, "{name}");
-        let o = &g[name];
-        let total = o["total_dv_mps"].as_f64().unwrap();
-        assert!(
-            (s.total_dv_mps - total).abs() < 1e-8,
-            "{name}: {} vs oracle {total}",
-            s.total_dv_mps
-        );
-        for (k, imp) in s.impulses.iter().enumerate() {
-            let t = o["times_s"][k].as_f64().unwrap();
-            assert!((imp.time_s - t).abs() < 1e-5, "{name} {k}: {}", imp.time_s);
-            for axis in 0..3 {
-                let v = o["dv_rtn_mps"][k][axis].as_f64().unwrap();
-                assert!(
-                    (imp.dv_rtn_mps[axis] - v).abs() < 1e-8,
-                    "{name} impulse {k} axis {axis}: {} vs {v}",
-                    imp.dv_rtn_mps[axis]
-                );
-            }
-        }
+        let s = check_against_oracle(name, &g[name], 1e-8, true);
+        let total = g[name]["total_dv_mps"].as_f64().unwrap();
         println!(
             "{name}: {:.10} m/s (oracle {total:.10}), miss {:.2e} m, {} correction steps",
             s.total_dv_mps, s.terminal_position_error_m, s.info.correction_iterations
@@ -444,26 +438,8 @@ fn input_forms_give_the_plans_of_their_classical_twins() {
         ),
         ("sso-leo-pair-e0-2imp-state", "sso-leo-pair-e0-2imp", 1e-8),
     ] {
-        let s = run(&problem(name), &Settings::default());
-        assert_eq!(s.info.status, SolveStatus::Solved, "{name}");
-        assert!(s.terminal_position_error_m <= 1e-3, "{name}");
-        let o = &g[twin];
-        let total = o["total_dv_mps"].as_f64().unwrap();
-        assert!(
-            (s.total_dv_mps - total).abs() < tol,
-            "{name}: {} vs oracle {total}",
-            s.total_dv_mps
-        );
-        for (k, imp) in s.impulses.iter().enumerate() {
-            for axis in 0..3 {
-                let v = o["dv_rtn_mps"][k][axis].as_f64().unwrap();
-                assert!(
-                    (imp.dv_rtn_mps[axis] - v).abs() < tol,
-                    "{name} impulse {k} axis {axis}: {} vs {v}",
-                    imp.dv_rtn_mps[axis]
-                );
-            }
-        }
+        let s = check_against_oracle(name, &g[twin], tol, false);
+        let total = g[twin]["total_dv_mps"].as_f64().unwrap();
         println!(
             "{name}: {:.10} m/s (oracle {total:.10}), miss {:.2e} m",
             s.total_dv_mps, s.terminal_position_error_m

@@ -1,12 +1,13 @@
 //! Property tests: planner B never panics on arbitrary input (NaN, inf, huge, degenerate),
 //! answers every request with an error or a status, and no accepted input yields a non-finite
-//! number anywhere in its output.
+//! number anywhere in its output, in any input form (`solve_form`: the plan and the end state).
 
 use proptest::prelude::*;
 use reconfig_core::capacity::MAX_IMPULSES;
 use reconfig_core::impulsive::{
-    solve, ImpulsePlan, ImpulsePoint, MeanElements, Problem, RelativeElements, Settings, Solution,
-    SolveStatus, Workspace,
+    solve, solve_form, CartesianState, EndState, EquinoctialElements, FormProblem, ImpulsePlan,
+    ImpulsePoint, MeanElements, OrbitForm, Problem, RelativeElements, RelativeForm, Roe, Settings,
+    Solution, SolveStatus, Workspace, EARTH_MU_KM3_S2,
 };
 
 fn any_f64() -> impl Strategy<Value = f64> {
@@ -177,5 +178,135 @@ proptest! {
             plan,
         };
         check(&problem);
+    }
+}
+
+/// Every number of an end state (`Unavailable` carries none).
+fn end_numbers(end: &EndState) -> Vec<f64> {
+    match end {
+        EndState::Elements(r) => vec![
+            r.dsma_km,
+            r.decc,
+            r.dinc_rad,
+            r.draan_rad,
+            r.dargp_rad,
+            r.dmean_anomaly_rad,
+        ],
+        EndState::Roe(r) => vec![r.da_m, r.dlambda_m, r.dex_m, r.dey_m, r.dix_m, r.diy_m],
+        EndState::DeputyClassical(d) => vec![
+            d.sma_km,
+            d.ecc,
+            d.inc_rad,
+            d.raan_rad,
+            d.argp_rad,
+            d.mean_anomaly_rad,
+        ],
+        EndState::DeputyEquinoctial(q) => {
+            vec![q.sma_km, q.mean_longitude_rad, q.ex, q.ey, q.hx, q.hy]
+        }
+        EndState::DeputyState(s) => s.pos_km.iter().chain(s.vel_km_s.iter()).copied().collect(),
+        EndState::Unavailable(_) => Vec::new(),
+    }
+}
+
+/// A request in other forms: refused by the limits, rejected by the planner, or answered with
+/// finite numbers only (solution and end state), with the correction on and off.
+fn check_form(problem: &FormProblem) {
+    for settings in [
+        quick(),
+        Settings {
+            min_fuel: false,
+            nonlinear_correction: false,
+            ..quick()
+        },
+    ] {
+        let limits = reconfig_core::limits::Limits {
+            impulsive: reconfig_core::limits::impulsive::Limits {
+                nonlinear_correction: false,
+                ..Default::default()
+            },
+            ..Default::default()
+        };
+        if limits.impulsive.check_form(problem, &settings).is_err() {
+            continue;
+        }
+        let mut ws = Workspace::new();
+        let mut out = Solution::new();
+        match solve_form(problem, &settings, &mut ws, &mut out) {
+            Ok(end) => {
+                assert_ne!(out.info.status, SolveStatus::Unsolved);
+                let bad: Vec<f64> = numbers(&out)
+                    .into_iter()
+                    .chain(end_numbers(&end))
+                    .filter(|x| !x.is_finite())
+                    .collect();
+                assert!(
+                    bad.is_empty(),
+                    "accepted form input gave non-finite output {bad:?}: {problem:?} -> {end:?} {out:?}"
+                );
+            }
+            Err(e) => assert!(!e.to_string().is_empty()),
+        }
+    }
+}
+
+fn state(pos_km: [f64; 3], vel_km_s: [f64; 3]) -> CartesianState {
+    CartesianState { pos_km, vel_km_s }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 96, rng_seed: proptest::test_runner::RngSeed::Fixed(2026), ..ProptestConfig::default() })]
+
+    /// Chief as an osculating state or equinoctial elements (ellipses, hyperbolas, NaN, huge),
+    /// relative state as ROE or the deputy's own state: no accepted request yields a
+    /// non-finite number in its plan or its end state.
+    #[test]
+    fn forms_give_finite_outputs_or_named_refusals(
+        r_km in prop_oneof![12 => 6700.0f64..45_000.0, 1 => any_f64()],
+        dir in prop::array::uniform3(-1.0f64..1.0),
+        speed_ratio in prop_oneof![12 => 0.97f64..1.1, 2 => 1.3f64..1.6, 1 => any_f64()],
+        equinoctial in prop::array::uniform6(prop_oneof![30 => -0.02f64..0.02, 1 => any_f64()]),
+        roe in prop::array::uniform6(prop_oneof![30 => -2000.0f64..2000.0, 1 => any_f64()]),
+        dx in prop::array::uniform6(prop_oneof![30 => -1.0f64..1.0, 1 => any_f64()]),
+        chief_kind in 0u8..2,
+        relative_kind in 0u8..2,
+        pts in prop::collection::vec((0.0f64..6.3, 0i32..4), 1..=3),
+    ) {
+        // A chief state at radius r, velocity across the radius scaled from circular speed.
+        let n = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt().max(1e-3);
+        let u = [dir[0] / n, dir[1] / n, dir[2] / n];
+        let pos = [r_km * u[0], r_km * u[1], r_km * u[2]];
+        // Some vector not parallel to u, crossed with u: a direction across the radius.
+        let w = if u[0].abs() < 0.9 { [1.0, 0.0, 0.0] } else { [0.0, 1.0, 0.0] };
+        let c = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]];
+        let cn = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+        let v = speed_ratio * (EARTH_MU_KM3_S2 / r_km).sqrt();
+        let vel = [v * c[0] / cn, v * c[1] / cn, v * c[2] / cn];
+        let chief = if chief_kind == 0 {
+            OrbitForm::State(state(pos, vel))
+        } else {
+            OrbitForm::Equinoctial(EquinoctialElements {
+                sma_km: r_km,
+                mean_longitude_rad: equinoctial[0] * 300.0,
+                ex: equinoctial[1],
+                ey: equinoctial[2],
+                hx: equinoctial[3] * 50.0,
+                hy: equinoctial[4] * 50.0,
+            })
+        };
+        let relative = if relative_kind == 0 {
+            let r = Roe { da_m: roe[0], dlambda_m: roe[1], dex_m: roe[2], dey_m: roe[3], dix_m: roe[4], diy_m: roe[5] };
+            RelativeForm::Roe { initial: r, target: Roe { da_m: -roe[0], ..r } }
+        } else {
+            // The deputy: the chief's state moved by up to 1 km and 1 m/s.
+            let d = |k: usize| dx[k];
+            let deputy = state(
+                [pos[0] + d(0), pos[1] + d(1), pos[2] + d(2)],
+                [vel[0] + 1e-3 * d(3), vel[1] + 1e-3 * d(4), vel[2] + 1e-3 * d(5)],
+            );
+            RelativeForm::Deputy { initial: OrbitForm::State(deputy), target: chief }
+        };
+        let plan = ImpulsePlan::Fixed(pts.iter().map(|(u, n)| ImpulsePoint { arg_latitude_rad: *u, revolutions: *n }).collect());
+        check_form(&FormProblem { chief, relative, plan });
     }
 }

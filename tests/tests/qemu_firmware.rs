@@ -586,6 +586,21 @@ fn host_result(planner: Planner, problem: &[u8]) -> Vec<u8> {
                 result.map(|()| &*solution);
             postcard::to_stdvec(&encoded).expect("encode")
         }
+        Planner::ImpulsiveForm | Planner::ImpulsiveFormFixedPoint => {
+            let settings = if planner == Planner::ImpulsiveFormFixedPoint {
+                impulsive::Settings::fixed_point_only()
+            } else {
+                impulsive::Settings::default()
+            };
+            let problem: impulsive::FormProblem =
+                postcard::from_bytes(problem).expect("the baked problem decodes");
+            let mut workspace = Box::new(impulsive::Workspace::new());
+            let mut solution = Box::new(impulsive::Solution::new());
+            let result = impulsive::solve_form(&problem, &settings, &mut workspace, &mut solution);
+            let encoded: Result<(&impulsive::Solution, impulsive::EndState), impulsive::PlanError> =
+                result.map(|end| (&*solution, end));
+            postcard::to_stdvec(&encoded).expect("encode")
+        }
         Planner::GeoTour => geo_host_result(problem),
     }
 }

@@ -143,6 +143,14 @@ pub enum PlanError {
         /// The limit on its magnitude, rad ([`MAX_ANGLE_RAD`]).
         limit_rad: f64,
     } = 12,
+    /// An orbit or relative state given in another form (equinoctial elements, an osculating
+    /// state, ROE) could not be converted to the planner's elements.
+    InputForm {
+        /// Which part of the request.
+        part: super::form_problem::FormPart,
+        /// Why.
+        error: super::forms::FormError,
+    } = 13,
 }
 
 /// A setting out of its documented range.
@@ -232,6 +240,9 @@ impl core::fmt::Display for PlanError {
                 f,
                 "{what:?} angle {index} = {value_rad} rad exceeds {limit_rad} rad in magnitude"
             ),
+            Self::InputForm { part, error } => {
+                write!(f, "{part:?} cannot be converted: {error}")
+            }
         }
     }
 }

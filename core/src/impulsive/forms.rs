@@ -46,7 +46,7 @@ pub struct Roe {
 }
 
 /// Why a form could not be converted.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum FormError {
     /// A number is not finite.
     NotFinite,
@@ -97,6 +97,24 @@ fn classical(el: &Elements) -> MeanElements {
         argp_rad: el[ARGP],
         mean_anomaly_rad: el[MA],
     }
+}
+
+/// Shape of the osculating conic of an ECI state: `(eccentricity, perigee radius km)`, from
+/// the eccentricity vector and `r_p = h^2 / (mu (1 + e))`, valid for every conic (so a
+/// hyperbolic state is named with its eccentricity). NaN for a non-finite state.
+pub fn osculating_shape(s: &CartesianState) -> (f64, f64) {
+    use crate::vec3::{cross, dot, norm, scale, sub};
+    let mu = super::elements::EARTH_MU_KM3_S2;
+    let r = norm(&s.pos_km);
+    let v2 = dot(&s.vel_km_s, &s.vel_km_s);
+    let rv = dot(&s.pos_km, &s.vel_km_s);
+    let e_vec = scale(
+        &sub(&scale(&s.pos_km, v2 - mu / r), &scale(&s.vel_km_s, rv)),
+        1.0 / mu,
+    );
+    let ecc = norm(&e_vec);
+    let h = cross(&s.pos_km, &s.vel_km_s);
+    (ecc, dot(&h, &h) / (mu * (1.0 + ecc)))
 }
 
 /// Equinoctial elements of classical mean elements.

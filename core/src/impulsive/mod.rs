@@ -31,6 +31,7 @@ mod elements;
 mod equinoctial;
 mod equinoctial_drift;
 mod error;
+mod form_problem;
 mod forms;
 mod gve;
 mod kepler;
@@ -58,10 +59,13 @@ pub use elements::{
     wrap_pi, wrap_two_pi, EARTH_J2, EARTH_MU_KM3_S2, EARTH_RADIUS_KM, M_PER_KM, TWO_PI,
 };
 pub use error::{Orbit, PlanError, Quantity, SettingsError, MAX_ANGLE_RAD, MAX_SMA_KM};
+pub use form_problem::{
+    end_state, EndForm, EndState, FormPart, FormProblem, OrbitForm, RelativeForm,
+};
 pub use forms::{
-    classical_of, deputy_of, equinoctial_of, mean_of_osculating_state, osculating_state_of_mean,
-    relative_between, relative_of_roe, roe_of, CartesianState, FormError, Roe, OSCULATING_MAX_ITER,
-    OSCULATING_TOL,
+    classical_of, deputy_of, equinoctial_of, mean_of_osculating_state, osculating_shape,
+    osculating_state_of_mean, relative_between, relative_of_roe, roe_of, CartesianState, FormError,
+    Roe, OSCULATING_MAX_ITER, OSCULATING_TOL,
 };
 pub use model::{point_phase, Phase};
 pub use settings::{ElementSet, Settings, MAX_SEARCH_STARTS};
@@ -156,4 +160,31 @@ pub fn solve(
     }
     out.info.work_units = workspace.seq.work.used();
     Ok(())
+}
+
+/// Plan a request given in the user's forms ([`FormProblem`]): convert it with
+/// [`FormProblem::to_problem`], [`solve`] it, and return the plan's end state in the form the
+/// user gave the target in ([`end_state`]). The conversion adds a bounded number of steps (see
+/// `form_problem`).
+///
+/// # Errors
+/// [`PlanError::InvalidSettings`], [`PlanError::InputForm`] naming the part that cannot be
+/// converted, or any [`PlanError`] of [`solve`]; `out` and `workspace` are then untouched.
+pub fn solve_form(
+    problem: &FormProblem,
+    settings: &Settings,
+    workspace: &mut Workspace,
+    out: &mut Solution,
+) -> Result<EndState, PlanError> {
+    settings.validate().map_err(PlanError::InvalidSettings)?;
+    let converted = problem
+        .to_problem(settings)
+        .map_err(|(part, error)| PlanError::InputForm { part, error })?;
+    solve(&converted, settings, workspace, out)?;
+    Ok(end_state(
+        &converted.chief,
+        &converted.target,
+        out,
+        problem.end_form(),
+    ))
 }

@@ -123,7 +123,15 @@ impl Limits {
     /// # Errors
     /// The first [`LimitViolation`].
     pub fn check_problem(&self, problem: &Problem) -> Result<(), LimitViolation> {
-        let impulses = match &problem.plan {
+        self.check_plan(&problem.plan)
+    }
+
+    /// Check a plan's impulse count and whether a search is allowed.
+    ///
+    /// # Errors
+    /// The first [`LimitViolation`].
+    pub fn check_plan(&self, plan: &ImpulsePlan) -> Result<(), LimitViolation> {
+        let impulses = match plan {
             ImpulsePlan::Fixed(points) => points.len() as f64,
             ImpulsePlan::Search { impulses, .. } => {
                 allowed(Setting::ImpSearch, true, self.search)?;

@@ -17,6 +17,7 @@
 
 pub mod geo_tour;
 pub mod impulsive;
+mod impulsive_forms;
 pub mod pseudospectral;
 
 use crate::wire::Request;
@@ -136,6 +137,21 @@ pub enum Setting {
     GeoExchangeMarginMps = 74,
     /// GEO tour: `min_radius_km`.
     GeoMinRadiusKm = 75,
+    /// Planner B, input forms: eccentricity of the chief as given (the osculating conic of an
+    /// ECI state, or the equinoctial mean elements' `sqrt(ex^2 + ey^2)`).
+    ImpChiefEccentricity = 96,
+    /// Planner B, input forms: perigee altitude of the chief as given, km.
+    ImpChiefPerigeeAltitudeKm = 97,
+    /// Planner B, input forms: eccentricity of the deputy's initial orbit as given.
+    ImpDeputyInitialEccentricity = 98,
+    /// Planner B, input forms: perigee altitude of the deputy's initial orbit as given, km.
+    ImpDeputyInitialPerigeeAltitudeKm = 99,
+    /// Planner B, input forms: eccentricity of the deputy's target orbit as given.
+    ImpDeputyTargetEccentricity = 100,
+    /// Planner B, input forms: perigee altitude of the deputy's target orbit as given, km.
+    ImpDeputyTargetPerigeeAltitudeKm = 101,
+    /// Planner B, input forms: `|sin i|` of the chief a relative state in ROE is given on.
+    ImpRoeChiefSinInclination = 102,
 }
 
 impl Setting {
@@ -198,6 +214,13 @@ impl Setting {
             Self::GeoExchangeRounds => "exchange_rounds",
             Self::GeoExchangeMarginMps => "exchange_margin_mps",
             Self::GeoMinRadiusKm => "min_radius_km",
+            Self::ImpChiefEccentricity => "chief.eccentricity",
+            Self::ImpChiefPerigeeAltitudeKm => "chief.perigee_altitude_km",
+            Self::ImpDeputyInitialEccentricity => "deputy.initial.eccentricity",
+            Self::ImpDeputyInitialPerigeeAltitudeKm => "deputy.initial.perigee_altitude_km",
+            Self::ImpDeputyTargetEccentricity => "deputy.target.eccentricity",
+            Self::ImpDeputyTargetPerigeeAltitudeKm => "deputy.target.perigee_altitude_km",
+            Self::ImpRoeChiefSinInclination => "relative.roe chief |sin i|",
         }
     }
 
@@ -205,7 +228,7 @@ impl Setting {
     pub const fn planner(self) -> crate::wire::Planner {
         match self as u8 {
             0..=31 => crate::wire::Planner::Pseudospectral,
-            32..=63 => crate::wire::Planner::Impulsive,
+            32..=63 | 96..=127 => crate::wire::Planner::Impulsive,
             _ => crate::wire::Planner::GeoTour,
         }
     }
@@ -223,6 +246,8 @@ pub enum Rule {
     MustBeOn = 2,
     /// Must be off (extra work the limits do not allow); value and limit are 0 or 1.
     MustBeOff = 3,
+    /// Strictly below the limit (an eccentricity below 1).
+    Below = 4,
 }
 
 /// A request outside the limits: which setting, the requested value, the limit and the rule.
@@ -252,6 +277,11 @@ impl core::fmt::Display for LimitViolation {
             Rule::AtLeast => write!(
                 f,
                 "{name} = {} is below the limit {}",
+                self.value, self.limit
+            ),
+            Rule::Below => write!(
+                f,
+                "{name} = {} is not below the limit {}",
                 self.value, self.limit
             ),
             Rule::MustBeOn | Rule::MustBeOff => write!(
@@ -290,6 +320,9 @@ impl Limits {
             }
             Request::Impulsive { problem, settings } => self.impulsive.check(problem, settings),
             Request::GeoTour { problem, settings } => self.geo_tour.check(problem, settings),
+            Request::ImpulsiveForm { problem, settings } => {
+                self.impulsive.check_form(problem, settings)
+            }
         }
     }
 }
@@ -316,6 +349,20 @@ fn at_least(setting: Setting, value: f64, limit: f64) -> Result<(), LimitViolati
             value,
             limit,
             rule: Rule::AtLeast,
+        })
+    } else {
+        Ok(())
+    }
+}
+
+/// `value < limit`. A NaN passes here: the planner's own validation names it.
+fn below(setting: Setting, value: f64, limit: f64) -> Result<(), LimitViolation> {
+    if value >= limit {
+        Err(LimitViolation {
+            setting,
+            value,
+            limit,
+            rule: Rule::Below,
         })
     } else {
         Ok(())

@@ -141,10 +141,8 @@ pub fn fixture_items(paths: &[PathBuf]) -> Vec<Item> {
                     label: f.name.clone(),
                     planner: Some(Planner::Impulsive),
                     size,
-                    payload: Payload::Request(Box::new(Request::Impulsive {
-                        problem: f.problem,
-                        settings: f.settings,
-                    })),
+                    // In the fixture's own forms when it uses any (converted in the service).
+                    payload: Payload::Request(Box::new(f.request())),
                 });
             }
             Err(e) => eprintln!("skipped {}: {e:#}", path.display()),

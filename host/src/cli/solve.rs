@@ -68,10 +68,8 @@ pub fn run(args: &Args) -> Result<ExitCode> {
             problem: f.problem.clone(),
             settings: f.settings,
         },
-        Fixture::Impulsive(f) => Request::Impulsive {
-            problem: f.problem.clone(),
-            settings: f.settings,
-        },
+        // In the fixture's own forms when it uses any: the limits check those too.
+        Fixture::Impulsive(f) => f.request(),
     };
     if let Some(code) = refuse_outside(&limits, &request, fixture.name(), args.json) {
         return Ok(code);

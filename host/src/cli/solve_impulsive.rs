@@ -1,7 +1,7 @@
 //! `reconfig solve` for planner-B fixtures: a readable report, or `--json`.
 
 use crate::cli::solve::{report_rejection, EXIT_NOT_USABLE, EXIT_USABLE};
-use crate::fixture::impulsive::forms::end_state;
+use crate::fixture::impulsive::forms::end_state_json;
 use crate::fixture::impulsive::ImpulsiveFixture;
 use anyhow::Result;
 use reconfig_core::impulsive::{point_phase, solve, ImpulsePlan, Phase, Solution, Workspace};
@@ -40,7 +40,7 @@ pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
         )
     };
     // The end state in the form the fixture gave the relative state (or the deputy) in.
-    let end = end_state(
+    let end = end_state_json(
         &fixture.problem.chief,
         &fixture.problem.target,
         s,

@@ -104,6 +104,29 @@ impl Worker {
                     Err(e) => encode(frame.seq, ns, &OutcomeRef::ImpulsiveRejected(e), out),
                 }
             }
+            Request::ImpulsiveForm { problem, settings } => {
+                // Converted here by the core's `impulsive::forms`, the one implementation.
+                *self.imp_solution = impulsive::Solution::new();
+                let result = impulsive::solve_form(
+                    problem,
+                    settings,
+                    &mut self.imp_workspace,
+                    &mut self.imp_solution,
+                );
+                let ns = elapsed_ns(start);
+                match result {
+                    Ok(end_state) => encode(
+                        frame.seq,
+                        ns,
+                        &OutcomeRef::ImpulsiveForm {
+                            solution: &self.imp_solution,
+                            end_state,
+                        },
+                        out,
+                    ),
+                    Err(e) => encode(frame.seq, ns, &OutcomeRef::ImpulsiveRejected(e), out),
+                }
+            }
             Request::GeoTour { problem, settings } => {
                 *self.geo_solution = geo_tour::Solution::new();
                 let result = geo_tour::solve(
@@ -157,6 +180,12 @@ pub fn summarize(outcome: &Outcome) -> (String, String, String, String) {
             format!("{}", s.info.sqp_iterations),
         ),
         Outcome::Impulsive(s) => (
+            format!("{:?}", s.info.status),
+            format!("dv={:.4} m/s", s.total_dv_mps),
+            "-".into(),
+            format!("{}", s.info.iterations),
+        ),
+        Outcome::ImpulsiveForm { solution: s, .. } => (
             format!("{:?}", s.info.status),
             format!("dv={:.4} m/s", s.total_dv_mps),
             "-".into(),

@@ -57,10 +57,13 @@ pub(super) fn compress(f: &FMatrix, columns: usize, y: &[f64; ROWS], rcond: f64)
     let mut wc = [[0.0; ROWS]; ROWS];
     let mut fe = [[0.0; MAX_UNKNOWNS]; ROWS];
     let mut ye = [0.0; ROWS];
-    for (i, ((wi, wci), (fei, (di, yei)))) in w
+    for (i, ((wi, wci), (fei, (di, (yei, yi))))) in w
         .iter_mut()
         .zip(wc.iter_mut())
-        .zip(fe.iter_mut().zip(out.d.iter_mut().zip(ye.iter_mut())))
+        .zip(
+            fe.iter_mut()
+                .zip(out.d.iter_mut().zip(ye.iter_mut().zip(y.iter()))),
+        )
         .enumerate()
     {
         for (j, x) in wi.iter_mut().enumerate().take(columns) {
@@ -73,7 +76,7 @@ pub(super) fn compress(f: &FMatrix, columns: usize, y: &[f64; ROWS], rcond: f64)
             *x *= *di;
         }
         *fei = *wi;
-        *yei = y.get(i).copied().unwrap_or(0.0) * *di;
+        *yei = *yi * *di;
         if let Some(ci) = wci.get_mut(i) {
             *ci = 1.0;
         }
@@ -173,72 +176,103 @@ pub(super) fn compress(f: &FMatrix, columns: usize, y: &[f64; ROWS], rcond: f64)
         axpy_neg(&mut proj, *v, qj);
     }
     out.residual = norm(&proj);
-    for j in (0..r).rev() {
-        let mut s = qty.get(j).copied().unwrap_or(0.0);
-        for l in j.saturating_add(1)..r {
-            let rjl = rr.get(j).and_then(|row| row.get(l)).copied().unwrap_or(0.0);
-            s -= rjl * out.h.get(l).copied().unwrap_or(0.0);
+    // Back substitution R h = Q^T D y, row j of R against the entries of h after j.
+    for (j, (rj, qj)) in rr.iter().zip(qty.iter()).enumerate().take(r).rev() {
+        let Some((hj, h_after)) = out.h.get_mut(j..).and_then(<[_]>::split_first_mut) else {
+            break;
+        };
+        let Some((rjj, r_after)) = rj.get(j..).and_then(<[_]>::split_first) else {
+            break;
+        };
+        let mut s = *qj;
+        let later = r.saturating_sub(j.saturating_add(1));
+        for (rjl, hl) in r_after.iter().zip(h_after.iter()).take(later) {
+            s -= *rjl * *hl;
         }
-        let rjj = rr.get(j).and_then(|row| row.get(j)).copied().unwrap_or(0.0);
-        if let Some(hj) = out.h.get_mut(j) {
-            // rjj >= singular value of L restricted, bounded below by the rank threshold.
-            *hj = if rjj > 0.0 { s / rjj } else { 0.0 };
-        }
+        // rjj >= singular value of L restricted, bounded below by the rank threshold; a zero
+        // column (rjj = 0) has no coordinate.
+        *hj = if *rjj > 0.0 { s / *rjj } else { 0.0 };
     }
     out
 }
 
-/// Symmetric positive definite `m` (first `r` rows/columns): Cholesky in place, lower triangle.
+/// Symmetric positive definite `m` (first `r` rows/columns): Cholesky in place. The factor `L`
+/// is written to the lower triangle and, transposed, to the upper one, so that both triangular
+/// solves of [`cholesky_solve`] read it by rows (the upper triangle of `m` is not read here:
+/// every entry it holds is written before [`cholesky_solve`] reads it).
 pub(super) fn cholesky(m: &mut [[f64; ROWS]; ROWS], r: usize) -> bool {
     for j in 0..r {
-        let mut djj = m.get(j).and_then(|row| row.get(j)).copied().unwrap_or(0.0);
-        for l in 0..j {
-            let v = m.get(j).and_then(|row| row.get(l)).copied().unwrap_or(0.0);
-            djj -= v * v;
+        // Row j (its left part is L's row j so far), and the rows below it.
+        let Some((row_j, below)) = m.get_mut(j..).and_then(<[_]>::split_first_mut) else {
+            return false;
+        };
+        let Some((left_j, diag_right)) = row_j.split_at_mut_checked(j) else {
+            return false;
+        };
+        let Some((djj_slot, right_j)) = diag_right.split_first_mut() else {
+            return false;
+        };
+        let mut djj = *djj_slot;
+        for v in left_j.iter() {
+            djj -= *v * *v;
         }
         if !(djj.is_finite() && djj > 0.0) {
             return false;
         }
         let ljj = libm::sqrt(djj);
-        if let Some(x) = m.get_mut(j).and_then(|row| row.get_mut(j)) {
-            *x = ljj;
-        }
-        for i in j.saturating_add(1)..r {
-            let mut v = m.get(i).and_then(|row| row.get(j)).copied().unwrap_or(0.0);
-            for l in 0..j {
-                let a = m.get(i).and_then(|row| row.get(l)).copied().unwrap_or(0.0);
-                let b = m.get(j).and_then(|row| row.get(l)).copied().unwrap_or(0.0);
-                v -= a * b;
+        *djj_slot = ljj;
+        let below_rows = r.saturating_sub(j.saturating_add(1));
+        for (row_i, upper) in below.iter_mut().zip(right_j.iter_mut()).take(below_rows) {
+            let Some((left_i, rest_i)) = row_i.split_at_mut_checked(j) else {
+                return false;
+            };
+            let Some(x) = rest_i.first_mut() else {
+                return false;
+            };
+            let mut v = *x;
+            for (a, b) in left_i.iter().zip(left_j.iter()) {
+                v -= *a * *b;
             }
-            if let Some(x) = m.get_mut(i).and_then(|row| row.get_mut(j)) {
-                *x = v / ljj;
-            }
+            *x = v / ljj;
+            *upper = *x;
         }
     }
     true
 }
 
-/// Solve `L L^T x = b` in place (first `r` entries).
+/// Solve `L L^T x = b` in place (first `r` entries), `l` as [`cholesky`] leaves it.
 pub(super) fn cholesky_solve(l: &[[f64; ROWS]; ROWS], r: usize, b: &mut [f64; ROWS]) {
-    for i in 0..r {
-        let mut v = b.get(i).copied().unwrap_or(0.0);
-        for j in 0..i {
-            v -= l.get(i).and_then(|row| row.get(j)).copied().unwrap_or(0.0)
-                * b.get(j).copied().unwrap_or(0.0);
+    // L y = b: row i of the lower triangle against the entries already solved.
+    for (i, row) in l.iter().enumerate().take(r) {
+        let Some((done, rest)) = b.split_at_mut_checked(i) else {
+            return;
+        };
+        let (Some((left, diag)), Some(bi)) = (row.split_at_checked(i), rest.first_mut()) else {
+            return;
+        };
+        let Some(lii) = diag.first() else {
+            return;
+        };
+        let mut v = *bi;
+        for (lij, bj) in left.iter().zip(done.iter()) {
+            v -= *lij * *bj;
         }
-        if let Some(x) = b.get_mut(i) {
-            *x = v / l.get(i).and_then(|row| row.get(i)).copied().unwrap_or(1.0);
-        }
+        *bi = v / *lii;
     }
-    for i in (0..r).rev() {
-        let mut v = b.get(i).copied().unwrap_or(0.0);
-        for j in i.saturating_add(1)..r {
-            v -= l.get(j).and_then(|row| row.get(i)).copied().unwrap_or(0.0)
-                * b.get(j).copied().unwrap_or(0.0);
+    // L^T x = y: row i of the upper triangle (L's column i) against the entries after i.
+    for (i, row) in l.iter().enumerate().take(r).rev() {
+        let Some((bi, after)) = b.get_mut(i..).and_then(<[_]>::split_first_mut) else {
+            return;
+        };
+        let Some((lii, right)) = row.get(i..).and_then(<[_]>::split_first) else {
+            return;
+        };
+        let mut v = *bi;
+        let later = r.saturating_sub(i.saturating_add(1));
+        for (lji, bj) in right.iter().zip(after.iter()).take(later) {
+            v -= *lji * *bj;
         }
-        if let Some(x) = b.get_mut(i) {
-            *x = v / l.get(i).and_then(|row| row.get(i)).copied().unwrap_or(1.0);
-        }
+        *bi = v / *lii;
     }
 }
 
@@ -248,13 +282,16 @@ pub(super) fn factor_regularised(m: &mut [[f64; ROWS]; ROWS], r: usize) -> Optio
     let m0 = *m;
     let mut trace = 0.0;
     for (j, row) in m0.iter().enumerate().take(r) {
-        trace += row.get(j).copied().unwrap_or(0.0);
+        // The diagonal entry of row j (j < ROWS: one entry).
+        for x in row.iter().skip(j).take(1) {
+            trace += *x;
+        }
     }
     for rel in [0.0, 1e-14, 1e-12, 1e-10] {
         *m = m0;
         let delta = rel * trace;
         for (j, row) in m.iter_mut().enumerate().take(r) {
-            if let Some(x) = row.get_mut(j) {
+            for x in row.iter_mut().skip(j).take(1) {
                 *x += delta;
             }
         }
@@ -280,9 +317,9 @@ pub(super) fn refined_solve(
         for _ in 0..3 {
             // Residual b - m0 x (m0 is stored in full).
             let mut res = *b;
-            for (i, ri) in res.iter_mut().enumerate().take(r) {
-                for (j, xj) in x.iter().enumerate().take(r) {
-                    *ri -= m0.get(i).and_then(|row| row.get(j)).copied().unwrap_or(0.0) * *xj;
+            for (ri, m0i) in res.iter_mut().zip(m0.iter()).take(r) {
+                for (m0ij, xj) in m0i.iter().zip(x.iter()).take(r) {
+                    *ri -= *m0ij * *xj;
                 }
             }
             cholesky_solve(l, r, &mut res);
