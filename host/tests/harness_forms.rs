@@ -48,11 +48,25 @@ fn the_worker_converts_in_the_core_and_answers_in_the_users_form() {
             matches!(request, Request::ImpulsiveForm { .. }),
             "{name} goes on the wire in its own forms"
         );
-        // The in-process solve of the problem the CLI converted.
+        // The in-process solve of the same forms (the CLI's path), and the end state of the
+        // problem the CLI converted.
+        let Some(form_problem) = &f.form else {
+            panic!("{name} has no form")
+        };
         let mut ws = Box::new(impulsive::Workspace::new());
         let mut local = Box::new(impulsive::Solution::new());
-        impulsive::solve(&f.problem, &f.settings, &mut ws, &mut local).expect("solves");
+        impulsive::solve_form(form_problem, &f.settings, &mut ws, &mut local).expect("solves");
         let local_end = end_state(&f.problem.chief, &f.problem.target, &local, f.end_form);
+        // The conversion is charged to the work meter on top of the plan's own units.
+        let mut plain = Box::new(impulsive::Solution::new());
+        impulsive::solve(&f.problem, &f.settings, &mut ws, &mut plain).expect("solves");
+        assert_eq!(plain.impulses, local.impulses, "{name}: same plan");
+        assert!(
+            local.info.work_units >= plain.info.work_units,
+            "{name}: conversion charged ({} < {})",
+            local.info.work_units,
+            plain.info.work_units
+        );
         match answer(&mut worker, &request) {
             Outcome::ImpulsiveForm {
                 solution,

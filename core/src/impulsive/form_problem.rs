@@ -10,8 +10,9 @@
 //! osculating-to-mean inverse, each with at most 30 Kepler steps, per state given).
 
 use super::forms::{
-    classical_of, deputy_of, equinoctial_of, mean_of_osculating_state, osculating_state_of_mean,
-    relative_between, relative_of_roe, roe_of, CartesianState, FormError, Roe,
+    classical_of, deputy_of, equinoctial_of, mean_and_evaluations_of_osculating_state,
+    osculating_state_of_mean, relative_between, relative_of_roe, roe_of, CartesianState, FormError,
+    Roe,
 };
 use super::settings::Settings;
 use super::solution::Solution;
@@ -121,10 +122,19 @@ impl OrbitForm {
     /// # Errors
     /// [`FormError`] from the osculating-to-mean conversion of a state.
     pub fn mean(&self) -> Result<MeanElements, FormError> {
+        self.mean_and_evaluations().map(|(mean, _)| mean)
+    }
+
+    /// [`Self::mean`] with the number of short-period evaluations the conversion made (0 for
+    /// element forms), which the planner charges to its work meter.
+    ///
+    /// # Errors
+    /// As [`Self::mean`].
+    pub fn mean_and_evaluations(&self) -> Result<(MeanElements, u16), FormError> {
         match self {
-            Self::Classical(el) => Ok(*el),
-            Self::Equinoctial(q) => Ok(classical_of(q)),
-            Self::State(s) => mean_of_osculating_state(s),
+            Self::Classical(el) => Ok((*el, 0)),
+            Self::Equinoctial(q) => Ok((classical_of(q), 0)),
+            Self::State(s) => mean_and_evaluations_of_osculating_state(s),
         }
     }
 
@@ -155,7 +165,25 @@ impl FormProblem {
     /// # Errors
     /// The part and the [`FormError`] of the first conversion that fails.
     pub fn to_problem(&self, settings: &Settings) -> Result<Problem, (FormPart, FormError)> {
-        let chief = self.chief.mean().map_err(|e| (FormPart::Chief, e))?;
+        self.to_problem_and_evaluations(settings)
+            .map(|(problem, _)| problem)
+    }
+
+    /// [`Self::to_problem`] with the number of osculating-to-mean short-period evaluations the
+    /// conversion made (at most 3 [`super::forms::OSCULATING_MAX_ITER`]), which
+    /// [`super::solve_form`] charges to the work meter.
+    ///
+    /// # Errors
+    /// As [`Self::to_problem`].
+    pub fn to_problem_and_evaluations(
+        &self,
+        settings: &Settings,
+    ) -> Result<(Problem, u32), (FormPart, FormError)> {
+        let (chief, chief_evaluations) = self
+            .chief
+            .mean_and_evaluations()
+            .map_err(|e| (FormPart::Chief, e))?;
+        let mut evaluations = u32::from(chief_evaluations);
         let (initial, target) = match &self.relative {
             RelativeForm::Elements { initial, target } => (*initial, *target),
             RelativeForm::Roe { initial, target } => {
@@ -165,17 +193,31 @@ impl FormProblem {
                     relative_of_roe(&chief, target, min).map_err(|e| (FormPart::Target, e))?,
                 )
             }
-            RelativeForm::Deputy { initial, target } => (
-                relative_between(&chief, &initial.mean().map_err(|e| (FormPart::Initial, e))?),
-                relative_between(&chief, &target.mean().map_err(|e| (FormPart::Target, e))?),
-            ),
+            RelativeForm::Deputy { initial, target } => {
+                let (initial_mean, initial_evaluations) = initial
+                    .mean_and_evaluations()
+                    .map_err(|e| (FormPart::Initial, e))?;
+                let (target_mean, target_evaluations) = target
+                    .mean_and_evaluations()
+                    .map_err(|e| (FormPart::Target, e))?;
+                evaluations = evaluations
+                    .saturating_add(u32::from(initial_evaluations))
+                    .saturating_add(u32::from(target_evaluations));
+                (
+                    relative_between(&chief, &initial_mean),
+                    relative_between(&chief, &target_mean),
+                )
+            }
         };
-        Ok(Problem {
-            chief,
-            initial,
-            target,
-            plan: self.plan.clone(),
-        })
+        Ok((
+            Problem {
+                chief,
+                initial,
+                target,
+                plan: self.plan.clone(),
+            },
+            evaluations,
+        ))
     }
 }
 

@@ -149,6 +149,17 @@ pub fn classical_of(q: &EquinoctialElements) -> MeanElements {
 /// # Errors
 /// [`FormError`] when the state is not finite or not an ellipse, or a step does not converge.
 pub fn mean_of_osculating_state(s: &CartesianState) -> Result<MeanElements, FormError> {
+    mean_and_evaluations_of_osculating_state(s).map(|(mean, _)| mean)
+}
+
+/// [`mean_of_osculating_state`] with the number of short-period evaluations it made (at most
+/// [`OSCULATING_MAX_ITER`]), which the planner charges to its work meter.
+///
+/// # Errors
+/// As [`mean_of_osculating_state`].
+pub fn mean_and_evaluations_of_osculating_state(
+    s: &CartesianState,
+) -> Result<(MeanElements, u16), FormError> {
     if !s
         .pos_km
         .iter()
@@ -158,15 +169,16 @@ pub fn mean_of_osculating_state(s: &CartesianState) -> Result<MeanElements, Form
         return Err(FormError::NotFinite);
     }
     let osc = eq::from_state(&s.pos_km, &s.vel_km_s, &[0.0; 6]).ok_or(FormError::NotAnEllipse)?;
-    let (mean, ok) = osculating_to_mean(&osc, KEPLER_MAX_ITER, OSCULATING_MAX_ITER, OSCULATING_TOL)
-        .ok_or(FormError::Kepler)?;
+    let (mean, ok, evaluations) =
+        osculating_to_mean(&osc, KEPLER_MAX_ITER, OSCULATING_MAX_ITER, OSCULATING_TOL)
+            .ok_or(FormError::Kepler)?;
     if !ok {
         return Err(FormError::MeanNotConverged);
     }
     if eq::ecc_squared(&mean).partial_cmp(&1.0) != Some(core::cmp::Ordering::Less) {
         return Err(FormError::NotAnEllipse);
     }
-    Ok(classical(&to_classical(&mean)))
+    Ok((classical(&to_classical(&mean)), evaluations))
 }
 
 /// The osculating ECI state of mean classical elements (the inverse of

@@ -63,9 +63,9 @@ pub use form_problem::{
     end_state, EndForm, EndState, FormPart, FormProblem, OrbitForm, RelativeForm,
 };
 pub use forms::{
-    classical_of, deputy_of, equinoctial_of, mean_of_osculating_state, osculating_shape,
-    osculating_state_of_mean, relative_between, relative_of_roe, roe_of, CartesianState, FormError,
-    Roe, OSCULATING_MAX_ITER, OSCULATING_TOL,
+    classical_of, deputy_of, equinoctial_of, mean_and_evaluations_of_osculating_state,
+    mean_of_osculating_state, osculating_shape, osculating_state_of_mean, relative_between,
+    relative_of_roe, roe_of, CartesianState, FormError, Roe, OSCULATING_MAX_ITER, OSCULATING_TOL,
 };
 pub use model::{point_phase, Phase};
 pub use settings::{ElementSet, Settings, MAX_SEARCH_STARTS};
@@ -177,10 +177,22 @@ pub fn solve_form(
     out: &mut Solution,
 ) -> Result<EndState, PlanError> {
     settings.validate().map_err(PlanError::InvalidSettings)?;
-    let converted = problem
-        .to_problem(settings)
+    let (converted, evaluations) = problem
+        .to_problem_and_evaluations(settings)
         .map_err(|(part, error)| PlanError::InputForm { part, error })?;
-    solve(&converted, settings, workspace, out)?;
+    // The conversions are charged to the same work budget as the plan (the request's time
+    // bound covers them): the osculating-to-mean steps made, and the one mean-to-osculating
+    // evaluation an end state in state form needs. The plan gets what is left.
+    let end_evaluations = u32::from(problem.end_form() == EndForm::DeputyState);
+    let conversion_units = work_units::osculating_evaluation()
+        .saturating_mul(u64::from(evaluations.saturating_add(end_evaluations)));
+    let plan_settings = Settings {
+        work_budget: settings.work_budget.saturating_sub(conversion_units),
+        ..*settings
+    };
+    let planned = solve(&converted, &plan_settings, workspace, out);
+    out.info.work_units = out.info.work_units.saturating_add(conversion_units);
+    planned?;
     Ok(end_state(
         &converted.chief,
         &converted.target,

@@ -134,15 +134,16 @@ pub(crate) fn mean_to_osculating(q: &Elements, kepler_max_iter: u16) -> Option<E
 
 /// Mean equinoctial elements of osculating ones: `q_mean = q_osc - sp(q_mean)` by fixed-point
 /// iteration from `q_osc` (a contraction of ratio O(J2)), at most `max_iter` steps, until the
-/// largest change (a scaled by itself) is below `tol`. `(q_mean, converged)`.
+/// largest change (a scaled by itself) is below `tol`. `(q_mean, converged, steps)`: `steps`
+/// short-period evaluations were made (the work meter charges them).
 pub(crate) fn osculating_to_mean(
     osc: &Elements,
     kepler_max_iter: u16,
     max_iter: u16,
     tol: f64,
-) -> Option<(Elements, bool)> {
+) -> Option<(Elements, bool, u16)> {
     let mut mean = *osc;
-    for _ in 0..max_iter {
+    for step in 1..=max_iter {
         let d = short_period(&mean, kepler_max_iter)?;
         let next = super::elements::sub(osc, &d);
         let mut change = libm::fabs(next[A] - mean[A]) / osc[A];
@@ -151,10 +152,10 @@ pub(crate) fn osculating_to_mean(
         }
         mean = next;
         if change <= tol {
-            return Some((mean, true));
+            return Some((mean, true, step));
         }
     }
-    Some((mean, false))
+    Some((mean, false, max_iter))
 }
 
 #[cfg(test)]
@@ -189,7 +190,7 @@ mod tests {
         ] {
             let q = from_classical(&cl);
             let osc = mean_to_osculating(&q, 30).unwrap();
-            let (back, ok) = osculating_to_mean(&osc, 30, 30, 1e-14).unwrap();
+            let (back, ok, _) = osculating_to_mean(&osc, 30, 30, 1e-14).unwrap();
             assert!(ok);
             for k in 0..6 {
                 assert!(

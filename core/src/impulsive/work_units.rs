@@ -54,6 +54,13 @@ pub(super) fn cone_program(n: usize, iterations: u16) -> u64 {
 /// intercept of instructions against units over the 2- to 6-impulse searches).
 const EVALUATION_OVERHEAD: u64 = 1_100;
 
+/// One short-period evaluation of the osculating <-> mean conversion (`osculating.rs`):
+/// `SAMPLES` Kepler solves and J2 rates, two Fourier analyses of `SAMPLES^2 / 2` terms with a
+/// sine and cosine each (calibrated: about 0.9 M M7 instructions per evaluation).
+pub(super) fn osculating_evaluation() -> u64 {
+    units(&[super::osculating::SAMPLES, 1_200])
+}
+
 /// One search evaluation's linearisations (a linear propagation and F each, a minimum-norm
 /// solve between them) and its dual bound; its cone program is charged as it is done.
 pub(super) fn evaluation(n: usize, linearisations: u16) -> u64 {
