@@ -11,7 +11,8 @@
 
 use super::packed::{self, cholesky, set, solve_lower, solve_lower_transposed};
 use super::transcription::{
-    block_dot, row_axpy, row_dot, rows_dot, Coefficients, RowId, Transcription, MAX_BLOCKS,
+    block_dot, row_axpy, row_dot, rows_dot, Coefficients, NodeDots, RowId, Transcription,
+    MAX_BLOCKS,
 };
 use super::work_units;
 use crate::capacity::{MAX_ACTIVE, MAX_CHECKS_PER_PAIR, MAX_FREE_PER_AXIS, MAX_NODES, MAX_PAIRS};
@@ -302,6 +303,8 @@ fn most_violated(tr: &Transcription, state: &QpState, y: &Coefficients) -> Optio
             }
         }
     }
+    let mut dots: NodeDots = [[0.0; MAX_NODES]; MAX_BLOCKS];
+    tr.node_dots(y, &mut dots);
     for pair in 0..tr.pair_count {
         let count = tr.check_count.get(pair).copied().unwrap_or(0);
         let (i, j) = tr.pairs.get(pair).copied().unwrap_or((0, 0));
@@ -325,7 +328,7 @@ fn most_violated(tr: &Transcription, state: &QpState, y: &Coefficients) -> Optio
             if norm <= 0.0 {
                 continue;
             }
-            let relative = tr.relative(pair, check.source, y);
+            let relative = tr.relative_with(pair, check.source, y, &dots);
             let mut along = 0.0;
             for (n, r) in check.normal.iter().zip(relative.iter()) {
                 along += n * r;
