@@ -430,11 +430,22 @@ pub(crate) fn solve(
     let mut g = [0.0; MAX_ACTIVE];
     let mut r = [0.0; MAX_ACTIVE];
     loop {
-        if !work.spend(work_units::qp_scan(tr)) {
+        // The hint rows first (each a keep-out row's six blocks at most); the scan of every
+        // candidate row only when none of them is violated, and charged only then.
+        if !work.spend(work_units::qp_hint(tr, hint_count)) {
             return QpOutcome::IterationLimit;
         }
         let hinted = most_violated_hint(tr, state, y, hint.get(..hint_count).unwrap_or(&[]), tol);
-        let Some((p, violation)) = hinted.or_else(|| most_violated(tr, state, y)) else {
+        let picked = match hinted {
+            Some(row) => Some(row),
+            None => {
+                if !work.spend(work_units::qp_scan(tr)) {
+                    return QpOutcome::IterationLimit;
+                }
+                most_violated(tr, state, y)
+            }
+        };
+        let Some((p, violation)) = picked else {
             return QpOutcome::Optimal;
         };
         if violation >= -tol {
@@ -444,6 +455,8 @@ pub(crate) fn solve(
         let norm2_p = vp.norm * vp.norm;
         let mut multiplier_p = 0.0;
         loop {
+            // The step may add a row: keep the final checks of the larger working set.
+            work.raise_reserve(work_units::reserve(tr, state.count.saturating_add(1)));
             if steps >= max_iter || !work.spend(work_units::qp_step(tr, state.count)) {
                 return QpOutcome::IterationLimit;
             }
