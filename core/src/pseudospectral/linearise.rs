@@ -368,14 +368,6 @@ pub(super) fn pair_minimum(ws: &mut Workspace, pair: usize, settings: &Settings)
         let relative = relative_nodes(tr, &ws.iterate, (i, j), axis);
         ws.bernstein.coefficients(&relative, coeffs);
     }
-    // The pair's moving check sits at the last iterate's minimum: a seed for the search.
-    let seed = tr
-        .moving_check
-        .get(pair)
-        .copied()
-        .flatten()
-        .and_then(|index| tr.checks.get(pair)?.get(usize::from(index)))
-        .map(|check| 0.5 * (check.tau + 1.0));
     let mut product = [0.0; MAX_PRODUCT];
     ws.bernstein.squared_norm(&axes, &mut product);
     // Tolerance on the squared separation equivalent to verify_tol / 100 on the separation.
@@ -384,6 +376,5 @@ pub(super) fn pair_minimum(ws: &mut Workspace, pair: usize, settings: &Settings)
         &product,
         tol,
         u32::from(settings.refine_max_iter).saturating_mul(50),
-        seed,
     )
 }

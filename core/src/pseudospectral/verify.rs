@@ -42,22 +42,6 @@ fn binomials<const C: usize>(n: usize, out: &mut [f64; C]) {
     }
 }
 
-/// Value at `s` of the polynomial with Bernstein coefficients `coeffs` of `degree` (de
-/// Casteljau: convex combinations only, stable).
-fn evaluate(coeffs: &[f64; MAX_PRODUCT], degree: usize, s: f64) -> f64 {
-    let mut work = *coeffs;
-    for r in 0..degree {
-        for k in 0..degree.saturating_sub(r) {
-            let a = work.get(k).copied().unwrap_or(0.0);
-            let b = work.get(k.saturating_add(1)).copied().unwrap_or(0.0);
-            if let Some(slot) = work.get_mut(k) {
-                *slot = (1.0 - s) * a + s * b;
-            }
-        }
-    }
-    work.first().copied().unwrap_or(f64::INFINITY)
-}
-
 /// The global minimum of a separation polynomial.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct Minimum {
@@ -178,18 +162,7 @@ impl Bernstein {
 
     /// Global minimum over s in [0, 1] of the degree-2N polynomial with Bernstein coefficients
     /// `coeffs`, to absolute tolerance `tol`, with at most `budget` subdivisions.
-    ///
-    /// `seed`, where given, is a point in [0, 1] near the expected minimum (the pair's moving
-    /// check, placed at the last iterate's minimum): its value starts the search as the best
-    /// known, so intervals far from it are pruned at once instead of after the search has found
-    /// a value as low (the search stays global: every interval is still bounded).
-    pub fn minimum(
-        &mut self,
-        coeffs: &[f64; MAX_PRODUCT],
-        tol: f64,
-        budget: u32,
-        seed: Option<f64>,
-    ) -> Minimum {
+    pub fn minimum(&mut self, coeffs: &[f64; MAX_PRODUCT], tol: f64, budget: u32) -> Minimum {
         let degree = self.degree.saturating_mul(2);
         let first = coeffs.first().copied().unwrap_or(0.0);
         let last = coeffs.get(degree).copied().unwrap_or(0.0);
@@ -206,13 +179,6 @@ impl Bernstein {
                 certified: true,
             }
         };
-        if let Some(at_s) = seed.filter(|s| *s > 0.0 && *s < 1.0) {
-            let value = evaluate(coeffs, degree, at_s);
-            if value < best.value_squared {
-                best.value_squared = value;
-                best.at_s = at_s;
-            }
-        }
         let mut top = 0usize;
         if let Some(slot) = self.stack.get_mut(0) {
             *slot = (0.0, 1.0, *coeffs);
@@ -304,7 +270,7 @@ mod tests {
         }
         let mut f = [0.0; MAX_PRODUCT];
         b.squared_norm(&axes, &mut f);
-        let m = b.minimum(&f, 1e-16, 10_000, None);
+        let m = b.minimum(&f, 1e-16, 10_000);
         assert!(m.certified);
         assert!(
             (m.value_squared.sqrt() - 0.001).abs() < 1e-7,
