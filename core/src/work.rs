@@ -58,6 +58,13 @@ impl Meter {
         self.limit = self.budget.saturating_sub(units);
     }
 
+    /// Keep at least `units` for the final checks: the loops' share only shrinks (for a reserve
+    /// that grows with what the loops have built, such as planner A's working set, whose final
+    /// checks cost more the more rows it holds).
+    pub fn raise_reserve(&mut self, units: u64) {
+        self.limit = self.limit.min(self.budget.saturating_sub(units));
+    }
+
     /// Charge `units` for a step about to run, if it fits in the loops' share. `false` (nothing
     /// charged) when it does not, or when an earlier step was refused: the caller stops.
     pub fn spend(&mut self, units: u64) -> bool {

@@ -211,6 +211,7 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
                 &ws.accepted,
                 &mut ws.iterate,
                 ws.anderson.scratch(),
+                &mut ws.work,
             ) {
                 ws.iterate = ws.accepted;
             }

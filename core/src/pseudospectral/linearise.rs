@@ -5,7 +5,9 @@
 
 use super::settings::Settings;
 use super::solver::norm3;
-use super::transcription::{block_dot, node_value, Coefficients, Transcription};
+use super::transcription::{
+    block_dot, node_value, Coefficients, NodeDots, Transcription, MAX_BLOCKS,
+};
 use super::verify::{Minimum, MAX_PRODUCT};
 use super::workspace::Workspace;
 use crate::capacity::MAX_NODES;
@@ -149,6 +151,8 @@ pub(super) const LINEARISE_TOL_REL: f64 = 1e-9;
 /// the width the pair needs to cover d at its relative speed. Any unit normal gives a valid
 /// inner approximation, so this only chooses which side the pair passes on.
 pub(super) fn linearise(ws: &mut Workspace) {
+    let mut dots: NodeDots = [[0.0; MAX_NODES]; MAX_BLOCKS];
+    ws.transcription.node_dots(&ws.iterate, &mut dots);
     for pair in 0..ws.transcription.pair_count {
         let tr = &ws.transcription;
         let keep_out = tr.keep_out_for(pair);
@@ -162,7 +166,7 @@ pub(super) fn linearise(ws: &mut Workspace) {
             let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)).copied() else {
                 continue;
             };
-            let length = norm3(&tr.relative(pair, check.source, &ws.iterate));
+            let length = norm3(&tr.relative_with(pair, check.source, &ws.iterate, &dots));
             if length < violated_below && closest.is_none_or(|(_, best)| length < best) {
                 closest = Some((check.tau, length));
             }
@@ -188,7 +192,7 @@ pub(super) fn linearise(ws: &mut Workspace) {
             let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)).copied() else {
                 continue;
             };
-            let mut relative = tr.relative(pair, check.source, &ws.iterate);
+            let mut relative = tr.relative_with(pair, check.source, &ws.iterate, &dots);
             let length = norm3(&relative);
             if length < violated_below {
                 if let Some((t_star, direction, width)) = swerve {
@@ -274,6 +278,8 @@ pub(super) fn block_positions(
 /// minimum (a local-reduction step for the semi-infinite keep-out constraint): the convex
 /// subproblems then converge to the continuous optimum, not only to the checked points'.
 pub(super) fn follow_minima(ws: &mut Workspace, settings: &Settings) {
+    let mut dots: NodeDots = [[0.0; MAX_NODES]; MAX_BLOCKS];
+    ws.transcription.node_dots(&ws.iterate, &mut dots);
     for pair in 0..ws.transcription.pair_count {
         let keep_out = ws.transcription.keep_out_for(pair);
         // Only pairs near contact: the least separation over the fixed checks within 10 % of d.
@@ -281,7 +287,12 @@ pub(super) fn follow_minima(ws: &mut Workspace, settings: &Settings) {
         let mut least = f64::INFINITY;
         for c in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
             if let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)) {
-                least = least.min(norm3(&tr.relative(pair, check.source, &ws.iterate)));
+                least = least.min(norm3(&tr.relative_with(
+                    pair,
+                    check.source,
+                    &ws.iterate,
+                    &dots,
+                )));
             }
         }
         if least > 1.1 * keep_out && tr.moving_check.get(pair).copied().flatten().is_none() {

@@ -36,7 +36,9 @@ use super::certificate::{add_curvature, project, Envelope, MAX_ENVELOPES};
 use super::linearise::unit_normals_at;
 use super::qp::{Mode, QpState};
 use super::transcription::{row_axpy, row_dot, Coefficients, RowId, Transcription, MAX_BLOCKS};
+use super::work_units;
 use crate::capacity::{MAX_ACTIVE, MAX_FREE_PER_AXIS};
+use crate::work::Meter;
 
 /// Smallest reduced curvature (relative to the identity part, 1) a CG direction may have.
 pub(crate) const NEWTON_CURVATURE_FLOOR: f64 = 1e-2;
@@ -123,6 +125,7 @@ pub(super) fn step(
     y: &Coefficients,
     next: &mut Coefficients,
     scratch: Scratch<'_>,
+    work: &mut Meter,
 ) -> bool {
     if qp.mode != Mode::Factor {
         return false;
@@ -188,7 +191,9 @@ pub(super) fn step(
         if rho <= tolerance {
             break;
         }
-        // product = (I - P S P) d, d in the null space.
+        // product = (I - P S P) d, d in the null space. Charged as it runs (the set-up was
+        // charged by the caller); the iteration count is bounded above.
+        work.charge(work_units::newton_iteration(tr, qp.count));
         curvature(tr, qp, y, &envelopes, direction, product);
         project(tr, qp, product);
         for (x, v) in product.iter_mut().zip(direction.iter()).take(size.0) {

@@ -11,7 +11,8 @@
 
 use super::packed::{self, cholesky, set, solve_lower, solve_lower_transposed};
 use super::transcription::{
-    block_dot, row_axpy, row_dot, rows_dot, Coefficients, RowId, Transcription, MAX_BLOCKS,
+    block_dot, row_axpy, row_dot, rows_dot, Coefficients, NodeDots, RowId, Transcription,
+    MAX_BLOCKS,
 };
 use super::work_units;
 use crate::capacity::{MAX_ACTIVE, MAX_CHECKS_PER_PAIR, MAX_FREE_PER_AXIS, MAX_NODES, MAX_PAIRS};
@@ -302,6 +303,8 @@ fn most_violated(tr: &Transcription, state: &QpState, y: &Coefficients) -> Optio
             }
         }
     }
+    let mut dots: NodeDots = [[0.0; MAX_NODES]; MAX_BLOCKS];
+    tr.node_dots(y, &mut dots);
     for pair in 0..tr.pair_count {
         let count = tr.check_count.get(pair).copied().unwrap_or(0);
         let (i, j) = tr.pairs.get(pair).copied().unwrap_or((0, 0));
@@ -325,7 +328,7 @@ fn most_violated(tr: &Transcription, state: &QpState, y: &Coefficients) -> Optio
             if norm <= 0.0 {
                 continue;
             }
-            let relative = tr.relative(pair, check.source, y);
+            let relative = tr.relative_with(pair, check.source, y, &dots);
             let mut along = 0.0;
             for (n, r) in check.normal.iter().zip(relative.iter()) {
                 along += n * r;
@@ -427,11 +430,22 @@ pub(crate) fn solve(
     let mut g = [0.0; MAX_ACTIVE];
     let mut r = [0.0; MAX_ACTIVE];
     loop {
-        if !work.spend(work_units::qp_scan(tr)) {
+        // The hint rows first (each a keep-out row's six blocks at most); the scan of every
+        // candidate row only when none of them is violated, and charged only then.
+        if !work.spend(work_units::qp_hint(tr, hint_count)) {
             return QpOutcome::IterationLimit;
         }
         let hinted = most_violated_hint(tr, state, y, hint.get(..hint_count).unwrap_or(&[]), tol);
-        let Some((p, violation)) = hinted.or_else(|| most_violated(tr, state, y)) else {
+        let picked = match hinted {
+            Some(row) => Some(row),
+            None => {
+                if !work.spend(work_units::qp_scan(tr)) {
+                    return QpOutcome::IterationLimit;
+                }
+                most_violated(tr, state, y)
+            }
+        };
+        let Some((p, violation)) = picked else {
             return QpOutcome::Optimal;
         };
         if violation >= -tol {
@@ -441,6 +455,8 @@ pub(crate) fn solve(
         let norm2_p = vp.norm * vp.norm;
         let mut multiplier_p = 0.0;
         loop {
+            // The step may add a row: keep the final checks of the larger working set.
+            work.raise_reserve(work_units::reserve(tr, state.count.saturating_add(1)));
             if steps >= max_iter || !work.spend(work_units::qp_step(tr, state.count)) {
                 return QpOutcome::IterationLimit;
             }

@@ -117,7 +117,7 @@ fn run(
     if let Err(stage) = setup_result {
         return SolveStatus::NumericalFailure(stage);
     }
-    ws.work.reserve(work_units::reserve(&ws.transcription));
+    ws.work.reserve(work_units::reserve(&ws.transcription, 0));
     initial_iterate(ws, warm, out);
     let mut end = iterate_and_verify(ws, settings, out);
     let mut status = finish(ws, settings, out, end);

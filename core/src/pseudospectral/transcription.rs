@@ -25,6 +25,10 @@ pub(crate) const CLOSE_CHECKS_TAU: f64 = 1e-4;
 /// A dense vector of all free coefficients.
 pub(crate) type Coefficients = [[f64; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
 
+/// Per block and node, the position row's dot product with a coefficient vector
+/// (`Transcription::node_dots`).
+pub(crate) type NodeDots = [[f64; MAX_NODES]; MAX_BLOCKS];
+
 /// Where a keep-out check's position row comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Source {
@@ -365,6 +369,48 @@ impl Transcription {
                 let bj = usize::from(j).saturating_mul(3).saturating_add(axis);
                 *slot += block_dot(row, y, bi, self.basis.free) / mi
                     - block_dot(row, y, bj, self.basis.free) / mj;
+            }
+        }
+        out
+    }
+
+    /// `block_dot(position row of node h, y, b)` for every block and node: each block's node
+    /// offsets (times its mass). A block appears in M - 1 pairs, so a scan over every pair's
+    /// node checks reads these instead of recomputing six dot products per check (measured on
+    /// the 8-spacecraft crossing: 408 dot products per QP scan instead of about 2,900).
+    pub fn node_dots(&self, y: &Coefficients, out: &mut NodeDots) {
+        let free = self.basis.free;
+        for (block, row) in out.iter_mut().enumerate().take(self.blocks()) {
+            for (slot, position) in row
+                .iter_mut()
+                .zip(self.basis.position.iter())
+                .take(self.grid.nodes())
+            {
+                *slot = block_dot(position, y, block, free);
+            }
+        }
+    }
+
+    /// `relative(pair, source, y)` with the node checks' dot products read from `dots`
+    /// (`node_dots` of the same `y`): the same operations in the same order, so the same bits.
+    pub fn relative_with(
+        &self,
+        pair: usize,
+        source: Source,
+        y: &Coefficients,
+        dots: &NodeDots,
+    ) -> [f64; 3] {
+        let Source::Node(h) = source else {
+            return self.relative(pair, source, y);
+        };
+        let mut out = self.base_relative(pair, source);
+        if let Some(&(i, j)) = self.pairs.get(pair) {
+            let (mi, mj) = (self.mass_of(usize::from(i)), self.mass_of(usize::from(j)));
+            let h = usize::from(h);
+            for (axis, slot) in out.iter_mut().enumerate() {
+                let bi = usize::from(i).saturating_mul(3).saturating_add(axis);
+                let bj = usize::from(j).saturating_mul(3).saturating_add(axis);
+                *slot += node_value(dots, bi, h) / mi - node_value(dots, bj, h) / mj;
             }
         }
         out

@@ -186,55 +186,57 @@ impl Bernstein {
         }
         let mut spent = 0u32;
         while top > 0 {
-            top = top.saturating_sub(1);
-            let Some(&(lo, hi, c)) = self.stack.get(top) else {
+            let index = top.saturating_sub(1);
+            let Some((lo, hi, c)) = self.stack.get_mut(index) else {
                 break;
             };
+            let (lo, hi) = (*lo, *hi);
             let mut lower = f64::INFINITY;
             for v in c.iter().take(degree.saturating_add(1)) {
                 lower = lower.min(*v);
             }
             if lower >= best.value_squared - tol {
+                top = index;
                 continue;
             }
-            if spent >= budget || top.saturating_add(2) > STACK || hi - lo < 1e-12 {
+            if spent >= budget || index.saturating_add(2) > STACK || hi - lo < 1e-12 {
                 best.certified = false;
+                top = index;
                 continue;
             }
             spent = spent.saturating_add(1);
-            // de Casteljau at the midpoint.
-            let mut work = c;
+            // de Casteljau at the midpoint, in place: level r averages the first degree - r
+            // coefficients and leaves coefficient degree - r alone from then on, so the array
+            // ends as the right half's coefficients; the left half's are each level's first.
+            // (No copies of the interval: the subdivision is most of a verification's work.)
             let mut left = [0.0; MAX_PRODUCT];
-            let mut right = [0.0; MAX_PRODUCT];
             for r in 0..=degree {
                 if let Some(slot) = left.get_mut(r) {
-                    *slot = work.first().copied().unwrap_or(0.0);
+                    *slot = c.first().copied().unwrap_or(0.0);
                 }
-                if let Some(slot) = right.get_mut(degree.saturating_sub(r)) {
-                    *slot = work.get(degree.saturating_sub(r)).copied().unwrap_or(0.0);
-                }
-                for k in 0..degree.saturating_sub(r) {
-                    let a = work.get(k).copied().unwrap_or(0.0);
-                    let b = work.get(k.saturating_add(1)).copied().unwrap_or(0.0);
-                    if let Some(slot) = work.get_mut(k) {
+                let count = degree.saturating_sub(r);
+                for k in 0..count {
+                    let a = c.get(k).copied().unwrap_or(0.0);
+                    let b = c.get(k.saturating_add(1)).copied().unwrap_or(0.0);
+                    if let Some(slot) = c.get_mut(k) {
                         *slot = 0.5 * (a + b);
                     }
                 }
             }
             let mid = 0.5 * (lo + hi);
-            let value_mid = right.first().copied().unwrap_or(f64::INFINITY);
+            let value_mid = c.first().copied().unwrap_or(f64::INFINITY);
             if value_mid < best.value_squared {
                 best.value_squared = value_mid;
                 best.at_s = mid;
             }
-            // Depth first, left half on top.
-            if let Some(slot) = self.stack.get_mut(top) {
-                *slot = (mid, hi, right);
+            // Depth first, left half on top (the right half already sits in this slot).
+            if let Some(slot) = self.stack.get_mut(index) {
+                slot.0 = mid;
             }
-            if let Some(slot) = self.stack.get_mut(top.saturating_add(1)) {
+            if let Some(slot) = self.stack.get_mut(index.saturating_add(1)) {
                 *slot = (lo, mid, left);
             }
-            top = top.saturating_add(2);
+            top = index.saturating_add(2);
         }
         best
     }

@@ -60,6 +60,13 @@ pub(super) fn qp_scan(tr: &Transcription) -> u64 {
     units(&[s.blocks, s.nodes, s.free]).saturating_add(units(&[3, s.checks, s.free]))
 }
 
+/// The check of the previous QP's `hint` working rows before a scan: each row's view and its
+/// product with the iterate (a keep-out row spans six blocks).
+pub(super) fn qp_hint(tr: &Transcription, hint: usize) -> u64 {
+    let s = size(tr);
+    units(&[6, hint, s.free]).saturating_add(units(&[8, hint]))
+}
+
 /// One active-set step with `k` working rows: `k` row products and updates (a keep-out row spans
 /// six blocks), two triangular solves of order `k`, and the dense direction.
 pub(super) fn qp_step(tr: &Transcription, k: usize) -> u64 {
@@ -118,23 +125,33 @@ fn projected_curvature(s: &Size, working: usize) -> u64 {
         .saturating_add(units(&[2, VECTOR]))
 }
 
-/// The second-order step (`newton::step`) with `working` rows in the QP's working set: the
-/// moving checks' local refinement in time (over the nodes), the range step and its Gram solve,
-/// and at most `2 working + 2` conjugate-gradient iterations (its bound: twice the curved
-/// checks plus two), each one projected curvature product. Charged at its bound, so the meter
-/// never undercounts a step that ends early.
+/// The second-order step's set-up (`newton::step`) with `working` rows in the QP's working
+/// set: the moving checks' local refinement in time (over the nodes), the unit normals, the
+/// Gram refactorisation, the range step and the reduced gradient (two projected curvature
+/// products' worth).
 pub(super) fn newton_step(tr: &Transcription, working: usize) -> u64 {
     let s = size(tr);
     let working = working.min(MAX_ACTIVE);
-    let iterations = working.saturating_mul(2).saturating_add(4);
     units(&[20, s.checks, s.nodes])
-        .saturating_add(units(&[iterations]).saturating_mul(projected_curvature(&s, working)))
+        .saturating_add(units(&[2]).saturating_mul(projected_curvature(&s, working)))
 }
 
-/// What a solve keeps back for its final checks, with a full working set: an escape's check
-/// and the saddle's again after the escape falls back to it (`solver::run`). A saddle's own
-/// check that overruns the loops' share starts no escape, so two checks at most follow the
-/// loops' share.
-pub(super) fn reserve(tr: &Transcription) -> u64 {
-    finish(tr, MAX_ACTIVE).saturating_mul(2)
+/// One conjugate-gradient iteration of the second-order step with `working` rows: one
+/// projected curvature product. Charged per iteration run (at most `2 curved + 2`), so a step
+/// that ends early costs what it did.
+pub(super) fn newton_iteration(tr: &Transcription, working: usize) -> u64 {
+    let s = size(tr);
+    projected_curvature(&s, working.min(MAX_ACTIVE))
+}
+
+/// What a solve keeps back for its final checks with `working` rows in the largest working set
+/// built so far: an escape's check and the saddle's again after the escape falls back to it
+/// (`solver::run`). A saddle's own check that overruns the loops' share starts no escape, so
+/// two checks at most follow the loops' share. The final checks run on a working set some QP
+/// built within the loops' share, so the QP raises the reserve before each step that could
+/// grow it (`Meter::raise_reserve`): the reserve is sized by the working set the solve really
+/// has, not by the capacity (at `MAX_ACTIVE` rows the certificate's power method alone was a
+/// third of the default budget).
+pub(super) fn reserve(tr: &Transcription, working: usize) -> u64 {
+    finish(tr, working).saturating_mul(2)
 }
