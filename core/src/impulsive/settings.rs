@@ -121,7 +121,7 @@ pub enum ElementSet {
 }
 
 /// Default work budget, in units (`docs/firmware.md`, "Work budget").
-pub const DEFAULT_WORK_BUDGET: u64 = 19_000_000;
+pub const DEFAULT_WORK_BUDGET: u64 = 18_900_000;
 
 impl Settings {
     /// The paper-reproduction settings: the paper's classical elements, with the defaults
