@@ -348,22 +348,18 @@ mod tests {
     use super::*;
     use crate::pseudospectral::Spacecraft;
 
-    fn paper_case(degree: u16, test_points: bool) -> Problem {
-        let craft = |a: [f64; 3], b: [f64; 3]| Spacecraft {
-            mass_mu: 1.0,
-            initial_state: [a[0], a[1], a[2], 0.0, 0.0, 0.0],
-            final_state: [b[0], b[1], b[2], 0.0, 0.0, 0.0],
-        };
+    /// Rest-to-rest moves `(from, to)` in LU, T = 10, Umax = 1, d = 2 (the paper's settings).
+    fn rest_to_rest(moves: &[([f64; 3], [f64; 3])], degree: u16, test_points: bool) -> Problem {
         let mut spacecraft = heapless::Vec::new();
-        spacecraft
-            .push(craft([0.0, 0.0, 0.0], [12.0, 12.0, 12.0]))
-            .unwrap();
-        spacecraft
-            .push(craft([8.0, 0.0, 0.0], [0.0, 12.0, 12.0]))
-            .unwrap();
-        spacecraft
-            .push(craft([8.0, 0.0, 8.0], [0.0, 12.0, 0.0]))
-            .unwrap();
+        for (a, b) in moves {
+            spacecraft
+                .push(Spacecraft {
+                    mass_mu: 1.0,
+                    initial_state: [a[0], a[1], a[2], 0.0, 0.0, 0.0],
+                    final_state: [b[0], b[1], b[2], 0.0, 0.0, 0.0],
+                })
+                .unwrap();
+        }
         Problem {
             horizon_tu: 10.0,
             max_control_fu: 1.0,
@@ -372,6 +368,18 @@ mod tests {
             test_points,
             spacecraft,
         }
+    }
+
+    fn paper_case(degree: u16, test_points: bool) -> Problem {
+        rest_to_rest(
+            &[
+                ([0.0, 0.0, 0.0], [12.0, 12.0, 12.0]),
+                ([8.0, 0.0, 0.0], [0.0, 12.0, 12.0]),
+                ([8.0, 0.0, 8.0], [0.0, 12.0, 0.0]),
+            ],
+            degree,
+            test_points,
+        )
     }
 
     fn run(problem: &Problem, settings: &Settings) -> Solution {
@@ -483,23 +491,9 @@ mod tests {
 
     #[test]
     fn square_swap_leaves_the_plane_by_the_saddle_escape() {
-        let craft = |a: [f64; 3], b: [f64; 3]| Spacecraft {
-            mass_mu: 1.0,
-            initial_state: [a[0], a[1], a[2], 0.0, 0.0, 0.0],
-            final_state: [b[0], b[1], b[2], 0.0, 0.0, 0.0],
-        };
-        let mut spacecraft = heapless::Vec::new();
-        for (x, y) in [(6.0, 6.0), (-6.0, 6.0), (-6.0, -6.0), (6.0, -6.0)] {
-            spacecraft.push(craft([x, y, 0.0], [-x, -y, 0.0])).unwrap();
-        }
-        let p = Problem {
-            horizon_tu: 10.0,
-            max_control_fu: 1.0,
-            keep_out_lu: 2.0,
-            degree: 16,
-            test_points: true,
-            spacecraft,
-        };
+        let corners = [(6.0, 6.0), (-6.0, 6.0), (-6.0, -6.0), (6.0, -6.0)];
+        let moves = corners.map(|(x, y)| ([x, y, 0.0], [-x, -y, 0.0]));
+        let p = rest_to_rest(&moves, 16, true);
         let out = run(&p, &Settings::default());
         // In the plane the iteration stops on a saddle (J = 7.6805, reduced-Hessian eigenvalue
         // -0.29); one escape along the negative curvature leaves the plane.
@@ -557,26 +551,14 @@ mod tests {
         // Two spacecraft swap through the centre: the passing side is a continuous symmetry,
         // so the reduced Hessian is singular (eigenvalue ~1e-10) at every optimum. The probe
         // steps along the flat direction both ways, finds the same cost, and certifies.
-        let craft = |a: [f64; 3], b: [f64; 3]| Spacecraft {
-            mass_mu: 1.0,
-            initial_state: [a[0], a[1], a[2], 0.0, 0.0, 0.0],
-            final_state: [b[0], b[1], b[2], 0.0, 0.0, 0.0],
-        };
-        let mut spacecraft = heapless::Vec::new();
-        spacecraft
-            .push(craft([6.0, 0.0, 0.0], [-6.0, 0.0, 0.0]))
-            .unwrap();
-        spacecraft
-            .push(craft([-6.0, 0.0, 0.0], [6.0, 0.0, 0.0]))
-            .unwrap();
-        let p = Problem {
-            horizon_tu: 10.0,
-            max_control_fu: 1.0,
-            keep_out_lu: 2.0,
-            degree: 16,
-            test_points: true,
-            spacecraft,
-        };
+        let p = rest_to_rest(
+            &[
+                ([6.0, 0.0, 0.0], [-6.0, 0.0, 0.0]),
+                ([-6.0, 0.0, 0.0], [6.0, 0.0, 0.0]),
+            ],
+            16,
+            true,
+        );
         let out = run(&p, &Settings::default());
         let c = &out.certificate;
         assert_eq!(out.info.status, SolveStatus::Solved, "{c:?}");
