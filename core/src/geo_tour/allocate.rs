@@ -362,7 +362,11 @@ pub(crate) fn allocate(
     let mut best_dv = f64::INFINITY;
     let mut best_price = price;
     let mut assignments = 0u32;
-    let combos = 1u32.checked_shl(u32::try_from(k).unwrap_or(0)).unwrap_or(1);
+    // 2^k assignments; k <= gap_max_legs <= MAX_GAP_LEGS (6, validated), so 64 at most.
+    let mut combos = 1u32;
+    for _ in 0..k {
+        combos = combos.saturating_mul(2);
+    }
     let hi_copy = *picks;
     for mask in 0..combos {
         *trial = hi_copy;

@@ -325,13 +325,11 @@ fn infeasible(
             }
         }
         SolveStatus::CapTooLow { leg: idx(worst.0) }
-    } else if problem.policy == MethodPolicy::PaperRule
-        && tables.iter().any(|t| t.fastest_s.is_infinite())
+    } else if let Some(j) = tables
+        .iter()
+        .position(|t| t.fastest_s.is_infinite())
+        .filter(|_| problem.policy == MethodPolicy::PaperRule)
     {
-        let j = tables
-            .iter()
-            .position(|t| t.fastest_s.is_infinite())
-            .unwrap_or(0);
         SolveStatus::RuleMethodInadmissible { leg: idx(j) }
     } else {
         let mut worst = (0usize, f64::NEG_INFINITY);

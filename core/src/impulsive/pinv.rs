@@ -54,9 +54,9 @@ pub(crate) fn solve_min_norm(
     let used = columns.clamp(1, MAX_UNKNOWNS);
     // w[j] = row j of F = column j of A = F^T; v accumulates the right rotations (A V = W).
     let mut w = [[0.0f64; MAX_UNKNOWNS]; 6];
-    for (j, row) in w.iter_mut().enumerate() {
-        for (r, x) in row.iter_mut().enumerate().take(used) {
-            *x = f.get((j, r)).copied().unwrap_or(0.0);
+    for (row, f_row) in w.iter_mut().zip(f.row_iter()) {
+        for (x, fv) in row.iter_mut().zip(f_row.iter()).take(used) {
+            *x = *fv;
         }
     }
     if !w.iter().flatten().all(|v| v.is_finite()) || !y.iter().all(|v| v.is_finite()) {
@@ -72,8 +72,7 @@ pub(crate) fn solve_min_norm(
     // against each other would never settle.
     let mut scale2 = 0.0f64;
     for col in w.iter() {
-        let c = col.get(..used).unwrap_or(&[]);
-        scale2 = scale2.max(dot(c, c));
+        scale2 = scale2.max(col.iter().take(used).fold(0.0, |acc, x| acc + *x * *x));
     }
     let negligible = 16.0 * f64::EPSILON * f64::EPSILON * scale2;
     // Off-diagonal test relative to the column norms, scaled with the row count as usual for
@@ -123,16 +122,13 @@ pub(crate) fn solve_min_norm(
     }
     let mut sigma = [0.0f64; 6];
     for (s, col) in sigma.iter_mut().zip(w.iter()) {
-        let c = col.get(..used).unwrap_or(&[]);
-        *s = libm::sqrt(dot(c, c));
+        *s = libm::sqrt(col.iter().take(used).fold(0.0, |acc, x| acc + *x * *x));
     }
     let mut sorted = sigma;
     sorted.sort_unstable_by(|a, b| b.total_cmp(a));
     let sigma_max = sorted[0];
-    let sigma_min = sorted
-        .get(used.min(6).saturating_sub(1))
-        .copied()
-        .unwrap_or(0.0);
+    // The smallest of the `used` (>= 1) values in use: the last of the first `used` sorted ones.
+    let sigma_min = sorted.iter().take(used).fold(sigma_max, |_, s| *s);
     let threshold = rcond * sigma_max;
     // F = V diag(sigma) U^T with W = U diag(sigma), so F^+ y = sum_j w_j (v_j . y) / sigma_j^2.
     let mut x = XVector::zeros();

@@ -177,9 +177,18 @@ pub(crate) fn write_solution(
         seq.final_time_s = linear_final_time_s;
     }
     out.impulses.clear();
-    for (k, (step, point)) in seq.steps.iter().zip(pts.at.iter()).enumerate().take(pts.n) {
-        let c = k.saturating_mul(3);
-        let comp = |j: usize| rep.dv.get(c.saturating_add(j)).copied().unwrap_or(0.0) * M_PER_KM;
+    for ((step, point), dv_chunk) in seq
+        .steps
+        .iter()
+        .zip(pts.at.iter())
+        .zip(rep.dv.as_slice().chunks_exact(3))
+        .take(pts.n)
+    {
+        // Every component is overwritten: chunks_exact(3) yields exactly three.
+        let mut dv_rtn_mps = [0.0; 3];
+        for (d, x) in dv_rtn_mps.iter_mut().zip(dv_chunk.iter()) {
+            *d = *x * M_PER_KM;
+        }
         let imp = Impulse {
             time_s: step.time_s,
             arg_latitude_rad: wrap_two_pi(ctx.model.phase_rad(&step.at)),
@@ -187,7 +196,7 @@ pub(crate) fn write_solution(
                 ctx.model.true_phase_rad(&step.at, step.true_anomaly_rad),
             ),
             revolutions: point.revolutions,
-            dv_rtn_mps: [comp(0), comp(1), comp(2)],
+            dv_rtn_mps,
         };
         // Capacity equals MAX_IMPULSES and pts.n <= MAX_IMPULSES, so this cannot fail.
         let _ = out.impulses.push(imp);

@@ -237,15 +237,23 @@ fn dual_bound(
     mu: &[f64; 6],
 ) -> Option<f64> {
     let mut worst = 1.0f64;
-    for c in (0..columns).step_by(3) {
-        let mut s = 0.0;
-        for j in c..c.saturating_add(3) {
-            let mut g = 0.0;
-            for (i, m) in mu.iter().enumerate() {
-                g += f.get((i, j)).copied().unwrap_or(0.0) * *m;
-            }
-            s += g * g;
+    // Columns come in threes, one impulse each: |F_k^T mu| over each impulse k in use.
+    let mut s = 0.0;
+    let mut in_impulse = 0u8;
+    for col in f.column_iter().take(columns) {
+        let mut g = 0.0;
+        for (fv, m) in col.iter().zip(mu.iter()) {
+            g += *fv * *m;
         }
+        s += g * g;
+        in_impulse = in_impulse.saturating_add(1);
+        if in_impulse == 3 {
+            worst = worst.max(libm::sqrt(s));
+            s = 0.0;
+            in_impulse = 0;
+        }
+    }
+    if in_impulse > 0 {
         worst = worst.max(libm::sqrt(s));
     }
     let mut b = 0.0;

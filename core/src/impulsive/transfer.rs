@@ -157,11 +157,12 @@ pub(crate) fn propagate(
     let mut t = 0.0;
     let working = ctx.model;
     let mut prev_point = working.phase_rad(&s);
-    for (k, (step, point)) in seq
+    // One chunk of three components per impulse: `XVector` holds exactly MAX_IMPULSES of them.
+    for ((step, point), dv_chunk) in seq
         .steps
         .iter_mut()
         .zip(pts.at.iter())
-        .enumerate()
+        .zip(dv.as_slice().chunks_exact(3))
         .take(pts.n)
     {
         let dt = time_to_point_s(&working, &s, prev_point, point);
@@ -177,12 +178,11 @@ pub(crate) fn propagate(
         step.time_s = t;
         let b = working.impulse_matrix(&s, f);
         step.b = b;
-        let c = k.saturating_mul(3);
-        let dv_k = [
-            dv.get(c).copied().unwrap_or(0.0),
-            dv.get(c.saturating_add(1)).copied().unwrap_or(0.0),
-            dv.get(c.saturating_add(2)).copied().unwrap_or(0.0),
-        ];
+        // Every entry is overwritten: chunks_exact(3) yields exactly three.
+        let mut dv_k = [0.0; 3];
+        for (d, x) in dv_k.iter_mut().zip(dv_chunk.iter()) {
+            *d = *x;
+        }
         s = match model {
             ImpulseModel::Linear => {
                 let mut db = SVector::<f64, 6>::zeros();

@@ -165,7 +165,12 @@ fn certify(
     for v in l.iter_mut() {
         *v *= scale;
     }
-    let lower = dot(h.get(..r).unwrap_or(&[]), l.get(..r).unwrap_or(&[]));
+    // The first r (the rank, <= ROWS) entries are the compressed rows in use.
+    let lower = h
+        .iter()
+        .zip(l.iter())
+        .take(r)
+        .fold(0.0, |acc, (a, b)| acc + *a * *b);
     (upper, lower, x, l)
 }
 
@@ -214,7 +219,7 @@ pub(crate) fn least_fuel(
     }
     let cmp = compress(f, columns, y, rank_rcond);
     let r = cmp.rank;
-    let rho = norm(cmp.h.get(..r).unwrap_or(&[]));
+    let rho = libm::sqrt(cmp.h.iter().take(r).fold(0.0, |acc, a| acc + *a * *a));
     let mut out = LeastFuel::zero(SocpStatus::Optimal);
     out.rank = u8::try_from(r).unwrap_or(u8::MAX);
     out.residual = cmp.residual;

@@ -57,7 +57,7 @@ pub(super) fn compress(f: &FMatrix, columns: usize, y: &[f64; ROWS], rcond: f64)
     let mut wc = [[0.0; ROWS]; ROWS];
     let mut fe = [[0.0; MAX_UNKNOWNS]; ROWS];
     let mut ye = [0.0; ROWS];
-    for (i, ((wi, wci), (fei, (di, (yei, yi))))) in w
+    for ((i, ((wi, wci), (fei, (di, (yei, yi))))), f_row) in w
         .iter_mut()
         .zip(wc.iter_mut())
         .zip(
@@ -65,9 +65,10 @@ pub(super) fn compress(f: &FMatrix, columns: usize, y: &[f64; ROWS], rcond: f64)
                 .zip(out.d.iter_mut().zip(ye.iter_mut().zip(y.iter()))),
         )
         .enumerate()
+        .zip(f.row_iter())
     {
-        for (j, x) in wi.iter_mut().enumerate().take(columns) {
-            *x = f.get((i, j)).copied().unwrap_or(0.0);
+        for (x, fv) in wi.iter_mut().zip(f_row.iter()).take(columns) {
+            *x = *fv;
         }
         let n = norm(wi);
         // A zero row stays zero (unit scale), so an unreachable y_i shows in the residual.
