@@ -121,6 +121,8 @@ fn a_killed_service_loses_the_requests_in_flight_and_the_feeder_goes_on_with_a_n
     .collect();
     args.push(json.display().to_string());
     args.extend(instance_args(&inst));
+    let started = std::time::Instant::now();
+    let mut events: Vec<String> = Vec::new();
     let mut feeder = spawn(&args);
     // Three SIGKILL / restart cycles mid-load.
     let cycles = 3;
@@ -133,29 +135,45 @@ fn a_killed_service_loses_the_requests_in_flight_and_the_feeder_goes_on_with_a_n
         );
         // Window 2, one slow worker: two requests are in flight now.
         service.signal(libc::SIGKILL);
+        events.push(format!("{} kill", started.elapsed().as_millis()));
         let _ = service.wait(Duration::from_secs(10));
         drop(service);
         assert!(
             feeder.wait_line("lost", Duration::from_secs(30)).is_some(),
             "cycle {cycle}: the feeder did not notice the loss"
         );
+        events.push(format!("{} restart", started.elapsed().as_millis()));
         service = serve(&inst, &["--debug-delay-ms", "300"]);
+        events.push(format!("{} ready", started.elapsed().as_millis()));
     }
     let status = feeder.wait(Duration::from_secs(120));
     // Not every request was answered, so the feeder reports failure.
     assert_eq!(status.and_then(|s| s.code()), Some(1));
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).expect("report")).expect("json");
+    // On a failure the message carries the feeder's own account, line by line, and every
+    // request's fate: what was lost, when, and between which kills.
     let c = counters(&report);
+    let diagnosis = serde_json::json!({
+        "counters": c,
+        "events_ms": events,
+        "feeder_lines": feeder.all_lines(),
+        "results": report["results"],
+    });
+    // Shown with --nocapture: how many sends found no server connection and went again.
+    eprintln!("counters: {c}");
     let lost = c["lost"].as_u64().expect("lost");
     let answered = c["answered"].as_u64().expect("answered");
     // At least one request in flight at each kill, at most the window (2): nothing else lost.
-    assert!((cycles..=2 * cycles).contains(&lost), "{c}");
-    assert_eq!(answered + lost, total, "{c}");
-    assert_eq!(c["sent"], total, "{c}");
-    assert_eq!(c["duplicated"], 0, "nothing is answered twice: {c}");
-    assert_eq!(c["late"], 0, "{c}");
-    assert_eq!(c["malformed"], 0, "{c}");
+    assert!((cycles..=2 * cycles).contains(&lost), "{diagnosis:#}");
+    assert_eq!(answered + lost, total, "{diagnosis:#}");
+    assert_eq!(c["sent"], total, "{diagnosis:#}");
+    assert_eq!(
+        c["duplicated"], 0,
+        "nothing is answered twice: {diagnosis:#}"
+    );
+    assert_eq!(c["late"], 0, "{diagnosis:#}");
+    assert_eq!(c["malformed"], 0, "{diagnosis:#}");
     // Every answer, before and after each restart, is right.
     for r in report["results"].as_array().expect("results") {
         assert!(

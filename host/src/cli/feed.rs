@@ -58,7 +58,7 @@ pub struct Args {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
-    /// Print `answered SEQ` / `lost SEQ` lines as they happen.
+    /// Print `sent SEQ`, `answered SEQ` and `lost SEQ` lines as they happen, with the time.
     #[arg(long)]
     pub verbose: bool,
     /// Deadline of each request in the service's queue, ms (default: the service's own): a

@@ -55,7 +55,8 @@ pub struct FeedOptions {
     pub first_seq: u64,
     /// Show a progress bar.
     pub progress: bool,
-    /// Print `answered SEQ` / `lost SEQ` lines on stdout as they happen.
+    /// Print `sent SEQ at T ms (N servers)`, `answered SEQ at T ms` and `lost SEQ at T ms` lines on
+    /// stdout as they happen (T from the feeder's start).
     pub verbose: bool,
     /// Each request's deadline in the service's queue (None: the service's default).
     pub deadline: Option<Duration>,
@@ -133,6 +134,9 @@ pub struct Counters {
     pub malformed: u64,
     /// Items never sent because no service was there.
     pub not_sent: u64,
+    /// Sends that iceoryx2 delivered to no server (a restarting service whose server port is
+    /// listed before its connections exist) and that were sent again; not requests lost.
+    pub undelivered: u64,
     /// Dead nodes found and cleaned up.
     pub dead_nodes_cleaned: u64,
 }
@@ -247,6 +251,8 @@ pub fn run(items: &[Item], opts: &FeedOptions) -> Result<FeedRun> {
         .filter(|r| *r > 0.0)
         .map(|r| Duration::from_secs_f64(1.0 / r));
     let mut next_send = Instant::now();
+    // Since when the next item has found no server connection to deliver it to.
+    let mut undelivered_since: Option<Instant> = None;
     let bar = opts.progress.then(|| {
         let bar = indicatif::ProgressBar::new(items.len() as u64);
         bar.set_style(
@@ -307,7 +313,7 @@ pub fn run(items: &[Item], opts: &FeedOptions) -> Result<FeedRun> {
                     bar.inc(1);
                 }
                 if opts.verbose {
-                    println!("answered {}", f.seq);
+                    println!("answered {} at {} ms", f.seq, started.elapsed().as_millis());
                     let _ = std::io::Write::flush(&mut std::io::stdout());
                 }
             }
@@ -336,7 +342,7 @@ pub fn run(items: &[Item], opts: &FeedOptions) -> Result<FeedRun> {
                 counters.lost += 1;
                 lost_any = true;
                 if opts.verbose {
-                    println!("lost {}", f.seq);
+                    println!("lost {} at {} ms", f.seq, started.elapsed().as_millis());
                     let _ = std::io::Write::flush(&mut std::io::stdout());
                 }
                 if let Some(bar) = &bar {
@@ -403,8 +409,44 @@ pub fn run(items: &[Item], opts: &FeedOptions) -> Result<FeedRun> {
                 .write_from_slice(&record.frame)
                 .send()
                 .map_err(|e| anyhow!("cannot send request: {e:?}"))?;
+            let delivered = pending.number_of_server_connections();
+            if delivered == 0 {
+                // Listed servers, but none received it: a restarted service whose server port
+                // is in the service's list before its connection to this client exists. Nobody
+                // will answer it, so it is not in flight: send it again shortly, for at most
+                // `wait_service` (then give up on the rest, as when no server is listed).
+                drop(pending);
+                counters.undelivered += 1;
+                if opts.verbose {
+                    println!(
+                        "undelivered {} at {} ms",
+                        record.seq,
+                        started.elapsed().as_millis()
+                    );
+                    let _ = std::io::Write::flush(&mut std::io::stdout());
+                }
+                let since = *undelivered_since.get_or_insert_with(Instant::now);
+                if since.elapsed() >= opts.wait_service {
+                    counters.not_sent += (items.len() - next) as u64;
+                    next = items.len();
+                } else {
+                    std::thread::sleep(Duration::from_millis(10));
+                }
+                break;
+            }
+            undelivered_since = None;
             let _ = wake_service.notify();
             counters.sent += 1;
+            if opts.verbose {
+                println!(
+                    "sent {} at {} ms ({} servers listed, delivered to {})",
+                    record.seq,
+                    started.elapsed().as_millis(),
+                    rpc.dynamic_config().number_of_servers(),
+                    delivered
+                );
+                let _ = std::io::Write::flush(&mut std::io::stdout());
+            }
             in_flight.push(InFlight {
                 index: next,
                 seq: record.seq,

@@ -267,8 +267,8 @@ pub fn print(report: &Report) {
     }
     let c = &report.counters;
     println!(
-        "sent {} answered {} lost {} late {} duplicated {} malformed {} not-sent {}",
-        c.sent, c.answered, c.lost, c.late, c.duplicated, c.malformed, c.not_sent
+        "sent {} answered {} lost {} late {} duplicated {} malformed {} not-sent {} undelivered {}",
+        c.sent, c.answered, c.lost, c.late, c.duplicated, c.malformed, c.not_sent, c.undelivered
     );
 }
 

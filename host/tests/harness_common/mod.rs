@@ -38,6 +38,8 @@ pub fn instance_args(inst: &Instance) -> Vec<String> {
 pub struct Proc {
     pub child: Child,
     pub lines: Receiver<String>,
+    /// Every stdout line read so far, in order (for failure messages).
+    pub seen: std::cell::RefCell<Vec<String>>,
 }
 
 impl Proc {
@@ -57,8 +59,13 @@ impl Proc {
         let start = Instant::now();
         while start.elapsed() < limit {
             match self.lines.recv_timeout(Duration::from_millis(100)) {
-                Ok(line) if line.starts_with(prefix) => return Some(line),
-                Ok(_) | Err(RecvTimeoutError::Timeout) => {}
+                Ok(line) => {
+                    self.seen.borrow_mut().push(line.clone());
+                    if line.starts_with(prefix) {
+                        return Some(line);
+                    }
+                }
+                Err(RecvTimeoutError::Timeout) => {}
                 Err(RecvTimeoutError::Disconnected) => return None,
             }
         }
@@ -77,6 +84,14 @@ impl Proc {
         let _ = self.child.kill();
         let _ = self.child.wait();
         None
+    }
+
+    /// Every stdout line: those read so far and, after a bounded wait, the rest.
+    pub fn all_lines(&self) -> Vec<String> {
+        while let Ok(line) = self.lines.recv_timeout(Duration::from_millis(200)) {
+            self.seen.borrow_mut().push(line);
+        }
+        self.seen.borrow().clone()
     }
 
     pub fn running(&mut self) -> bool {
@@ -114,7 +129,11 @@ pub fn spawn(args: &[String]) -> Proc {
         .spawn()
         .expect("cannot start reconfig");
     let lines = lines_of(child.stdout.take().expect("stdout"));
-    Proc { child, lines }
+    Proc {
+        child,
+        lines,
+        seen: Default::default(),
+    }
 }
 
 /// Start the flight service (one unpinned worker) and wait until it is ready.
