@@ -76,7 +76,9 @@ fn requests_outside_the_limits_are_refused_by_name_and_a_limits_file_tightens_th
     let rtt = result(&report, "wang2018-search-3imp-2m-samples")["rtt_us"]
         .as_f64()
         .expect("rtt");
-    assert!(rtt < 50_000.0, "refusal took {rtt} us");
+    // A solve of 2 M samples would take minutes; 1 s leaves room for a loaded CI machine (the
+    // refusal itself takes well under a millisecond of the round trip).
+    assert!(rtt < 1_000_000.0, "refusal took {rtt} us");
     let _ = std::fs::remove_file(&json);
     let _ = std::fs::remove_file(&limits);
     stop_and_check_clean(service, &inst);
@@ -85,9 +87,11 @@ fn requests_outside_the_limits_are_refused_by_name_and_a_limits_file_tightens_th
 #[test]
 fn a_request_queued_past_its_deadline_is_answered_expired_unsolved() {
     let inst = instance("expire");
-    // One worker, 400 ms per request: with four in flight and a 100 ms deadline, the requests
-    // behind the first one wait past their deadline.
-    let service = serve(&inst, &["--debug-delay-ms", "400"]);
+    // One worker, 1000 ms per request: with four in flight and a 100 ms deadline, the requests
+    // behind the first one wait past their deadline. (At 400 ms per request the bound below had
+    // 10 ms of room over the deadline's answer; 1000 ms leaves 100 ms to 900 ms for a loaded
+    // machine's scheduling while still telling an expired answer from a solved one.)
+    let service = serve(&inst, &["--debug-delay-ms", "1000"]);
     let json = temp("expire", "report.json");
     let (code, report) = feed(
         &inst,
@@ -123,7 +127,7 @@ fn a_request_queued_past_its_deadline_is_answered_expired_unsolved() {
     for r in expired {
         // Answered at its deadline, not after the worker got round to it.
         let rtt = r["rtt_us"].as_f64().expect("rtt");
-        assert!((100_000.0..390_000.0).contains(&rtt), "{r}");
+        assert!((100_000.0..900_000.0).contains(&rtt), "{r}");
         assert!(
             r["status"]
                 .as_str()
