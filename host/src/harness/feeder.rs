@@ -253,6 +253,8 @@ pub fn run(items: &[Item], opts: &FeedOptions) -> Result<FeedRun> {
     let mut next_send = Instant::now();
     // Since when the next item has found no server connection to deliver it to.
     let mut undelivered_since: Option<Instant> = None;
+    // Set by a loss, cleared by an answer: while set, a server counts only if its node is alive.
+    let mut suspect = false;
     let bar = opts.progress.then(|| {
         let bar = indicatif::ProgressBar::new(items.len() as u64);
         bar.set_style(
@@ -294,6 +296,7 @@ pub fn run(items: &[Item], opts: &FeedOptions) -> Result<FeedRun> {
                 record.fate = match wire::view_response(response.payload()) {
                     Ok(view) if view.seq == want => {
                         counters.answered += 1;
+                        suspect = false;
                         Fate::Answered {
                             rtt_ns,
                             solve_ns: view.solve_time_ns,
@@ -357,6 +360,7 @@ pub fn run(items: &[Item], opts: &FeedOptions) -> Result<FeedRun> {
             settled.pop_front();
         }
         if lost_any {
+            suspect = true;
             let (dead, cleaned) = super::cleanup_dead_nodes(&node);
             counters.dead_nodes_cleaned += cleaned;
             if dead > 0 {
@@ -378,12 +382,24 @@ pub fn run(items: &[Item], opts: &FeedOptions) -> Result<FeedRun> {
             if period.is_some() && now < next_send {
                 break;
             }
-            if rpc.dynamic_config().number_of_servers() == 0 {
+            // After a loss, a listed server may be the dead one (listed until a cleanup removes
+            // it; a node killed while starting may not show as dead at once): a request sent to
+            // it would be lost too. So then only servers of live nodes count.
+            let servers = |counters: &mut Counters| {
+                if suspect {
+                    let (_, cleaned) = super::cleanup_dead_nodes(&node);
+                    counters.dead_nodes_cleaned += cleaned;
+                    super::live_servers(&node, |f| rpc.dynamic_config().list_servers(f))
+                } else {
+                    rpc.dynamic_config().number_of_servers()
+                }
+            };
+            if servers(&mut counters) == 0 {
                 if !in_flight.is_empty() {
                     break;
                 }
                 let waited = wait_for(opts.wait_service, || {
-                    if rpc.dynamic_config().number_of_servers() > 0 {
+                    if servers(&mut counters) > 0 {
                         Ok(())
                     } else {
                         Err(anyhow!("no server"))

@@ -90,6 +90,36 @@ pub fn remove_instance_segment(instance: &Instance) -> Result<()> {
     Ok(())
 }
 
+/// How many of a request-response service's listed servers belong to a node whose process is
+/// alive (`Node::list`). `list_servers` lists them: `|f| rpc.dynamic_config().list_servers(f)`.
+/// A server of a killed process stays listed until a cleanup removes it; a request sent to it
+/// is lost.
+pub fn live_servers(
+    node: &Node<ipc::Service>,
+    list_servers: impl FnOnce(
+        &mut dyn FnMut(
+            &iceoryx2::service::dynamic_config::request_response::ServerDetails,
+        ) -> CallbackProgression,
+    ),
+) -> usize {
+    use iceoryx2::node::NodeView;
+    let mut alive = Vec::new();
+    let _ = Node::<ipc::Service>::list(node.config(), |state| {
+        if let NodeState::Alive(view) = &state {
+            alive.push(*view.id());
+        }
+        CallbackProgression::Continue
+    });
+    let mut live = 0usize;
+    list_servers(&mut |server| {
+        if alive.contains(&server.node_id) {
+            live += 1;
+        }
+        CallbackProgression::Continue
+    });
+    live
+}
+
 /// Dead nodes of an instance found by `Node::list`, removed with `try_cleanup_dead_nodes`.
 /// Returns how many were dead and how many were cleaned up.
 pub fn cleanup_dead_nodes(node: &Node<ipc::Service>) -> (usize, u64) {
