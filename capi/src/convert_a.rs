@@ -20,7 +20,7 @@ pub(crate) fn flag(value: u8, field: i32, index: i32) -> Result<bool, ReconfigEr
 }
 
 /// Index of each settings flag in `RECONFIG_FIELD_SETTINGS_CODE` refusals.
-pub const SETTINGS_CODE_CONTINUOUS_VERIFICATION: i32 = 0;
+pub const RECONFIG_SETTINGS_CODE_CONTINUOUS_VERIFICATION: i32 = 0;
 
 /// The core's settings from the C struct (flags checked here; ranges by the core's own
 /// `Settings::validate` inside the solve).
@@ -36,7 +36,7 @@ pub fn settings_from_c(c: &ReconfigASettings) -> Result<Settings, ReconfigError>
         continuous_verification: flag(
             c.continuous_verification,
             RECONFIG_FIELD_SETTINGS_CODE,
-            SETTINGS_CODE_CONTINUOUS_VERIFICATION,
+            RECONFIG_SETTINGS_CODE_CONTINUOUS_VERIFICATION,
         )?,
         qp_max_iter: c.qp_max_iter,
         qp_tol_feas: c.qp_tol_feas,

@@ -10,11 +10,11 @@ use reconfig_core::impulsive::{
 };
 
 /// Index of each settings flag or code in `RECONFIG_FIELD_SETTINGS_CODE` refusals.
-pub const SETTINGS_CODE_MIN_FUEL: i32 = 0;
-/// See [`SETTINGS_CODE_MIN_FUEL`].
-pub const SETTINGS_CODE_NONLINEAR_CORRECTION: i32 = 1;
-/// See [`SETTINGS_CODE_MIN_FUEL`].
-pub const SETTINGS_CODE_ELEMENT_SET: i32 = 2;
+pub const RECONFIG_SETTINGS_CODE_MIN_FUEL: i32 = 0;
+/// See [`RECONFIG_SETTINGS_CODE_MIN_FUEL`].
+pub const RECONFIG_SETTINGS_CODE_NONLINEAR_CORRECTION: i32 = 1;
+/// See [`RECONFIG_SETTINGS_CODE_MIN_FUEL`].
+pub const RECONFIG_SETTINGS_CODE_ELEMENT_SET: i32 = 2;
 
 /// The core's settings from the C struct (flags and codes checked here; ranges by the core's
 /// own `Settings::validate` inside the solve).
@@ -26,14 +26,14 @@ pub fn settings_from_c(c: &ReconfigBSettings) -> Result<Settings, ReconfigError>
     Ok(Settings {
         fixed_point_max_iter: c.fixed_point_max_iter,
         fixed_point_tol_mps: c.fixed_point_tol_mps,
-        min_fuel: flag(c.min_fuel, code, SETTINGS_CODE_MIN_FUEL)?,
+        min_fuel: flag(c.min_fuel, code, RECONFIG_SETTINGS_CODE_MIN_FUEL)?,
         min_fuel_max_iter: c.min_fuel_max_iter,
         min_fuel_step_tol_mps: c.min_fuel_step_tol_mps,
         min_fuel_tol_mps: c.min_fuel_tol_mps,
         nonlinear_correction: flag(
             c.nonlinear_correction,
             code,
-            SETTINGS_CODE_NONLINEAR_CORRECTION,
+            RECONFIG_SETTINGS_CODE_NONLINEAR_CORRECTION,
         )?,
         correction_max_iter: c.correction_max_iter,
         correction_tol: c.correction_tol,
@@ -53,7 +53,7 @@ pub fn settings_from_c(c: &ReconfigBSettings) -> Result<Settings, ReconfigError>
         search_fixed_point_max_iter: c.search_fixed_point_max_iter,
         search_screen_tol_mps: c.search_screen_tol_mps,
         search_tol_mps: c.search_tol_mps,
-        element_set: if flag(c.element_set, code, SETTINGS_CODE_ELEMENT_SET)? {
+        element_set: if flag(c.element_set, code, RECONFIG_SETTINGS_CODE_ELEMENT_SET)? {
             ElementSet::Equinoctial
         } else {
             ElementSet::Classical

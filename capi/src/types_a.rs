@@ -5,9 +5,14 @@ use crate::status::ReconfigError;
 use reconfig_core::capacity::{MAX_NODES, MAX_SPACECRAFT};
 
 /// Most spacecraft planner A plans together (`capacity::MAX_SPACECRAFT`).
-pub const RECONFIG_A_MAX_SPACECRAFT: usize = MAX_SPACECRAFT;
+pub const RECONFIG_A_MAX_SPACECRAFT: usize = 8;
 /// LGL nodes at the highest degree (`capacity::MAX_NODES`).
-pub const RECONFIG_A_MAX_NODES: usize = MAX_NODES;
+pub const RECONFIG_A_MAX_NODES: usize = 25;
+
+// Literals so that the header can spell them; the core's capacities decide, and a change there
+// fails the build here until these follow.
+const _: () = assert!(RECONFIG_A_MAX_SPACECRAFT == MAX_SPACECRAFT);
+const _: () = assert!(RECONFIG_A_MAX_NODES == MAX_NODES);
 
 /// One spacecraft's boundary conditions and mass.
 #[repr(C)]

@@ -5,7 +5,10 @@ use crate::status::ReconfigError;
 use reconfig_core::capacity::MAX_IMPULSES;
 
 /// Most impulses planner B plans (`capacity::MAX_IMPULSES`).
-pub const RECONFIG_B_MAX_IMPULSES: usize = MAX_IMPULSES;
+pub const RECONFIG_B_MAX_IMPULSES: usize = 6;
+
+// A literal so that the header can spell it; the core's capacity decides (see types_a).
+const _: () = assert!(RECONFIG_B_MAX_IMPULSES == MAX_IMPULSES);
 
 /// Mean classical orbital elements.
 #[repr(C)]
