@@ -18,18 +18,7 @@
 #include <string.h>
 
 #include "reconfig.h"
-
-typedef struct {
-    const char *name;
-    ReconfigAProblem problem;
-} ACase;
-
-typedef struct {
-    const char *name;
-    int fixed_point_only; /* 1: min_fuel = 0 and nonlinear_correction = 0 */
-    ReconfigBProblem problem;
-} BCase;
-
+#include "cases.h"
 #include "fixture_data.h"
 
 /* Caller-owned workspaces. 8-byte alignment is checked against reconfig_*_workspace_align(). */
