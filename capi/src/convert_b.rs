@@ -194,7 +194,10 @@ const ECC: i32 = 1;
 const INC: i32 = 2;
 const SMA: i32 = 0;
 
-/// The value a `NotFinite { what, index }` refusal names, read back from the request.
+/// The value a `NotFinite { what, index }` or `AngleOutOfRange` refusal names, read back from
+/// the request. The core's index is an element index 0..6 or an impulse index below the count
+/// it accepted (its docs), so the `get` always finds it; were it ever outside, the refusal
+/// would still carry the core's code, field and index, with value 0.
 fn input_value(what: Quantity, index: u8, problem: &ReconfigBProblem) -> (i32, f64) {
     let i = usize::from(index);
     match what {
