@@ -1,0 +1,462 @@
+//! Planner B: the one place where C structs become core types and back.
+
+use crate::convert_a::flag;
+use crate::status::*;
+use crate::types_b::*;
+use reconfig_core::capacity::MAX_IMPULSES;
+use reconfig_core::impulsive::{
+    ElementSet, EquinoctialElements, ImpulsePlan, ImpulsePoint, MeanElements, Orbit, PlanError,
+    Problem, Quantity, RelativeElements, Settings, SettingsError, Solution, SolveStatus, Stage,
+};
+
+/// Index of each settings flag or code in `RECONFIG_FIELD_SETTINGS_CODE` refusals.
+pub const RECONFIG_SETTINGS_CODE_MIN_FUEL: i32 = 0;
+/// See [`RECONFIG_SETTINGS_CODE_MIN_FUEL`].
+pub const RECONFIG_SETTINGS_CODE_NONLINEAR_CORRECTION: i32 = 1;
+/// See [`RECONFIG_SETTINGS_CODE_MIN_FUEL`].
+pub const RECONFIG_SETTINGS_CODE_ELEMENT_SET: i32 = 2;
+
+/// The core's settings from the C struct (flags and codes checked here; ranges by the core's
+/// own `Settings::validate` inside the solve).
+///
+/// # Errors
+/// A flag other than 0 or 1, an element set other than 0 or 1.
+pub fn settings_from_c(c: &ReconfigBSettings) -> Result<Settings, ReconfigError> {
+    let code = RECONFIG_FIELD_SETTINGS_CODE;
+    Ok(Settings {
+        fixed_point_max_iter: c.fixed_point_max_iter,
+        fixed_point_tol_mps: c.fixed_point_tol_mps,
+        min_fuel: flag(c.min_fuel, code, RECONFIG_SETTINGS_CODE_MIN_FUEL)?,
+        min_fuel_max_iter: c.min_fuel_max_iter,
+        min_fuel_step_tol_mps: c.min_fuel_step_tol_mps,
+        min_fuel_tol_mps: c.min_fuel_tol_mps,
+        nonlinear_correction: flag(
+            c.nonlinear_correction,
+            code,
+            RECONFIG_SETTINGS_CODE_NONLINEAR_CORRECTION,
+        )?,
+        correction_max_iter: c.correction_max_iter,
+        correction_tol: c.correction_tol,
+        kepler_max_iter: c.kepler_max_iter,
+        svd_max_iter: c.svd_max_iter,
+        rank_rcond: c.rank_rcond,
+        min_eccentricity: c.min_eccentricity,
+        min_sin_inclination: c.min_sin_inclination,
+        max_total_revolutions: c.max_total_revolutions,
+        min_perigee_altitude_km: c.min_perigee_altitude_km,
+        search_samples: c.search_samples,
+        search_starts: c.search_starts,
+        search_max_evaluations: c.search_max_evaluations,
+        search_seed: c.search_seed,
+        search_step_rad: c.search_step_rad,
+        search_min_step_rad: c.search_min_step_rad,
+        search_fixed_point_max_iter: c.search_fixed_point_max_iter,
+        search_screen_tol_mps: c.search_screen_tol_mps,
+        search_tol_mps: c.search_tol_mps,
+        element_set: if flag(c.element_set, code, RECONFIG_SETTINGS_CODE_ELEMENT_SET)? {
+            ElementSet::Equinoctial
+        } else {
+            ElementSet::Classical
+        },
+        work_budget: c.work_budget,
+    })
+}
+
+/// The C struct of the core's settings (for `_default_settings`).
+pub fn settings_to_c(s: &Settings) -> ReconfigBSettings {
+    ReconfigBSettings {
+        work_budget: s.work_budget,
+        search_seed: s.search_seed,
+        fixed_point_tol_mps: s.fixed_point_tol_mps,
+        min_fuel_step_tol_mps: s.min_fuel_step_tol_mps,
+        min_fuel_tol_mps: s.min_fuel_tol_mps,
+        correction_tol: s.correction_tol,
+        rank_rcond: s.rank_rcond,
+        min_eccentricity: s.min_eccentricity,
+        min_sin_inclination: s.min_sin_inclination,
+        min_perigee_altitude_km: s.min_perigee_altitude_km,
+        search_step_rad: s.search_step_rad,
+        search_min_step_rad: s.search_min_step_rad,
+        search_screen_tol_mps: s.search_screen_tol_mps,
+        search_tol_mps: s.search_tol_mps,
+        max_total_revolutions: s.max_total_revolutions,
+        search_samples: s.search_samples,
+        search_max_evaluations: s.search_max_evaluations,
+        fixed_point_max_iter: s.fixed_point_max_iter,
+        min_fuel_max_iter: s.min_fuel_max_iter,
+        correction_max_iter: s.correction_max_iter,
+        kepler_max_iter: s.kepler_max_iter,
+        svd_max_iter: s.svd_max_iter,
+        search_fixed_point_max_iter: s.search_fixed_point_max_iter,
+        search_starts: s.search_starts,
+        min_fuel: u8::from(s.min_fuel),
+        nonlinear_correction: u8::from(s.nonlinear_correction),
+        element_set: match s.element_set {
+            ElementSet::Classical => 0,
+            ElementSet::Equinoctial => 1,
+        },
+    }
+}
+
+fn mean_from_c(c: &ReconfigBMeanElements) -> MeanElements {
+    MeanElements {
+        sma_km: c.sma_km,
+        ecc: c.ecc,
+        inc_rad: c.inc_rad,
+        raan_rad: c.raan_rad,
+        argp_rad: c.argp_rad,
+        mean_anomaly_rad: c.mean_anomaly_rad,
+    }
+}
+
+fn relative_from_c(c: &ReconfigBRelativeElements) -> RelativeElements {
+    RelativeElements {
+        dsma_km: c.dsma_km,
+        decc: c.decc,
+        dinc_rad: c.dinc_rad,
+        draan_rad: c.draan_rad,
+        dargp_rad: c.dargp_rad,
+        dmean_anomaly_rad: c.dmean_anomaly_rad,
+    }
+}
+
+fn relative_to_c(r: &RelativeElements) -> ReconfigBRelativeElements {
+    ReconfigBRelativeElements {
+        dsma_km: r.dsma_km,
+        decc: r.decc,
+        dinc_rad: r.dinc_rad,
+        draan_rad: r.draan_rad,
+        dargp_rad: r.dargp_rad,
+        dmean_anomaly_rad: r.dmean_anomaly_rad,
+    }
+}
+
+fn equinoctial_to_c(e: &EquinoctialElements) -> ReconfigBEquinoctialElements {
+    ReconfigBEquinoctialElements {
+        sma_km: e.sma_km,
+        mean_longitude_rad: e.mean_longitude_rad,
+        ex: e.ex,
+        ey: e.ey,
+        hx: e.hx,
+        hy: e.hy,
+    }
+}
+
+/// The core's problem from the C struct, written into `out` (kept in the caller's workspace).
+///
+/// # Errors
+/// Fixed points above the array (the core's capacity), or a flag other than 0 or 1.
+pub fn problem_from_c(c: &ReconfigBProblem, out: &mut Problem) -> Result<(), ReconfigError> {
+    out.chief = mean_from_c(&c.chief);
+    out.initial = relative_from_c(&c.initial);
+    out.target = relative_from_c(&c.target);
+    out.plan = if flag(c.search, RECONFIG_FIELD_SEARCH, -1)? {
+        ImpulsePlan::Search {
+            impulses: c.impulse_count,
+            max_revolutions: c.max_revolutions,
+        }
+    } else {
+        let count = usize::from(c.impulse_count);
+        let over = ReconfigError::new(
+            RECONFIG_B_ERR_CAPACITY_EXCEEDED,
+            RECONFIG_FIELD_IMPULSE_COUNT,
+            f64::from(c.impulse_count),
+            MAX_IMPULSES as f64,
+        );
+        if count > MAX_IMPULSES {
+            return Err(over);
+        }
+        let mut points = heapless::Vec::new();
+        for p in c.points.iter().take(count) {
+            // Cannot fail: `count <= MAX_IMPULSES`, the vector's capacity; reported if it did.
+            points
+                .push(ImpulsePoint {
+                    arg_latitude_rad: p.arg_latitude_rad,
+                    revolutions: p.revolutions,
+                })
+                .map_err(|_| over)?;
+        }
+        ImpulsePlan::Fixed(points)
+    };
+    Ok(())
+}
+
+fn orbit_field(orbit: Orbit) -> i32 {
+    match orbit {
+        Orbit::Chief => RECONFIG_FIELD_CHIEF,
+        Orbit::DeputyInitial => RECONFIG_FIELD_DEPUTY_INITIAL,
+        Orbit::DeputyTarget => RECONFIG_FIELD_DEPUTY_TARGET,
+    }
+}
+
+/// Element indices of [`ReconfigBMeanElements`] in refusals.
+const ECC: i32 = 1;
+const INC: i32 = 2;
+const SMA: i32 = 0;
+
+/// The value a `NotFinite { what, index }` or `AngleOutOfRange` refusal names, read back from
+/// the request. The core's index is an element index 0..6 or an impulse index below the count
+/// it accepted (its docs), so the `get` always finds it; were it ever outside, the refusal
+/// would still carry the core's code, field and index, with value 0.
+fn input_value(what: Quantity, index: u8, problem: &ReconfigBProblem) -> (i32, f64) {
+    let i = usize::from(index);
+    match what {
+        Quantity::Chief => {
+            let c = &problem.chief;
+            let all = [
+                c.sma_km,
+                c.ecc,
+                c.inc_rad,
+                c.raan_rad,
+                c.argp_rad,
+                c.mean_anomaly_rad,
+            ];
+            (RECONFIG_FIELD_CHIEF, all.get(i).copied().unwrap_or(0.0))
+        }
+        Quantity::Initial | Quantity::Target => {
+            let (field, r) = if what == Quantity::Initial {
+                (RECONFIG_FIELD_INITIAL, &problem.initial)
+            } else {
+                (RECONFIG_FIELD_TARGET, &problem.target)
+            };
+            let all = [
+                r.dsma_km,
+                r.decc,
+                r.dinc_rad,
+                r.draan_rad,
+                r.dargp_rad,
+                r.dmean_anomaly_rad,
+            ];
+            (field, all.get(i).copied().unwrap_or(0.0))
+        }
+        Quantity::ImpulsePoint => (
+            RECONFIG_FIELD_IMPULSE_POINT,
+            problem.points.get(i).map_or(0.0, |p| p.arg_latitude_rad),
+        ),
+    }
+}
+
+fn settings_class(s: SettingsError) -> i32 {
+    match s {
+        SettingsError::ZeroIterationLimit => 0,
+        SettingsError::BadTolerance => 1,
+        SettingsError::BadThreshold => 2,
+        SettingsError::BadSearchBudget => 3,
+    }
+}
+
+/// The C refusal of a core refusal: field, element index, value and limit from the core's
+/// variant (the value read back from the request where the core does not carry it).
+pub fn error_to_c(e: &PlanError, problem: &ReconfigBProblem) -> ReconfigError {
+    match *e {
+        PlanError::NotFinite { what, index } => {
+            let (field, value) = input_value(what, index, problem);
+            ReconfigError::new(RECONFIG_B_ERR_NOT_FINITE, field, value, 0.0).at(i32::from(index))
+        }
+        PlanError::EccentricityTooSmall { orbit, ecc, min } => ReconfigError::new(
+            RECONFIG_B_ERR_ECCENTRICITY_TOO_SMALL,
+            orbit_field(orbit),
+            ecc,
+            min,
+        )
+        .at(ECC),
+        PlanError::NotElliptic { orbit, ecc } => {
+            ReconfigError::new(RECONFIG_B_ERR_NOT_ELLIPTIC, orbit_field(orbit), ecc, 1.0).at(ECC)
+        }
+        PlanError::SemiMajorAxisOutOfRange {
+            orbit,
+            sma_km,
+            min_km,
+            max_km,
+        } => ReconfigError::new(
+            RECONFIG_B_ERR_SMA_OUT_OF_RANGE,
+            orbit_field(orbit),
+            sma_km,
+            if sma_km > max_km { max_km } else { min_km },
+        )
+        .at(SMA),
+        PlanError::InclinationSingular {
+            orbit,
+            sin_inc,
+            min,
+        } => ReconfigError::new(
+            RECONFIG_B_ERR_INCLINATION_SINGULAR,
+            orbit_field(orbit),
+            sin_inc,
+            min,
+        )
+        .at(INC),
+        PlanError::NegativeRevolutions {
+            impulse,
+            revolutions,
+        } => ReconfigError::new(
+            RECONFIG_B_ERR_NEGATIVE_REVOLUTIONS,
+            RECONFIG_FIELD_REVOLUTIONS,
+            f64::from(revolutions),
+            0.0,
+        )
+        .at(i32::from(impulse)),
+        PlanError::RevolutionsOverLimit { requested, limit } => ReconfigError::new(
+            RECONFIG_B_ERR_REVOLUTIONS_OVER_LIMIT,
+            RECONFIG_FIELD_REVOLUTIONS,
+            f64::from(requested),
+            f64::from(limit),
+        ),
+        PlanError::CapacityExceeded {
+            requested,
+            capacity,
+        } => ReconfigError::new(
+            RECONFIG_B_ERR_CAPACITY_EXCEEDED,
+            RECONFIG_FIELD_IMPULSE_COUNT,
+            f64::from(requested),
+            f64::from(capacity),
+        ),
+        PlanError::NoImpulses => ReconfigError::new(
+            RECONFIG_B_ERR_NO_IMPULSES,
+            RECONFIG_FIELD_IMPULSE_COUNT,
+            0.0,
+            1.0,
+        ),
+        PlanError::InvalidSettings(s) => ReconfigError::new(
+            RECONFIG_B_ERR_INVALID_SETTINGS,
+            RECONFIG_FIELD_SETTINGS,
+            0.0,
+            0.0,
+        )
+        .with_detail(settings_class(s)),
+        PlanError::PerigeeTooLow {
+            orbit,
+            perigee_altitude_km,
+            min_km,
+        } => ReconfigError::new(
+            RECONFIG_B_ERR_PERIGEE_TOO_LOW,
+            orbit_field(orbit),
+            perigee_altitude_km,
+            min_km,
+        ),
+        PlanError::InclinationOutOfRange { orbit, inc_rad } => ReconfigError::new(
+            RECONFIG_B_ERR_INCLINATION_OUT_OF_RANGE,
+            orbit_field(orbit),
+            inc_rad,
+            if inc_rad > 0.0 {
+                core::f64::consts::PI
+            } else {
+                0.0
+            },
+        )
+        .at(INC),
+        PlanError::AngleOutOfRange {
+            what,
+            index,
+            value_rad,
+            limit_rad,
+        } => ReconfigError::new(
+            RECONFIG_B_ERR_ANGLE_OUT_OF_RANGE,
+            input_value(what, index, problem).0,
+            value_rad,
+            limit_rad,
+        )
+        .at(i32::from(index)),
+        PlanError::InputForm { .. } => {
+            ReconfigError::new(RECONFIG_B_ERR_INPUT_FORM, RECONFIG_FIELD_NONE, 0.0, 0.0)
+        }
+    }
+}
+
+/// The C status code of a core status, and its payload: (code, numerical stage, unsafe arc,
+/// unsafe perigee altitude km, linearised miss m).
+pub fn status_to_c(s: SolveStatus) -> (i32, i32, i32, f64, f64) {
+    match s {
+        SolveStatus::Unsolved => (RECONFIG_UNSOLVED, 0, 0, 0.0, 0.0),
+        SolveStatus::Solved => (RECONFIG_B_SOLVED, 0, 0, 0.0, 0.0),
+        SolveStatus::RankDeficient => (RECONFIG_B_RANK_DEFICIENT, 0, 0, 0.0, 0.0),
+        SolveStatus::MaxIterations => (RECONFIG_B_MAX_ITERATIONS, 0, 0, 0.0, 0.0),
+        SolveStatus::CorrectionNotConverged => {
+            (RECONFIG_B_CORRECTION_NOT_CONVERGED, 0, 0, 0.0, 0.0)
+        }
+        SolveStatus::NumericalFailure(stage) => (
+            RECONFIG_B_NUMERICAL_FAILURE,
+            match stage {
+                Stage::Kepler => 0,
+                Stage::Svd => 1,
+                Stage::SingularState => 2,
+                Stage::NonFinite => 3,
+            },
+            0,
+            0.0,
+            0.0,
+        ),
+        SolveStatus::UnsafePerigee {
+            arc,
+            perigee_altitude_km,
+        } => (
+            RECONFIG_B_UNSAFE_PERIGEE,
+            0,
+            i32::from(arc),
+            perigee_altitude_km,
+            0.0,
+        ),
+        SolveStatus::Linearised { miss_m } => (RECONFIG_B_LINEARISED, 0, 0, 0.0, miss_m),
+        SolveStatus::BudgetExhausted { verified: true } => {
+            (RECONFIG_B_BUDGET_EXHAUSTED_VERIFIED, 0, 0, 0.0, 0.0)
+        }
+        SolveStatus::BudgetExhausted { verified: false } => {
+            (RECONFIG_B_BUDGET_EXHAUSTED_UNVERIFIED, 0, 0, 0.0, 0.0)
+        }
+    }
+}
+
+/// The C solution of the core's solution.
+pub fn solution_to_c(s: &Solution) -> ReconfigBSolution {
+    let (status, numerical_stage, unsafe_arc, unsafe_perigee_altitude_km, linearised_miss_m) =
+        status_to_c(s.info.status);
+    let mut impulses = [ReconfigBImpulse::default(); RECONFIG_B_MAX_IMPULSES];
+    for (slot, i) in impulses.iter_mut().zip(s.impulses.iter()) {
+        *slot = ReconfigBImpulse {
+            time_s: i.time_s,
+            arg_latitude_rad: i.arg_latitude_rad,
+            true_arg_latitude_rad: i.true_arg_latitude_rad,
+            dv_rtn_mps: i.dv_rtn_mps,
+            revolutions: i.revolutions,
+        };
+    }
+    ReconfigBSolution {
+        status,
+        numerical_stage,
+        error: ReconfigError::default(),
+        unsafe_arc,
+        unsafe_perigee_altitude_km,
+        linearised_miss_m,
+        usable: u8::from(s.info.status.is_usable()),
+        // At most MAX_IMPULSES (6): the vector's capacity.
+        impulse_count: u8::try_from(s.impulses.len()).unwrap_or(u8::MAX),
+        rank: s.info.rank,
+        min_fuel_used: u8::from(s.info.min_fuel_used),
+        correction_used: u8::from(s.info.correction_used),
+        iterations: s.info.iterations,
+        min_fuel_iterations: s.info.min_fuel_iterations,
+        correction_iterations: s.info.correction_iterations,
+        evaluations: s.info.evaluations,
+        work_units: s.info.work_units,
+        condition_number: s.info.condition_number,
+        min_fuel_gap_mps: s.info.min_fuel_gap_mps,
+        total_dv_mps: s.total_dv_mps,
+        min_norm_total_dv_mps: s.min_norm_total_dv_mps,
+        linear_total_dv_mps: s.linear_total_dv_mps,
+        final_time_s: s.final_time_s,
+        terminal_error_m: s.terminal_error_m,
+        terminal_position_error_m: s.terminal_position_error_m,
+        terminal_error_elements: relative_to_c(&s.terminal_error_elements),
+        terminal_error_equinoctial: equinoctial_to_c(&s.terminal_error_equinoctial),
+        impulses,
+    }
+}
+
+/// A C solution holding only a refusal.
+pub fn refusal_to_c(error: ReconfigError) -> ReconfigBSolution {
+    ReconfigBSolution {
+        status: error.code,
+        error,
+        ..ReconfigBSolution::default()
+    }
+}

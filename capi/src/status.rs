@@ -1,0 +1,211 @@
+//! Status codes (`int32_t`), field codes and the error detail every refusal fills in.
+//!
+//! Codes `>= 0` are the core's solve statuses (the solution is written); codes `< 0` are
+//! refusals (nothing was solved; the solution's `error` says why when the solution pointer is
+//! usable). Each core status and each refusal has its own code; the table is in docs/c-api.md.
+
+/// No solve has written this solution.
+pub const RECONFIG_UNSOLVED: i32 = 0;
+
+/// Planner A: verified feasible on the continuous trajectory and certified a local optimum.
+pub const RECONFIG_A_SOLVED: i32 = 1;
+/// Planner A: the continuous separation is below the keep-out somewhere. Not feasible.
+pub const RECONFIG_A_SEPARATION_NOT_VERIFIED: i32 = 2;
+/// Planner A: the SQP iteration limit was reached, last iterate not verified. Not feasible.
+pub const RECONFIG_A_MAX_ITERATIONS: i32 = 3;
+/// Planner A: a QP subproblem was infeasible. Not feasible.
+pub const RECONFIG_A_INFEASIBLE: i32 = 4;
+/// Planner A: a QP hit its iteration limit, last iterate not verified. Not feasible.
+pub const RECONFIG_A_QP_LIMIT: i32 = 5;
+/// Planner A: a factorisation failed; `numerical_stage` says where. Not feasible.
+pub const RECONFIG_A_NUMERICAL_FAILURE: i32 = 6;
+/// Planner A: verified feasible, not certified optimal. May be flown.
+pub const RECONFIG_A_FEASIBLE: i32 = 7;
+/// Planner A: the work budget ran out; the returned trajectory is verified feasible. May be
+/// flown.
+pub const RECONFIG_A_BUDGET_EXHAUSTED_VERIFIED: i32 = 8;
+/// Planner A: the work budget ran out; the returned trajectory is not verified. Not feasible.
+pub const RECONFIG_A_BUDGET_EXHAUSTED_UNVERIFIED: i32 = 9;
+
+/// Planner B: reaches the target (nonlinear check), full rank, safe perigees. May be flown.
+pub const RECONFIG_B_SOLVED: i32 = 101;
+/// Planner B: F is rank-deficient; least-squares impulses that do not reach the target.
+pub const RECONFIG_B_RANK_DEFICIENT: i32 = 102;
+/// Planner B: the fixed point hit its iteration limit.
+pub const RECONFIG_B_MAX_ITERATIONS: i32 = 103;
+/// Planner B: the nonlinear correction hit its iteration limit above its tolerance.
+pub const RECONFIG_B_CORRECTION_NOT_CONVERGED: i32 = 104;
+/// Planner B: a numerical step failed; `numerical_stage` says where.
+pub const RECONFIG_B_NUMERICAL_FAILURE: i32 = 105;
+/// Planner B: a transfer arc's perigee is too low (`unsafe_arc`,
+/// `unsafe_perigee_altitude_km`). Not flyable.
+pub const RECONFIG_B_UNSAFE_PERIGEE: i32 = 106;
+/// Planner B: linear-model fixed point, correction off; misses by `linearised_miss_m`.
+pub const RECONFIG_B_LINEARISED: i32 = 107;
+/// Planner B: the work budget ran out; the returned plan meets every condition of SOLVED.
+pub const RECONFIG_B_BUDGET_EXHAUSTED_VERIFIED: i32 = 108;
+/// Planner B: the work budget ran out; the returned plan is not verified.
+pub const RECONFIG_B_BUDGET_EXHAUSTED_UNVERIFIED: i32 = 109;
+
+/// Refused: a pointer argument is null (`error.field` names it when the solution is usable).
+pub const RECONFIG_ERR_NULL_POINTER: i32 = -1;
+/// Refused: a pointer is not aligned for its type.
+pub const RECONFIG_ERR_MISALIGNED: i32 = -2;
+/// Refused: the workspace is smaller than `_workspace_size()` (`value` given, `limit` needed).
+pub const RECONFIG_ERR_WORKSPACE_TOO_SMALL: i32 = -3;
+/// Refused: the workspace was not initialised by this planner's `_init`.
+pub const RECONFIG_ERR_WORKSPACE_NOT_INITIALISED: i32 = -4;
+/// Refused: a flag or enumeration field holds a value outside its set (`value`; `limit` is the
+/// largest accepted value).
+pub const RECONFIG_ERR_INVALID_CODE: i32 = -5;
+
+/// Planner A refused: a number is NaN or infinite.
+pub const RECONFIG_A_ERR_NOT_FINITE: i32 = -101;
+/// Planner A refused: a quantity that must be positive is not.
+pub const RECONFIG_A_ERR_NOT_POSITIVE: i32 = -102;
+/// Planner A refused: a size is above the compiled capacity (`value` requested, `limit`).
+pub const RECONFIG_A_ERR_CAPACITY_EXCEEDED: i32 = -103;
+/// Planner A refused: the degree is below the minimum (`limit`).
+pub const RECONFIG_A_ERR_DEGREE_TOO_LOW: i32 = -104;
+/// Planner A refused: no spacecraft.
+pub const RECONFIG_A_ERR_NO_SPACECRAFT: i32 = -105;
+/// Planner A refused: two spacecraft start or end closer than the keep-out (`index`,
+/// `index2`; `detail` 0 = initial, 1 = final).
+pub const RECONFIG_A_ERR_BOUNDARY_TOO_CLOSE: i32 = -106;
+/// Planner A refused: bang-bang control at the bound cannot meet one axis (`index` spacecraft,
+/// `detail` axis).
+pub const RECONFIG_A_ERR_MANOEUVRE_INFEASIBLE: i32 = -107;
+/// Planner A refused: a setting is out of range (`detail` = settings error class).
+pub const RECONFIG_A_ERR_INVALID_SETTINGS: i32 = -108;
+/// Planner A refused: a number is outside the accepted magnitude range (`limit`).
+pub const RECONFIG_A_ERR_OUT_OF_RANGE: i32 = -110;
+
+/// Planner B refused: a number is NaN or infinite.
+pub const RECONFIG_B_ERR_NOT_FINITE: i32 = -201;
+/// Planner B refused: eccentricity below the classical set's threshold.
+pub const RECONFIG_B_ERR_ECCENTRICITY_TOO_SMALL: i32 = -202;
+/// Planner B refused: eccentricity not in [0, 1).
+pub const RECONFIG_B_ERR_NOT_ELLIPTIC: i32 = -203;
+/// Planner B refused: semi-major axis out of range (`value`, `limit` the violated end).
+pub const RECONFIG_B_ERR_SMA_OUT_OF_RANGE: i32 = -204;
+/// Planner B refused: |sin i| below the threshold.
+pub const RECONFIG_B_ERR_INCLINATION_SINGULAR: i32 = -205;
+/// Planner B refused: a revolution count is negative.
+pub const RECONFIG_B_ERR_NEGATIVE_REVOLUTIONS: i32 = -206;
+/// Planner B refused: the revolution counts sum above the limit.
+pub const RECONFIG_B_ERR_REVOLUTIONS_OVER_LIMIT: i32 = -207;
+/// Planner B refused: more impulses than the capacity.
+pub const RECONFIG_B_ERR_CAPACITY_EXCEEDED: i32 = -208;
+/// Planner B refused: no impulse in the plan.
+pub const RECONFIG_B_ERR_NO_IMPULSES: i32 = -209;
+/// Planner B refused: a setting is out of range (`detail` = settings error class).
+pub const RECONFIG_B_ERR_INVALID_SETTINGS: i32 = -210;
+/// Planner B refused: a perigee altitude is below the limit.
+pub const RECONFIG_B_ERR_PERIGEE_TOO_LOW: i32 = -211;
+/// Planner B refused: inclination not in [0, pi].
+pub const RECONFIG_B_ERR_INCLINATION_OUT_OF_RANGE: i32 = -212;
+/// Planner B refused: an angle's magnitude is above the limit.
+pub const RECONFIG_B_ERR_ANGLE_OUT_OF_RANGE: i32 = -213;
+/// Planner B refused: an input in another form could not be converted (not reachable through
+/// the mean-element problem of this interface; kept so that every core refusal has a code).
+pub const RECONFIG_B_ERR_INPUT_FORM: i32 = -214;
+
+/// No field (the refusal is about the request as a whole).
+pub const RECONFIG_FIELD_NONE: i32 = 0;
+/// Planner A: `horizon_tu`.
+pub const RECONFIG_FIELD_HORIZON_TU: i32 = 1;
+/// Planner A: `max_control_fu`.
+pub const RECONFIG_FIELD_MAX_CONTROL_FU: i32 = 2;
+/// Planner A: `keep_out_lu`.
+pub const RECONFIG_FIELD_KEEP_OUT_LU: i32 = 3;
+/// Planner A: `spacecraft[index].mass_mu`.
+pub const RECONFIG_FIELD_MASS_MU: i32 = 4;
+/// Planner A: `spacecraft[index].initial_state` or `final_state`.
+pub const RECONFIG_FIELD_BOUNDARY_STATE: i32 = 5;
+/// A settings field (`detail` = the settings error class).
+pub const RECONFIG_FIELD_SETTINGS: i32 = 6;
+/// Planner A: `spacecraft_count`.
+pub const RECONFIG_FIELD_SPACECRAFT_COUNT: i32 = 7;
+/// Planner A: `degree`.
+pub const RECONFIG_FIELD_DEGREE: i32 = 8;
+/// Planner A: `test_points` (0 or 1).
+pub const RECONFIG_FIELD_TEST_POINTS: i32 = 9;
+/// Planner A: the pair of spacecraft `index`, `index2`.
+pub const RECONFIG_FIELD_SPACECRAFT_PAIR: i32 = 10;
+/// Planner B: `chief` (element `index`: 0 a, 1 e, 2 i, 3 RAAN, 4 argp, 5 M).
+pub const RECONFIG_FIELD_CHIEF: i32 = 20;
+/// Planner B: `initial` (element `index`).
+pub const RECONFIG_FIELD_INITIAL: i32 = 21;
+/// Planner B: `target` (element `index`).
+pub const RECONFIG_FIELD_TARGET: i32 = 22;
+/// Planner B: `points[index].arg_latitude_rad`.
+pub const RECONFIG_FIELD_IMPULSE_POINT: i32 = 23;
+/// Planner B: the deputy's initial orbit (chief + initial).
+pub const RECONFIG_FIELD_DEPUTY_INITIAL: i32 = 24;
+/// Planner B: the deputy's target orbit (chief + target).
+pub const RECONFIG_FIELD_DEPUTY_TARGET: i32 = 25;
+/// Planner B: `impulse_count`.
+pub const RECONFIG_FIELD_IMPULSE_COUNT: i32 = 26;
+/// Planner B: `points[index].revolutions`, or `max_revolutions` of a search.
+pub const RECONFIG_FIELD_REVOLUTIONS: i32 = 27;
+/// Planner B: `search` (0 or 1).
+pub const RECONFIG_FIELD_SEARCH: i32 = 28;
+/// Settings flag or enumeration (`index` names it, see docs/c-api.md).
+pub const RECONFIG_FIELD_SETTINGS_CODE: i32 = 29;
+/// The `workspace` argument.
+pub const RECONFIG_FIELD_WORKSPACE: i32 = 40;
+/// The `problem` argument.
+pub const RECONFIG_FIELD_PROBLEM: i32 = 41;
+/// The `settings` argument.
+pub const RECONFIG_FIELD_SETTINGS_ARG: i32 = 42;
+
+/// Why a request was refused: which field, which element, the value and the limit it broke.
+/// All zero after a solve that was not refused.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ReconfigError {
+    /// The status code of the refusal (`RECONFIG_*ERR_*`), or 0.
+    pub code: i32,
+    /// Which field (`RECONFIG_FIELD_*`).
+    pub field: i32,
+    /// Spacecraft, impulse or element index where it applies, else -1.
+    pub index: i32,
+    /// A second index (the second spacecraft of a pair), else -1.
+    pub index2: i32,
+    /// A refusal-specific code: settings error class, axis, boundary (see docs/c-api.md), else 0.
+    pub detail: i32,
+    /// The offending value, in the field's units (counts as numbers).
+    pub value: f64,
+    /// The limit it broke, in the field's units (0 where the limit is "finite" or "present").
+    pub limit: f64,
+}
+
+impl ReconfigError {
+    /// A refusal with no index.
+    pub const fn new(code: i32, field: i32, value: f64, limit: f64) -> Self {
+        Self {
+            code,
+            field,
+            index: -1,
+            index2: -1,
+            detail: 0,
+            value,
+            limit,
+        }
+    }
+
+    /// The same refusal about element `index`.
+    pub const fn at(self, index: i32) -> Self {
+        Self { index, ..self }
+    }
+
+    /// The same refusal with its second index.
+    pub const fn and(self, index2: i32) -> Self {
+        Self { index2, ..self }
+    }
+
+    /// The same refusal with its refusal-specific code.
+    pub const fn with_detail(self, detail: i32) -> Self {
+        Self { detail, ..self }
+    }
+}

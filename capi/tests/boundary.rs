@@ -1,0 +1,290 @@
+//! The C entry points called from Rust: every refusal at the boundary, and a solve through the
+//! C structs bit-identical to the core's own API.
+#![allow(
+    clippy::unwrap_used,
+    clippy::indexing_slicing,
+    clippy::float_cmp,
+    clippy::arithmetic_side_effects,
+    clippy::undocumented_unsafe_blocks
+)]
+
+use core::ffi::c_void;
+use reconfig_capi::impulsive::*;
+use reconfig_capi::pseudospectral::*;
+use reconfig_capi::status::*;
+use reconfig_capi::types_a::*;
+use reconfig_capi::types_b::*;
+use reconfig_core::pseudospectral;
+
+/// Caller memory of `size` bytes aligned to 8 (a `u64` vector).
+fn memory(size: usize) -> Vec<u64> {
+    vec![0; size.div_ceil(8) + 1]
+}
+
+fn three_sats() -> ReconfigAProblem {
+    // Huang 2012's three-spacecraft case, N = 10 (fixtures/huang2012-three-sats-n10.toml).
+    let mut p = ReconfigAProblem {
+        horizon_tu: 10.0,
+        max_control_fu: 1.0,
+        keep_out_lu: 2.0,
+        degree: 10,
+        test_points: 1,
+        spacecraft_count: 3,
+        ..ReconfigAProblem::default()
+    };
+    let ends = [
+        ([0.0, 0.0, 0.0], [12.0, 12.0, 12.0]),
+        ([8.0, 0.0, 0.0], [0.0, 12.0, 12.0]),
+        ([8.0, 0.0, 8.0], [0.0, 12.0, 0.0]),
+    ];
+    for (sc, (a, b)) in p.spacecraft.iter_mut().zip(ends) {
+        sc.mass_mu = 1.0;
+        sc.initial_state_lu_lutu[..3].copy_from_slice(&a);
+        sc.final_state_lu_lutu[..3].copy_from_slice(&b);
+    }
+    p
+}
+
+fn a_settings() -> ReconfigASettings {
+    let mut s = ReconfigASettings::default();
+    // SAFETY: a valid, aligned out-pointer.
+    assert_eq!(
+        unsafe { reconfig_pseudospectral_default_settings(&mut s) },
+        0
+    );
+    s
+}
+
+#[test]
+fn init_refuses_null_misaligned_and_small_memory() {
+    let size = reconfig_pseudospectral_workspace_size();
+    assert!(reconfig_pseudospectral_workspace_align() <= 8);
+    let mut mem = memory(size);
+    let base = mem.as_mut_ptr().cast::<u8>();
+    // SAFETY: each pointer is null or inside `mem` with the size given.
+    unsafe {
+        assert_eq!(
+            reconfig_pseudospectral_init(core::ptr::null_mut(), size),
+            RECONFIG_ERR_NULL_POINTER
+        );
+        assert_eq!(
+            reconfig_pseudospectral_init(base.add(1).cast(), size),
+            RECONFIG_ERR_MISALIGNED
+        );
+        assert_eq!(
+            reconfig_pseudospectral_init(base.cast(), size - 1),
+            RECONFIG_ERR_WORKSPACE_TOO_SMALL
+        );
+        assert_eq!(reconfig_pseudospectral_init(base.cast(), size), 0);
+    }
+}
+
+#[test]
+fn solve_refuses_uninitialised_workspace_and_null_arguments() {
+    let size = reconfig_pseudospectral_workspace_size();
+    let mut mem = memory(size);
+    let ws = mem.as_mut_ptr().cast::<c_void>();
+    let (problem, settings) = (three_sats(), a_settings());
+    let mut out = Box::new(ReconfigASolution {
+        status: 99,
+        ..unsafe_zeroed_solution()
+    });
+    // SAFETY: valid pointers or null; `ws` has `size` bytes.
+    unsafe {
+        let code = reconfig_pseudospectral_solve(ws, &problem, &settings, &mut *out);
+        assert_eq!(code, RECONFIG_ERR_WORKSPACE_NOT_INITIALISED);
+        assert_eq!(out.error.field, RECONFIG_FIELD_WORKSPACE);
+        assert_eq!(reconfig_pseudospectral_init(ws, size), 0);
+        let code = reconfig_pseudospectral_solve(ws, core::ptr::null(), &settings, &mut *out);
+        assert_eq!(code, RECONFIG_ERR_NULL_POINTER);
+        assert_eq!(out.error.field, RECONFIG_FIELD_PROBLEM);
+        let code = reconfig_pseudospectral_solve(ws, &problem, &settings, core::ptr::null_mut());
+        assert_eq!(code, RECONFIG_ERR_NULL_POINTER);
+    }
+}
+
+/// A zeroed planner-A solution (all fields are plain numbers, so zero is valid).
+fn unsafe_zeroed_solution() -> ReconfigASolution {
+    // SAFETY: every field is an integer or float array; all-zero bits are valid values.
+    unsafe { core::mem::zeroed() }
+}
+
+#[test]
+fn refusals_name_field_index_value_and_limit() {
+    let size = reconfig_pseudospectral_workspace_size();
+    let mut mem = memory(size);
+    let ws = mem.as_mut_ptr().cast::<c_void>();
+    let settings = a_settings();
+    let mut out = Box::new(unsafe_zeroed_solution());
+    // SAFETY: valid pointers; `ws` has `size` bytes.
+    unsafe {
+        assert_eq!(reconfig_pseudospectral_init(ws, size), 0);
+        let mut p = three_sats();
+        p.spacecraft[1].final_state_lu_lutu[4] = f64::INFINITY;
+        let code = reconfig_pseudospectral_solve(ws, &p, &settings, &mut *out);
+        assert_eq!(code, RECONFIG_A_ERR_NOT_FINITE);
+        assert_eq!(
+            (out.error.field, out.error.index, out.error.detail),
+            (RECONFIG_FIELD_BOUNDARY_STATE, 1, 10)
+        );
+        assert_eq!(out.error.value, f64::INFINITY);
+
+        let mut p = three_sats();
+        p.degree = 30;
+        assert_eq!(
+            reconfig_pseudospectral_solve(ws, &p, &settings, &mut *out),
+            RECONFIG_A_ERR_CAPACITY_EXCEEDED
+        );
+        assert_eq!(
+            (out.error.field, out.error.value, out.error.limit),
+            (RECONFIG_FIELD_DEGREE, 30.0, 24.0)
+        );
+
+        let mut p = three_sats();
+        p.spacecraft_count = 9;
+        assert_eq!(
+            reconfig_pseudospectral_solve(ws, &p, &settings, &mut *out),
+            RECONFIG_A_ERR_CAPACITY_EXCEEDED
+        );
+        assert_eq!((out.error.value, out.error.limit), (9.0, 8.0));
+
+        let mut p = three_sats();
+        p.test_points = 2;
+        assert_eq!(
+            reconfig_pseudospectral_solve(ws, &p, &settings, &mut *out),
+            RECONFIG_ERR_INVALID_CODE
+        );
+        assert_eq!(out.error.field, RECONFIG_FIELD_TEST_POINTS);
+
+        let mut s = settings;
+        s.sqp_max_iter = 0;
+        assert_eq!(
+            reconfig_pseudospectral_solve(ws, &three_sats(), &s, &mut *out),
+            RECONFIG_A_ERR_INVALID_SETTINGS
+        );
+        assert_eq!(
+            (out.error.field, out.error.detail),
+            (RECONFIG_FIELD_SETTINGS, 0)
+        );
+    }
+}
+
+#[test]
+fn paper_case_through_c_structs_is_bit_identical_to_the_core() {
+    let size = reconfig_pseudospectral_workspace_size();
+    let mut mem = memory(size);
+    let ws = mem.as_mut_ptr().cast::<c_void>();
+    let c_problem = three_sats();
+    let mut out = Box::new(unsafe_zeroed_solution());
+    // SAFETY: valid pointers; `ws` has `size` bytes.
+    let code = unsafe {
+        assert_eq!(reconfig_pseudospectral_init(ws, size), 0);
+        reconfig_pseudospectral_solve(ws, &c_problem, &a_settings(), &mut *out)
+    };
+    assert_eq!(code, RECONFIG_A_SOLVED);
+
+    let mut problem = pseudospectral::Problem {
+        horizon_tu: 10.0,
+        max_control_fu: 1.0,
+        keep_out_lu: 2.0,
+        degree: 10,
+        test_points: true,
+        spacecraft: heapless::Vec::new(),
+    };
+    for sc in &c_problem.spacecraft[..3] {
+        problem
+            .spacecraft
+            .push(pseudospectral::Spacecraft {
+                mass_mu: sc.mass_mu,
+                initial_state: sc.initial_state_lu_lutu,
+                final_state: sc.final_state_lu_lutu,
+            })
+            .unwrap();
+    }
+    let mut workspace = Box::new(pseudospectral::Workspace::new());
+    let mut solution = Box::new(pseudospectral::Solution::new());
+    pseudospectral::solve(
+        &problem,
+        &pseudospectral::Settings::default(),
+        &mut workspace,
+        &mut solution,
+    )
+    .unwrap();
+    assert_eq!(out.cost_fu2_tu.to_bits(), solution.cost.to_bits());
+    assert_eq!(out.work_units, solution.info.work_units);
+    assert_eq!(out.states_lu_lutu, solution.states);
+    assert_eq!(out.controls_fu, solution.controls_fu);
+    assert_eq!(out.usable, 1);
+}
+
+#[test]
+fn impulsive_refusals_reach_the_caller() {
+    let size = reconfig_impulsive_workspace_size();
+    let mut mem = memory(size);
+    let ws = mem.as_mut_ptr().cast::<c_void>();
+    let mut settings = ReconfigBSettings::default();
+    let mut out = ReconfigBSolution::default();
+    let problem = ReconfigBProblem {
+        chief: ReconfigBMeanElements {
+            sma_km: 7000.0,
+            ecc: 0.01,
+            inc_rad: 1.0,
+            ..Default::default()
+        },
+        impulse_count: 7,
+        ..Default::default()
+    };
+    // SAFETY: valid pointers; `ws` has `size` bytes.
+    unsafe {
+        assert_eq!(reconfig_impulsive_default_settings(&mut settings), 0);
+        assert_eq!(reconfig_impulsive_init(ws, size), 0);
+        assert_eq!(
+            reconfig_impulsive_solve(ws, &problem, &settings, &mut out),
+            RECONFIG_B_ERR_CAPACITY_EXCEEDED
+        );
+        assert_eq!((out.error.value, out.error.limit), (7.0, 6.0));
+        let mut p = problem;
+        p.impulse_count = 2;
+        p.chief.sma_km = 200_000.0;
+        assert_eq!(
+            reconfig_impulsive_solve(ws, &p, &settings, &mut out),
+            RECONFIG_B_ERR_SMA_OUT_OF_RANGE
+        );
+        assert_eq!(
+            (out.error.field, out.error.value, out.error.limit),
+            (RECONFIG_FIELD_CHIEF, 200_000.0, 100_000.0)
+        );
+        // A planner-A workspace is not a planner-B one.
+        let a_size = reconfig_pseudospectral_workspace_size();
+        let mut a_mem = memory(a_size);
+        let a_ws = a_mem.as_mut_ptr().cast::<c_void>();
+        assert_eq!(reconfig_pseudospectral_init(a_ws, a_size), 0);
+        assert_eq!(
+            reconfig_impulsive_solve(a_ws, &p, &settings, &mut out),
+            RECONFIG_ERR_WORKSPACE_NOT_INITIALISED
+        );
+    }
+}
+
+#[test]
+fn init_builds_no_workspace_on_the_stack() {
+    // A thread with a 64 KiB stack initialises both workspaces (each far larger): a stack
+    // temporary of the block would overflow it and abort the test.
+    let a = reconfig_pseudospectral_workspace_size();
+    let b = reconfig_impulsive_workspace_size();
+    assert!(a > 128 * 1024, "{a}");
+    std::thread::Builder::new()
+        .stack_size(64 * 1024)
+        .spawn(move || {
+            let mut ma = memory(a);
+            let mut mb = memory(b);
+            // SAFETY: each buffer has the size given and is aligned to 8.
+            unsafe {
+                assert_eq!(reconfig_pseudospectral_init(ma.as_mut_ptr().cast(), a), 0);
+                assert_eq!(reconfig_impulsive_init(mb.as_mut_ptr().cast(), b), 0);
+            }
+        })
+        .unwrap()
+        .join()
+        .unwrap();
+}

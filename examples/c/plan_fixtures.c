@@ -1,0 +1,114 @@
+/*
+ * Plans every planner-A and planner-B (mean-element) fixture through the C interface and prints,
+ * per fixture, the status, the cost (planner A: J) or total delta-v (planner B), their raw bits,
+ * and a checksum over the bits of the whole returned trajectory or plan.
+ *
+ * The fixtures reach C as `fixture_data.h`, generated from the fixture files by the test
+ * tests/tests/c_api.rs (hex-float literals, so every number is exact). Build, as that test does:
+ *
+ *   cargo build --release -p reconfig-capi
+ *   cc -std=c99 -O2 -I capi/include -I <dir of fixture_data.h> examples/c/plan_fixtures.c \
+ *      target/release/libreconfig_capi.a -lpthread -ldl -lm -o plan_fixtures
+ *
+ * The workspaces are caller memory: here static arrays (one per planner, this program is one
+ * task), sized at run time against reconfig_*_workspace_size().
+ */
+#include <inttypes.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "reconfig.h"
+#include "cases.h"
+#include "fixture_data.h"
+
+/* Caller-owned workspaces. 8-byte alignment is checked against reconfig_*_workspace_align(). */
+#define A_WORKSPACE_BYTES (300u * 1024u)
+#define B_WORKSPACE_BYTES (64u * 1024u)
+static uint64_t a_workspace[A_WORKSPACE_BYTES / 8];
+static uint64_t b_workspace[B_WORKSPACE_BYTES / 8];
+static ReconfigASolution a_solution;
+static ReconfigBSolution b_solution;
+
+static uint64_t bits(double x) {
+    uint64_t b;
+    memcpy(&b, &x, sizeof b);
+    return b;
+}
+
+/* FNV-style mix of 64-bit words; the test computes the same over the Rust solution. */
+static uint64_t mix(uint64_t h, double x) {
+    return (h ^ bits(x)) * UINT64_C(0x100000001b3);
+}
+
+static int plan_a(void) {
+    ReconfigASettings settings;
+    if (reconfig_pseudospectral_default_settings(&settings) != 0) return 1;
+    for (size_t c = 0; c < sizeof A_CASES / sizeof A_CASES[0]; c++) {
+        int32_t status = reconfig_pseudospectral_solve(a_workspace, &A_CASES[c].problem,
+                                                       &settings, &a_solution);
+        uint64_t h = UINT64_C(0xcbf29ce484222325);
+        for (int s = 0; s < RECONFIG_A_MAX_SPACECRAFT; s++)
+            for (int n = 0; n < RECONFIG_A_MAX_NODES; n++) {
+                for (int k = 0; k < 6; k++) h = mix(h, a_solution.states_lu_lutu[s][n][k]);
+                for (int k = 0; k < 3; k++) h = mix(h, a_solution.controls_fu[s][n][k]);
+            }
+        if (status < 0) {
+            printf("A %s status=%" PRId32 " field=%" PRId32 " index=%" PRId32 " value=%a limit=%a\n",
+                   A_CASES[c].name, status, a_solution.error.field, a_solution.error.index,
+                   a_solution.error.value, a_solution.error.limit);
+            continue;
+        }
+        printf("A %s status=%" PRId32 " usable=%u J=%.9f J_bits=%016" PRIx64
+               " min_sep_bits=%016" PRIx64 " work_units=%" PRIu64 " checksum=%016" PRIx64 "\n",
+               A_CASES[c].name, status, (unsigned)a_solution.usable, a_solution.cost_fu2_tu,
+               bits(a_solution.cost_fu2_tu), bits(a_solution.min_separation_lu),
+               a_solution.work_units, h);
+    }
+    return 0;
+}
+
+static int plan_b(void) {
+    ReconfigBSettings defaults;
+    if (reconfig_impulsive_default_settings(&defaults) != 0) return 1;
+    for (size_t c = 0; c < sizeof B_CASES / sizeof B_CASES[0]; c++) {
+        ReconfigBSettings settings = defaults;
+        if (B_CASES[c].fixed_point_only) {
+            settings.min_fuel = 0;
+            settings.nonlinear_correction = 0;
+        }
+        int32_t status = reconfig_impulsive_solve(b_workspace, &B_CASES[c].problem, &settings,
+                                                  &b_solution);
+        if (status < 0) {
+            printf("B %s status=%" PRId32 " field=%" PRId32 " index=%" PRId32 " value=%a limit=%a\n",
+                   B_CASES[c].name, status, b_solution.error.field, b_solution.error.index,
+                   b_solution.error.value, b_solution.error.limit);
+            continue;
+        }
+        uint64_t h = UINT64_C(0xcbf29ce484222325);
+        for (int i = 0; i < b_solution.impulse_count; i++) {
+            h = mix(h, b_solution.impulses[i].time_s);
+            for (int k = 0; k < 3; k++) h = mix(h, b_solution.impulses[i].dv_rtn_mps[k]);
+        }
+        h = mix(h, b_solution.terminal_position_error_m);
+        printf("B %s status=%" PRId32 " usable=%u impulses=%u dv_mps=%.9f dv_bits=%016" PRIx64
+               " work_units=%" PRIu64 " checksum=%016" PRIx64 "\n",
+               B_CASES[c].name, status, (unsigned)b_solution.usable,
+               (unsigned)b_solution.impulse_count, b_solution.total_dv_mps,
+               bits(b_solution.total_dv_mps), b_solution.work_units, h);
+    }
+    return 0;
+}
+
+int main(void) {
+    if (reconfig_pseudospectral_workspace_size() > sizeof a_workspace ||
+        reconfig_impulsive_workspace_size() > sizeof b_workspace ||
+        reconfig_pseudospectral_workspace_align() > 8 || reconfig_impulsive_workspace_align() > 8) {
+        fprintf(stderr, "workspace buffers too small: A needs %zu, B needs %zu bytes\n",
+                reconfig_pseudospectral_workspace_size(), reconfig_impulsive_workspace_size());
+        return 2;
+    }
+    if (reconfig_pseudospectral_init(a_workspace, sizeof a_workspace) != 0) return 3;
+    if (reconfig_impulsive_init(b_workspace, sizeof b_workspace) != 0) return 3;
+    if (plan_a() != 0 || plan_b() != 0) return 4;
+    return 0;
+}

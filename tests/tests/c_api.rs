@@ -1,0 +1,437 @@
+//! The C interface end to end: build the static library once, write the fixtures as C data,
+//! compile `examples/c/plan_fixtures.c` with `cc`, run it, and check every line against the
+//! Rust API's solve of the same fixture (status, cost or total delta-v bits, work units, and a
+//! checksum over the bits of the whole trajectory or plan): bit-identical or the test fails.
+//!
+//! The problems come from `firmware/fixture_set.rs` (the same decoded bytes the firmware and
+//! the QEMU tests use), planner A with default settings, planner B with default settings or
+//! `Settings::fixed_point_only()` (`+fixed-point` runs). Planner B's other input forms are not
+//! in the C interface (mean elements only) and are skipped. Needs `cc`; skipped with a notice
+//! when it is missing unless `RECONFIG_REQUIRE_CC=1`.
+
+#[path = "../../firmware/fixture_set.rs"]
+mod fixture_set;
+
+use fixture_set::Planner;
+use reconfig_core::{impulsive, pseudospectral};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::OnceLock;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("tests/ sits in the workspace")
+        .to_path_buf()
+}
+
+/// An f64 as a C99 hex-float literal: exact, so C reads the very bits Rust has.
+fn hexf(x: f64) -> String {
+    let bits = x.to_bits();
+    let sign = if bits >> 63 == 1 { "-" } else { "" };
+    let exponent = (bits >> 52) & 0x7ff;
+    let mantissa = bits & ((1_u64 << 52) - 1);
+    assert!(exponent != 0x7ff, "fixtures are finite");
+    match exponent {
+        0 if mantissa == 0 => format!("{sign}0x0p+0"),
+        0 => format!("{sign}0x0.{mantissa:013x}p-1022"),
+        e => format!(
+            "{sign}0x1.{mantissa:013x}p{:+}",
+            i64::try_from(e).unwrap() - 1023
+        ),
+    }
+}
+
+fn doubles(values: &[f64]) -> String {
+    let all: Vec<String> = values.iter().map(|v| hexf(*v)).collect();
+    format!("{{{}}}", all.join(", "))
+}
+
+fn a_case(name: &str, p: &pseudospectral::Problem) -> String {
+    let mut sc = String::new();
+    for s in &p.spacecraft {
+        let _ = write!(
+            sc,
+            "{{{}, {}, {}}}, ",
+            hexf(s.mass_mu),
+            doubles(&s.initial_state),
+            doubles(&s.final_state)
+        );
+    }
+    format!(
+        "    {{\"{name}\", {{{}, {}, {}, {}, {}, {}, {{{sc}}}}}}},\n",
+        hexf(p.horizon_tu),
+        hexf(p.max_control_fu),
+        hexf(p.keep_out_lu),
+        p.degree,
+        u8::from(p.test_points),
+        p.spacecraft.len()
+    )
+}
+
+fn b_case(name: &str, fixed_point_only: bool, p: &impulsive::Problem) -> String {
+    let c = &p.chief;
+    let chief = doubles(&[
+        c.sma_km,
+        c.ecc,
+        c.inc_rad,
+        c.raan_rad,
+        c.argp_rad,
+        c.mean_anomaly_rad,
+    ]);
+    let rel = |r: &impulsive::RelativeElements| {
+        doubles(&[
+            r.dsma_km,
+            r.decc,
+            r.dinc_rad,
+            r.draan_rad,
+            r.dargp_rad,
+            r.dmean_anomaly_rad,
+        ])
+    };
+    let (search, count, max_revolutions, points) = match &p.plan {
+        impulsive::ImpulsePlan::Fixed(points) => {
+            let text: Vec<String> = points
+                .iter()
+                .map(|q| format!("{{{}, {}}}", hexf(q.arg_latitude_rad), q.revolutions))
+                .collect();
+            (0, points.len(), 0, text.join(", "))
+        }
+        impulsive::ImpulsePlan::Search {
+            impulses,
+            max_revolutions,
+        } => (1, usize::from(*impulses), *max_revolutions, String::new()),
+    };
+    format!(
+        "    {{\"{name}\", {}, {{{chief}, {}, {}, {search}, {count}, {max_revolutions}, {{{points}}}}}}},\n",
+        u8::from(fixed_point_only),
+        rel(&p.initial),
+        rel(&p.target),
+    )
+}
+
+const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
+const FNV_PRIME: u64 = 0x0000_0100_0000_01b3;
+
+fn mix(h: u64, x: f64) -> u64 {
+    (h ^ x.to_bits()).wrapping_mul(FNV_PRIME)
+}
+
+/// The line the C example must print for a planner-A fixture, from the Rust API.
+fn a_expected(name: &str, p: &pseudospectral::Problem) -> String {
+    let mut workspace = Box::new(pseudospectral::Workspace::new());
+    let mut s = Box::new(pseudospectral::Solution::new());
+    let result = pseudospectral::solve(
+        p,
+        &pseudospectral::Settings::default(),
+        &mut workspace,
+        &mut s,
+    );
+    assert!(result.is_ok(), "{name}: every planner-A fixture is planned");
+    let mut h = FNV_OFFSET;
+    for (states, controls) in s.states.iter().zip(s.controls_fu.iter()) {
+        for (x, u) in states.iter().zip(controls.iter()) {
+            h = x.iter().chain(u.iter()).fold(h, |h, v| mix(h, *v));
+        }
+    }
+    let (status, _) = reconfig_capi::convert_a::status_to_c(s.info.status);
+    format!(
+        "A {name} status={status} usable={} J={:.9} J_bits={:016x} min_sep_bits={:016x} work_units={} checksum={h:016x}",
+        u8::from(s.info.status.is_usable()),
+        s.cost,
+        s.cost.to_bits(),
+        s.min_separation_lu.to_bits(),
+        s.info.work_units
+    )
+}
+
+/// The line the C example must print for a planner-B fixture, from the Rust API.
+fn b_expected(name: &str, fixed_point_only: bool, p: &impulsive::Problem) -> String {
+    let settings = if fixed_point_only {
+        impulsive::Settings::fixed_point_only()
+    } else {
+        impulsive::Settings::default()
+    };
+    let mut workspace = Box::new(impulsive::Workspace::new());
+    let mut s = Box::new(impulsive::Solution::new());
+    let result = impulsive::solve(p, &settings, &mut workspace, &mut s);
+    assert!(result.is_ok(), "{name}: every planner-B fixture is planned");
+    let mut h = FNV_OFFSET;
+    for i in &s.impulses {
+        h = mix(h, i.time_s);
+        h = i.dv_rtn_mps.iter().fold(h, |h, v| mix(h, *v));
+    }
+    h = mix(h, s.terminal_position_error_m);
+    let (status, ..) = reconfig_capi::convert_b::status_to_c(s.info.status);
+    format!(
+        "B {name} status={status} usable={} impulses={} dv_mps={:.9} dv_bits={:016x} work_units={} checksum={h:016x}",
+        u8::from(s.info.status.is_usable()),
+        s.impulses.len(),
+        s.total_dv_mps,
+        s.total_dv_mps.to_bits(),
+        s.info.work_units
+    )
+}
+
+fn run(cmd: &mut Command, what: &str) -> String {
+    let out = cmd
+        .output()
+        .unwrap_or_else(|e| panic!("{what}: cannot start: {e}"));
+    assert!(
+        out.status.success(),
+        "{what} failed ({}):\n{}\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// The fixtures as C data and the Rust API's expected lines, made once per test run.
+struct Prepared {
+    dir: PathBuf,
+    expected: Vec<String>,
+}
+
+fn prepared() -> &'static Prepared {
+    static PREPARED: OnceLock<Prepared> = OnceLock::new();
+    PREPARED.get_or_init(|| {
+        let fixtures = fixture_set::encode_all(&root().join("fixtures")).expect("fixtures load");
+        let mut a_cases = String::new();
+        let mut b_cases = String::new();
+        let mut expected = Vec::new();
+        for f in &fixtures {
+            match f.planner {
+                Planner::Pseudospectral => {
+                    let p: pseudospectral::Problem = postcard::from_bytes(&f.problem).unwrap();
+                    a_cases.push_str(&a_case(&f.name, &p));
+                    expected.push(a_expected(&f.name, &p));
+                }
+                Planner::Impulsive | Planner::ImpulsiveFixedPoint => {
+                    let fixed = f.planner == Planner::ImpulsiveFixedPoint;
+                    let p: impulsive::Problem = postcard::from_bytes(&f.problem).unwrap();
+                    b_cases.push_str(&b_case(&f.name, fixed, &p));
+                    expected.push(b_expected(&f.name, fixed, &p));
+                }
+                _ => {}
+            }
+        }
+        // Planner A lines first, then planner B, as the programs print them.
+        expected.sort_by_key(|line| !line.starts_with('A'));
+        assert!(
+            expected
+                .iter()
+                .any(|l| l.contains("huang2012-three-sats-n10 "))
+                && expected.iter().any(|l| l.starts_with("B wang2018")),
+            "the paper cases are among the fixtures"
+        );
+        let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("c_api");
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(
+            dir.join("fixture_data.h"),
+            format!(
+                "/* Generated by tests/tests/c_api.rs from the fixture files. */\n\
+                 static const ACase A_CASES[] = {{\n{a_cases}}};\n\
+                 static const BCase B_CASES[] = {{\n{b_cases}}};\n"
+            ),
+        )
+        .unwrap();
+        Prepared { dir, expected }
+    })
+}
+
+fn cargo() -> Command {
+    let mut cmd = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
+    cmd.current_dir(root());
+    cmd
+}
+
+#[test]
+fn c_example_is_bit_identical_to_the_rust_api_on_every_fixture() {
+    if Command::new("cc").arg("--version").output().is_err() {
+        assert!(
+            std::env::var_os("RECONFIG_REQUIRE_CC").is_none(),
+            "cc is required (RECONFIG_REQUIRE_CC=1)"
+        );
+        eprintln!("c_api: skipped, no C compiler `cc`");
+        return;
+    }
+    let root = root();
+    let Prepared { dir, expected } = prepared();
+    // The static library, built once for the whole run (release: the flight build's profile).
+    run(
+        cargo().args(["build", "--release", "-p", "reconfig-capi"]),
+        "cargo build -p reconfig-capi",
+    );
+    let lib = root.join("target/release/libreconfig_capi.a");
+    let exe = dir.join("plan_fixtures");
+    run(
+        Command::new("cc")
+            .args(["-std=c99", "-O2", "-Wall", "-Wextra", "-Werror"])
+            .arg("-I")
+            .arg(root.join("capi/include"))
+            .arg("-I")
+            .arg(root.join("examples/c"))
+            .arg("-I")
+            .arg(dir)
+            .arg(root.join("examples/c/plan_fixtures.c"))
+            .arg(&lib)
+            .args(["-lpthread", "-ldl", "-lm", "-o"])
+            .arg(&exe),
+        "cc examples/c/plan_fixtures.c",
+    );
+    let stdout = run(&mut Command::new(&exe), "plan_fixtures");
+    let got: Vec<&str> = stdout.lines().collect();
+    assert_eq!(got.len(), expected.len(), "one line per fixture:\n{stdout}");
+    for (g, e) in got.iter().zip(expected.iter()) {
+        assert_eq!(*g, e.as_str(), "C and Rust differ");
+    }
+}
+
+/// The first tool of `candidates` that runs, if any.
+fn first_tool(candidates: &[&'static str]) -> Option<&'static str> {
+    candidates.iter().copied().find(|tool| {
+        Command::new(tool)
+            .arg("--version")
+            .output()
+            .is_ok_and(|o| o.status.success())
+    })
+}
+
+/// The expected M7 line: the host line's fields that do not need `printf` (status, bits, work
+/// units, checksum).
+fn m7_fields(host_line: &str) -> String {
+    const KEPT: [&str; 6] = [
+        "status=",
+        "J_bits=",
+        "min_sep_bits=",
+        "dv_bits=",
+        "work_units=",
+        "checksum=",
+    ];
+    host_line
+        .split(' ')
+        .enumerate()
+        .filter(|(i, t)| *i < 2 || KEPT.iter().any(|k| t.starts_with(k)))
+        .map(|(_, t)| t)
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+#[test]
+fn m7_c_image_is_bit_identical_to_the_rust_api_on_every_fixture() {
+    let required = std::env::var_os("RECONFIG_REQUIRE_QEMU").is_some();
+    let clang = first_tool(&["clang", "clang-14", "clang-15", "clang-16"]);
+    let tools = (
+        clang,
+        first_tool(&["arm-none-eabi-ld"]),
+        first_tool(&["qemu-system-arm"]),
+    );
+    let (Some(clang), Some(ld), Some(qemu)) = tools else {
+        assert!(
+            !required,
+            "RECONFIG_REQUIRE_QEMU=1: the M7 C image needs clang, arm-none-eabi-ld and \
+             qemu-system-arm ({tools:?})"
+        );
+        eprintln!("c_api: M7 C image skipped, missing clang / arm-none-eabi-ld / qemu-system-arm");
+        return;
+    };
+    let root = root();
+    let Prepared { dir, expected } = prepared();
+    run(
+        cargo().args([
+            "rustc",
+            "-p",
+            "reconfig-capi",
+            "--release",
+            "--target",
+            "thumbv7em-none-eabihf",
+            "--lib",
+            "--crate-type",
+            "staticlib",
+            "--no-default-features",
+            "--features",
+            "abort-proof",
+        ]),
+        "cargo rustc -p reconfig-capi (thumbv7em staticlib)",
+    );
+    let lib = root.join("target/thumbv7em-none-eabihf/release/libreconfig_capi.a");
+    let object = dir.join("m7_main.o");
+    run(
+        Command::new(clang)
+            .args([
+                "--target=thumbv7em-none-eabihf",
+                "-mcpu=cortex-m7",
+                "-mfloat-abi=hard",
+                "-ffreestanding",
+                "-fno-builtin",
+                "-ffp-contract=off",
+                "-O2",
+                "-Wall",
+                "-Wextra",
+                "-Werror",
+            ])
+            .arg("-I")
+            .arg(root.join("capi/include"))
+            .arg("-I")
+            .arg(root.join("examples/c"))
+            .arg("-I")
+            .arg(dir)
+            .arg("-c")
+            .arg(root.join("examples/c/m7/main.c"))
+            .arg("-o")
+            .arg(&object),
+        "clang examples/c/m7/main.c",
+    );
+    let elf = dir.join("m7_c_image.elf");
+    run(
+        Command::new(ld)
+            .arg("-T")
+            .arg(root.join("examples/c/m7/link.ld"))
+            .arg("--gc-sections")
+            .arg(&object)
+            .arg(&lib)
+            .arg("-o")
+            .arg(&elf),
+        "arm-none-eabi-ld (the M7 C image)",
+    );
+    // Semihosting's SYS_WRITE0 output arrives on QEMU's stderr.
+    let qemu_run = Command::new(qemu)
+        .args([
+            "-cpu",
+            "cortex-m7",
+            "-machine",
+            "mps2-an500",
+            "-nographic",
+            "-semihosting-config",
+            "enable=on,target=native",
+            "-kernel",
+        ])
+        .arg(&elf)
+        .stdin(std::process::Stdio::null())
+        .output()
+        .expect("qemu-system-arm starts");
+    let stdout = String::from_utf8_lossy(&qemu_run.stderr).into_owned();
+    assert!(
+        qemu_run.status.success(),
+        "the M7 C image failed ({}):\n{stdout}",
+        qemu_run.status
+    );
+    let mut got = Vec::new();
+    for line in stdout
+        .lines()
+        .filter(|l| l.starts_with("A ") || l.starts_with("B "))
+    {
+        let (fields, stack) = line
+            .rsplit_once(" stack_bytes=")
+            .unwrap_or_else(|| panic!("no stack figure in {line:?}"));
+        eprintln!("m7 C image: {fields} stack_bytes={stack}");
+        got.push(fields.to_owned());
+    }
+    let want: Vec<String> = expected.iter().map(|l| m7_fields(l)).collect();
+    assert_eq!(got.len(), want.len(), "one line per fixture:\n{stdout}");
+    for (g, e) in got.iter().zip(want.iter()) {
+        assert_eq!(g, e, "the M7 C image and the Rust API differ");
+    }
+}
