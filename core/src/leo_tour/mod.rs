@@ -36,6 +36,13 @@ use arc::Ctx;
 use j2::{propagate_steps, step_count};
 use track::Track;
 
+/// `state` flown for `dt_s` in the planning model (the host's tour bookkeeping uses this one
+/// implementation); `None` beyond `settings.max_steps` steps or on a non-finite state.
+pub fn propagate(settings: &Settings, state: &j2::State, dt_s: f64) -> Option<j2::State> {
+    let n = step_count(dt_s, settings.step_s, settings.max_steps)?;
+    propagate_steps(&settings.gravity(), state, dt_s, n)
+}
+
 /// Plan one arc.
 ///
 /// # Errors
