@@ -451,6 +451,7 @@ impl Ctx<'_> {
             total_dv_mps: total,
             miss_m,
             last_leg_revolutions: p.fam.revs,
+            last_leg_branch: p.fam.branch,
             evaluations: self.evals,
             work_units: self.meter.used(),
         })

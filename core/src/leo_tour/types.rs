@@ -143,6 +143,8 @@ pub struct ArcSolution {
     pub miss_m: f64,
     /// Revolutions of the last Lambert leg.
     pub last_leg_revolutions: u16,
+    /// Lambert branch of the last leg (for a re-plan of the same family).
+    pub last_leg_branch: crate::lambert::Branch,
     /// Cost evaluations made.
     pub evaluations: u32,
     /// Work units used.
