@@ -29,6 +29,7 @@ pub mod capacity;
 pub mod geo_tour;
 pub mod impulsive;
 pub mod lambert;
+pub mod leo_tour;
 pub mod limits;
 pub mod pseudospectral;
 mod vec3;

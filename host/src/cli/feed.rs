@@ -102,6 +102,11 @@ pub fn fixture_items(paths: &[PathBuf]) -> Vec<Item> {
     let mut items = Vec::new();
     for path in paths {
         let text = std::fs::read_to_string(path).unwrap_or_default();
+        // The LEO tour (issue 13) is not on the wire yet: its fixtures are solved by
+        // `reconfig solve` only.
+        if fixture::leo_tour::is_leo_tour(&text) {
+            continue;
+        }
         if fixture::geo_tour::is_geo_tour(&text) {
             match fixture::geo_tour::load(path) {
                 Ok(f) => items.push(Item {

@@ -9,6 +9,7 @@ pub mod serve;
 pub mod solve;
 pub mod solve_geo_tour;
 pub mod solve_impulsive;
+pub mod solve_leo_tour;
 pub mod solve_pseudospectral;
 pub mod sweep;
 pub mod sweep_oracle;

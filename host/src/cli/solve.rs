@@ -61,6 +61,10 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         }
         return crate::cli::solve_geo_tour::run(&f, args.json, args.mission_days);
     }
+    if fixture::leo_tour::is_leo_tour(&text) {
+        let f = fixture::leo_tour::load(&args.file)?;
+        return crate::cli::solve_leo_tour::run(&f, args.json);
+    }
     let fixture = fixture::load(&args.file)?;
     // The very check the service's workers run, on the request the service would receive.
     let request = match &fixture {

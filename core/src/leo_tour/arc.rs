@@ -1,0 +1,501 @@
+//! The per-arc search: a coarse grid of the first impulse epoch (two-impulse J2-corrected
+//! Lambert transfers, every revolution count and branch), then a bounded compass search over
+//! the free impulse epochs and the free impulse vectors from the best grid candidates, with the
+//! last leg's J2 correction re-shot each time the compass step halves.
+//!
+//! Variables, `M` impulses: the epochs `t_1 < ... < t_{M-1}` (the last impulse is pinned to the
+//! arrival) and the vectors of the impulses `1..M-2`; impulse `M-1` is the departure of the
+//! last leg (a J2-corrected Lambert leg to the client's arrival position) and impulse `M`
+//! matches the client's velocity.
+//!
+//! Worst case: `grid_points x (2 max_revolutions + 1)` Lambert solves and `grid_points` client
+//! states; then `candidates x search_max_evals` evaluations, each at most one client state,
+//! `M - 2` propagations and one Lambert solve; each re-shooting (at most one per halving,
+//! `log2(search_step_s / search_min_step_s) + 1` of them) `shoot_max_iter` propagations; all of
+//! it charged to the work budget, which stops the search first when smaller.
+
+use super::j2::{join, pos, propagate_steps, step_count, vel, Gravity, State};
+use super::shoot::{corrected_lambert, shoot, Family, Offset};
+use super::track::Track;
+use super::types::{ArcSolution, Burn, Settings, Status, MAX_CANDIDATES, MAX_IMPULSES, MAX_VARS};
+use crate::lambert::{self, Branch};
+use crate::vec3::{add, cross, dot, norm, scale, sub, Vec3};
+use crate::work::Meter;
+
+/// Everything one arc's search reads.
+pub(crate) struct Ctx<'a> {
+    pub settings: &'a Settings,
+    pub g: Gravity,
+    pub impulses: usize,
+    pub tf: f64,
+    pub a: Track,
+    pub b: Track,
+    pub b_end: State,
+    pub meter: Meter,
+    pub evals: u32,
+}
+
+/// A grid candidate or a refined point.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Point {
+    pub x: [f64; MAX_VARS],
+    pub fam: Family,
+    pub off: Offset,
+    pub cost: f64,
+}
+
+fn families(max_revs: u16) -> impl Iterator<Item = Family> {
+    core::iter::once(Family {
+        revs: 0,
+        branch: Branch::Left,
+    })
+    .chain((1..=max_revs).flat_map(|revs| {
+        [Branch::Left, Branch::Right]
+            .into_iter()
+            .map(move |branch| Family { revs, branch })
+    }))
+}
+
+fn period_s(mu: f64, s: &State) -> f64 {
+    let r = norm(&pos(s));
+    let v = vel(s);
+    let a = 1.0 / (2.0 / r - dot(&v, &v) / mu);
+    if a > 0.0 {
+        2.0 * core::f64::consts::PI * libm::sqrt(a * a * a / mu)
+    } else {
+        0.0
+    }
+}
+
+impl Ctx<'_> {
+    fn nvars(&self) -> usize {
+        self.impulses
+            .saturating_sub(1)
+            .saturating_add(self.impulses.saturating_sub(2).saturating_mul(3))
+    }
+
+    /// The epochs of `x` if they are in order with the least gaps, else `None`.
+    fn epochs(&self, x: &[f64; MAX_VARS]) -> Option<[f64; MAX_IMPULSES]> {
+        let mut t = [self.tf; MAX_IMPULSES];
+        let free = self.impulses.saturating_sub(1);
+        let mut prev = -self.settings.min_gap_s;
+        for (slot, &ti) in t.iter_mut().zip(x.iter()).take(free) {
+            if !(ti.is_finite() && ti >= prev + self.settings.min_gap_s) {
+                return None;
+            }
+            // The first impulse may sit at the arc start.
+            *slot = ti;
+            prev = ti;
+        }
+        (prev <= self.tf - self.settings.min_gap_s && t.first()? >= &0.0).then_some(t)
+    }
+
+    /// Fly `x` to the last leg's departure: (burn k's pre-burn state and Δv for k < M-1, the
+    /// state before impulse M-1, the epochs).
+    #[allow(clippy::type_complexity)]
+    fn fly_to_last_leg(
+        &mut self,
+        x: &[f64; MAX_VARS],
+    ) -> Option<([(State, Vec3); MAX_IMPULSES], State, [f64; MAX_IMPULSES])> {
+        let t = self.epochs(x)?;
+        let t1 = *t.first()?;
+        let mut s = self
+            .a
+            .state_at(&self.g, self.settings, t1, &mut self.meter)?;
+        let mut pre = [([0.0; 6], [0.0; 3]); MAX_IMPULSES];
+        let free_vectors = self.impulses.saturating_sub(2);
+        let dvs = x.get(self.impulses.saturating_sub(1)..)?.chunks_exact(3);
+        for ((slot, dv), w) in pre.iter_mut().zip(dvs).zip(t.windows(2)).take(free_vectors) {
+            let dv: Vec3 = [*dv.first()?, *dv.get(1)?, *dv.get(2)?];
+            *slot = (s, dv);
+            let after = join(&pos(&s), &add(&vel(&s), &dv));
+            let dt = *w.get(1)? - *w.first()?;
+            let n = step_count(dt, self.settings.step_s, self.settings.max_steps)?;
+            if !self.meter.spend(u64::from(n)) {
+                return None;
+            }
+            s = propagate_steps(&self.g, &after, dt, n)?;
+        }
+        Some((pre, s, t))
+    }
+
+    /// Cost (km/s) of `x` with the last leg's offset frozen.
+    fn cost(&mut self, x: &[f64; MAX_VARS], fam: Family, off: &Offset) -> Option<f64> {
+        self.evals = self.evals.saturating_add(1);
+        let (pre, s, t) = self.fly_to_last_leg(x)?;
+        let t_last = *t.get(self.impulses.checked_sub(2)?)?;
+        let (v_dep, v_arr) = corrected_lambert(
+            self.settings,
+            &s,
+            &pos(&self.b_end),
+            self.tf - t_last,
+            fam,
+            off,
+            &mut self.meter,
+        )?;
+        let free: f64 = pre
+            .iter()
+            .take(self.impulses.saturating_sub(2))
+            .map(|(_, dv)| norm(dv))
+            .sum();
+        let c = free + norm(&sub(&v_dep, &vel(&s))) + norm(&sub(&vel(&self.b_end), &v_arr));
+        c.is_finite().then_some(c)
+    }
+
+    /// The cheapest family of the last leg at `x` (offset frozen).
+    fn best_family(&mut self, x: &[f64; MAX_VARS], off: &Offset) -> Option<(Family, f64)> {
+        let mut best: Option<(Family, f64)> = None;
+        for fam in families(self.settings.max_revolutions) {
+            if let Some(c) = self.cost(x, fam, off) {
+                if best.is_none_or(|(_, b)| c < b) {
+                    best = Some((fam, c));
+                }
+            }
+            if self.meter.exhausted() {
+                break;
+            }
+        }
+        best
+    }
+
+    /// The offset estimated from the client's own orbit: where two-body and J2 flights of the
+    /// client from `t_s` to the arrival differ (the transfer ends on that orbit).
+    fn client_offset(&mut self, t_s: f64) -> Option<Offset> {
+        let sb = self
+            .b
+            .state_at(&self.g, self.settings, t_s, &mut self.meter)?;
+        let (r, v) = lambert::propagate(
+            self.settings.mu_km3_s2,
+            &pos(&sb),
+            &vel(&sb),
+            self.tf - t_s,
+            60,
+        )?;
+        Some(Offset {
+            dr_km: sub(&r, &pos(&self.b_end)),
+            dv_kmps: sub(&vel(&self.b_end), &v),
+        })
+    }
+
+    /// Coarse grid of the first epoch with two-impulse transfers; the best distinct
+    /// candidates, cheapest first.
+    pub fn grid(&mut self) -> [Option<Point>; MAX_CANDIDATES] {
+        let mut out: [Option<Point>; MAX_CANDIDATES] = [None; MAX_CANDIDATES];
+        let keep = usize::from(self.settings.candidates).min(MAX_CANDIDATES);
+        let span = self.tf - self.settings.min_gap_s;
+        let g = f64::from(self.settings.grid_points);
+        let spacing = span / g;
+        for j in 0..self.settings.grid_points {
+            let t1 = f64::from(j) * spacing;
+            let Some(sa) = self.a.state_at(&self.g, self.settings, t1, &mut self.meter) else {
+                break;
+            };
+            let Some(off) = self.client_offset(t1) else {
+                continue;
+            };
+            let tof = self.tf - t1;
+            for fam in families(self.settings.max_revolutions) {
+                let Some((v_dep, v_arr)) = corrected_lambert(
+                    self.settings,
+                    &sa,
+                    &pos(&self.b_end),
+                    tof,
+                    fam,
+                    &off,
+                    &mut self.meter,
+                ) else {
+                    if self.meter.exhausted() {
+                        return out;
+                    }
+                    continue;
+                };
+                let dv1 = sub(&v_dep, &vel(&sa));
+                let c = norm(&dv1) + norm(&sub(&vel(&self.b_end), &v_arr));
+                if !c.is_finite() {
+                    continue;
+                }
+                let p = self.initial_point(t1, &sa, dv1, fam, off, c);
+                insert(&mut out, keep, p, 1.5 * spacing);
+            }
+            if self.impulses > 2 {
+                if let Some(p) = self.plane_seed(t1, &sa) {
+                    insert(&mut out, keep, p, 1.5 * spacing);
+                }
+            }
+        }
+        out
+    }
+
+    /// A three-or-more-impulse seed at `t1`: a half-revolution leg to the point of the
+    /// client's plane opposite the chaser (at the client's radius), so the last leg lies in
+    /// the client's plane and the plane change is made by the first two impulses; the last
+    /// leg's family the cheapest.
+    fn plane_seed(&mut self, t1: f64, sa: &State) -> Option<Point> {
+        let sb = self
+            .b
+            .state_at(&self.g, self.settings, t1, &mut self.meter)?;
+        let hb = cross(&pos(&sb), &vel(&sb));
+        let hb = scale(&hb, 1.0 / norm(&hb));
+        let ra = pos(sa);
+        let back = scale(&ra, -1.0);
+        let d = sub(&back, &scale(&hb, dot(&back, &hb)));
+        let rb = norm(&pos(&sb));
+        let rm = scale(&d, rb / norm(&d));
+        let at = 0.5 * (norm(&ra) + rb);
+        let mu = self.settings.mu_km3_s2;
+        let tof = core::f64::consts::PI * libm::sqrt(at * at * at / mu);
+        if !self.meter.spend(super::shoot::LAMBERT_UNITS) {
+            return None;
+        }
+        let normal = cross(&ra, &vel(sa));
+        let leg = lambert::solve(
+            mu,
+            &ra,
+            &rm,
+            tof,
+            0,
+            Branch::Left,
+            &normal,
+            self.settings.lambert_max_iter,
+            self.settings.lambert_tol,
+        )
+        .ok()?;
+        let dv1 = sub(&leg.v1_kmps, &vel(sa));
+        let mut x = [0.0; MAX_VARS];
+        let free = self.impulses.saturating_sub(1);
+        let room = self.tf - self.settings.min_gap_s - t1;
+        let step = tof.min(room / (free as f64)).max(0.0);
+        for (k, xi) in x.iter_mut().take(free).enumerate() {
+            *xi = t1 + ((k as f64) * step).min(tof);
+        }
+        for (xi, d) in x.iter_mut().skip(free).zip(dv1.iter()) {
+            *xi = *d;
+        }
+        let t2 = t1 + step;
+        let off = self.client_offset(t2)?;
+        let (fam, cost) = self.best_family(&x, &off)?;
+        Some(Point { x, fam, off, cost })
+    }
+
+    /// A grid point as a point of the M-impulse variables: the intermediate impulses start at
+    /// zero, spread over the first revolution of the transfer.
+    fn initial_point(
+        &self,
+        t1: f64,
+        sa: &State,
+        dv1: Vec3,
+        fam: Family,
+        off: Offset,
+        cost: f64,
+    ) -> Point {
+        let mut x = [0.0; MAX_VARS];
+        let after = join(&pos(sa), &add(&vel(sa), &dv1));
+        let period = period_s(self.settings.mu_km3_s2, &after);
+        let free = self.impulses.saturating_sub(1);
+        let room = self.tf - self.settings.min_gap_s - t1;
+        let step = (0.5 * period).min(room / (free as f64)).max(0.0);
+        for (k, xi) in x.iter_mut().take(free).enumerate() {
+            *xi = t1 + (k as f64) * step;
+        }
+        // The first free vector is the transfer's departure burn; the others start at zero.
+        if self.impulses > 2 {
+            for (xi, d) in x.iter_mut().skip(free).zip(dv1.iter()) {
+                *xi = *d;
+            }
+        }
+        Point { x, fam, off, cost }
+    }
+
+    /// Re-shoot the last leg at `p` (exact J2): `p` with the new offset and its cost, or
+    /// `None` when the shooting did not reach `arrival_tol_km`.
+    fn reshoot(&mut self, p: &Point) -> Option<Point> {
+        let (_, s, t) = self.fly_to_last_leg(&p.x)?;
+        let t_last = *t.get(self.impulses.checked_sub(2)?)?;
+        let target = pos(&self.b_end);
+        let shot = shoot(
+            &self.g,
+            self.settings,
+            &s,
+            &target,
+            self.tf - t_last,
+            p.fam,
+            &p.off,
+            &mut self.meter,
+        )?;
+        if shot.miss_km > self.settings.arrival_tol_km {
+            return None;
+        }
+        let cost = self.cost(&p.x, p.fam, &shot.offset)?;
+        Some(Point {
+            off: shot.offset,
+            cost,
+            ..*p
+        })
+    }
+
+    /// Bounded compass search from `p`.
+    pub fn refine(&mut self, p: Point) -> Point {
+        let nv = self.nvars();
+        let free = self.impulses.saturating_sub(1);
+        // With three or more impulses the last leg's family may change once the intermediate
+        // burns exist; pick it again at the start.
+        let mut best = p;
+        if self.impulses > 2 {
+            if let Some((fam, c)) = self.best_family(&p.x, &p.off) {
+                best.fam = fam;
+                best.cost = c;
+            }
+        }
+        if let Some(q) = self.reshoot(&best) {
+            best = q;
+        }
+        // The last point whose J2 shooting converged: the search returns there when the
+        // frozen offset has led it where no J2 transfer of the family exists.
+        let mut anchor = best;
+        let mut step_t = self.settings.search_step_s;
+        let mut step_v = self.settings.search_step_kmps;
+        let start_evals = self.evals;
+        let budget = self.settings.search_max_evals;
+        'levels: while step_t >= self.settings.search_min_step_s {
+            let mut improved = true;
+            while improved {
+                improved = false;
+                for i in 0..nv {
+                    for sign in [1.0, -1.0] {
+                        if self.evals.saturating_sub(start_evals) >= budget
+                            || self.meter.exhausted()
+                        {
+                            break 'levels;
+                        }
+                        let mut y = best.x;
+                        let h = if i < free { step_t } else { step_v };
+                        if let Some(yi) = y.get_mut(i) {
+                            *yi += sign * h;
+                        }
+                        if let Some(c) = self.cost(&y, best.fam, &best.off) {
+                            if c < best.cost {
+                                best.x = y;
+                                best.cost = c;
+                                improved = true;
+                            }
+                        }
+                    }
+                }
+                // After each sweep that moved, the offset is re-shot at the new point; the move
+                // stands only if its exact (J2-shot) cost is below the anchor's.
+                if improved {
+                    match self.reshoot(&best) {
+                        Some(q) if q.cost < anchor.cost => {
+                            best = q;
+                            anchor = q;
+                        }
+                        _ => {
+                            best = anchor;
+                            improved = false;
+                        }
+                    }
+                }
+            }
+            step_t *= 0.5;
+            step_v *= 0.5;
+        }
+        anchor
+    }
+
+    /// Fly `p` in the planning model with an exact J2 shooting of the last leg, and check the
+    /// arrival: the plan the caller gets.
+    pub fn finish(&mut self, p: &Point) -> Option<ArcSolution> {
+        let (pre, s, t) = self.fly_to_last_leg(&p.x)?;
+        let last = self.impulses.checked_sub(2)?;
+        let t_last = *t.get(last)?;
+        let target = pos(&self.b_end);
+        let shot = shoot(
+            &self.g,
+            self.settings,
+            &s,
+            &target,
+            self.tf - t_last,
+            p.fam,
+            &p.off,
+            &mut self.meter,
+        )?;
+        let mut burns = [Burn::default(); MAX_IMPULSES];
+        let mut fill = |k: usize, state: &State, dv: Vec3, epoch_s: f64| {
+            if let Some(b) = burns.get_mut(k) {
+                *b = Burn {
+                    epoch_s,
+                    dv_kmps: dv,
+                    rtn_mps: scale(&rtn(state, &dv), 1e3),
+                };
+            }
+        };
+        for (k, ((state, dv), &epoch)) in pre.iter().zip(t.iter()).take(last).enumerate() {
+            fill(k, state, *dv, epoch);
+        }
+        fill(last, &s, sub(&shot.v_dep_kmps, &vel(&s)), t_last);
+        let v_match = sub(&vel(&self.b_end), &vel(&shot.arrival));
+        fill(last.checked_add(1)?, &shot.arrival, v_match, self.tf);
+        let total: f64 = burns.iter().map(|b| norm(&b.dv_kmps)).sum::<f64>() * 1e3;
+        let miss_m = shot.miss_km * 1e3;
+        let status = if miss_m > self.settings.arrival_tol_km * 1e3 {
+            Status::ArrivalMissed
+        } else if self.meter.exhausted() {
+            Status::BudgetExhaustedSolved
+        } else {
+            Status::Solved
+        };
+        (total.is_finite() && miss_m.is_finite()).then_some(ArcSolution {
+            status,
+            burns,
+            impulses: u8::try_from(self.impulses).ok()?,
+            total_dv_mps: total,
+            miss_m,
+            last_leg_revolutions: p.fam.revs,
+            last_leg_branch: p.fam.branch,
+            evaluations: self.evals,
+            work_units: self.meter.used(),
+        })
+    }
+}
+
+/// `dv` in the RTN frame of `state`.
+pub fn rtn(state: &State, dv: &Vec3) -> Vec3 {
+    let r = pos(state);
+    let h = cross(&r, &vel(state));
+    let rn = norm(&r);
+    let hn = norm(&h);
+    if rn <= 0.0 || hn <= 0.0 {
+        return [0.0; 3];
+    }
+    let ir = scale(&r, 1.0 / rn);
+    let ih = scale(&h, 1.0 / hn);
+    let it = cross(&ih, &ir);
+    [dot(dv, &ir), dot(dv, &it), dot(dv, &ih)]
+}
+
+/// Insert `p` into the sorted list of the `keep` cheapest, one per family and neighbourhood
+/// of the first epoch (`near_s`).
+fn insert(out: &mut [Option<Point>; MAX_CANDIDATES], keep: usize, p: Point, near_s: f64) {
+    let t1 = p.x[0];
+    let same = out
+        .iter()
+        .position(|q| q.is_some_and(|q| q.fam == p.fam && (q.x[0] - t1).abs() <= near_s));
+    if let Some(i) = same {
+        if let Some(slot) = out.get_mut(i) {
+            if slot.is_some_and(|q| p.cost < q.cost) {
+                *slot = Some(p);
+            }
+        }
+    } else if let Some(slot) = out.get_mut(keep.saturating_sub(1)) {
+        if slot.is_none_or(|q| p.cost < q.cost) {
+            *slot = Some(p);
+        }
+    }
+    // Keep the list sorted (cheapest first, empty slots last): insertion sort on the 8 entries.
+    out.sort_unstable_by(|a, b| match (a, b) {
+        (Some(a), Some(b)) => a.cost.total_cmp(&b.cost),
+        (Some(_), None) => core::cmp::Ordering::Less,
+        (None, Some(_)) => core::cmp::Ordering::Greater,
+        (None, None) => core::cmp::Ordering::Equal,
+    });
+}

@@ -1,0 +1,113 @@
+//! Multi-target rendezvous tour in LEO under J2 (issue 13, after Zhang et al.'s servicing
+//! tour): here the on-board per-arc rendezvous.
+//!
+//! One arc: the chaser starts on client A's state at the arc start and must arrive on client
+//! B's position and velocity at a fixed epoch, with `M <= 4` impulses at free epochs inside the
+//! arc, the last pinned to the arrival. The planning model is two-body + J2 integrated by
+//! fixed-step RK4 ([`j2`]). The method, every step bounded and charged to the work meter:
+//! 1. the clients' trajectories as checkpoints ([`track`]);
+//! 2. a coarse grid of the first impulse epoch with two-impulse transfers: the bounded
+//!    multi-revolution Lambert solver ([`crate::lambert`]) over every revolution count and
+//!    branch, aimed with the J2 offset of the client's own orbit;
+//! 3. from the best grid candidates, a compass search over the free epochs and the free impulse
+//!    vectors, the last leg's J2 correction frozen and re-shot (aim-point iteration, [`shoot`])
+//!    at each halving of the step;
+//! 4. the best plan flown again in the planning model with an exact J2 shooting: its arrival
+//!    miss decides the status ([`Status::Solved`] only when within `arrival_tol_km`).
+//!
+//! See `docs/leo-tour.md`.
+
+mod arc;
+pub mod elements;
+pub mod j2;
+pub mod shoot;
+pub mod track;
+mod types;
+pub mod validate;
+
+#[cfg(test)]
+mod tests;
+
+pub use arc::rtn;
+pub use types::*;
+
+use crate::work::Meter;
+use arc::Ctx;
+use j2::{propagate_steps, step_count};
+use track::Track;
+
+/// `state` flown for `dt_s` in the planning model (the host's tour bookkeeping uses this one
+/// implementation); `None` beyond `settings.max_steps` steps or on a non-finite state.
+pub fn propagate(settings: &Settings, state: &j2::State, dt_s: f64) -> Option<j2::State> {
+    let n = step_count(dt_s, settings.step_s, settings.max_steps)?;
+    propagate_steps(&settings.gravity(), state, dt_s, n)
+}
+
+/// Plan one arc.
+///
+/// # Errors
+/// [`PlanError`]: a field out of range, a client trajectory that cannot be propagated, no
+/// transfer found, or the budget spent before any plan.
+pub fn solve_arc(problem: &ArcProblem, settings: &Settings) -> Result<ArcSolution, PlanError> {
+    validate::check(problem, settings)?;
+    let g = settings.gravity();
+    let mut meter = Meter::new(settings.work_budget);
+    let tf = problem.duration_s;
+    let exhausted = |m: &Meter| PlanError::BudgetExhausted {
+        used: m.used(),
+        budget: settings.work_budget,
+    };
+    let a =
+        Track::new(&g, settings, &problem.from, tf, &mut meter).ok_or(if meter.exhausted() {
+            exhausted(&meter)
+        } else {
+            PlanError::Propagation { field: Field::From }
+        })?;
+    let b = Track::new(&g, settings, &problem.to, tf, &mut meter).ok_or(if meter.exhausted() {
+        exhausted(&meter)
+    } else {
+        PlanError::Propagation { field: Field::To }
+    })?;
+    let n = step_count(tf, settings.step_s, settings.max_steps.saturating_mul(64))
+        .ok_or(PlanError::Propagation { field: Field::To })?;
+    meter.charge(u64::from(n));
+    let b_end = propagate_steps(&g, &problem.to, tf, n)
+        .ok_or(PlanError::Propagation { field: Field::To })?;
+    let mut ctx = Ctx {
+        settings,
+        g,
+        impulses: usize::from(problem.impulses),
+        tf,
+        a,
+        b,
+        b_end,
+        meter,
+        evals: 0,
+    };
+    let candidates = ctx.grid();
+    let mut best: Option<ArcSolution> = None;
+    for p in candidates.iter().flatten() {
+        let q = ctx.refine(*p);
+        if let Some(sol) = ctx.finish(&q) {
+            let better = best.is_none_or(|b| {
+                let rank = |s: &ArcSolution| u8::from(s.status == Status::ArrivalMissed);
+                (rank(&sol), sol.total_dv_mps) < (rank(&b), b.total_dv_mps)
+            });
+            if better {
+                best = Some(sol);
+            }
+        }
+    }
+    match best {
+        Some(mut sol) => {
+            sol.evaluations = ctx.evals;
+            sol.work_units = ctx.meter.used();
+            if sol.status == Status::Solved && ctx.meter.exhausted() {
+                sol.status = Status::BudgetExhaustedSolved;
+            }
+            Ok(sol)
+        }
+        None if ctx.meter.exhausted() => Err(exhausted(&ctx.meter)),
+        None => Err(PlanError::NoTransfer),
+    }
+}
