@@ -27,8 +27,7 @@
 
 use super::qp::{Mode, QpState};
 use super::transcription::{
-    block_dot, node_value, row_axpy, row_dot, Coefficients, RowId, Source, Transcription,
-    MAX_BLOCKS,
+    block_dot, node_value, row_axpy, row_dot, Check, Coefficients, RowId, Transcription, MAX_BLOCKS,
 };
 use crate::capacity::{MAX_ACTIVE, MAX_FREE_PER_AXIS, MAX_NODES};
 use crate::vec3;
@@ -215,11 +214,38 @@ fn describe(tr: &Transcription, id: RowId) -> ActiveConstraint {
     }
 }
 
-/// `out += sign * S v` restricted to one active keep-out check with multiplier `l`.
+/// `|r_i - r_j|` at each active row's check on `y` (0 for control rows), in the QP's row order:
+/// the lengths `add_curvature` needs, computed once per point instead of once per product (a
+/// CG or power-method product otherwise recomputed six dot products per check for them).
+pub(super) fn check_lengths(
+    tr: &Transcription,
+    qp: &QpState,
+    y: &Coefficients,
+    out: &mut [f64; MAX_ACTIVE],
+) {
+    *out = [0.0; MAX_ACTIVE];
+    for (slot, &id) in out.iter_mut().zip(qp.active.iter()).take(qp.count) {
+        if let RowId::KeepOut { pair, check } = id {
+            let p = usize::from(pair);
+            if let Some(c) = tr.checks.get(p).and_then(|row| row.get(usize::from(check))) {
+                let relative = tr.relative(p, c.source, y);
+                *slot = libm::sqrt(
+                    relative[0] * relative[0]
+                        + relative[1] * relative[1]
+                        + relative[2] * relative[2],
+                );
+            }
+        }
+    }
+}
+
+/// `out += sign * S v` restricted to one active keep-out check `c` of `pair` with multiplier
+/// `l`, at a point `y` where the check's separation has length `length` (`check_lengths`) and
+/// its normal is the unit separation (`unit_normals_at(tr, y)` sets it with the same arithmetic).
 pub(super) fn add_curvature(
     tr: &Transcription,
-    y: &Coefficients,
-    (pair, source): (usize, Source),
+    (pair, c): (usize, &Check),
+    length: f64,
     l: f64,
     v: &Coefficients,
     out: &mut Coefficients,
@@ -227,19 +253,11 @@ pub(super) fn add_curvature(
     let Some(&(i, j)) = tr.pairs.get(pair) else {
         return;
     };
-    let relative = tr.relative(pair, source, y);
-    let length = libm::sqrt(
-        relative[0] * relative[0] + relative[1] * relative[1] + relative[2] * relative[2],
-    );
     if length <= 0.0 {
         return;
     }
-    let n = [
-        relative[0] / length,
-        relative[1] / length,
-        relative[2] / length,
-    ];
-    let (row, _) = tr.check_row(source);
+    let n = c.normal;
+    let (row, _) = tr.check_row(c.source);
     let free = tr.basis.free;
     let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
     let block = |sc: u8, axis: usize| usize::from(sc).saturating_mul(3).saturating_add(axis);
@@ -299,6 +317,9 @@ impl Envelope {
         let mut r = [0.0; 3];
         let mut rd = [0.0; 3];
         let mut rdd = [0.0; 3];
+        // One interpolation row at `tau` serves every value below.
+        let mut lagrange = [0.0; MAX_NODES];
+        tr.grid.lagrange_row(tau, &mut lagrange);
         for axis in 0..3 {
             let mut values = [0.0; MAX_NODES];
             for (h, slot) in values.iter_mut().enumerate().take(nodes) {
@@ -312,9 +333,9 @@ impl Envelope {
             let mut second = [0.0; MAX_NODES];
             tr.grid.differentiate(&values, &mut first);
             tr.grid.differentiate(&first, &mut second);
-            *r.get_mut(axis)? = tr.grid.interpolate(&values, tau);
-            *rd.get_mut(axis)? = rate * tr.grid.interpolate(&first, tau);
-            *rdd.get_mut(axis)? = rate * rate * tr.grid.interpolate(&second, tau);
+            *r.get_mut(axis)? = tr.grid.interpolate_with(&lagrange, &values);
+            *rd.get_mut(axis)? = rate * tr.grid.interpolate_with(&lagrange, &first);
+            *rdd.get_mut(axis)? = rate * rate * tr.grid.interpolate_with(&lagrange, &second);
         }
         let length = libm::sqrt(vec3::dot(&r, &r));
         if length <= 0.0 {
@@ -343,7 +364,7 @@ impl Envelope {
             }
             let mut derivative = [0.0; MAX_NODES];
             tr.grid.differentiate(&column, &mut derivative);
-            *slot = rate * tr.grid.interpolate(&derivative, tau);
+            *slot = rate * tr.grid.interpolate_with(&lagrange, &derivative);
         }
         for axis in 0..3 {
             let (ra, rda) = (*r.get(axis)?, *rd.get(axis)?);
@@ -517,6 +538,8 @@ pub(crate) fn evaluate(
         }
     }
     project(tr, qp, direction);
+    let mut lengths = [0.0; MAX_ACTIVE];
+    check_lengths(tr, qp, y, &mut lengths);
     let mut largest = 0.0f64;
     for _ in 0..POWER_ITERATIONS {
         let norm = libm::sqrt(dot(direction, direction, size));
@@ -526,14 +549,21 @@ pub(crate) fn evaluate(
         }
         scale(direction, 1.0 / norm, size);
         *w = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
-        for_each_multiplier(tr, qp, |id, value| {
+        // Factor mode (checked above): the multipliers are the active rows' own.
+        for ((&id, &value), &length) in qp
+            .active
+            .iter()
+            .zip(qp.multiplier.iter())
+            .zip(lengths.iter())
+            .take(qp.count)
+        {
             if let RowId::KeepOut { pair, check } = id {
                 let p = usize::from(pair);
                 if let Some(c) = tr.checks.get(p).and_then(|row| row.get(usize::from(check))) {
-                    add_curvature(tr, y, (p, c.source), value, direction, w);
+                    add_curvature(tr, (p, c), length, value, direction, w);
                 }
             }
-        });
+        }
         for envelope in corrections.iter() {
             let along = envelope.weight * envelope.dot(tr, direction);
             envelope.axpy(tr, -along, w);
