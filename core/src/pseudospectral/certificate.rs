@@ -25,6 +25,7 @@
 //! are the constraint gradients at the iterate, so they are the Lagrange multipliers; the
 //! stationarity residual measures how far from that fixed point the iterate is.
 
+use super::lanczos::{self, Curvature, LANCZOS_STEPS};
 use super::qp::{Mode, QpState};
 use super::transcription::{
     block_dot, node_value, row_axpy, row_dot, Check, Coefficients, RowId, Transcription, MAX_BLOCKS,
@@ -160,7 +161,7 @@ impl Certificate {
 }
 
 /// `a . b` over the first `blocks` blocks and `free` coefficients (the rest are unused).
-fn dot(a: &Coefficients, b: &Coefficients, (blocks, free): (usize, usize)) -> f64 {
+pub(super) fn dot(a: &Coefficients, b: &Coefficients, (blocks, free): (usize, usize)) -> f64 {
     let mut sum = 0.0;
     for (x, y) in a.iter().zip(b.iter()).take(blocks) {
         for (p, q) in x.iter().zip(y.iter()).take(free) {
@@ -170,7 +171,7 @@ fn dot(a: &Coefficients, b: &Coefficients, (blocks, free): (usize, usize)) -> f6
     sum
 }
 
-fn scale(a: &mut Coefficients, factor: f64, (blocks, free): (usize, usize)) {
+pub(super) fn scale(a: &mut Coefficients, factor: f64, (blocks, free): (usize, usize)) {
     for row in a.iter_mut().take(blocks) {
         for v in row.iter_mut().take(free) {
             *v *= factor;
@@ -436,7 +437,9 @@ pub(super) fn project(tr: &Transcription, qp: &QpState, x: &mut Coefficients) {
 
 /// Evaluate the certificate at `y` (the transcription linearised at `y`, the QP state of the
 /// QP that produced `y`). Writes the negative-curvature direction (unit, in the null space)
-/// into `direction`. `max_violation` is left to the caller.
+/// into `direction` when the reduced Hessian is not positive definite (zero otherwise).
+/// `max_violation` is left to the caller. Returns the Lanczos products taken beyond the power
+/// steps `work_units::finish` charges (nonzero only when the power method ran as well).
 pub(crate) fn evaluate(
     tr: &Transcription,
     qp: &mut QpState,
@@ -445,7 +448,7 @@ pub(crate) fn evaluate(
     direction: &mut Coefficients,
     w: &mut Coefficients,
     out: &mut Certificate,
-) {
+) -> usize {
     let free = tr.basis.free;
     let size = (tr.blocks(), free);
     out.first_order_evaluated = true;
@@ -486,10 +489,10 @@ pub(crate) fn evaluate(
         // Only linear constraints are active: the Hessian of the Lagrangian is the identity.
         out.min_reduced_eigenvalue = 1.0;
         out.second_order_evaluated = true;
-        return;
+        return 0;
     }
     if qp.mode != Mode::Factor || !qp.merge_close_checks(tr) {
-        return;
+        return 0;
     }
     let blocks = tr.blocks();
     // Envelope corrections of the active moving checks (at most one per pair), and a shift
@@ -530,16 +533,31 @@ pub(crate) fn evaluate(
             let _ = corrections.push(envelope);
         }
     });
-    for (b, row) in direction.iter_mut().enumerate().take(blocks) {
-        for (f, slot) in row.iter_mut().enumerate().take(free) {
-            // A fixed start with every sign pattern present (deterministic, bit-identical).
-            let k = b.saturating_mul(free).saturating_add(f);
-            *slot = libm::sin(0.7 * (k as f64) + 0.3);
-        }
-    }
-    project(tr, qp, direction);
+    // Factor mode (checked above): the multipliers are the active rows' own.
     let mut lengths = [0.0; MAX_ACTIVE];
     check_lengths(tr, qp, y, &mut lengths);
+    let op = Curvature {
+        tr,
+        qp,
+        lengths: &lengths,
+        corrections: &corrections,
+    };
+    // Lanczos first (a few products where the power method took up to 120). A positive
+    // definite answer is final; the direction is then unused (no saddle to leave, nothing flat
+    // to probe) and left zero. Otherwise the power method below finds the eigenvector the
+    // saddle escape and the flat-direction probe step along, from the same start as always.
+    start_vector(tr, qp, direction);
+    let lanczos = lanczos::largest(&op, direction, w, size);
+    if let Some((largest, _)) = lanczos {
+        if 1.0 - largest >= CURVATURE_TOL {
+            *direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
+            out.min_reduced_eigenvalue = 1.0 - largest;
+            out.second_order_evaluated = true;
+            return 0;
+        }
+    }
+    let extra = lanczos.map_or(LANCZOS_STEPS, |(_, steps)| steps);
+    start_vector(tr, qp, direction);
     let mut largest = 0.0f64;
     for _ in 0..POWER_ITERATIONS {
         let norm = libm::sqrt(dot(direction, direction, size));
@@ -549,25 +567,7 @@ pub(crate) fn evaluate(
         }
         scale(direction, 1.0 / norm, size);
         *w = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
-        // Factor mode (checked above): the multipliers are the active rows' own.
-        for ((&id, &value), &length) in qp
-            .active
-            .iter()
-            .zip(qp.multiplier.iter())
-            .zip(lengths.iter())
-            .take(qp.count)
-        {
-            if let RowId::KeepOut { pair, check } = id {
-                let p = usize::from(pair);
-                if let Some(c) = tr.checks.get(p).and_then(|row| row.get(usize::from(check))) {
-                    add_curvature(tr, (p, c), length, value, direction, w);
-                }
-            }
-        }
-        for envelope in corrections.iter() {
-            let along = envelope.weight * envelope.dot(tr, direction);
-            envelope.axpy(tr, -along, w);
-        }
+        op.accumulate(direction, w);
         for (wr, dr) in w.iter_mut().zip(direction.iter()).take(blocks) {
             for (a, b) in wr.iter_mut().zip(dr.iter()).take(free) {
                 *a += sigma * b;
@@ -591,4 +591,19 @@ pub(crate) fn evaluate(
     }
     out.min_reduced_eigenvalue = 1.0 - largest;
     out.second_order_evaluated = true;
+    extra
+}
+
+/// The fixed start of both eigenvalue methods, projected on the null space: every sign
+/// pattern present (deterministic, bit-identical host / M7).
+fn start_vector(tr: &Transcription, qp: &QpState, direction: &mut Coefficients) {
+    let free = tr.basis.free;
+    *direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
+    for (b, row) in direction.iter_mut().enumerate().take(tr.blocks()) {
+        for (f, slot) in row.iter_mut().enumerate().take(free) {
+            let k = b.saturating_mul(free).saturating_add(f);
+            *slot = libm::sin(0.7 * (k as f64) + 0.3);
+        }
+    }
+    project(tr, qp, direction);
 }
