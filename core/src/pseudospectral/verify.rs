@@ -214,12 +214,17 @@ impl Bernstein {
                 if let Some(slot) = left.get_mut(r) {
                     *slot = c.first().copied().unwrap_or(0.0);
                 }
+                // c[k] <- (c[k] + c[k + 1]) / 2 for k < degree - r, in increasing k (each reads
+                // its right neighbour before that one is replaced): the same sums, walked by
+                // an iterator with no index to check (the subdivision's inner loop).
                 let count = degree.saturating_sub(r);
-                for k in 0..count {
-                    let a = c.get(k).copied().unwrap_or(0.0);
-                    let b = c.get(k.saturating_add(1)).copied().unwrap_or(0.0);
-                    if let Some(slot) = c.get_mut(k) {
-                        *slot = 0.5 * (a + b);
+                if let Some(level) = c.get_mut(..=count) {
+                    let mut entries = level.iter_mut();
+                    if let Some(mut left_entry) = entries.next() {
+                        for right_entry in entries {
+                            *left_entry = 0.5 * (*left_entry + *right_entry);
+                            left_entry = right_entry;
+                        }
                     }
                 }
             }
