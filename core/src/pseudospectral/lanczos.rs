@@ -22,7 +22,9 @@ use crate::capacity::MAX_ACTIVE;
 /// Most Lanczos steps (each one product with `P S P`). Stops earlier when the Krylov space is
 /// exhausted or the largest Ritz value has settled (`SETTLED_REL`).
 pub const LANCZOS_STEPS: usize = 60;
-/// The largest Ritz value is recomputed every this many steps.
+/// The largest Ritz value is recomputed every this many steps (each a bisection: a serial chain
+/// of divisions: run to the double-precision end, about a quarter of the paper case's host
+/// time, hence the stop at `BRACKET_REL` and the floor from the previous value).
 const CHECK_EVERY: usize = 4;
 /// Settled: changed by at most this, relative to `1 + |value|`, over `CHECK_EVERY` steps (far
 /// below `CURVATURE_TOL`, 1e-6, the certificate's resolution).
@@ -30,9 +32,12 @@ const SETTLED_REL: f64 = 1e-12;
 /// The Krylov space is exhausted when a new direction's norm falls below this times the
 /// operator's scale seen so far (rounding level, not a tolerance of the answer).
 const EXHAUSTED_REL: f64 = 1e-13;
-/// Bisection steps for the tridiagonal's largest eigenvalue (each halves the bracket; 100
+/// Bisection steps for the tridiagonal's largest eigenvalue at most (each halves the bracket; 100
 /// reach the double-precision resolution of any bracket a finite operator gives).
 const BISECTION_STEPS: usize = 100;
+/// The bisection stops when the bracket is this narrow relative to `1 + |ends|`: far below
+/// `SETTLED_REL` and the certificate's `CURVATURE_TOL`.
+const BRACKET_REL: f64 = 1e-14;
 
 /// `S` less the envelope terms (the curvature of the active keep-out checks at the iterate), for
 /// the projected products.
@@ -119,7 +124,7 @@ pub(super) fn largest(
             break;
         }
         if steps % CHECK_EVERY == 0 {
-            let value = tridiagonal_largest(&alpha, &beta, steps);
+            let value = tridiagonal_largest(&alpha, &beta, steps, settled_value);
             if libm::fabs(value - settled_value) <= SETTLED_REL * (1.0 + libm::fabs(value)) {
                 break;
             }
@@ -129,14 +134,16 @@ pub(super) fn largest(
         core::mem::swap(&mut v, &mut u);
         previous_beta = b;
     }
-    let value = tridiagonal_largest(&alpha, &beta, steps);
+    let value = tridiagonal_largest(&alpha, &beta, steps, settled_value);
     value.is_finite().then_some((value, steps))
 }
 
 /// The largest eigenvalue of the symmetric tridiagonal matrix with diagonal `alpha[..m]` and
 /// off-diagonal `beta[..m - 1]`, by bisection on Sturm counts inside the Gershgorin bounds;
 /// returns the bracket's upper end (at or above the eigenvalue: the certificate's side).
-fn tridiagonal_largest(alpha: &[f64], beta: &[f64], m: usize) -> f64 {
+/// `known_below` is a value already known not above it (the previous, smaller Lanczos
+/// matrix's: by interlacing the largest Ritz value never decreases), or NaN.
+fn tridiagonal_largest(alpha: &[f64], beta: &[f64], m: usize, known_below: f64) -> f64 {
     let off = |i: usize| -> f64 {
         if i.saturating_add(1) < m {
             beta.get(i).copied().map_or(0.0, libm::fabs)
@@ -154,9 +161,17 @@ fn tridiagonal_largest(alpha: &[f64], beta: &[f64], m: usize) -> f64 {
     if !(lo.is_finite() && hi.is_finite()) {
         return f64::NAN;
     }
+    if known_below.is_finite() {
+        // Slightly below it: the earlier value is itself a bracket end, not exact.
+        let floor = known_below - BRACKET_REL * (1.0 + libm::fabs(known_below));
+        lo = lo.max(floor).min(hi);
+    }
     for _ in 0..BISECTION_STEPS {
         let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
+        if mid <= lo
+            || mid >= hi
+            || hi - lo <= BRACKET_REL * (1.0 + libm::fabs(lo).max(libm::fabs(hi)))
+        {
             break;
         }
         // Eigenvalues below `mid`: the negative pivots of T - mid I = L D L^T.
@@ -201,7 +216,7 @@ mod tests {
             let beta = [-1.0; LANCZOS_STEPS];
             let expected = 2.0 + 2.0 * libm::cos(core::f64::consts::PI / (m as f64 + 1.0));
             let expected = if m == 1 { 2.0 } else { expected };
-            let got = tridiagonal_largest(&alpha, &beta, m);
+            let got = tridiagonal_largest(&alpha, &beta, m, f64::NAN);
             assert!(
                 (got - expected).abs() <= 1e-13,
                 "m={m}: {got} vs {expected}"
