@@ -205,11 +205,20 @@ impl LglGrid {
         }
     }
 
-    /// Interpolate nodal values at `tau`.
+    /// Interpolate nodal values at `tau` (the solver builds the row once per point and uses
+    /// `interpolate_with`; this one-shot form serves the tests).
+    #[cfg(test)]
     pub fn interpolate(&self, values: &[f64; MAX_NODES], tau: f64) -> f64 {
         let mut row = [0.0; MAX_NODES];
         self.lagrange_row(tau, &mut row);
         dot(&row, values, self.nodes())
+    }
+
+    /// Interpolate nodal values with a row `lagrange_row` built for the point: the same sum as
+    /// `interpolate`, so several values at one point need only one row (its divisions are most
+    /// of an interpolation's cost).
+    pub fn interpolate_with(&self, row: &[f64; MAX_NODES], values: &[f64; MAX_NODES]) -> f64 {
+        dot(row, values, self.nodes())
     }
 
     /// Nodal values of the derivative (in tau) of the interpolant of `values`: `D values`.

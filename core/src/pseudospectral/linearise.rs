@@ -120,15 +120,17 @@ pub(super) fn relative_state(ws: &Workspace, pair: usize, tau: f64) -> ([f64; 3]
     let (i, j) = tr.pairs.get(pair).copied().unwrap_or((0, 0));
     let mut position = [0.0; 3];
     let mut velocity = [0.0; 3];
+    let mut lagrange = [0.0; MAX_NODES];
+    tr.grid.lagrange_row(tau, &mut lagrange);
     for axis in 0..3 {
         let relative = relative_nodes(tr, &ws.iterate, (i, j), axis);
         let mut derivative = [0.0; MAX_NODES];
         tr.grid.differentiate(&relative, &mut derivative);
         if let Some(slot) = position.get_mut(axis) {
-            *slot = tr.grid.interpolate(&relative, tau);
+            *slot = tr.grid.interpolate_with(&lagrange, &relative);
         }
         if let Some(slot) = velocity.get_mut(axis) {
-            *slot = 2.0 / tr.horizon_tu * tr.grid.interpolate(&derivative, tau);
+            *slot = 2.0 / tr.horizon_tu * tr.grid.interpolate_with(&lagrange, &derivative);
         }
     }
     (position, velocity)
@@ -335,15 +337,17 @@ pub(super) fn refine_moving_checks(ws: &mut Workspace) {
         }
         let (i, j) = tr.pairs.get(pair).copied().unwrap_or((0, 0));
         let (mut along, mut curvature) = (0.0, 0.0);
+        let mut lagrange = [0.0; MAX_NODES];
+        tr.grid.lagrange_row(check.tau, &mut lagrange);
         for axis in 0..3 {
             let values = relative_nodes(tr, &ws.iterate, (i, j), axis);
             let mut first = [0.0; MAX_NODES];
             let mut second = [0.0; MAX_NODES];
             tr.grid.differentiate(&values, &mut first);
             tr.grid.differentiate(&first, &mut second);
-            let r = tr.grid.interpolate(&values, check.tau);
-            let rd = tr.grid.interpolate(&first, check.tau);
-            let rdd = tr.grid.interpolate(&second, check.tau);
+            let r = tr.grid.interpolate_with(&lagrange, &values);
+            let rd = tr.grid.interpolate_with(&lagrange, &first);
+            let rdd = tr.grid.interpolate_with(&lagrange, &second);
             // d/dtau |r|^2 / 2 and d^2/dtau^2 |r|^2 / 2.
             along += r * rd;
             curvature += rd * rd + r * rdd;

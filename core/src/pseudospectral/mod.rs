@@ -22,6 +22,7 @@ pub use certificate::{
 pub use error::{
     Boundary, Capacity, PlanError, Quantity, SettingsError, MAX_MAGNITUDE, MIN_POSITIVE,
 };
+pub use lanczos::LANCZOS_STEPS;
 pub use problem::{Problem, Spacecraft};
 pub use settings::Settings;
 pub use solution::Solution;
@@ -65,6 +66,7 @@ mod basis;
 mod collision;
 mod guess;
 mod iteration;
+mod lanczos;
 mod lgl;
 mod linalg;
 mod linearise;

@@ -32,7 +32,7 @@
 //! the cost. Near a nondegenerate local optimum the linearisation point and the QP's answer
 //! converge superlinearly together.
 
-use super::certificate::{add_curvature, project, Envelope, MAX_ENVELOPES};
+use super::certificate::{add_curvature, check_lengths, project, Envelope, MAX_ENVELOPES};
 use super::linearise::unit_normals_at;
 use super::qp::{Mode, QpState};
 use super::transcription::{row_axpy, row_dot, Coefficients, RowId, Transcription, MAX_BLOCKS};
@@ -78,7 +78,7 @@ type Envelopes = heapless::Vec<Envelope, MAX_ENVELOPES>;
 fn curvature(
     tr: &Transcription,
     qp: &QpState,
-    y: &Coefficients,
+    lengths: &[f64; MAX_ACTIVE],
     envelopes: &Envelopes,
     v: &Coefficients,
     out: &mut Coefficients,
@@ -88,14 +88,20 @@ fn curvature(
         let along = envelope.weight * envelope.dot(tr, v);
         envelope.axpy(tr, -along, out);
     }
-    for (&id, &value) in qp.active.iter().zip(qp.multiplier.iter()).take(qp.count) {
+    for ((&id, &value), &length) in qp
+        .active
+        .iter()
+        .zip(qp.multiplier.iter())
+        .zip(lengths.iter())
+        .take(qp.count)
+    {
         if let RowId::KeepOut { pair, check } = id {
             let p = usize::from(pair);
             if value <= 0.0 {
                 continue;
             }
             if let Some(c) = tr.checks.get(p).and_then(|row| row.get(usize::from(check))) {
-                add_curvature(tr, y, (p, c.source), value, v, out);
+                add_curvature(tr, (p, c), length, value, v, out);
             }
         }
     }
@@ -167,6 +173,8 @@ pub(super) fn step(
             }
         }
     }
+    let mut lengths = [0.0; MAX_ACTIVE];
+    check_lengths(tr, qp, y, &mut lengths);
     // Range step p_R = -A^T G^-1 c, accumulated in `next`.
     let mut b = [0.0; MAX_ACTIVE];
     for (slot, &id) in b.iter_mut().zip(qp.active.iter()).take(qp.count) {
@@ -179,7 +187,7 @@ pub(super) fn step(
         row_axpy(&tr.view(id), *value, next, free);
     }
     // Reduced gradient h = P (S p_R - y).
-    curvature(tr, qp, y, &envelopes, next, residual);
+    curvature(tr, qp, &lengths, &envelopes, next, residual);
     axpy(residual, -1.0, y, size);
     project(tr, qp, residual);
     let start = dot(residual, residual, size);
@@ -194,7 +202,7 @@ pub(super) fn step(
         // product = (I - P S P) d, d in the null space. Charged as it runs (the set-up was
         // charged by the caller); the iteration count is bounded above.
         work.charge(work_units::newton_iteration(tr, qp.count));
-        curvature(tr, qp, y, &envelopes, direction, product);
+        curvature(tr, qp, &lengths, &envelopes, direction, product);
         project(tr, qp, product);
         for (x, v) in product.iter_mut().zip(direction.iter()).take(size.0) {
             for (p, q) in x.iter_mut().zip(v.iter()).take(free) {

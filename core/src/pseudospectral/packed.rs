@@ -49,10 +49,34 @@ pub(crate) fn cholesky<const S: usize>(a: &mut [f64; S], n: usize) -> Option<usi
         }
         let pivot = libm::sqrt(diag);
         set(a, j, j, pivot);
+        // Row j's first j entries, copied out so rows i > j can be updated beside them (the
+        // same products in the same order as indexing both rows).
+        let mut row_j = [0.0; crate::capacity::MAX_ACTIVE];
+        let start_j = at(j, 0);
+        if let (Some(dst), Some(src)) = (
+            row_j.get_mut(..j),
+            a.get(start_j..start_j.saturating_add(j)),
+        ) {
+            dst.copy_from_slice(src);
+        } else {
+            for (k, slot) in row_j.iter_mut().enumerate().take(j) {
+                *slot = get(a, j, k);
+            }
+        }
         for i in (j.saturating_add(1))..n {
             let mut value = get(a, i, j);
-            for k in 0..j {
-                value -= get(a, i, k) * get(a, j, k);
+            let start_i = at(i, 0);
+            match a.get(start_i..start_i.saturating_add(j)) {
+                Some(row_i) if j <= row_j.len() => {
+                    for (x, y) in row_i.iter().zip(row_j.iter()) {
+                        value -= x * y;
+                    }
+                }
+                _ => {
+                    for k in 0..j {
+                        value -= get(a, i, k) * get(a, j, k);
+                    }
+                }
             }
             set(a, i, j, value / pivot);
         }
@@ -68,8 +92,19 @@ pub(crate) fn solve_lower<const S: usize, const C: usize>(
 ) {
     for i in 0..n.min(C) {
         let mut value = b.get(i).copied().unwrap_or(0.0);
-        for (k, bk) in b.iter().enumerate().take(i) {
-            value -= get(l, i, k) * bk;
+        // Row i of L is contiguous: walk it beside b (the same products, in order).
+        let start = at(i, 0);
+        match l.get(start..start.saturating_add(i)) {
+            Some(row) => {
+                for (lk, bk) in row.iter().zip(b.iter()) {
+                    value -= lk * bk;
+                }
+            }
+            None => {
+                for (k, bk) in b.iter().enumerate().take(i) {
+                    value -= get(l, i, k) * bk;
+                }
+            }
         }
         if let Some(slot) = b.get_mut(i) {
             *slot = value / get(l, i, i);
@@ -86,8 +121,11 @@ pub(crate) fn solve_lower_transposed<const S: usize, const C: usize>(
     let n = n.min(C);
     for i in (0..n).rev() {
         let mut value = b.get(i).copied().unwrap_or(0.0);
+        // Column i below the diagonal: L[k][i] sits k + 1 numbers after L[k - 1][i].
+        let mut index = at(i.saturating_add(1), i);
         for (k, bk) in b.iter().enumerate().take(n).skip(i.saturating_add(1)) {
-            value -= get(l, k, i) * bk;
+            value -= l.get(index).copied().unwrap_or(0.0) * bk;
+            index = index.saturating_add(k).saturating_add(1);
         }
         if let Some(slot) = b.get_mut(i) {
             *slot = value / get(l, i, i);

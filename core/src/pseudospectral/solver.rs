@@ -311,7 +311,7 @@ fn finish(ws: &mut Workspace, settings: &Settings, out: &mut Solution, end: SqpE
     out.certificate.second_order_evaluated = false;
     if !matches!(end, SqpEnd::Failed(_)) {
         unit_normals(ws);
-        certificate::evaluate(
+        let extra = certificate::evaluate(
             &ws.transcription,
             &mut ws.qp,
             &ws.iterate,
@@ -320,6 +320,11 @@ fn finish(ws: &mut Workspace, settings: &Settings, out: &mut Solution, end: SqpE
             &mut ws.accepted,
             &mut out.certificate,
         );
+        ws.work.charge(work_units::extra_products(
+            &ws.transcription,
+            ws.qp.count,
+            extra,
+        ));
     }
     // The certificate is measured on the returned iterate with the constraint gradients there,
     // whatever the iteration says; it needs the QP state to be the iterate's own (the last QP's

@@ -128,10 +128,10 @@ impl Bernstein {
     pub fn coefficients(&self, nodal: &[f64; MAX_NODES], out: &mut [f64; MAX_NODES]) {
         let size = self.degree.saturating_add(1);
         *out = [0.0; MAX_NODES];
-        for (k, slot) in out.iter_mut().enumerate().take(size) {
+        for (slot, row) in out.iter_mut().zip(self.to_bernstein.iter()).take(size) {
             let mut sum = 0.0;
-            for (h, value) in nodal.iter().enumerate().take(size) {
-                sum += get(&self.to_bernstein, k, h) * value;
+            for (entry, value) in row.iter().zip(nodal.iter()).take(size) {
+                sum += entry * value;
             }
             *slot = sum;
         }
@@ -140,22 +140,32 @@ impl Bernstein {
     /// Bernstein coefficients (degree 2N) of `sum_axis p_axis^2` from the three axes'
     /// degree-N coefficients.
     pub fn squared_norm(&self, axes: &[[f64; MAX_NODES]; 3], out: &mut [f64; MAX_PRODUCT]) {
-        let n = self.degree;
+        let size = self.degree.saturating_add(1);
         *out = [0.0; MAX_PRODUCT];
-        for i in 0..=n {
-            let ci = self.binomial_n.get(i).copied().unwrap_or(0.0);
-            for j in 0..=n {
-                let cj = self.binomial_n.get(j).copied().unwrap_or(0.0);
-                let k = i.saturating_add(j);
-                let c2 = self.binomial_2n.get(k).copied().unwrap_or(1.0);
+        let [x, y, z] = axes;
+        // Term (i, j) adds to coefficient i + j: walk the products of row i from coefficient i
+        // on (the same terms, in the same order, as indexing each one; no index to check).
+        for (i, (&ci, ((xi, yi), zi))) in self
+            .binomial_n
+            .iter()
+            .zip(x.iter().zip(y.iter()).zip(z.iter()))
+            .enumerate()
+            .take(size)
+        {
+            let (Some(targets), Some(c2s)) = (out.get_mut(i..), self.binomial_2n.get(i..)) else {
+                continue;
+            };
+            for ((slot, &c2), (&cj, ((xj, yj), zj))) in targets.iter_mut().zip(c2s.iter()).zip(
+                self.binomial_n
+                    .iter()
+                    .zip(x.iter().zip(y.iter()).zip(z.iter()))
+                    .take(size),
+            ) {
                 let mut product = 0.0;
-                for axis in axes {
-                    product +=
-                        axis.get(i).copied().unwrap_or(0.0) * axis.get(j).copied().unwrap_or(0.0);
-                }
-                if let Some(slot) = out.get_mut(k) {
-                    *slot += ci * cj / c2 * product;
-                }
+                product += xi * xj;
+                product += yi * yj;
+                product += zi * zj;
+                *slot += ci * cj / c2 * product;
             }
         }
     }
@@ -214,12 +224,17 @@ impl Bernstein {
                 if let Some(slot) = left.get_mut(r) {
                     *slot = c.first().copied().unwrap_or(0.0);
                 }
+                // c[k] <- (c[k] + c[k + 1]) / 2 for k < degree - r, in increasing k (each reads
+                // its right neighbour before that one is replaced): the same sums, walked by
+                // an iterator with no index to check (the subdivision's inner loop).
                 let count = degree.saturating_sub(r);
-                for k in 0..count {
-                    let a = c.get(k).copied().unwrap_or(0.0);
-                    let b = c.get(k.saturating_add(1)).copied().unwrap_or(0.0);
-                    if let Some(slot) = c.get_mut(k) {
-                        *slot = 0.5 * (a + b);
+                if let Some(level) = c.get_mut(..=count) {
+                    let mut entries = level.iter_mut();
+                    if let Some(mut left_entry) = entries.next() {
+                        for right_entry in entries {
+                            *left_entry = 0.5 * (*left_entry + *right_entry);
+                            left_entry = right_entry;
+                        }
                     }
                 }
             }

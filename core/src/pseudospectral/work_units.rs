@@ -111,6 +111,14 @@ pub(super) fn finish(tr: &Transcription, working: usize) -> u64 {
         .saturating_add(power_step.saturating_mul(units(&[POWER_ITERATIONS])))
 }
 
+/// `products` projected curvature products past the power steps `finish` charges: the
+/// certificate's Lanczos steps when the power method ran after them (a reduced Hessian not
+/// positive definite), with `working` rows in the working set.
+pub(super) fn extra_products(tr: &Transcription, working: usize, products: usize) -> u64 {
+    let s = size(tr);
+    projected_curvature(&s, working.min(MAX_ACTIVE)).saturating_mul(units(&[products]))
+}
+
 /// One product with the Lagrangian's curvature projected on the null space of `working` rows
 /// (a power step of the certificate, a conjugate-gradient step of the Newton step): the
 /// projection (row products and updates, two triangular solves), each active keep-out row's
