@@ -1,0 +1,163 @@
+//! What a frame carries: the requests a feeder sends and the outcomes the service answers.
+
+use super::FrameError;
+use crate::{geo_tour, impulsive, pseudospectral};
+use serde::{Deserialize, Serialize};
+
+/// A planning request for either planner.
+// No heap in the core: the variants stay inline, sized by the capacities.
+#[allow(clippy::large_enum_variant)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Request {
+    /// Planner A.
+    Pseudospectral {
+        /// The problem.
+        problem: pseudospectral::Problem,
+        /// Loop bounds and tolerances.
+        settings: pseudospectral::Settings,
+    },
+    /// Planner B.
+    Impulsive {
+        /// The problem.
+        problem: impulsive::Problem,
+        /// Loop bounds and tolerances.
+        settings: impulsive::Settings,
+    },
+    /// The GEO servicing tour.
+    GeoTour {
+        /// The problem.
+        problem: geo_tour::Problem,
+        /// Loop bounds, tolerances and the paper's rule.
+        settings: geo_tour::Settings,
+    },
+    /// Planner B with its orbits in the forms the user gave (equinoctial elements, osculating
+    /// ECI states, ROE, the deputy's own orbits), converted in the service by the core's
+    /// `impulsive::forms`.
+    ImpulsiveForm {
+        /// The problem, in the user's forms.
+        problem: impulsive::FormProblem,
+        /// Loop bounds and tolerances.
+        settings: impulsive::Settings,
+    },
+}
+
+impl Request {
+    /// Which planner the request is for.
+    pub fn planner(&self) -> Planner {
+        match self {
+            Self::Pseudospectral { .. } => Planner::Pseudospectral,
+            Self::Impulsive { .. } | Self::ImpulsiveForm { .. } => Planner::Impulsive,
+            Self::GeoTour { .. } => Planner::GeoTour,
+        }
+    }
+}
+
+/// The planners.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[repr(u8)]
+pub enum Planner {
+    /// Planner A.
+    Pseudospectral = 0,
+    /// Planner B.
+    Impulsive = 1,
+    /// The GEO servicing tour.
+    GeoTour = 2,
+}
+
+/// What the service answers to one request.
+// No heap in the core: the solution stays inline (about 16 KB at capacity).
+#[allow(clippy::large_enum_variant)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Outcome {
+    /// Planner A iterated; the solution's `info.status` says how it ended.
+    Pseudospectral(pseudospectral::Solution),
+    /// Planner A rejected the request before iterating.
+    PseudospectralRejected(pseudospectral::PlanError),
+    /// Planner B iterated; the solution's `info.status` says how it ended.
+    Impulsive(impulsive::Solution),
+    /// Planner B rejected the request before iterating.
+    ImpulsiveRejected(impulsive::PlanError),
+    /// The request frame could not be decoded; says what was wrong.
+    BadRequest(FrameError),
+    /// The request asks for more work or less safety than the service's limits allow; nothing
+    /// was solved (see [`crate::limits`]).
+    LimitExceeded(crate::limits::LimitViolation),
+    /// The request waited in the service's queue past its deadline; nothing was solved.
+    Expired(Expiry),
+    /// The GEO tour planned; the solution's `info.status` says how it ended.
+    GeoTour(geo_tour::Solution),
+    /// The GEO tour rejected the request.
+    GeoTourRejected(geo_tour::PlanError),
+    /// Planner B iterated on a [`Request::ImpulsiveForm`]; the solution's `info.status` says how
+    /// it ended, the end state is in the form the request gave its target in. (A rejection is
+    /// [`Outcome::ImpulsiveRejected`].)
+    ImpulsiveForm {
+        /// The plan.
+        solution: impulsive::Solution,
+        /// The plan's end state in the user's form.
+        end_state: impulsive::EndState,
+    },
+}
+
+/// How long an expired request waited and the deadline it had, in microseconds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Expiry {
+    /// Time from the service's receipt of the request to its answer, us.
+    pub queued_us: u64,
+    /// The request's deadline, counted from its receipt, us.
+    pub deadline_us: u64,
+}
+
+/// A borrowed [`Outcome`]: encodes to the same bytes without copying a solution.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub enum OutcomeRef<'a> {
+    /// See [`Outcome::Pseudospectral`].
+    Pseudospectral(&'a pseudospectral::Solution),
+    /// See [`Outcome::PseudospectralRejected`].
+    PseudospectralRejected(pseudospectral::PlanError),
+    /// See [`Outcome::Impulsive`].
+    Impulsive(&'a impulsive::Solution),
+    /// See [`Outcome::ImpulsiveRejected`].
+    ImpulsiveRejected(impulsive::PlanError),
+    /// See [`Outcome::BadRequest`].
+    BadRequest(FrameError),
+    /// See [`Outcome::LimitExceeded`].
+    LimitExceeded(crate::limits::LimitViolation),
+    /// See [`Outcome::Expired`].
+    Expired(Expiry),
+    /// See [`Outcome::GeoTour`].
+    GeoTour(&'a geo_tour::Solution),
+    /// See [`Outcome::GeoTourRejected`].
+    GeoTourRejected(geo_tour::PlanError),
+    /// See [`Outcome::ImpulsiveForm`].
+    ImpulsiveForm {
+        /// The plan.
+        solution: &'a impulsive::Solution,
+        /// The plan's end state in the user's form.
+        end_state: impulsive::EndState,
+    },
+}
+
+impl Outcome {
+    /// Borrow as an [`OutcomeRef`] (same encoding).
+    pub fn as_ref(&self) -> OutcomeRef<'_> {
+        match self {
+            Self::Pseudospectral(s) => OutcomeRef::Pseudospectral(s),
+            Self::PseudospectralRejected(e) => OutcomeRef::PseudospectralRejected(*e),
+            Self::Impulsive(s) => OutcomeRef::Impulsive(s),
+            Self::ImpulsiveRejected(e) => OutcomeRef::ImpulsiveRejected(*e),
+            Self::BadRequest(e) => OutcomeRef::BadRequest(*e),
+            Self::LimitExceeded(v) => OutcomeRef::LimitExceeded(*v),
+            Self::Expired(x) => OutcomeRef::Expired(*x),
+            Self::GeoTour(s) => OutcomeRef::GeoTour(s),
+            Self::GeoTourRejected(e) => OutcomeRef::GeoTourRejected(*e),
+            Self::ImpulsiveForm {
+                solution,
+                end_state,
+            } => OutcomeRef::ImpulsiveForm {
+                solution,
+                end_state: *end_state,
+            },
+        }
+    }
+}
