@@ -55,8 +55,9 @@ pub struct FeedOptions {
     pub first_seq: u64,
     /// Show a progress bar.
     pub progress: bool,
-    /// Print `sent SEQ at T ms (N servers)`, `answered SEQ at T ms` and `lost SEQ at T ms` lines on
-    /// stdout as they happen (T from the feeder's start).
+    /// Print `sent SEQ at T ms (N servers listed, delivered to K)`, `undelivered SEQ at T ms`,
+    /// `answered SEQ at T ms` and `lost SEQ at T ms` lines on stdout as they happen (T from the
+    /// feeder's start).
     pub verbose: bool,
     /// Each request's deadline in the service's queue (None: the service's default).
     pub deadline: Option<Duration>,
