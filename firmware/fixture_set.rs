@@ -4,7 +4,7 @@
 //!
 //! Std-side code shared by two users, which include this file with `#[path]`:
 //! * `firmware/build.rs` bakes these bytes into the firmware;
-//! * the QEMU tests (`tests/tests/qemu_firmware.rs`) decode the *same* bytes and solve them on the
+//! * the QEMU tests (`tests/tests/qemu_firmware/`) decode the *same* bytes and solve them on the
 //!   host, so the bit-identity comparison cannot drift from what the firmware ran.
 
 #![allow(dead_code)] // each includer uses part of it

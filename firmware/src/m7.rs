@@ -1,7 +1,7 @@
 //! The Cortex-M7 program: run every baked-in fixture, print results and figures, exit.
 //!
 //! Output protocol (semihosting stdout, one record per line, `key=value` fields; parsed by
-//! `tests/tests/qemu_firmware.rs`):
+//! `tests/tests/qemu_firmware/`):
 //! ```text
 //! reconfig-firmware version=0.1.0 fixtures=5
 //! binary text_bytes=.. rodata_bytes=.. data_bytes=.. bss_bytes=.. uninit_bytes=.. static_ram_bytes=..
@@ -400,41 +400,12 @@ fn main() -> ! {
                 );
             }
             #[cfg(feature = "geo_tour")]
-            Planner::GeoTour => {
-                *GEO_SOLUTION = geo_tour::Solution::new();
-                repaint_stack();
-                let (problem, settings): (geo_tour::Problem, geo_tour::Settings) =
-                    match postcard::from_bytes(fixture.problem) {
-                        Ok(p) => p,
-                        Err(_) => panic!("fixture {} does not decode", fixture.name),
-                    };
-                let ticks_before = systick::now();
-                reconfig_measure_start(marker);
-                let result = geo_tour::solve(
-                    black_box(&problem),
-                    black_box(&settings),
-                    black_box(&mut *GEO_WORKSPACE),
-                    black_box(&mut *GEO_SOLUTION),
-                );
-                black_box(&result);
-                reconfig_measure_stop(marker);
-                let ticks = systick::now() - ticks_before;
-                let stack_bytes = stack_high_water();
-                let ok = result.is_ok();
-                let encoded: Result<&geo_tour::Solution, geo_tour::PlanError> =
-                    result.map(|()| &*GEO_SOLUTION);
-                // The GEO tour has no work meter: its line carries no `work_units`.
-                report(
-                    &mut out,
-                    index,
-                    fixture,
-                    "geo-tour",
-                    ok,
-                    stack_bytes,
-                    (ticks, None),
-                );
-                print_result(&mut out, index, &encoded);
-            }
+            Planner::GeoTour => run_geo_tour(
+                &mut out,
+                (index, marker, fixture),
+                &mut *GEO_WORKSPACE,
+                &mut *GEO_SOLUTION,
+            ),
             // build.rs bakes only the fixtures of the planners this image carries.
             #[allow(unreachable_patterns)]
             _ => panic!(
@@ -479,7 +450,43 @@ fn report(
 // Each planner's fixture runs in a function of its own (never inlined), so that `main`'s frame
 // does not hold every planner's decoded problem at once: the stack high-water of a fixture in
 // the default two-planner image is then that planner's, as in its one-planner image
-// (docs/firmware.md, "RAM per image").
+// (docs/firmware.md, "RAM per image"). The workspace is reused on purpose (no result may depend
+// on what an earlier solve left in it); the output buffer is fresh, as the host's is.
+
+/// A baked fixture's bytes decoded as the planner's input (`build.rs` encoded them from this
+/// type: a failure is a build fault, fatal).
+fn decode<P: serde::de::DeserializeOwned>(fixture: &Fixture) -> P {
+    match postcard::from_bytes(fixture.problem) {
+        Ok(p) => p,
+        Err(_) => panic!("fixture {} does not decode", fixture.name),
+    }
+}
+
+/// What one measured solve gave: its result, its SysTick time and the stack high-water since
+/// the last repaint.
+struct Measured<R> {
+    result: R,
+    ticks: u64,
+    stack_bytes: usize,
+}
+
+/// Runs `solve` between the instruction-count markers. The caller passes the inputs through
+/// `black_box` inside `solve` (after the start marker) and the result passes through it before
+/// the stop marker, so no part of the solve is folded away or moved out of the measured span.
+#[inline(always)]
+fn measured<R>(marker: u32, solve: impl FnOnce() -> R) -> Measured<R> {
+    let ticks_before = systick::now();
+    reconfig_measure_start(marker);
+    let result = solve();
+    black_box(&result);
+    reconfig_measure_stop(marker);
+    let ticks = systick::now() - ticks_before;
+    Measured {
+        result,
+        ticks,
+        stack_bytes: stack_high_water(),
+    }
+}
 
 #[cfg(feature = "pseudospectral")]
 #[inline(never)]
@@ -490,40 +497,29 @@ fn run_pseudospectral(
     workspace: &mut pseudospectral::Workspace,
     solution: &mut pseudospectral::Solution,
 ) {
-    // A fresh output buffer, as the host gets; the workspace is reused on purpose
-    // (no result may depend on what an earlier solve left in it).
     *solution = pseudospectral::Solution::new();
     repaint_stack();
-    let problem: pseudospectral::Problem = match postcard::from_bytes(fixture.problem) {
-        Ok(p) => p,
-        Err(_) => panic!("fixture {} does not decode", fixture.name),
-    };
-    let ticks_before = systick::now();
-    reconfig_measure_start(marker);
-    let result = pseudospectral::solve(
-        black_box(&problem),
-        black_box(settings),
-        black_box(&mut *workspace),
-        black_box(&mut *solution),
-    );
-    black_box(&result);
-    reconfig_measure_stop(marker);
-    let ticks = systick::now() - ticks_before;
-    let stack_bytes = stack_high_water();
-    let ok = result.is_ok();
-    let work_units = solution.info.work_units;
-    let encoded: Result<&pseudospectral::Solution, pseudospectral::PlanError> =
-        result.map(|()| &*solution);
+    let problem: pseudospectral::Problem = decode(fixture);
+    let run = measured(marker, || {
+        pseudospectral::solve(
+            black_box(&problem),
+            black_box(settings),
+            black_box(&mut *workspace),
+            black_box(&mut *solution),
+        )
+    });
+    let units = Some(solution.info.work_units);
+    let figures = (run.ticks, units);
     report(
         out,
         index,
         fixture,
         "pseudospectral",
-        ok,
-        stack_bytes,
-        (ticks, Some(work_units)),
+        run.result.is_ok(),
+        run.stack_bytes,
+        figures,
     );
-    print_result(out, index, &encoded);
+    print_result(out, index, &run.result.map(|()| &*solution));
 }
 
 #[cfg(feature = "impulsive")]
@@ -537,35 +533,26 @@ fn run_impulsive(
 ) {
     *solution = impulsive::Solution::new();
     repaint_stack();
-    let problem: impulsive::Problem = match postcard::from_bytes(fixture.problem) {
-        Ok(p) => p,
-        Err(_) => panic!("fixture {} does not decode", fixture.name),
-    };
-    let ticks_before = systick::now();
-    reconfig_measure_start(marker);
-    let result = impulsive::solve(
-        black_box(&problem),
-        black_box(settings),
-        black_box(&mut *workspace),
-        black_box(&mut *solution),
-    );
-    black_box(&result);
-    reconfig_measure_stop(marker);
-    let ticks = systick::now() - ticks_before;
-    let stack_bytes = stack_high_water();
-    let ok = result.is_ok();
-    let work_units = solution.info.work_units;
-    let encoded: Result<&impulsive::Solution, impulsive::PlanError> = result.map(|()| &*solution);
+    let problem: impulsive::Problem = decode(fixture);
+    let run = measured(marker, || {
+        impulsive::solve(
+            black_box(&problem),
+            black_box(settings),
+            black_box(&mut *workspace),
+            black_box(&mut *solution),
+        )
+    });
+    let figures = (run.ticks, Some(solution.info.work_units));
     report(
         out,
         index,
         fixture,
         "impulsive",
-        ok,
-        stack_bytes,
-        (ticks, Some(work_units)),
+        run.result.is_ok(),
+        run.stack_bytes,
+        figures,
     );
-    print_result(out, index, &encoded);
+    print_result(out, index, &run.result.map(|()| &*solution));
 }
 
 /// [`run_impulsive`] for a fixture in other input forms: the conversion runs inside the
@@ -581,36 +568,60 @@ fn run_impulsive_form(
 ) {
     *solution = impulsive::Solution::new();
     repaint_stack();
-    let problem: impulsive::FormProblem = match postcard::from_bytes(fixture.problem) {
-        Ok(p) => p,
-        Err(_) => panic!("fixture {} does not decode", fixture.name),
-    };
-    let ticks_before = systick::now();
-    reconfig_measure_start(marker);
-    let result = impulsive::solve_form(
-        black_box(&problem),
-        black_box(settings),
-        black_box(&mut *workspace),
-        black_box(&mut *solution),
-    );
-    black_box(&result);
-    reconfig_measure_stop(marker);
-    let ticks = systick::now() - ticks_before;
-    let stack_bytes = stack_high_water();
-    let ok = result.is_ok();
-    let work_units = solution.info.work_units;
-    let encoded: Result<(&impulsive::Solution, impulsive::EndState), impulsive::PlanError> =
-        result.map(|end| (&*solution, end));
+    let problem: impulsive::FormProblem = decode(fixture);
+    let run = measured(marker, || {
+        impulsive::solve_form(
+            black_box(&problem),
+            black_box(settings),
+            black_box(&mut *workspace),
+            black_box(&mut *solution),
+        )
+    });
+    let figures = (run.ticks, Some(solution.info.work_units));
     report(
         out,
         index,
         fixture,
         "impulsive",
-        ok,
-        stack_bytes,
-        (ticks, Some(work_units)),
+        run.result.is_ok(),
+        run.stack_bytes,
+        figures,
     );
-    print_result(out, index, &encoded);
+    print_result(out, index, &run.result.map(|end| (&*solution, end)));
+}
+
+/// The GEO tour's fixture (the GEO image): its bytes carry `(Problem, Settings)`. The GEO tour
+/// has no work meter: its line carries no `work_units`.
+#[cfg(feature = "geo_tour")]
+#[inline(never)]
+fn run_geo_tour(
+    out: &mut Out,
+    (index, marker, fixture): (usize, u32, &Fixture),
+    workspace: &mut geo_tour::Workspace,
+    solution: &mut geo_tour::Solution,
+) {
+    *solution = geo_tour::Solution::new();
+    repaint_stack();
+    let (problem, settings): (geo_tour::Problem, geo_tour::Settings) = decode(fixture);
+    let run = measured(marker, || {
+        geo_tour::solve(
+            black_box(&problem),
+            black_box(&settings),
+            black_box(&mut *workspace),
+            black_box(&mut *solution),
+        )
+    });
+    let figures = (run.ticks, None);
+    report(
+        out,
+        index,
+        fixture,
+        "geo-tour",
+        run.result.is_ok(),
+        run.stack_bytes,
+        figures,
+    );
+    print_result(out, index, &run.result.map(|()| &*solution));
 }
 
 #[panic_handler]

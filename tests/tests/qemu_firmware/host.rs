@@ -1,0 +1,88 @@
+//! The host's answer to a fixture, encoded as the firmware prints it: the same problem bytes
+//! the firmware decoded, the same settings, a fresh workspace and output buffer.
+
+use std::fmt::Write as _;
+
+use reconfig_core::{geo_tour, impulsive, pseudospectral};
+use serde::de::DeserializeOwned;
+use serde::Serialize;
+
+use crate::fixture_set::Planner;
+
+pub fn hex(bytes: &[u8]) -> String {
+    bytes.iter().fold(String::new(), |mut s, b| {
+        let _ = write!(s, "{b:02x}");
+        s
+    })
+}
+
+/// Decode the baked bytes as `P`, solve into fresh boxed buffers, and let `answer` encode the
+/// result with the buffers (as the firmware encodes them, with [`encode`]).
+fn encoded<P: DeserializeOwned, W, S, R>(
+    problem: &[u8],
+    (workspace, solution): (W, S),
+    solve: impl FnOnce(&P, &mut W, &mut S) -> R,
+    answer: impl FnOnce(R, &S) -> Vec<u8>,
+) -> Vec<u8> {
+    let problem: P = postcard::from_bytes(problem).expect("the baked problem decodes");
+    let (mut workspace, mut solution) = (Box::new(workspace), Box::new(solution));
+    let result = solve(&problem, &mut workspace, &mut solution);
+    answer(result, &solution)
+}
+
+fn encode<T: Serialize>(value: &T) -> Vec<u8> {
+    postcard::to_stdvec(value).expect("encode")
+}
+
+/// Planner B's settings for a fixture run with default settings or `fixed_point_only()`.
+fn impulsive_settings(fixed_point_only: bool) -> impulsive::Settings {
+    if fixed_point_only {
+        impulsive::Settings::fixed_point_only()
+    } else {
+        impulsive::Settings::default()
+    }
+}
+
+/// The host's encoded result for one fixture.
+pub fn host_result(planner: Planner, problem: &[u8]) -> Vec<u8> {
+    match planner {
+        Planner::Pseudospectral => encoded(
+            problem,
+            (
+                pseudospectral::Workspace::new(),
+                pseudospectral::Solution::new(),
+            ),
+            |p: &pseudospectral::Problem, w, s| {
+                pseudospectral::solve(p, &pseudospectral::Settings::default(), w, s)
+            },
+            |result, s| encode(&result.map(|()| s)),
+        ),
+        Planner::Impulsive | Planner::ImpulsiveFixedPoint => {
+            let settings = impulsive_settings(planner == Planner::ImpulsiveFixedPoint);
+            encoded(
+                problem,
+                (impulsive::Workspace::new(), impulsive::Solution::new()),
+                |p: &impulsive::Problem, w, s| impulsive::solve(p, &settings, w, s),
+                |result, s| encode(&result.map(|()| s)),
+            )
+        }
+        Planner::ImpulsiveForm | Planner::ImpulsiveFormFixedPoint => {
+            let settings = impulsive_settings(planner == Planner::ImpulsiveFormFixedPoint);
+            encoded(
+                problem,
+                (impulsive::Workspace::new(), impulsive::Solution::new()),
+                |p: &impulsive::FormProblem, w, s| impulsive::solve_form(p, &settings, w, s),
+                |result, s| encode(&result.map(|end| (s, end))),
+            )
+        }
+        // The GEO fixtures' bytes carry `(Problem, Settings)`.
+        Planner::GeoTour => encoded(
+            problem,
+            (geo_tour::Workspace::new(), geo_tour::Solution::new()),
+            |(p, settings): &(geo_tour::Problem, geo_tour::Settings), w, s| {
+                geo_tour::solve(p, settings, w, s)
+            },
+            |result, s| encode(&result.map(|()| s)),
+        ),
+    }
+}

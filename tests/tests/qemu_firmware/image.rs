@@ -1,0 +1,384 @@
+//! One firmware image: build it as its cargo alias does, run it in QEMU (with the
+//! instruction-counting plugin when it loads), and parse what it printed
+//! (`firmware/src/m7.rs` documents the output protocol).
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+use crate::prerequisites::{cargo, check_prerequisites, notice, root, skip, TARGET};
+
+/// One fixture's line pair in the firmware output.
+#[derive(Debug, Clone)]
+pub struct FixtureReport {
+    pub name: String,
+    pub planner: String,
+    pub stack_bytes: u64,
+    /// The firmware's own SysTick estimate (to within 40 instructions).
+    pub systick_instructions: u64,
+    /// Work units the solve reported (`SolveInfo::work_units`); the GEO tour has none.
+    pub work_units: Option<u64>,
+    pub hex: String,
+}
+
+/// Everything one firmware run produced.
+#[derive(Debug)]
+pub struct Run {
+    pub elf: PathBuf,
+    pub binary: BTreeMap<String, u64>,
+    pub fixtures: Vec<FixtureReport>,
+    /// Instructions per solve, by fixture index; `None` without the plugin.
+    pub instructions: Option<Vec<u64>>,
+}
+
+impl Run {
+    /// The largest stack high-water over the image's fixtures.
+    pub fn largest_stack_bytes(&self) -> u64 {
+        self.fixtures
+            .iter()
+            .map(|f| f.stack_bytes)
+            .max()
+            .unwrap_or(0)
+    }
+}
+
+/// A shared run, or `None` after reporting a skip (an `Err` starting with "SKIP: " is a
+/// missing prerequisite; any other error fails the test).
+pub fn or_skip<T>(test: &str, run: &'static Result<T, String>) -> Option<&'static T> {
+    match run {
+        Ok(run) => Some(run),
+        Err(e) => match e.strip_prefix("SKIP: ") {
+            Some(why) => {
+                skip(test, why);
+                None
+            }
+            None => panic!("{test}: {e}"),
+        },
+    }
+}
+
+/// Build one image (`bin`; with exactly `features`, or the default features for `None`) as its
+/// cargo alias does; the ELF's path.
+pub fn build_image(bin: &str, features: Option<&str>) -> Result<PathBuf, String> {
+    let mut command = Command::new(cargo());
+    command.current_dir(root()).args([
+        "build",
+        "--release",
+        "--target",
+        TARGET,
+        "-p",
+        "reconfig-firmware",
+        "--bin",
+        bin,
+    ]);
+    if let Some(features) = features {
+        command.args(["--no-default-features", "--features", features]);
+    }
+    let output = command
+        .arg("--message-format=json-render-diagnostics")
+        // Flags from the environment would replace .cargo/config.toml's link flags.
+        .env_remove("RUSTFLAGS")
+        .env_remove("CARGO_ENCODED_RUSTFLAGS")
+        .env_remove("CARGO_BUILD_RUSTFLAGS")
+        .stderr(Stdio::inherit())
+        .output()
+        .map_err(|e| format!("cannot run cargo: {e}"))?;
+    if !output.status.success() {
+        return Err(format!(
+            "building {bin} failed ({}); see the compiler output above",
+            output.status
+        ));
+    }
+    String::from_utf8_lossy(&output.stdout)
+        .lines()
+        .filter_map(|line| serde_json::from_str::<serde_json::Value>(line).ok())
+        .filter(|m| m["reason"] == "compiler-artifact" && m["target"]["name"] == bin)
+        .find_map(|m| m["executable"].as_str().map(PathBuf::from))
+        .ok_or_else(|| format!("cargo did not report the {bin} executable"))
+}
+
+/// Build an image and copy its ELF into a folder of its own (`folder`, beside the build
+/// output): `run_firmware` writes QEMU's output beside the ELF and `build_plugin` builds
+/// relative to it, while another image's run may be under way; and images that share the
+/// build output path (the one-planner images) would overwrite each other.
+pub fn build_image_in(bin: &str, features: Option<&str>, folder: &str) -> Result<PathBuf, String> {
+    let built = build_image(bin, features)?;
+    let dir = built.parent().ok_or("odd target path")?.join(folder);
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let elf = dir.join(bin);
+    std::fs::copy(&built, &elf).map_err(|e| format!("{}: {e}", elf.display()))?;
+    Ok(elf)
+}
+
+/// Check the prerequisites, build the image in its folder and run it with the instruction
+/// counts (see [`run_counted`]).
+pub fn build_and_run(bin: &str, features: Option<&str>, folder: &str) -> Result<Run, String> {
+    check_prerequisites().map_err(|e| format!("SKIP: {e}"))?;
+    let elf = build_image_in(bin, features, folder)?;
+    run_counted(&elf)
+}
+
+/// Run an image with the instruction-counting plugin; without counts (and a note saying why)
+/// when the plugin cannot be built or this QEMU has no TCG plugin support.
+pub fn run_counted(elf: &Path) -> Result<Run, String> {
+    let plugin = build_plugin(elf)
+        .map_err(|e| notice(&format!("note: no instruction counts: {e}")))
+        .ok();
+    match run_firmware(elf, plugin.as_deref()) {
+        Err(e) if e.starts_with("PLUGIN: ") => {
+            notice(&format!("note: no instruction counts: {}", &e[8..]));
+            run_firmware(elf, None)
+        }
+        other => other,
+    }
+}
+
+/// Build the instruction-counting plugin next to the firmware's target folder.
+fn build_plugin(elf: &Path) -> Result<PathBuf, String> {
+    let source_dir = root().join("tools/qemu-insn-plugin");
+    let out_dir = elf
+        .ancestors()
+        .nth(3)
+        .ok_or("odd target path")?
+        .join("qemu-insn-plugin");
+    std::fs::create_dir_all(&out_dir).map_err(|e| e.to_string())?;
+    let plugin = out_dir.join("libinsn_count.so");
+    let status = Command::new("gcc")
+        .args(["-shared", "-fPIC", "-O2", "-Wall", "-Wextra", "-Werror", "-o"])
+        .arg(&plugin)
+        .arg(source_dir.join("insn_count.c"))
+        .status()
+        .map_err(|e| {
+            format!("gcc is needed to build the QEMU plugin ({e}); install it with `sudo apt-get install gcc`")
+        })?;
+    if !status.success() {
+        return Err(format!("gcc failed to build the QEMU plugin ({status})"));
+    }
+    Ok(plugin)
+}
+
+/// Addresses of named symbols in a 32-bit little-endian ELF file.
+fn elf32_symbols(elf: &Path, names: &[&str]) -> Result<Vec<u32>, String> {
+    let data = std::fs::read(elf).map_err(|e| format!("{}: {e}", elf.display()))?;
+    let bad = || format!("{} is not a 32-bit little-endian ELF file", elf.display());
+    let u16_at = |at: usize| -> Result<usize, String> {
+        let b = data.get(at..at + 2).ok_or_else(bad)?;
+        Ok(usize::from(u16::from_le_bytes([b[0], b[1]])))
+    };
+    let u32_at = |at: usize| -> Result<usize, String> {
+        let b = data.get(at..at + 4).ok_or_else(bad)?;
+        Ok(u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize)
+    };
+    if data.get(..6) != Some(&[0x7f, b'E', b'L', b'F', 1, 1][..]) {
+        return Err(bad());
+    }
+    let (shoff, shentsize, shnum) = (u32_at(0x20)?, u16_at(0x2e)?, u16_at(0x30)?);
+    let section = |i: usize| shoff + i * shentsize;
+    let mut found = vec![None; names.len()];
+    for i in 0..shnum {
+        if u32_at(section(i) + 4)? != 2 {
+            continue; // not SHT_SYMTAB
+        }
+        let (offset, size, link) = (
+            u32_at(section(i) + 16)?,
+            u32_at(section(i) + 20)?,
+            u32_at(section(i) + 24)?,
+        );
+        let strtab = u32_at(section(link) + 16)?;
+        for sym in (offset..offset + size).step_by(16) {
+            let name_at = strtab + u32_at(sym)?;
+            let end = data[name_at..]
+                .iter()
+                .position(|&b| b == 0)
+                .ok_or_else(bad)?;
+            let name = &data[name_at..name_at + end];
+            for (slot, wanted) in found.iter_mut().zip(names) {
+                if name == wanted.as_bytes() {
+                    *slot = Some(u32_at(sym + 4)? as u32);
+                }
+            }
+        }
+    }
+    found
+        .into_iter()
+        .zip(names)
+        .map(|(f, n)| f.ok_or_else(|| format!("symbol {n} not in {}", elf.display())))
+        .collect()
+}
+
+/// Run an image in QEMU (the runner of .cargo/config.toml, plus the plugin when given).
+pub fn run_firmware(elf: &Path, plugin: Option<&Path>) -> Result<Run, String> {
+    let out_dir = elf.parent().ok_or("odd target path")?;
+    let stdout_path = out_dir.join("qemu-stdout.txt");
+    let stderr_path = out_dir.join("qemu-stderr.txt");
+    let mut command = Command::new("qemu-system-arm");
+    // The runner of .cargo/config.toml, plus the plugin.
+    command.args([
+        "-cpu",
+        "cortex-m7",
+        "-machine",
+        "mps2-an500",
+        "-nographic",
+        "-semihosting-config",
+        "enable=on,target=native",
+        "-icount",
+        "shift=0",
+        "-kernel",
+    ]);
+    command.arg(elf);
+    if let Some(plugin) = plugin {
+        let markers = elf32_symbols(elf, &["reconfig_measure_start", "reconfig_measure_stop"])?;
+        command.arg("-plugin").arg(format!(
+            "{},start={:#x},stop={:#x}",
+            plugin.display(),
+            markers[0],
+            markers[1]
+        ));
+        command.args(["-d", "plugin"]);
+    }
+    let file = |p: &Path| std::fs::File::create(p).map_err(|e| format!("{}: {e}", p.display()));
+    let mut child = command
+        .stdin(Stdio::null())
+        .stdout(file(&stdout_path)?)
+        .stderr(file(&stderr_path)?)
+        .spawn()
+        .map_err(|e| format!("cannot start qemu-system-arm: {e}"))?;
+    let limit = Duration::from_secs(
+        std::env::var("RECONFIG_QEMU_TIMEOUT_S")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(600),
+    );
+    let started = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().map_err(|e| e.to_string())? {
+            break status;
+        }
+        if started.elapsed() > limit {
+            let _ = child.kill();
+            let _ = child.wait();
+            return Err(format!(
+                "the firmware did not finish within {} s (RECONFIG_QEMU_TIMEOUT_S)",
+                limit.as_secs()
+            ));
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    let stdout = std::fs::read_to_string(&stdout_path).map_err(|e| e.to_string())?;
+    let stderr = std::fs::read_to_string(&stderr_path).map_err(|e| e.to_string())?;
+    let tail = |s: &str| -> String {
+        let lines: Vec<&str> = s.lines().collect();
+        let from = lines.len().saturating_sub(20);
+        lines[from..]
+            .iter()
+            .map(|l| l.chars().take(300).collect::<String>())
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    if !status.success() && stdout.is_empty() && plugin.is_some() {
+        return Err(format!(
+            "PLUGIN: QEMU did not start with the instruction-counting plugin ({status}); this \
+             QEMU may lack TCG plugin support (Debian's qemu-system-arm has it):\n{}",
+            tail(&stderr)
+        ));
+    }
+    if !status.success() {
+        return Err(format!(
+            "the firmware failed in QEMU ({status}). Last output:\n{}\nstderr:\n{}",
+            tail(&stdout),
+            tail(&stderr)
+        ));
+    }
+    let mut run = parse_output(elf, &stdout)?;
+    if plugin.is_some() {
+        let mut counts = BTreeMap::new();
+        for line in stderr.lines() {
+            if let Some(fields) = line.strip_prefix("reconfig-insns ") {
+                let f = fields_of(fields);
+                counts.insert(number(&f, "measurement")?, number(&f, "instructions")?);
+            }
+        }
+        let counts: Vec<u64> = counts.into_values().collect();
+        if counts.len() != run.fixtures.len() {
+            return Err(format!(
+                "the plugin reported {} measurements for {} fixtures; stderr:\n{}",
+                counts.len(),
+                run.fixtures.len(),
+                tail(&stderr)
+            ));
+        }
+        run.instructions = Some(counts);
+    }
+    Ok(run)
+}
+
+fn fields_of(text: &str) -> BTreeMap<&str, &str> {
+    text.split_whitespace()
+        .filter_map(|kv| kv.split_once('='))
+        .collect()
+}
+
+fn number(fields: &BTreeMap<&str, &str>, key: &str) -> Result<u64, String> {
+    fields
+        .get(key)
+        .and_then(|v| v.parse().ok())
+        .ok_or_else(|| format!("missing or bad `{key}` in the firmware output"))
+}
+
+fn parse_output(elf: &Path, stdout: &str) -> Result<Run, String> {
+    let mut binary = BTreeMap::new();
+    let mut fixtures: Vec<FixtureReport> = Vec::new();
+    let mut done = false;
+    for line in stdout.lines() {
+        let (kind, rest) = line.split_once(' ').unwrap_or((line, ""));
+        let f = fields_of(rest);
+        match kind {
+            "binary" | "planners" => {
+                for (k, v) in &f {
+                    binary.insert(
+                        (*k).to_owned(),
+                        v.parse().map_err(|_| format!("bad {k} in {line}"))?,
+                    );
+                }
+            }
+            "fixture" => {
+                if number(&f, "index")? != fixtures.len() as u64 {
+                    return Err(format!("fixture lines out of order at {line}"));
+                }
+                fixtures.push(FixtureReport {
+                    name: f.get("name").ok_or("fixture without name")?.to_string(),
+                    planner: f
+                        .get("planner")
+                        .ok_or("fixture without planner")?
+                        .to_string(),
+                    stack_bytes: number(&f, "stack_bytes")?,
+                    systick_instructions: number(&f, "systick_instructions")?,
+                    work_units: match f.get("work_units") {
+                        Some(_) => Some(number(&f, "work_units")?),
+                        None => None,
+                    },
+                    hex: String::new(),
+                });
+            }
+            "result" => {
+                let index = number(&f, "index")? as usize;
+                let report = fixtures
+                    .get_mut(index)
+                    .ok_or("result line before its fixture line")?;
+                report.hex = f.get("hex").ok_or("result without hex")?.to_string();
+            }
+            "done" => done = true,
+            _ => {}
+        }
+    }
+    if !done {
+        return Err("the firmware output has no `done` line".into());
+    }
+    Ok(Run {
+        elf: elf.to_path_buf(),
+        binary,
+        fixtures,
+        instructions: None,
+    })
+}

@@ -1,0 +1,37 @@
+//! The core on the emulated Cortex-M7 (QEMU `mps2-an500`): bit-identical results and budgets.
+//!
+//! Two images run, each once, shared by their tests: the default two-planner image
+//! (`firmware/`, built for `thumbv7em-none-eabihf`; with it the one-planner images of
+//! `cargo firmware-a` / `firmware-b`) and the GEO tour's image (`cargo firmware-geo`, module
+//! [`geo_image`]). Each runs in `qemu-system-arm` with the instruction-counting plugin
+//! `tools/qemu-insn-plugin/` (built here with `gcc`):
+//! * `results_are_bit_identical_to_the_host` compares every fixture's postcard-encoded
+//!   `Result<Solution, PlanError>` byte for byte with the host build's, solved from the same
+//!   problem bytes the firmware baked in;
+//! * `figures_are_within_budget` checks the instructions per solve, stack high-water, RAM and
+//!   section sizes against the budgets in `fixtures/golden/m7-figures.toml`.
+//!   Every measured figure must also be within 1 % of the record (drift check); accept a new
+//!   record (budgets are kept, the docs' tables are regenerated from it) with
+//!   `RECONFIG_UPDATE_FIGURES=1 cargo test -p reconfig-tests --test qemu_firmware`.
+//! * `no_fused_multiply_add_in_the_firmware` disassembles the firmware and rejects `vfma`-family
+//!   instructions, which would break bit-identity with the host.
+//!
+//! Without `qemu-system-arm`, the thumb target, `gcc` or `arm-none-eabi-objdump` these tests say
+//! that they were skipped, why and how to install what is missing, and pass; with
+//! `RECONFIG_REQUIRE_QEMU=1` (set by `.ci/run`) they fail instead.
+//!
+//! Modules: [`prerequisites`] (what the run needs, skip or fail), [`image`] (build, run and parse
+//! an image), [`host`] (the host's result of a fixture), [`record`] (the figures file, drift
+//! and budget checks), [`disassembly`] (the fused multiply-add check), [`default_image`] and
+//! [`geo_image`] (the tests of each image).
+
+#[path = "../../../firmware/fixture_set.rs"]
+mod fixture_set;
+
+mod default_image;
+mod disassembly;
+mod geo_image;
+mod host;
+mod image;
+mod prerequisites;
+mod record;
