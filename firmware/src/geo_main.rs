@@ -7,7 +7,7 @@
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[cfg(target_os = "none")]
-#[path = "m7.rs"]
+#[path = "m7/mod.rs"]
 mod m7;
 
 #[cfg(not(target_os = "none"))]

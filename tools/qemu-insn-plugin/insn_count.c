@@ -1,5 +1,5 @@
 /* insn_count: a QEMU TCG plugin that counts the guest instructions executed between two marker
- * functions, for reconfig's firmware (firmware/src/m7.rs: reconfig_measure_start/_stop).
+ * functions, for reconfig's firmware (firmware/src/m7/measure.rs: reconfig_measure_start/_stop).
  *
  * Arguments: start=<address>,stop=<address> (hex with 0x, or decimal), the markers' addresses
  * from the ELF symbol table (the Thumb bit is ignored). Every execution of the stop marker prints

@@ -1,6 +1,6 @@
 //! One firmware image: build it as its cargo alias does, run it in QEMU (with the
 //! instruction-counting plugin when it loads), and parse what it printed
-//! (`firmware/src/m7.rs` documents the output protocol).
+//! (`firmware/src/m7/` documents the output protocol).
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

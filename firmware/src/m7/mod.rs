@@ -19,13 +19,17 @@
 //! `-icount shift=0` (the runner sets it), and accurate to about 40 instructions; the exact
 //! count comes from the QEMU plugin.
 
-use core::arch::asm;
 use core::fmt::Write as _;
 use core::hint::black_box;
-use core::ptr::addr_of_mut;
 
 use cortex_m_rt::{entry, exception, ExceptionFrame};
 use cortex_m_semihosting::{debug, hio};
+
+mod measure;
+mod output;
+
+use measure::{measured, repaint_stack, systick};
+use output::{fail, print_result, report, Out};
 #[cfg(feature = "geo_tour")]
 use reconfig_core::geo_tour;
 use reconfig_core::{impulsive, pseudospectral};
@@ -61,10 +65,6 @@ pub struct Fixture {
 
 include!(concat!(env!("OUT_DIR"), "/fixtures.rs"));
 
-/// What cortex-m-rt's `paint-stack` feature writes over the stack at reset (its
-/// `STACK_PAINT_VALUE`); repainted below the current frame before each solve.
-const STACK_PAINT: u32 = 0xCCCC_CCCC;
-
 extern "C" {
     static __stext: u8;
     static __etext: u8;
@@ -84,209 +84,6 @@ extern "C" {
 
 fn symbol(s: &u8) -> usize {
     s as *const u8 as usize
-}
-
-/// Written by the markers, so that they have different bodies (identical functions could be
-/// merged into one address) and cannot be optimised away.
-static mut MEASURE_STARTED: u32 = 0;
-static mut MEASURE_STOPPED: u32 = 0;
-
-/// Marks the start of a measured solve for the instruction-counting QEMU plugin.
-#[no_mangle]
-#[inline(never)]
-pub extern "C" fn reconfig_measure_start(index: u32) {
-    // SAFETY: single-threaded, no interrupts touch it. The asm is a compiler barrier (it may
-    // access memory), so the solve's work cannot move across the marker.
-    unsafe {
-        addr_of_mut!(MEASURE_STARTED).write_volatile(index);
-        asm!("nop");
-    }
-}
-
-/// Marks the end of a measured solve for the instruction-counting QEMU plugin.
-#[no_mangle]
-#[inline(never)]
-pub extern "C" fn reconfig_measure_stop(index: u32) {
-    // SAFETY: as in `reconfig_measure_start`.
-    unsafe {
-        addr_of_mut!(MEASURE_STOPPED).write_volatile(index);
-        asm!("nop", "nop");
-    }
-}
-
-/// SysTick, free-running over its full 24-bit range; wraps are counted by the SysTick exception.
-/// Under the runner's `-icount shift=0` QEMU advances virtual time by 1 ns per instruction and
-/// clocks SysTick at the board's 25 MHz, so one tick is 40 instructions.
-mod systick {
-    use core::ptr::{addr_of, addr_of_mut};
-
-    const CSR: *mut u32 = 0xE000_E010 as *mut u32;
-    const RVR: *mut u32 = 0xE000_E014 as *mut u32;
-    const CVR: *mut u32 = 0xE000_E018 as *mut u32;
-    const RELOAD: u32 = 0x00FF_FFFF;
-    /// Instructions per SysTick tick under `-icount shift=0` (1 ns each) at 25 MHz.
-    pub const INSTRUCTIONS_PER_TICK: u64 = 40;
-
-    static mut WRAPS: u32 = 0;
-
-    /// Start counting: processor clock, exception on wrap.
-    pub fn start() {
-        // SAFETY: the SysTick registers of every ARMv7-M core; nothing else uses SysTick.
-        unsafe {
-            RVR.write_volatile(RELOAD);
-            CVR.write_volatile(0);
-            CSR.write_volatile(0b111);
-        }
-    }
-
-    /// Called from the SysTick exception.
-    pub fn wrapped() {
-        // SAFETY: only the exception writes it; readers re-read until it is stable.
-        unsafe { addr_of_mut!(WRAPS).write_volatile(addr_of!(WRAPS).read_volatile() + 1) };
-    }
-
-    /// Ticks since `start`.
-    pub fn now() -> u64 {
-        loop {
-            // SAFETY: as above; a wrap between the reads shows as a changed count and retries.
-            let (before, current, after) = unsafe {
-                (
-                    addr_of!(WRAPS).read_volatile(),
-                    CVR.read_volatile(),
-                    addr_of!(WRAPS).read_volatile(),
-                )
-            };
-            if before == after {
-                return u64::from(before) * (u64::from(RELOAD) + 1) + u64::from(RELOAD - current);
-            }
-        }
-    }
-}
-
-#[exception]
-fn SysTick() {
-    systick::wrapped();
-}
-
-/// Paint the unused stack (from its lowest address up to a margin below the current stack
-/// pointer) so that a later scan finds how deep the next code went.
-#[inline(never)]
-fn repaint_stack() {
-    let sp: usize;
-    // SAFETY: reads the stack pointer only.
-    unsafe { asm!("mov {}, sp", out(reg) sp, options(nomem, nostack, preserves_flags)) };
-    // SAFETY: linker-script symbols; only their addresses are used.
-    let low = unsafe { symbol(&_stack_end) };
-    // This function is a leaf that keeps its locals in registers; 64 bytes of margin cover any
-    // spill, and lie below the frame of every caller.
-    let high = sp.saturating_sub(64) & !3;
-    let mut p = low;
-    while p < high {
-        // SAFETY: [low, high) is stack below the live frames, word aligned, not in use.
-        unsafe { (p as *mut u32).write_volatile(STACK_PAINT) };
-        p += 4;
-    }
-}
-
-/// Bytes of stack used since reset or the last repaint: from the initial stack pointer down to
-/// the lowest word that no longer holds the paint.
-fn stack_high_water() -> usize {
-    // SAFETY: linker-script symbols; only their addresses are used.
-    let (low, top) = unsafe { (symbol(&_stack_end), symbol(&_stack_start)) };
-    let mut p = low;
-    // SAFETY: [low, top) is the stack region, word aligned and readable.
-    while p < top && unsafe { (p as *const u32).read_volatile() } == STACK_PAINT {
-        p += 4;
-    }
-    top - p
-}
-
-/// Semihosting output; a failure to print is fatal (the tests read this output).
-struct Out(hio::HostStream);
-
-impl Out {
-    fn new() -> Self {
-        match hio::hstdout() {
-            Ok(stream) => Self(stream),
-            Err(()) => fail(),
-        }
-    }
-
-    fn bytes(&mut self, bytes: &[u8]) {
-        if self.0.write_all(bytes).is_err() {
-            fail();
-        }
-    }
-}
-
-impl core::fmt::Write for Out {
-    fn write_str(&mut self, s: &str) -> core::fmt::Result {
-        self.bytes(s.as_bytes());
-        Ok(())
-    }
-}
-
-/// A postcard flavor that streams the encoding as lowercase hex, so no buffer the size of a
-/// `Solution` is needed.
-struct HexFlavor<'a> {
-    out: &'a mut Out,
-    buf: [u8; 256],
-    len: usize,
-}
-
-impl<'a> HexFlavor<'a> {
-    fn new(out: &'a mut Out) -> Self {
-        Self {
-            out,
-            buf: [0; 256],
-            len: 0,
-        }
-    }
-
-    fn flush(&mut self) {
-        let len = self.len;
-        self.out.bytes(&self.buf[..len]);
-        self.len = 0;
-    }
-}
-
-impl postcard::ser_flavors::Flavor for HexFlavor<'_> {
-    type Output = ();
-
-    fn try_push(&mut self, byte: u8) -> postcard::Result<()> {
-        const DIGITS: &[u8; 16] = b"0123456789abcdef";
-        if self.len + 2 > self.buf.len() {
-            self.flush();
-        }
-        self.buf[self.len] = DIGITS[usize::from(byte >> 4)];
-        self.buf[self.len + 1] = DIGITS[usize::from(byte & 0xf)];
-        self.len += 2;
-        Ok(())
-    }
-
-    fn finalize(mut self) -> postcard::Result<()> {
-        self.flush();
-        Ok(())
-    }
-}
-
-fn print_result<T: serde::Serialize>(out: &mut Out, index: usize, result: &T) {
-    let _ = write!(out, "result index={index} hex=");
-    if postcard::serialize_with_flavor(result, HexFlavor::new(out)).is_err() {
-        let _ = writeln!(
-            Out::new(),
-            "\nerror: cannot encode the result of fixture {index}"
-        );
-        fail();
-    }
-    out.bytes(b"\n");
-}
-
-/// Exit QEMU with failure.
-fn fail() -> ! {
-    debug::exit(debug::EXIT_FAILURE);
-    #[allow(clippy::empty_loop)]
-    loop {}
 }
 
 #[entry]
@@ -420,33 +217,6 @@ fn main() -> ! {
     loop {}
 }
 
-fn report(
-    out: &mut Out,
-    index: usize,
-    fixture: &Fixture,
-    planner: &str,
-    ok: bool,
-    stack_bytes: usize,
-    (ticks, work_units): (u64, Option<u64>),
-) {
-    let _ = write!(
-        out,
-        "fixture index={index} name={} planner={planner} outcome={} stack_bytes={stack_bytes} \
-         systick_instructions={}",
-        fixture.name,
-        if ok { "ok" } else { "error" },
-        ticks * systick::INSTRUCTIONS_PER_TICK,
-    );
-    match work_units {
-        Some(units) => {
-            let _ = writeln!(out, " work_units={units}");
-        }
-        None => {
-            let _ = writeln!(out);
-        }
-    }
-}
-
 // Each planner's fixture runs in a function of its own (never inlined), so that `main`'s frame
 // does not hold every planner's decoded problem at once: the stack high-water of a fixture in
 // the default two-planner image is then that planner's, as in its one-planner image
@@ -459,32 +229,6 @@ fn decode<P: serde::de::DeserializeOwned>(fixture: &Fixture) -> P {
     match postcard::from_bytes(fixture.problem) {
         Ok(p) => p,
         Err(_) => panic!("fixture {} does not decode", fixture.name),
-    }
-}
-
-/// What one measured solve gave: its result, its SysTick time and the stack high-water since
-/// the last repaint.
-struct Measured<R> {
-    result: R,
-    ticks: u64,
-    stack_bytes: usize,
-}
-
-/// Runs `solve` between the instruction-count markers. The caller passes the inputs through
-/// `black_box` inside `solve` (after the start marker) and the result passes through it before
-/// the stop marker, so no part of the solve is folded away or moved out of the measured span.
-#[inline(always)]
-fn measured<R>(marker: u32, solve: impl FnOnce() -> R) -> Measured<R> {
-    let ticks_before = systick::now();
-    reconfig_measure_start(marker);
-    let result = solve();
-    black_box(&result);
-    reconfig_measure_stop(marker);
-    let ticks = systick::now() - ticks_before;
-    Measured {
-        result,
-        ticks,
-        stack_bytes: stack_high_water(),
     }
 }
 
