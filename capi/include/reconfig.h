@@ -18,6 +18,9 @@
 // See [`RECONFIG_SETTINGS_CODE_MIN_FUEL`].
 #define RECONFIG_SETTINGS_CODE_ELEMENT_SET 2
 
+// Field code of `relative.form` in `RECONFIG_ERR_INVALID_CODE` refusals.
+#define RECONFIG_FIELD_RELATIVE_FORM 30
+
 // No solve has written this solution.
 #define RECONFIG_UNSOLVED 0
 
@@ -161,8 +164,9 @@
 // Planner B refused: an angle's magnitude is above the limit.
 #define RECONFIG_B_ERR_ANGLE_OUT_OF_RANGE -213
 
-// Planner B refused: an input in another form could not be converted (not reachable through
-// the mean-element problem of this interface; kept so that every core refusal has a code).
+// Planner B refused: an input in another form (`reconfig_impulsive_solve_form`) could not be
+// converted: `field` the part (`RECONFIG_FIELD_CHIEF`, `_INITIAL`, `_TARGET`), `detail` why
+// (`RECONFIG_B_FORM_*`), `value`/`limit` the chief's `|sin i|` and its minimum for ROE.
 #define RECONFIG_B_ERR_INPUT_FORM -214
 
 // No field (the refusal is about the request as a whole).
@@ -245,6 +249,60 @@
 
 // Most impulses planner B plans (`capacity::MAX_IMPULSES`).
 #define RECONFIG_B_MAX_IMPULSES 6
+
+// Orbit form code: classical mean elements (`classical`).
+#define RECONFIG_B_ORBIT_CLASSICAL 0
+
+// Orbit form code: equinoctial mean elements (`equinoctial`).
+#define RECONFIG_B_ORBIT_EQUINOCTIAL 1
+
+// Orbit form code: an osculating ECI state (`state`), converted on board by first-order J2
+// averaging.
+#define RECONFIG_B_ORBIT_STATE 2
+
+// Relative form code: deputy-minus-chief classical mean elements (`*_elements`).
+#define RECONFIG_B_RELATIVE_ELEMENTS 0
+
+// Relative form code: quasi-nonsingular ROE in metres (`*_roe`).
+#define RECONFIG_B_RELATIVE_ROE 1
+
+// Relative form code: the deputy's own orbits (`*_orbit`).
+#define RECONFIG_B_RELATIVE_DEPUTY 2
+
+// End-state form code: relative classical elements (`elements`).
+#define RECONFIG_B_END_ELEMENTS 0
+
+// End-state form code: ROE, m (`roe`).
+#define RECONFIG_B_END_ROE 1
+
+// End-state form code: the deputy's orbit, classical mean elements (`classical`).
+#define RECONFIG_B_END_DEPUTY_CLASSICAL 2
+
+// End-state form code: the deputy's orbit, equinoctial mean elements (`equinoctial`).
+#define RECONFIG_B_END_DEPUTY_EQUINOCTIAL 3
+
+// End-state form code: the deputy's orbit, osculating ECI state (`state`).
+#define RECONFIG_B_END_DEPUTY_STATE 4
+
+// End-state form code: the end state could not be written in the form (`unavailable_reason`
+// says why; the plan itself is unaffected, its status says whether it is usable).
+#define RECONFIG_B_END_UNAVAILABLE 5
+
+// Why a form could not be converted (`error.detail` of `RECONFIG_B_ERR_INPUT_FORM`, and
+// `unavailable_reason`): a number is not finite.
+#define RECONFIG_B_FORM_NOT_FINITE 0
+
+// The state or elements are not an ellipse the equinoctial set covers.
+#define RECONFIG_B_FORM_NOT_AN_ELLIPSE 1
+
+// Kepler's equation did not converge.
+#define RECONFIG_B_FORM_KEPLER 2
+
+// The osculating-to-mean inverse did not converge in its bounded steps.
+#define RECONFIG_B_FORM_MEAN_NOT_CONVERGED 3
+
+// ROE on a chief whose `|sin i|` (`value`) is below `min_sin_inclination` (`limit`).
+#define RECONFIG_B_FORM_ROE_EQUATORIAL_CHIEF 4
 
 // Loop bounds, tolerances and thresholds (`reconfig_core::impulsive::Settings`, same names).
 // Flags are 0 or 1.
@@ -470,6 +528,105 @@ typedef struct {
   ReconfigBImpulse impulses[RECONFIG_B_MAX_IMPULSES];
 } ReconfigBSolution;
 
+// An ECI state (position km, velocity km/s).
+typedef struct {
+  // Position, km.
+  double pos_km[3];
+  // Velocity, km/s.
+  double vel_km_s[3];
+} ReconfigBCartesianState;
+
+// One orbit in any of the three forms; `form` (`RECONFIG_B_ORBIT_*`) names the member read.
+typedef struct {
+  // Which member holds the orbit (`RECONFIG_B_ORBIT_*`).
+  uint8_t form;
+  // Classical mean elements.
+  ReconfigBMeanElements classical;
+  // Equinoctial mean elements.
+  ReconfigBEquinoctialElements equinoctial;
+  // Osculating ECI state.
+  ReconfigBCartesianState state;
+} ReconfigBOrbitForm;
+
+// Quasi-nonsingular relative orbital elements, each times the chief's a, in metres.
+typedef struct {
+  // `a da / a`, m.
+  double da_m;
+  // `a dlambda`, m.
+  double dlambda_m;
+  // `a de_x`, m.
+  double dex_m;
+  // `a de_y`, m.
+  double dey_m;
+  // `a di_x`, m.
+  double dix_m;
+  // `a di_y`, m.
+  double diy_m;
+} ReconfigBRoe;
+
+// The relative state in any of its forms; `form` (`RECONFIG_B_RELATIVE_*`) names the pair
+// read.
+typedef struct {
+  // Which pair holds the state (`RECONFIG_B_RELATIVE_*`).
+  uint8_t form;
+  // Element differences at the epoch.
+  ReconfigBRelativeElements initial_elements;
+  // Element differences wanted after the last impulse.
+  ReconfigBRelativeElements target_elements;
+  // ROE at the epoch, m.
+  ReconfigBRoe initial_roe;
+  // ROE wanted after the last impulse, m.
+  ReconfigBRoe target_roe;
+  // The deputy's orbit at the epoch.
+  ReconfigBOrbitForm initial_orbit;
+  // The deputy's target orbit, referred to the epoch.
+  ReconfigBOrbitForm target_orbit;
+} ReconfigBRelativeForm;
+
+// A planner-B request with its orbits in the forms the user gave.
+typedef struct {
+  // The chief at the epoch.
+  ReconfigBOrbitForm chief;
+  // The deputy relative to the chief (or its own orbits).
+  ReconfigBRelativeForm relative;
+  // 0: impulses at `points`; 1: search the points for the least total dv.
+  uint8_t search;
+  // Impulses: the first `impulse_count` of `points`, or the search's impulse count.
+  uint8_t impulse_count;
+  // Search only: limit on the sum of revolution counts.
+  int32_t max_revolutions;
+  // Fixed impulse points (search: unused).
+  ReconfigBImpulsePoint points[RECONFIG_B_MAX_IMPULSES];
+} ReconfigBFormProblem;
+
+// The plan's end state (the deputy after the last impulse, as flown in the nonlinear check) in
+// the form the target was given in, referred to the chief at the epoch like the target.
+typedef struct {
+  // Which member holds it (`RECONFIG_B_END_*`).
+  uint8_t form;
+  // With `RECONFIG_B_END_UNAVAILABLE`: why (`RECONFIG_B_FORM_*`); else 0.
+  int32_t unavailable_reason;
+  // Achieved relative classical elements.
+  ReconfigBRelativeElements elements;
+  // Achieved ROE, m.
+  ReconfigBRoe roe;
+  // The deputy's achieved orbit, classical mean elements.
+  ReconfigBMeanElements classical;
+  // The deputy's achieved orbit, equinoctial mean elements.
+  ReconfigBEquinoctialElements equinoctial;
+  // The deputy's achieved orbit, osculating ECI state.
+  ReconfigBCartesianState state;
+} ReconfigBEndState;
+
+// A planner-B result for a request in other forms: the plan, and its end state in the
+// request's form (written when `plan.status >= 0`).
+typedef struct {
+  // The plan, as `reconfig_impulsive_solve` writes it (status, refusal, impulses, figures).
+  ReconfigBSolution plan;
+  // The end state in the request's form.
+  ReconfigBEndState end;
+} ReconfigBFormSolution;
+
 // Loop bounds and tolerances (`reconfig_core::pseudospectral::Settings`, same names). Flags
 // are 0 or 1.
 typedef struct {
@@ -617,6 +774,23 @@ int32_t reconfig_impulsive_solve(void *workspace,
                                  const ReconfigBProblem *problem,
                                  const ReconfigBSettings *settings,
                                  ReconfigBSolution *out);
+
+// Plan a request given in other forms (`problem`: the chief as mean classical or equinoctial
+// elements or an osculating ECI state; the relative state as element differences, ROE or the
+// deputy's own orbits) with `settings` in the initialised planner-B `workspace`; write the plan
+// and its end state, in the form the target was given in, into `out`. The conversion runs on
+// board (the core's `impulsive::solve_form`) and is charged to the same work budget.
+//
+// Returns the status code (also in `out->plan.status`): `>= 0` a solve status, `< 0` a
+// refusal whose field, index, value and limit are in `out->plan.error`
+// (`RECONFIG_B_ERR_INPUT_FORM` for a part that cannot be converted).
+//
+// # Safety
+// As [`reconfig_impulsive_solve`], with `out` valid for one `ReconfigBFormSolution`.
+int32_t reconfig_impulsive_solve_form(void *workspace,
+                                      const ReconfigBFormProblem *problem,
+                                      const ReconfigBSettings *settings,
+                                      ReconfigBFormSolution *out);
 
 // Bytes of caller memory one planner-A workspace needs.
 size_t reconfig_pseudospectral_workspace_size(void);

@@ -98,7 +98,7 @@ pub fn settings_to_c(s: &Settings) -> ReconfigBSettings {
     }
 }
 
-fn mean_from_c(c: &ReconfigBMeanElements) -> MeanElements {
+pub(crate) fn mean_from_c(c: &ReconfigBMeanElements) -> MeanElements {
     MeanElements {
         sma_km: c.sma_km,
         ecc: c.ecc,
@@ -109,7 +109,7 @@ fn mean_from_c(c: &ReconfigBMeanElements) -> MeanElements {
     }
 }
 
-fn relative_from_c(c: &ReconfigBRelativeElements) -> RelativeElements {
+pub(crate) fn relative_from_c(c: &ReconfigBRelativeElements) -> RelativeElements {
     RelativeElements {
         dsma_km: c.dsma_km,
         decc: c.decc,
@@ -120,7 +120,7 @@ fn relative_from_c(c: &ReconfigBRelativeElements) -> RelativeElements {
     }
 }
 
-fn relative_to_c(r: &RelativeElements) -> ReconfigBRelativeElements {
+pub(crate) fn relative_to_c(r: &RelativeElements) -> ReconfigBRelativeElements {
     ReconfigBRelativeElements {
         dsma_km: r.dsma_km,
         decc: r.decc,
@@ -145,40 +145,53 @@ fn equinoctial_to_c(e: &EquinoctialElements) -> ReconfigBEquinoctialElements {
 /// The core's problem from the C struct, written into `out` (kept in the caller's workspace).
 ///
 /// # Errors
-/// Fixed points above the array (the core's capacity), or a flag other than 0 or 1.
+/// As [`plan_from_c`].
 pub fn problem_from_c(c: &ReconfigBProblem, out: &mut Problem) -> Result<(), ReconfigError> {
     out.chief = mean_from_c(&c.chief);
     out.initial = relative_from_c(&c.initial);
     out.target = relative_from_c(&c.target);
-    out.plan = if flag(c.search, RECONFIG_FIELD_SEARCH, -1)? {
-        ImpulsePlan::Search {
-            impulses: c.impulse_count,
-            max_revolutions: c.max_revolutions,
-        }
-    } else {
-        let count = usize::from(c.impulse_count);
-        let over = ReconfigError::new(
-            RECONFIG_B_ERR_CAPACITY_EXCEEDED,
-            RECONFIG_FIELD_IMPULSE_COUNT,
-            f64::from(c.impulse_count),
-            MAX_IMPULSES as f64,
-        );
-        if count > MAX_IMPULSES {
-            return Err(over);
-        }
-        let mut points = heapless::Vec::new();
-        for p in c.points.iter().take(count) {
-            // Cannot fail: `count <= MAX_IMPULSES`, the vector's capacity; reported if it did.
-            points
-                .push(ImpulsePoint {
-                    arg_latitude_rad: p.arg_latitude_rad,
-                    revolutions: p.revolutions,
-                })
-                .map_err(|_| over)?;
-        }
-        ImpulsePlan::Fixed(points)
-    };
+    out.plan = plan_from_c(c.search, c.impulse_count, c.max_revolutions, &c.points)?;
     Ok(())
+}
+
+/// The core's impulse plan from the C fields every problem form shares: a search (`search` 1)
+/// of `impulse_count` impulses, or the first `impulse_count` fixed `points`.
+///
+/// # Errors
+/// Fixed points above the array (the core's capacity), or `search` other than 0 or 1.
+pub fn plan_from_c(
+    search: u8,
+    impulse_count: u8,
+    max_revolutions: i32,
+    points: &[ReconfigBImpulsePoint; RECONFIG_B_MAX_IMPULSES],
+) -> Result<ImpulsePlan, ReconfigError> {
+    if flag(search, RECONFIG_FIELD_SEARCH, -1)? {
+        return Ok(ImpulsePlan::Search {
+            impulses: impulse_count,
+            max_revolutions,
+        });
+    }
+    let count = usize::from(impulse_count);
+    let over = ReconfigError::new(
+        RECONFIG_B_ERR_CAPACITY_EXCEEDED,
+        RECONFIG_FIELD_IMPULSE_COUNT,
+        f64::from(impulse_count),
+        MAX_IMPULSES as f64,
+    );
+    if count > MAX_IMPULSES {
+        return Err(over);
+    }
+    let mut fixed = heapless::Vec::new();
+    for p in points.iter().take(count) {
+        // Cannot fail: `count <= MAX_IMPULSES`, the vector's capacity; reported if it did.
+        fixed
+            .push(ImpulsePoint {
+                arg_latitude_rad: p.arg_latitude_rad,
+                revolutions: p.revolutions,
+            })
+            .map_err(|_| over)?;
+    }
+    Ok(ImpulsePlan::Fixed(fixed))
 }
 
 fn orbit_field(orbit: Orbit) -> i32 {
@@ -195,10 +208,11 @@ const INC: i32 = 2;
 const SMA: i32 = 0;
 
 /// The value a `NotFinite { what, index }` or `AngleOutOfRange` refusal names, read back from
-/// the request. The core's index is an element index 0..6 or an impulse index below the count
-/// it accepted (its docs), so the `get` always finds it; were it ever outside, the refusal
-/// would still carry the core's code, field and index, with value 0.
-fn input_value(what: Quantity, index: u8, problem: &ReconfigBProblem) -> (i32, f64) {
+/// the core's problem (the request as planned: for another input form, after conversion). The
+/// core's index is an element index 0..6 or an impulse index below the count it accepted (its
+/// docs), so the `get` always finds it; were it ever outside, the refusal would still carry the
+/// core's code, field and index, with value 0.
+fn input_value(what: Quantity, index: u8, problem: &Problem) -> (i32, f64) {
     let i = usize::from(index);
     match what {
         Quantity::Chief => {
@@ -231,7 +245,10 @@ fn input_value(what: Quantity, index: u8, problem: &ReconfigBProblem) -> (i32, f
         }
         Quantity::ImpulsePoint => (
             RECONFIG_FIELD_IMPULSE_POINT,
-            problem.points.get(i).map_or(0.0, |p| p.arg_latitude_rad),
+            match &problem.plan {
+                ImpulsePlan::Fixed(points) => points.get(i).map_or(0.0, |p| p.arg_latitude_rad),
+                ImpulsePlan::Search { .. } => 0.0,
+            },
         ),
     }
 }
@@ -246,8 +263,9 @@ fn settings_class(s: SettingsError) -> i32 {
 }
 
 /// The C refusal of a core refusal: field, element index, value and limit from the core's
-/// variant (the value read back from the request where the core does not carry it).
-pub fn error_to_c(e: &PlanError, problem: &ReconfigBProblem) -> ReconfigError {
+/// variant (the value read back from the request where the core does not carry it: `problem`
+/// is the core's problem as planned).
+pub fn error_to_c(e: &PlanError, problem: &Problem) -> ReconfigError {
     match *e {
         PlanError::NotFinite { what, index } => {
             let (field, value) = input_value(what, index, problem);
@@ -357,8 +375,8 @@ pub fn error_to_c(e: &PlanError, problem: &ReconfigBProblem) -> ReconfigError {
             limit_rad,
         )
         .at(i32::from(index)),
-        PlanError::InputForm { .. } => {
-            ReconfigError::new(RECONFIG_B_ERR_INPUT_FORM, RECONFIG_FIELD_NONE, 0.0, 0.0)
+        PlanError::InputForm { part, error } => {
+            crate::convert_b_form::input_form_error_to_c(part, error)
         }
     }
 }

@@ -1,14 +1,18 @@
-//! Planner B's entry points: `reconfig_impulsive_*` (mean-element problem form).
+//! Planner B's entry points: `reconfig_impulsive_*`, the mean-element problem form
+//! (`_solve`) and the other input forms (`_solve_form`), in the same workspace.
 
 use crate::boundary::{block_mut, check_pointer, init_block, Block};
 use crate::convert_b::{
     error_to_c, problem_from_c, refusal_to_c, settings_from_c, settings_to_c, solution_to_c,
 };
+use crate::convert_b_form::{end_state_to_c, form_problem_from_c, input_form_error_to_c};
 use crate::status::*;
 use crate::types_b::{ReconfigBProblem, ReconfigBSettings, ReconfigBSolution};
+use crate::types_b_form::{ReconfigBEndState, ReconfigBFormProblem, ReconfigBFormSolution};
 use core::ffi::c_void;
 use reconfig_core::impulsive::{
-    self, ImpulsePlan, MeanElements, Problem, RelativeElements, Settings, Solution, Workspace,
+    self, EndState, ImpulsePlan, MeanElements, PlanError, Problem, RelativeElements, Settings,
+    Solution, Workspace,
 };
 
 /// Planner B's workspace block.
@@ -152,6 +156,75 @@ unsafe fn plan<'a>(
         &mut block.workspace,
         &mut block.solution,
     )
-    .map_err(|e| error_to_c(&e, problem))?;
+    .map_err(|e| error_to_c(&e, &block.problem))?;
     Ok(block)
+}
+
+/// Plan a request given in other forms (`problem`: the chief as mean classical or equinoctial
+/// elements or an osculating ECI state; the relative state as element differences, ROE or the
+/// deputy's own orbits) with `settings` in the initialised planner-B `workspace`; write the plan
+/// and its end state, in the form the target was given in, into `out`. The conversion runs on
+/// board (the core's `impulsive::solve_form`) and is charged to the same work budget.
+///
+/// Returns the status code (also in `out->plan.status`): `>= 0` a solve status, `< 0` a
+/// refusal whose field, index, value and limit are in `out->plan.error`
+/// (`RECONFIG_B_ERR_INPUT_FORM` for a part that cannot be converted).
+///
+/// # Safety
+/// As [`reconfig_impulsive_solve`], with `out` valid for one `ReconfigBFormSolution`.
+#[no_mangle]
+pub unsafe extern "C" fn reconfig_impulsive_solve_form(
+    workspace: *mut c_void,
+    problem: *const ReconfigBFormProblem,
+    settings: *const ReconfigBSettings,
+    out: *mut ReconfigBFormSolution,
+) -> i32 {
+    if let Err(e) = check_pointer(out.cast_const(), RECONFIG_FIELD_NONE) {
+        return e.code;
+    }
+    // SAFETY: forwarded caller contract.
+    let written = match unsafe { plan_form(workspace, problem, settings) } {
+        Ok((block, end)) => ReconfigBFormSolution {
+            plan: solution_to_c(&block.solution),
+            end: end_state_to_c(&end),
+        },
+        Err(e) => ReconfigBFormSolution {
+            plan: refusal_to_c(e),
+            end: ReconfigBEndState::default(),
+        },
+    };
+    // SAFETY: non-null and aligned (checked); writable and exclusive by the caller's contract.
+    unsafe { out.write(written) };
+    written.plan.status
+}
+
+/// The checks and the core solve behind [`reconfig_impulsive_solve_form`].
+///
+/// # Safety
+/// As [`reconfig_impulsive_solve_form`].
+unsafe fn plan_form<'a>(
+    workspace: *mut c_void,
+    problem: *const ReconfigBFormProblem,
+    settings: *const ReconfigBSettings,
+) -> Result<(&'a BlockB, EndState), ReconfigError> {
+    // SAFETY: forwarded caller contract.
+    let block: &mut BlockB = unsafe { block_mut(workspace, TAG_B, RECONFIG_FIELD_WORKSPACE)? };
+    check_pointer(problem, RECONFIG_FIELD_PROBLEM)?;
+    check_pointer(settings, RECONFIG_FIELD_SETTINGS_ARG)?;
+    // SAFETY: non-null and aligned (checked), valid by the caller's contract; plain numbers.
+    let (problem, settings) = unsafe { (&*problem, &*settings) };
+    let settings = settings_from_c(settings)?;
+    let form = form_problem_from_c(problem)?;
+    block.solution = Solution::new();
+    let end = impulsive::solve_form(&form, &settings, &mut block.workspace, &mut block.solution)
+        .map_err(|e| match e {
+            PlanError::InputForm { part, error } => input_form_error_to_c(part, error),
+            // The conversion succeeded before the planner refused: convert again (the solve
+            // was refused, so the time is there) to read the refused value back as planned.
+            other => match form.to_problem(&settings) {
+                Ok(converted) => error_to_c(&other, &converted),
+                Err((part, error)) => input_form_error_to_c(part, error),
+            },
+        })?;
+    Ok((block, end))
 }

@@ -26,11 +26,13 @@ extern crate std;
 pub mod boundary;
 pub mod convert_a;
 pub mod convert_b;
+pub mod convert_b_form;
 pub mod impulsive;
 pub mod pseudospectral;
 pub mod status;
 pub mod types_a;
 pub mod types_b;
+pub mod types_b_form;
 
 // Never defined anywhere: the abort-free proof (docs/c-api.md, "Abort-free"). The C library
 // build's panic handler calls it, so if any panic path survives optimisation (release, LTO)

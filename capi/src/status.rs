@@ -106,8 +106,9 @@ pub const RECONFIG_B_ERR_PERIGEE_TOO_LOW: i32 = -211;
 pub const RECONFIG_B_ERR_INCLINATION_OUT_OF_RANGE: i32 = -212;
 /// Planner B refused: an angle's magnitude is above the limit.
 pub const RECONFIG_B_ERR_ANGLE_OUT_OF_RANGE: i32 = -213;
-/// Planner B refused: an input in another form could not be converted (not reachable through
-/// the mean-element problem of this interface; kept so that every core refusal has a code).
+/// Planner B refused: an input in another form (`reconfig_impulsive_solve_form`) could not be
+/// converted: `field` the part (`RECONFIG_FIELD_CHIEF`, `_INITIAL`, `_TARGET`), `detail` why
+/// (`RECONFIG_B_FORM_*`), `value`/`limit` the chief's `|sin i|` and its minimum for ROE.
 pub const RECONFIG_B_ERR_INPUT_FORM: i32 = -214;
 
 /// No field (the refusal is about the request as a whole).

@@ -288,3 +288,97 @@ fn init_builds_no_workspace_on_the_stack() {
         .join()
         .unwrap();
 }
+
+#[test]
+fn form_refusals_name_the_part_and_the_reason() {
+    use reconfig_capi::convert_b_form::RECONFIG_FIELD_RELATIVE_FORM;
+    use reconfig_capi::types_b_form::*;
+    let size = reconfig_impulsive_workspace_size();
+    let mut mem = memory(size);
+    let ws = mem.as_mut_ptr().cast::<c_void>();
+    let mut settings = ReconfigBSettings::default();
+    let mut out = ReconfigBFormSolution::default();
+    // An equatorial chief (i = 0): ROE cannot be given on it (their node difference divides by
+    // sin i).
+    let mut problem = ReconfigBFormProblem {
+        chief: ReconfigBOrbitForm {
+            form: RECONFIG_B_ORBIT_CLASSICAL,
+            classical: ReconfigBMeanElements {
+                sma_km: 42_164.0,
+                ecc: 0.001,
+                ..Default::default()
+            },
+            ..Default::default()
+        },
+        relative: ReconfigBRelativeForm {
+            form: RECONFIG_B_RELATIVE_ROE,
+            ..Default::default()
+        },
+        impulse_count: 2,
+        ..Default::default()
+    };
+    problem.points[1].revolutions = 1;
+    // SAFETY: valid pointers; `ws` has `size` bytes.
+    unsafe {
+        assert_eq!(reconfig_impulsive_default_settings(&mut settings), 0);
+        assert_eq!(reconfig_impulsive_init(ws, size), 0);
+        assert_eq!(
+            reconfig_impulsive_solve_form(ws, &problem, &settings, &mut out),
+            RECONFIG_B_ERR_INPUT_FORM
+        );
+        let e = out.plan.error;
+        assert_eq!(
+            (e.code, e.field, e.detail, e.value, e.limit),
+            (
+                RECONFIG_B_ERR_INPUT_FORM,
+                RECONFIG_FIELD_INITIAL,
+                RECONFIG_B_FORM_ROE_EQUATORIAL_CHIEF,
+                0.0,
+                settings.min_sin_inclination
+            )
+        );
+        // A form code outside its set names the field that holds it and the largest code.
+        let mut bad = problem;
+        bad.relative.form = 7;
+        assert_eq!(
+            reconfig_impulsive_solve_form(ws, &bad, &settings, &mut out),
+            RECONFIG_ERR_INVALID_CODE
+        );
+        let e = out.plan.error;
+        assert_eq!(
+            (e.field, e.value, e.limit),
+            (RECONFIG_FIELD_RELATIVE_FORM, 7.0, 2.0)
+        );
+        let mut bad = problem;
+        bad.relative.form = RECONFIG_B_RELATIVE_DEPUTY;
+        bad.relative.target_orbit.form = 3;
+        assert_eq!(
+            reconfig_impulsive_solve_form(ws, &bad, &settings, &mut out),
+            RECONFIG_ERR_INVALID_CODE
+        );
+        assert_eq!(out.plan.error.field, RECONFIG_FIELD_DEPUTY_TARGET);
+        // A hyperbolic osculating chief state: not an ellipse, named as the chief's.
+        let mut bad = problem;
+        bad.chief.form = RECONFIG_B_ORBIT_STATE;
+        bad.chief.state = ReconfigBCartesianState {
+            pos_km: [7000.0, 0.0, 0.0],
+            vel_km_s: [0.0, 12.0, 1.0],
+        };
+        bad.relative.form = RECONFIG_B_RELATIVE_ELEMENTS;
+        assert_eq!(
+            reconfig_impulsive_solve_form(ws, &bad, &settings, &mut out),
+            RECONFIG_B_ERR_INPUT_FORM
+        );
+        let e = out.plan.error;
+        assert_eq!(
+            (e.field, e.detail),
+            (RECONFIG_FIELD_CHIEF, RECONFIG_B_FORM_NOT_AN_ELLIPSE)
+        );
+        // A null problem is refused like the mean-element form's.
+        assert_eq!(
+            reconfig_impulsive_solve_form(ws, core::ptr::null(), &settings, &mut out),
+            RECONFIG_ERR_NULL_POINTER
+        );
+        assert_eq!(out.plan.error.field, RECONFIG_FIELD_PROBLEM);
+    }
+}

@@ -16,4 +16,10 @@ typedef struct {
     ReconfigBProblem problem;
 } BCase;
 
+typedef struct {
+    const char *name;
+    int fixed_point_only; /* as in BCase */
+    ReconfigBFormProblem problem;
+} FCase;
+
 #endif

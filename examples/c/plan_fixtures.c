@@ -1,5 +1,6 @@
 /*
- * Plans every planner-A and planner-B (mean-element) fixture through the C interface and prints,
+ * Plans every planner-A and planner-B fixture (mean elements, and the other input forms through
+ * reconfig_impulsive_solve_form) through the C interface and prints,
  * per fixture, the status, the cost (planner A: J) or total delta-v (planner B), their raw bits,
  * and a checksum over the bits of the whole returned trajectory or plan.
  *
@@ -28,6 +29,7 @@ static uint64_t a_workspace[A_WORKSPACE_BYTES / 8];
 static uint64_t b_workspace[B_WORKSPACE_BYTES / 8];
 static ReconfigASolution a_solution;
 static ReconfigBSolution b_solution;
+static ReconfigBFormSolution f_solution;
 
 static uint64_t bits(double x) {
     uint64_t b;
@@ -38,6 +40,23 @@ static uint64_t bits(double x) {
 /* FNV-style mix of 64-bit words; the test computes the same over the Rust solution. */
 static uint64_t mix(uint64_t h, double x) {
     return (h ^ bits(x)) * UINT64_C(0x100000001b3);
+}
+
+/* Checksum over the numbers of the end state's member its form names (the test computes the
+ * same over the Rust API's EndState). */
+static uint64_t end_checksum(uint64_t h, const ReconfigBEndState *e) {
+    const double *v = 0;
+    int n = 6;
+    switch (e->form) {
+    case RECONFIG_B_END_ELEMENTS: v = &e->elements.dsma_km; break;
+    case RECONFIG_B_END_ROE: v = &e->roe.da_m; break;
+    case RECONFIG_B_END_DEPUTY_CLASSICAL: v = &e->classical.sma_km; break;
+    case RECONFIG_B_END_DEPUTY_EQUINOCTIAL: v = &e->equinoctial.sma_km; break;
+    case RECONFIG_B_END_DEPUTY_STATE: v = &e->state.pos_km[0]; break;
+    default: n = 0; break;
+    }
+    for (int k = 0; k < n; k++) h = mix(h, v[k]);
+    return h;
 }
 
 static int plan_a(void) {
@@ -99,6 +118,42 @@ static int plan_b(void) {
     return 0;
 }
 
+/* The same workspace as planner B's mean-element form: one planner-B workspace serves both. */
+static int plan_f(void) {
+    ReconfigBSettings defaults;
+    if (reconfig_impulsive_default_settings(&defaults) != 0) return 1;
+    for (size_t c = 0; c < sizeof F_CASES / sizeof F_CASES[0]; c++) {
+        ReconfigBSettings settings = defaults;
+        if (F_CASES[c].fixed_point_only) {
+            settings.min_fuel = 0;
+            settings.nonlinear_correction = 0;
+        }
+        int32_t status = reconfig_impulsive_solve_form(b_workspace, &F_CASES[c].problem,
+                                                       &settings, &f_solution);
+        const ReconfigBSolution *p = &f_solution.plan;
+        if (status < 0) {
+            printf("F %s status=%" PRId32 " field=%" PRId32 " index=%" PRId32 " value=%a limit=%a\n",
+                   F_CASES[c].name, status, p->error.field, p->error.index, p->error.value,
+                   p->error.limit);
+            continue;
+        }
+        uint64_t h = UINT64_C(0xcbf29ce484222325);
+        for (int i = 0; i < p->impulse_count; i++) {
+            h = mix(h, p->impulses[i].time_s);
+            for (int k = 0; k < 3; k++) h = mix(h, p->impulses[i].dv_rtn_mps[k]);
+        }
+        h = mix(h, p->terminal_position_error_m);
+        printf("F %s status=%" PRId32 " usable=%u impulses=%u dv_mps=%.9f dv_bits=%016" PRIx64
+               " work_units=%" PRIu64 " checksum=%016" PRIx64 " end_form=%u end_checksum=%016"
+               PRIx64 "\n",
+               F_CASES[c].name, status, (unsigned)p->usable, (unsigned)p->impulse_count,
+               p->total_dv_mps, bits(p->total_dv_mps), p->work_units, h,
+               (unsigned)f_solution.end.form,
+               end_checksum(UINT64_C(0xcbf29ce484222325), &f_solution.end));
+    }
+    return 0;
+}
+
 int main(void) {
     if (reconfig_pseudospectral_workspace_size() > sizeof a_workspace ||
         reconfig_impulsive_workspace_size() > sizeof b_workspace ||
@@ -109,6 +164,6 @@ int main(void) {
     }
     if (reconfig_pseudospectral_init(a_workspace, sizeof a_workspace) != 0) return 3;
     if (reconfig_impulsive_init(b_workspace, sizeof b_workspace) != 0) return 3;
-    if (plan_a() != 0 || plan_b() != 0) return 4;
+    if (plan_a() != 0 || plan_b() != 0 || plan_f() != 0) return 4;
     return 0;
 }

@@ -5,9 +5,10 @@
 //!
 //! The problems come from `firmware/fixture_set.rs` (the same decoded bytes the firmware and
 //! the QEMU tests use), planner A with default settings, planner B with default settings or
-//! `Settings::fixed_point_only()` (`+fixed-point` runs). Planner B's other input forms are not
-//! in the C interface (mean elements only) and are skipped. Needs `cc`; skipped with a notice
-//! when it is missing unless `RECONFIG_REQUIRE_CC=1`.
+//! `Settings::fixed_point_only()` (`+fixed-point` runs), and planner B's other input forms
+//! (ROE, osculating states, the deputy's orbits) through `reconfig_impulsive_solve_form`, whose
+//! end state in the request's form is compared too. Needs `cc`; skipped with a notice when it
+//! is missing unless `RECONFIG_REQUIRE_CC=1`.
 
 #[path = "../../firmware/fixture_set.rs"]
 mod fixture_set;
@@ -90,7 +91,135 @@ fn b_case(name: &str, fixed_point_only: bool, p: &impulsive::Problem) -> String 
             r.dmean_anomaly_rad,
         ])
     };
-    let (search, count, max_revolutions, points) = match &p.plan {
+    let (search, count, max_revolutions, points) = plan_fields(&p.plan);
+    format!(
+        "    {{\"{name}\", {}, {{{chief}, {}, {}, {search}, {count}, {max_revolutions}, {{{points}}}}}}},\n",
+        u8::from(fixed_point_only),
+        rel(&p.initial),
+        rel(&p.target),
+    )
+}
+
+/// A C99 designated initializer of the six numbers of a struct whose members are given.
+fn members(names: [&str; 6], values: [f64; 6]) -> String {
+    let fields: Vec<String> = names
+        .iter()
+        .zip(values)
+        .map(|(n, v)| format!(".{n} = {}", hexf(v)))
+        .collect();
+    format!("{{{}}}", fields.join(", "))
+}
+
+const MEAN: [&str; 6] = [
+    "sma_km",
+    "ecc",
+    "inc_rad",
+    "raan_rad",
+    "argp_rad",
+    "mean_anomaly_rad",
+];
+const RELATIVE: [&str; 6] = [
+    "dsma_km",
+    "decc",
+    "dinc_rad",
+    "draan_rad",
+    "dargp_rad",
+    "dmean_anomaly_rad",
+];
+const EQUINOCTIAL: [&str; 6] = ["sma_km", "mean_longitude_rad", "ex", "ey", "hx", "hy"];
+const ROE: [&str; 6] = ["da_m", "dlambda_m", "dex_m", "dey_m", "dix_m", "diy_m"];
+
+fn mean_values(m: &impulsive::MeanElements) -> [f64; 6] {
+    [
+        m.sma_km,
+        m.ecc,
+        m.inc_rad,
+        m.raan_rad,
+        m.argp_rad,
+        m.mean_anomaly_rad,
+    ]
+}
+
+fn relative_values(r: &impulsive::RelativeElements) -> [f64; 6] {
+    [
+        r.dsma_km,
+        r.decc,
+        r.dinc_rad,
+        r.draan_rad,
+        r.dargp_rad,
+        r.dmean_anomaly_rad,
+    ]
+}
+
+fn equinoctial_values(q: &impulsive::EquinoctialElements) -> [f64; 6] {
+    [q.sma_km, q.mean_longitude_rad, q.ex, q.ey, q.hx, q.hy]
+}
+
+fn roe_values(r: &impulsive::Roe) -> [f64; 6] {
+    [r.da_m, r.dlambda_m, r.dex_m, r.dey_m, r.dix_m, r.diy_m]
+}
+
+fn state_values(s: &impulsive::CartesianState) -> [f64; 6] {
+    [
+        s.pos_km[0],
+        s.pos_km[1],
+        s.pos_km[2],
+        s.vel_km_s[0],
+        s.vel_km_s[1],
+        s.vel_km_s[2],
+    ]
+}
+
+/// A `ReconfigBOrbitForm` initializer.
+fn orbit_form(o: &impulsive::OrbitForm) -> String {
+    match o {
+        impulsive::OrbitForm::Classical(m) => format!(
+            "{{.form = RECONFIG_B_ORBIT_CLASSICAL, .classical = {}}}",
+            members(MEAN, mean_values(m))
+        ),
+        impulsive::OrbitForm::Equinoctial(q) => format!(
+            "{{.form = RECONFIG_B_ORBIT_EQUINOCTIAL, .equinoctial = {}}}",
+            members(EQUINOCTIAL, equinoctial_values(q))
+        ),
+        impulsive::OrbitForm::State(s) => format!(
+            "{{.form = RECONFIG_B_ORBIT_STATE, .state = {{.pos_km = {}, .vel_km_s = {}}}}}",
+            doubles(&s.pos_km),
+            doubles(&s.vel_km_s)
+        ),
+    }
+}
+
+fn f_case(name: &str, fixed_point_only: bool, p: &impulsive::FormProblem) -> String {
+    let relative = match &p.relative {
+        impulsive::RelativeForm::Elements { initial, target } => format!(
+            "{{.form = RECONFIG_B_RELATIVE_ELEMENTS, .initial_elements = {}, .target_elements = {}}}",
+            members(RELATIVE, relative_values(initial)),
+            members(RELATIVE, relative_values(target))
+        ),
+        impulsive::RelativeForm::Roe { initial, target } => format!(
+            "{{.form = RECONFIG_B_RELATIVE_ROE, .initial_roe = {}, .target_roe = {}}}",
+            members(ROE, roe_values(initial)),
+            members(ROE, roe_values(target))
+        ),
+        impulsive::RelativeForm::Deputy { initial, target } => format!(
+            "{{.form = RECONFIG_B_RELATIVE_DEPUTY, .initial_orbit = {}, .target_orbit = {}}}",
+            orbit_form(initial),
+            orbit_form(target)
+        ),
+    };
+    let (search, count, max_revolutions, points) = plan_fields(&p.plan);
+    format!(
+        "    {{\"{name}\", {}, {{.chief = {}, .relative = {relative}, .search = {search}, \
+         .impulse_count = {count}, .max_revolutions = {max_revolutions}, .points = {{{points}}}}}}},\n",
+        u8::from(fixed_point_only),
+        orbit_form(&p.chief),
+    )
+}
+
+/// The plan fields every planner-B problem form shares: (search flag, impulse count, maximum
+/// revolutions, the fixed points' initializers).
+fn plan_fields(plan: &impulsive::ImpulsePlan) -> (u8, usize, i32, String) {
+    match plan {
         impulsive::ImpulsePlan::Fixed(points) => {
             let text: Vec<String> = points
                 .iter()
@@ -102,13 +231,7 @@ fn b_case(name: &str, fixed_point_only: bool, p: &impulsive::Problem) -> String 
             impulses,
             max_revolutions,
         } => (1, usize::from(*impulses), *max_revolutions, String::new()),
-    };
-    format!(
-        "    {{\"{name}\", {}, {{{chief}, {}, {}, {search}, {count}, {max_revolutions}, {{{points}}}}}}},\n",
-        u8::from(fixed_point_only),
-        rel(&p.initial),
-        rel(&p.target),
-    )
+    }
 }
 
 const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
@@ -174,6 +297,46 @@ fn b_expected(name: &str, fixed_point_only: bool, p: &impulsive::Problem) -> Str
     )
 }
 
+/// The line the C example must print for a fixture in other forms, from the Rust API
+/// (`solve_form`): as planner B's, plus the end state's form and a checksum over its numbers.
+fn f_expected(name: &str, fixed_point_only: bool, p: &impulsive::FormProblem) -> String {
+    let settings = if fixed_point_only {
+        impulsive::Settings::fixed_point_only()
+    } else {
+        impulsive::Settings::default()
+    };
+    let mut workspace = Box::new(impulsive::Workspace::new());
+    let mut s = Box::new(impulsive::Solution::new());
+    let end = impulsive::solve_form(p, &settings, &mut workspace, &mut s)
+        .unwrap_or_else(|e| panic!("{name}: every form fixture is planned ({e})"));
+    let mut h = FNV_OFFSET;
+    for i in &s.impulses {
+        h = mix(h, i.time_s);
+        h = i.dv_rtn_mps.iter().fold(h, |h, v| mix(h, *v));
+    }
+    h = mix(h, s.terminal_position_error_m);
+    let c_end = reconfig_capi::convert_b_form::end_state_to_c(&end);
+    let values: Option<[f64; 6]> = match &end {
+        impulsive::EndState::Elements(r) => Some(relative_values(r)),
+        impulsive::EndState::Roe(r) => Some(roe_values(r)),
+        impulsive::EndState::DeputyClassical(m) => Some(mean_values(m)),
+        impulsive::EndState::DeputyEquinoctial(q) => Some(equinoctial_values(q)),
+        impulsive::EndState::DeputyState(st) => Some(state_values(st)),
+        impulsive::EndState::Unavailable(_) => None,
+    };
+    let end_checksum = values.iter().flatten().fold(FNV_OFFSET, |h, v| mix(h, *v));
+    let (status, ..) = reconfig_capi::convert_b::status_to_c(s.info.status);
+    format!(
+        "F {name} status={status} usable={} impulses={} dv_mps={:.9} dv_bits={:016x} work_units={} checksum={h:016x} end_form={} end_checksum={end_checksum:016x}",
+        u8::from(s.info.status.is_usable()),
+        s.impulses.len(),
+        s.total_dv_mps,
+        s.total_dv_mps.to_bits(),
+        s.info.work_units,
+        c_end.form,
+    )
+}
+
 fn run(cmd: &mut Command, what: &str) -> String {
     let out = cmd
         .output()
@@ -200,6 +363,7 @@ fn prepared() -> &'static Prepared {
         let fixtures = fixture_set::encode_all(&root().join("fixtures")).expect("fixtures load");
         let mut a_cases = String::new();
         let mut b_cases = String::new();
+        let mut f_cases = String::new();
         let mut expected = Vec::new();
         for f in &fixtures {
             match f.planner {
@@ -214,11 +378,27 @@ fn prepared() -> &'static Prepared {
                     b_cases.push_str(&b_case(&f.name, fixed, &p));
                     expected.push(b_expected(&f.name, fixed, &p));
                 }
-                _ => {}
+                Planner::ImpulsiveForm | Planner::ImpulsiveFormFixedPoint => {
+                    let fixed = f.planner == Planner::ImpulsiveFormFixedPoint;
+                    let p: impulsive::FormProblem = postcard::from_bytes(&f.problem).unwrap();
+                    f_cases.push_str(&f_case(&f.name, fixed, &p));
+                    expected.push(f_expected(&f.name, fixed, &p));
+                }
+                // The GEO tour has its own image and C interface.
+                Planner::GeoTour => {}
             }
         }
-        // Planner A lines first, then planner B, as the programs print them.
-        expected.sort_by_key(|line| !line.starts_with('A'));
+        // Planner A lines first, then planner B, then the other forms, as the programs print
+        // them (the sort is stable: fixture order within each).
+        expected.sort_by_key(|line| match line.as_bytes().first() {
+            Some(b'A') => 0,
+            Some(b'B') => 1,
+            _ => 2,
+        });
+        assert!(
+            expected.iter().any(|l| l.starts_with("F ")),
+            "the planner-B form fixtures are among the fixtures"
+        );
         assert!(
             expected
                 .iter()
@@ -233,7 +413,8 @@ fn prepared() -> &'static Prepared {
             format!(
                 "/* Generated by tests/tests/c_api.rs from the fixture files. */\n\
                  static const ACase A_CASES[] = {{\n{a_cases}}};\n\
-                 static const BCase B_CASES[] = {{\n{b_cases}}};\n"
+                 static const BCase B_CASES[] = {{\n{b_cases}}};\n\
+                 static const FCase F_CASES[] = {{\n{f_cases}}};\n"
             ),
         )
         .unwrap();
@@ -302,13 +483,15 @@ fn first_tool(candidates: &[&'static str]) -> Option<&'static str> {
 /// The expected M7 line: the host line's fields that do not need `printf` (status, bits, work
 /// units, checksum).
 fn m7_fields(host_line: &str) -> String {
-    const KEPT: [&str; 6] = [
+    const KEPT: [&str; 8] = [
         "status=",
         "J_bits=",
         "min_sep_bits=",
         "dv_bits=",
         "work_units=",
         "checksum=",
+        "end_form=",
+        "end_checksum=",
     ];
     host_line
         .split(' ')
@@ -421,7 +604,7 @@ fn m7_c_image_is_bit_identical_to_the_rust_api_on_every_fixture() {
     let mut got = Vec::new();
     for line in stdout
         .lines()
-        .filter(|l| l.starts_with("A ") || l.starts_with("B "))
+        .filter(|l| l.starts_with("A ") || l.starts_with("B ") || l.starts_with("F "))
     {
         let (fields, stack) = line
             .rsplit_once(" stack_bytes=")

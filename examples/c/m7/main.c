@@ -35,7 +35,7 @@ static void __attribute__((noreturn)) exit_with(int ok) {
 }
 
 /* ---- line formatting (no printf without a C library) ---- */
-static char line[256];
+static char line[320];
 static size_t at;
 static void add(const char *s) {
     while (*s && at + 1 < sizeof line) line[at++] = *s++;
@@ -65,6 +65,23 @@ static uint64_t bits(double x) {
 }
 static uint64_t mix(uint64_t h, double x) { return (h ^ bits(x)) * UINT64_C(0x100000001b3); }
 
+/* Checksum over the numbers of the end state's member its form names (the test computes the
+ * same over the Rust API's EndState). */
+static uint64_t end_checksum(uint64_t h, const ReconfigBEndState *e) {
+    const double *v = 0;
+    int n = 6;
+    switch (e->form) {
+    case RECONFIG_B_END_ELEMENTS: v = &e->elements.dsma_km; break;
+    case RECONFIG_B_END_ROE: v = &e->roe.da_m; break;
+    case RECONFIG_B_END_DEPUTY_CLASSICAL: v = &e->classical.sma_km; break;
+    case RECONFIG_B_END_DEPUTY_EQUINOCTIAL: v = &e->equinoctial.sma_km; break;
+    case RECONFIG_B_END_DEPUTY_STATE: v = &e->state.pos_km[0]; break;
+    default: n = 0; break;
+    }
+    for (int k = 0; k < n; k++) h = mix(h, v[k]);
+    return h;
+}
+
 /* ---- stack high-water of one call ---- */
 extern uint32_t _stack_bottom;
 #define PAINT 0xCCCCCCCCu
@@ -90,6 +107,7 @@ static uint64_t a_workspace[210000 / 8];
 static uint64_t b_workspace[8192 / 8];
 static ReconfigASolution a_solution;
 static ReconfigBSolution b_solution;
+static ReconfigBFormSolution f_solution;
 
 static int plan_a(void) {
     ReconfigASettings settings;
@@ -153,6 +171,43 @@ static int plan_b(void) {
     return 1;
 }
 
+/* Planner B's other input forms, in the planner-B workspace. */
+static int plan_f(void) {
+    ReconfigBSettings defaults;
+    if (reconfig_impulsive_default_settings(&defaults) != 0) return 0;
+    for (size_t c = 0; c < sizeof F_CASES / sizeof F_CASES[0]; c++) {
+        ReconfigBSettings settings = defaults;
+        if (F_CASES[c].fixed_point_only) {
+            settings.min_fuel = 0;
+            settings.nonlinear_correction = 0;
+        }
+        paint_stack();
+        uintptr_t sp = current_sp();
+        int32_t status = reconfig_impulsive_solve_form(b_workspace, &F_CASES[c].problem,
+                                                       &settings, &f_solution);
+        uintptr_t used = sp - (uintptr_t)lowest_touched();
+        const ReconfigBSolution *p = &f_solution.plan;
+        uint64_t h = UINT64_C(0xcbf29ce484222325);
+        for (int i = 0; i < p->impulse_count; i++) {
+            h = mix(h, p->impulses[i].time_s);
+            for (int k = 0; k < 3; k++) h = mix(h, p->impulses[i].dv_rtn_mps[k]);
+        }
+        h = mix(h, p->terminal_position_error_m);
+        at = 0;
+        add("F "); add(F_CASES[c].name);
+        add(" status="); add_i(status);
+        add(" dv_bits="); add_hex(bits(p->total_dv_mps));
+        add(" work_units="); add_u(p->work_units);
+        add(" checksum="); add_hex(h);
+        add(" end_form="); add_u(f_solution.end.form);
+        add(" end_checksum="); add_hex(end_checksum(UINT64_C(0xcbf29ce484222325), &f_solution.end));
+        add(" stack_bytes="); add_u(used);
+        add("\n");
+        put(line);
+    }
+    return 1;
+}
+
 int main(void) {
     if (reconfig_pseudospectral_workspace_size() > sizeof a_workspace ||
         reconfig_impulsive_workspace_size() > sizeof b_workspace) {
@@ -172,7 +227,7 @@ int main(void) {
     add(" B="); add_u(reconfig_impulsive_workspace_size());
     add("\n");
     put(line);
-    return plan_a() && plan_b();
+    return plan_a() && plan_b() && plan_f();
 }
 
 /* The abort-free proof's symbol (docs/c-api.md, "Abort-free"): defined here because the proof
