@@ -80,6 +80,22 @@
 // Planner B: the work budget ran out; the returned plan is not verified.
 #define RECONFIG_B_BUDGET_EXHAUSTED_UNVERIFIED 109
 
+// GEO tour: the plan meets the mission time and the burn cap, checked. May be flown.
+#define RECONFIG_GEO_SOLVED 201
+
+// GEO tour: even the fastest admissible tour overruns the mission time (`status_leg` the leg
+// that needs the most time, `fastest_tour_s` how long the fastest tour takes).
+#define RECONFIG_GEO_MISSION_TOO_SHORT 202
+
+// GEO tour: the tour fits without the burn cap but not with it (`status_leg`).
+#define RECONFIG_GEO_CAP_TOO_LOW 203
+
+// GEO tour, paper's rule: the rule's method for `status_leg` is not admissible.
+#define RECONFIG_GEO_RULE_METHOD_INADMISSIBLE 204
+
+// GEO tour: the final check failed at `status_leg`; the plan is for inspection only.
+#define RECONFIG_GEO_CHECK_FAILED 205
+
 // Refused: a pointer argument is null (`error.field` names it when the solution is usable).
 #define RECONFIG_ERR_NULL_POINTER -1
 
@@ -169,6 +185,17 @@
 // (`RECONFIG_B_FORM_*`), `value`/`limit` the chief's `|sin i|` and its minimum for ROE.
 #define RECONFIG_B_ERR_INPUT_FORM -214
 
+// GEO tour refused: a value is not finite or outside its range (`field` a
+// `RECONFIG_FIELD_GEO_*`, `index` the client for a longitude, `detail` 0 below the range, 1
+// above it, 2 not finite; `limit` the end it broke, the upper end when not finite).
+#define RECONFIG_GEO_ERR_OUT_OF_RANGE -301
+
+// GEO tour refused: no clients.
+#define RECONFIG_GEO_ERR_NO_TARGETS -302
+
+// GEO tour refused: `target_count` above the capacity (`value`, `limit`).
+#define RECONFIG_GEO_ERR_CAPACITY_EXCEEDED -303
+
 // No field (the refusal is about the request as a whole).
 #define RECONFIG_FIELD_NONE 0
 
@@ -231,6 +258,72 @@
 
 // Settings flag or enumeration (`index` names it, see docs/c-api.md).
 #define RECONFIG_FIELD_SETTINGS_CODE 29
+
+// GEO tour: `start_lon_rad`.
+#define RECONFIG_FIELD_GEO_START_LONGITUDE 50
+
+// GEO tour: `targets_lon_rad[index]`.
+#define RECONFIG_FIELD_GEO_TARGET_LONGITUDE 51
+
+// GEO tour: `mission_time_s`.
+#define RECONFIG_FIELD_GEO_MISSION_TIME 52
+
+// GEO tour: `max_burn_mps`.
+#define RECONFIG_FIELD_GEO_MAX_BURN 53
+
+// GEO tour settings: `lambert_max_revolutions`.
+#define RECONFIG_FIELD_GEO_LAMBERT_MAX_REVOLUTIONS 54
+
+// GEO tour settings: `lambert_max_iter`.
+#define RECONFIG_FIELD_GEO_LAMBERT_MAX_ITER 55
+
+// GEO tour settings: `lambert_tol`.
+#define RECONFIG_FIELD_GEO_LAMBERT_TOL 56
+
+// GEO tour settings: `well_iterations`.
+#define RECONFIG_FIELD_GEO_WELL_ITERATIONS 57
+
+// GEO tour settings: `root_max_iter`.
+#define RECONFIG_FIELD_GEO_ROOT_MAX_ITER 58
+
+// GEO tour settings: `price_max_iter`.
+#define RECONFIG_FIELD_GEO_PRICE_MAX_ITER 59
+
+// GEO tour settings: `time_tol_s`.
+#define RECONFIG_FIELD_GEO_TIME_TOL 60
+
+// GEO tour settings: `gap_max_legs`.
+#define RECONFIG_FIELD_GEO_GAP_MAX_LEGS 61
+
+// GEO tour settings: `min_radius_km`.
+#define RECONFIG_FIELD_GEO_MIN_RADIUS 62
+
+// GEO tour settings: `rule_drift_above_rad`.
+#define RECONFIG_FIELD_GEO_RULE_DRIFT_ABOVE 63
+
+// GEO tour settings: `rule_hohmann_above_rad`.
+#define RECONFIG_FIELD_GEO_RULE_HOHMANN_ABOVE 64
+
+// GEO tour settings: `rule_radial_above_rad`.
+#define RECONFIG_FIELD_GEO_RULE_RADIAL_ABOVE 65
+
+// GEO tour settings: `lambert_direct_time_s`.
+#define RECONFIG_FIELD_GEO_LAMBERT_DIRECT_TIME 66
+
+// GEO tour settings: `exchange_rounds`.
+#define RECONFIG_FIELD_GEO_EXCHANGE_ROUNDS 67
+
+// GEO tour settings: `exchange_margin_mps`.
+#define RECONFIG_FIELD_GEO_EXCHANGE_MARGIN 68
+
+// GEO tour: `target_count`.
+#define RECONFIG_FIELD_GEO_TARGET_COUNT 69
+
+// GEO tour: `sweep` (`RECONFIG_GEO_SWEEP_*`).
+#define RECONFIG_FIELD_GEO_SWEEP 70
+
+// GEO tour: `policy` (`RECONFIG_GEO_POLICY_*`).
+#define RECONFIG_FIELD_GEO_POLICY 71
 
 // The `workspace` argument.
 #define RECONFIG_FIELD_WORKSPACE 40
@@ -303,6 +396,200 @@
 
 // ROE on a chief whose `|sin i|` (`value`) is below `min_sin_inclination` (`limit`).
 #define RECONFIG_B_FORM_ROE_EQUATORIAL_CHIEF 4
+
+// Most clients of one tour (`geo_tour::MAX_TARGETS`).
+#define RECONFIG_GEO_MAX_TARGETS 16
+
+// Most burns of one leg (`geo_tour::MAX_BURNS`).
+#define RECONFIG_GEO_MAX_BURNS 4
+
+// Sweep code: plan both sweeps and keep the cheaper (east on a tie).
+#define RECONFIG_GEO_SWEEP_CHEAPER 0
+
+// Sweep code: eastward only.
+#define RECONFIG_GEO_SWEEP_EAST 1
+
+// Sweep code: westward only.
+#define RECONFIG_GEO_SWEEP_WEST 2
+
+// Policy code: every method of every leg competes on delta-v under the time price.
+#define RECONFIG_GEO_POLICY_BY_COST 0
+
+// Policy code: the paper's threshold rule on each leg's phase offset.
+#define RECONFIG_GEO_POLICY_PAPER_RULE 1
+
+// Leg method code: the client is in the same slot (no burn).
+#define RECONFIG_GEO_METHOD_NONE 0
+
+// Leg method code: drift phasing (4 burns).
+#define RECONFIG_GEO_METHOD_DRIFT 1
+
+// Leg method code: one-revolution Hohmann-type phasing (2 burns).
+#define RECONFIG_GEO_METHOD_HOHMANN 2
+
+// Leg method code: radial-impulse phasing (2 burns).
+#define RECONFIG_GEO_METHOD_RADIAL 3
+
+// Leg method code: Lambert transfer (2 burns).
+#define RECONFIG_GEO_METHOD_LAMBERT 4
+
+// Direction code of the returned sweep: east.
+#define RECONFIG_GEO_DIRECTION_EAST 0
+
+// Direction code of the returned sweep: west.
+#define RECONFIG_GEO_DIRECTION_WEST 1
+
+// Direction code: no sweep was returned.
+#define RECONFIG_GEO_DIRECTION_NONE 2
+
+// Loop bounds, tolerances and the paper's rule (`reconfig_core::geo_tour::Settings`, same
+// names).
+typedef struct {
+  // Lambert tolerance on Izzo's x.
+  double lambert_tol;
+  // The price search stops this close to the mission time, s.
+  double time_tol_s;
+  // Exchange search: first-order effect below which a well is refined, m/s.
+  double exchange_margin_mps;
+  // No intermediate orbit closer to Earth's centre than this, km.
+  double min_radius_km;
+  // Paper's rule: drift above this phase offset, rad.
+  double rule_drift_above_rad;
+  // Paper's rule: one-revolution Hohmann above this, rad.
+  double rule_hohmann_above_rad;
+  // Paper's rule: radial above this, rad; Lambert at or below.
+  double rule_radial_above_rad;
+  // Transfer time of a direct Lambert leg (and of the paper's rule), s.
+  double lambert_direct_time_s;
+  // Most whole revolutions of a Lambert transfer.
+  uint16_t lambert_max_revolutions;
+  // Householder steps per Lambert solve.
+  uint16_t lambert_max_iter;
+  // Golden-section steps per Lambert well.
+  uint16_t well_iterations;
+  // Steps of every 1-D root.
+  uint16_t root_max_iter;
+  // Steps of the time-price search.
+  uint16_t price_max_iter;
+  // Rounds of the exchange search.
+  uint16_t exchange_rounds;
+  // Legs switching at the critical price tried both ways.
+  uint8_t gap_max_legs;
+} ReconfigGeoSettings;
+
+// A servicing tour request.
+typedef struct {
+  // The servicer's slot: Earth-fixed longitude, rad (east positive).
+  double start_lon_rad;
+  // Time for the whole tour, s.
+  double mission_time_s;
+  // Largest single burn allowed, m/s.
+  double max_burn_mps;
+  // Clients in `targets_lon_rad`.
+  uint8_t target_count;
+  // `RECONFIG_GEO_SWEEP_*`.
+  uint8_t sweep;
+  // `RECONFIG_GEO_POLICY_*`.
+  uint8_t policy;
+  // The clients' slots, rad, in any order; the first `target_count` are used.
+  double targets_lon_rad[RECONFIG_GEO_MAX_TARGETS];
+} ReconfigGeoProblem;
+
+// Why a request was refused: which field, which element, the value and the limit it broke.
+// All zero after a solve that was not refused.
+typedef struct {
+  // The status code of the refusal (`RECONFIG_*ERR_*`), or 0.
+  int32_t code;
+  // Which field (`RECONFIG_FIELD_*`).
+  int32_t field;
+  // Spacecraft, impulse or element index where it applies, else -1.
+  int32_t index;
+  // A second index (the second spacecraft of a pair), else -1.
+  int32_t index2;
+  // A refusal-specific code: settings error class, axis, boundary (see docs/c-api.md), else 0.
+  int32_t detail;
+  // The offending value, in the field's units (counts as numbers).
+  double value;
+  // The limit it broke, in the field's units (0 where the limit is "finite" or "present").
+  double limit;
+} ReconfigError;
+
+// One burn of a leg.
+typedef struct {
+  // Time after the leg's start, s.
+  double offset_s;
+  // Velocity change: radial, along-track (eastward), normal, m/s.
+  double dv_rtn_mps[3];
+} ReconfigGeoBurn;
+
+// One leg of the tour.
+typedef struct {
+  // Longitude of the slot the leg leaves, rad in [0, 2 pi).
+  double from_lon_rad;
+  // Longitude of the client, rad in [0, 2 pi).
+  double to_lon_rad;
+  // Phase offset covered in the sweep's direction, rad.
+  double phase_rad;
+  // Start of the leg after the mission epoch, s.
+  double start_s;
+  // Time allotted to the leg (transfer, then waiting at the client), s.
+  double duration_s;
+  // From the leg's start to the arrival (last burn), s.
+  double transfer_s;
+  // Waiting after the arrival, s.
+  double wait_s;
+  // Sum of the leg's burn sizes, m/s.
+  double dv_mps;
+  // Largest burn of the leg, m/s.
+  double max_burn_mps;
+  // Semi-major axis of the intermediate orbit, km (0 for no method).
+  double orbit_sma_km;
+  // Lambert revolutions (0 otherwise).
+  uint16_t revolutions;
+  // Index of the client in the request's `targets_lon_rad`.
+  uint8_t target_index;
+  // `RECONFIG_GEO_METHOD_*`.
+  uint8_t method;
+  // Burns in `burns`.
+  uint8_t burn_count;
+  // The burns in time order; the first `burn_count` are used.
+  ReconfigGeoBurn burns[RECONFIG_GEO_MAX_BURNS];
+} ReconfigGeoLeg;
+
+// A GEO tour result.
+typedef struct {
+  // The status code the solve returned (`RECONFIG_GEO_*`, or a refusal).
+  int32_t status;
+  // With `MISSION_TOO_SHORT`, `CAP_TOO_LOW`, `RULE_METHOD_INADMISSIBLE`, `CHECK_FAILED`: the
+  // leg the status names (0 = from the servicer's slot); else -1.
+  int32_t status_leg;
+  // Why the request was refused (all zero when it was not).
+  ReconfigError error;
+  // 1 when the plan may be flown (SOLVED).
+  uint8_t usable;
+  // `RECONFIG_GEO_DIRECTION_*` of the returned sweep.
+  uint8_t direction;
+  // Legs in `legs`.
+  uint8_t leg_count;
+  // Legs moved by the local Lambert-well refinement.
+  uint8_t refined_legs;
+  // Price-search steps used (both sweeps).
+  uint32_t price_iterations;
+  // Assignments tried by the duality-gap enumeration.
+  uint32_t gap_assignments;
+  // Sum of all burns, m/s.
+  double total_dv_mps;
+  // Sum of the legs' durations, s.
+  double mission_time_s;
+  // Largest single burn, m/s.
+  double max_burn_mps;
+  // Time price at the returned allocation, m/s per s.
+  double price_mps_per_s;
+  // Duration of the fastest admissible tour of this sweep, s.
+  double fastest_tour_s;
+  // Legs in visiting order; the first `leg_count` are used.
+  ReconfigGeoLeg legs[RECONFIG_GEO_MAX_TARGETS];
+} ReconfigGeoSolution;
 
 // Loop bounds, tolerances and thresholds (`reconfig_core::impulsive::Settings`, same names).
 // Flags are 0 or 1.
@@ -420,25 +707,6 @@ typedef struct {
   // Fixed impulse points (search: unused).
   ReconfigBImpulsePoint points[RECONFIG_B_MAX_IMPULSES];
 } ReconfigBProblem;
-
-// Why a request was refused: which field, which element, the value and the limit it broke.
-// All zero after a solve that was not refused.
-typedef struct {
-  // The status code of the refusal (`RECONFIG_*ERR_*`), or 0.
-  int32_t code;
-  // Which field (`RECONFIG_FIELD_*`).
-  int32_t field;
-  // Spacecraft, impulse or element index where it applies, else -1.
-  int32_t index;
-  // A second index (the second spacecraft of a pair), else -1.
-  int32_t index2;
-  // A refusal-specific code: settings error class, axis, boundary (see docs/c-api.md), else 0.
-  int32_t detail;
-  // The offending value, in the field's units (counts as numbers).
-  double value;
-  // The limit it broke, in the field's units (0 where the limit is "finite" or "present").
-  double limit;
-} ReconfigError;
 
 // Mean equinoctial elements (or their difference).
 typedef struct {
@@ -738,6 +1006,44 @@ extern "C" {
 #endif // __cplusplus
 
 extern void reconfig_capi_panic_path_survived_optimisation(void);
+
+// Bytes of caller memory one GEO-tour workspace needs.
+size_t reconfig_geo_tour_workspace_size(void);
+
+// Alignment, in bytes, a GEO-tour workspace needs.
+size_t reconfig_geo_tour_workspace_align(void);
+
+// Initialise a GEO-tour workspace in `size` bytes of caller memory at `workspace`.
+//
+// Returns 0, or `RECONFIG_ERR_NULL_POINTER`, `RECONFIG_ERR_MISALIGNED` or
+// `RECONFIG_ERR_WORKSPACE_TOO_SMALL`.
+//
+// # Safety
+// `workspace` is null or points to `size` writable bytes used by nothing else while the
+// workspace is in use.
+int32_t reconfig_geo_tour_init(void *workspace, size_t size);
+
+// Write the default settings into `out`. Returns 0, or a null/misaligned refusal.
+//
+// # Safety
+// `out` is null or points to writable memory for one `ReconfigGeoSettings`.
+int32_t reconfig_geo_tour_default_settings(ReconfigGeoSettings *out);
+
+// Plan the tour `problem` with `settings` in the initialised `workspace`; write the result
+// into `out`.
+//
+// Returns the status code (also in `out->status`): `>= 0` a solve status (only
+// `RECONFIG_GEO_SOLVED` may be flown), `< 0` a refusal whose field, index, value and limit are
+// in `out->error` (when `out` is usable).
+//
+// # Safety
+// Each pointer is null or valid for its type (`workspace`: a block of at least
+// `reconfig_geo_tour_workspace_size()` bytes); `workspace` and `out` are used by nothing else
+// during the call.
+int32_t reconfig_geo_tour_solve(void *workspace,
+                                const ReconfigGeoProblem *problem,
+                                const ReconfigGeoSettings *settings,
+                                ReconfigGeoSolution *out);
 
 // Bytes of caller memory one planner-B workspace needs.
 size_t reconfig_impulsive_workspace_size(void);

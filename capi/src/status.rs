@@ -47,6 +47,18 @@ pub const RECONFIG_B_BUDGET_EXHAUSTED_VERIFIED: i32 = 108;
 /// Planner B: the work budget ran out; the returned plan is not verified.
 pub const RECONFIG_B_BUDGET_EXHAUSTED_UNVERIFIED: i32 = 109;
 
+/// GEO tour: the plan meets the mission time and the burn cap, checked. May be flown.
+pub const RECONFIG_GEO_SOLVED: i32 = 201;
+/// GEO tour: even the fastest admissible tour overruns the mission time (`status_leg` the leg
+/// that needs the most time, `fastest_tour_s` how long the fastest tour takes).
+pub const RECONFIG_GEO_MISSION_TOO_SHORT: i32 = 202;
+/// GEO tour: the tour fits without the burn cap but not with it (`status_leg`).
+pub const RECONFIG_GEO_CAP_TOO_LOW: i32 = 203;
+/// GEO tour, paper's rule: the rule's method for `status_leg` is not admissible.
+pub const RECONFIG_GEO_RULE_METHOD_INADMISSIBLE: i32 = 204;
+/// GEO tour: the final check failed at `status_leg`; the plan is for inspection only.
+pub const RECONFIG_GEO_CHECK_FAILED: i32 = 205;
+
 /// Refused: a pointer argument is null (`error.field` names it when the solution is usable).
 pub const RECONFIG_ERR_NULL_POINTER: i32 = -1;
 /// Refused: a pointer is not aligned for its type.
@@ -111,6 +123,15 @@ pub const RECONFIG_B_ERR_ANGLE_OUT_OF_RANGE: i32 = -213;
 /// (`RECONFIG_B_FORM_*`), `value`/`limit` the chief's `|sin i|` and its minimum for ROE.
 pub const RECONFIG_B_ERR_INPUT_FORM: i32 = -214;
 
+/// GEO tour refused: a value is not finite or outside its range (`field` a
+/// `RECONFIG_FIELD_GEO_*`, `index` the client for a longitude, `detail` 0 below the range, 1
+/// above it, 2 not finite; `limit` the end it broke, the upper end when not finite).
+pub const RECONFIG_GEO_ERR_OUT_OF_RANGE: i32 = -301;
+/// GEO tour refused: no clients.
+pub const RECONFIG_GEO_ERR_NO_TARGETS: i32 = -302;
+/// GEO tour refused: `target_count` above the capacity (`value`, `limit`).
+pub const RECONFIG_GEO_ERR_CAPACITY_EXCEEDED: i32 = -303;
+
 /// No field (the refusal is about the request as a whole).
 pub const RECONFIG_FIELD_NONE: i32 = 0;
 /// Planner A: `horizon_tu`.
@@ -153,6 +174,50 @@ pub const RECONFIG_FIELD_REVOLUTIONS: i32 = 27;
 pub const RECONFIG_FIELD_SEARCH: i32 = 28;
 /// Settings flag or enumeration (`index` names it, see docs/c-api.md).
 pub const RECONFIG_FIELD_SETTINGS_CODE: i32 = 29;
+/// GEO tour: `start_lon_rad`.
+pub const RECONFIG_FIELD_GEO_START_LONGITUDE: i32 = 50;
+/// GEO tour: `targets_lon_rad[index]`.
+pub const RECONFIG_FIELD_GEO_TARGET_LONGITUDE: i32 = 51;
+/// GEO tour: `mission_time_s`.
+pub const RECONFIG_FIELD_GEO_MISSION_TIME: i32 = 52;
+/// GEO tour: `max_burn_mps`.
+pub const RECONFIG_FIELD_GEO_MAX_BURN: i32 = 53;
+/// GEO tour settings: `lambert_max_revolutions`.
+pub const RECONFIG_FIELD_GEO_LAMBERT_MAX_REVOLUTIONS: i32 = 54;
+/// GEO tour settings: `lambert_max_iter`.
+pub const RECONFIG_FIELD_GEO_LAMBERT_MAX_ITER: i32 = 55;
+/// GEO tour settings: `lambert_tol`.
+pub const RECONFIG_FIELD_GEO_LAMBERT_TOL: i32 = 56;
+/// GEO tour settings: `well_iterations`.
+pub const RECONFIG_FIELD_GEO_WELL_ITERATIONS: i32 = 57;
+/// GEO tour settings: `root_max_iter`.
+pub const RECONFIG_FIELD_GEO_ROOT_MAX_ITER: i32 = 58;
+/// GEO tour settings: `price_max_iter`.
+pub const RECONFIG_FIELD_GEO_PRICE_MAX_ITER: i32 = 59;
+/// GEO tour settings: `time_tol_s`.
+pub const RECONFIG_FIELD_GEO_TIME_TOL: i32 = 60;
+/// GEO tour settings: `gap_max_legs`.
+pub const RECONFIG_FIELD_GEO_GAP_MAX_LEGS: i32 = 61;
+/// GEO tour settings: `min_radius_km`.
+pub const RECONFIG_FIELD_GEO_MIN_RADIUS: i32 = 62;
+/// GEO tour settings: `rule_drift_above_rad`.
+pub const RECONFIG_FIELD_GEO_RULE_DRIFT_ABOVE: i32 = 63;
+/// GEO tour settings: `rule_hohmann_above_rad`.
+pub const RECONFIG_FIELD_GEO_RULE_HOHMANN_ABOVE: i32 = 64;
+/// GEO tour settings: `rule_radial_above_rad`.
+pub const RECONFIG_FIELD_GEO_RULE_RADIAL_ABOVE: i32 = 65;
+/// GEO tour settings: `lambert_direct_time_s`.
+pub const RECONFIG_FIELD_GEO_LAMBERT_DIRECT_TIME: i32 = 66;
+/// GEO tour settings: `exchange_rounds`.
+pub const RECONFIG_FIELD_GEO_EXCHANGE_ROUNDS: i32 = 67;
+/// GEO tour settings: `exchange_margin_mps`.
+pub const RECONFIG_FIELD_GEO_EXCHANGE_MARGIN: i32 = 68;
+/// GEO tour: `target_count`.
+pub const RECONFIG_FIELD_GEO_TARGET_COUNT: i32 = 69;
+/// GEO tour: `sweep` (`RECONFIG_GEO_SWEEP_*`).
+pub const RECONFIG_FIELD_GEO_SWEEP: i32 = 70;
+/// GEO tour: `policy` (`RECONFIG_GEO_POLICY_*`).
+pub const RECONFIG_FIELD_GEO_POLICY: i32 = 71;
 /// The `workspace` argument.
 pub const RECONFIG_FIELD_WORKSPACE: i32 = 40;
 /// The `problem` argument.

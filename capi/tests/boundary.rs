@@ -382,3 +382,105 @@ fn form_refusals_name_the_part_and_the_reason() {
         assert_eq!(out.plan.error.field, RECONFIG_FIELD_PROBLEM);
     }
 }
+
+#[test]
+fn geo_tour_refusals_name_field_index_value_and_limit() {
+    use reconfig_capi::geo_tour::*;
+    use reconfig_capi::types_geo::*;
+    let size = reconfig_geo_tour_workspace_size();
+    let mut mem = memory(size);
+    let ws = mem.as_mut_ptr().cast::<c_void>();
+    let mut settings = ReconfigGeoSettings::default();
+    let mut out = ReconfigGeoSolution::default();
+    let mut problem = ReconfigGeoProblem {
+        start_lon_rad: 0.1,
+        mission_time_s: 30.0 * 86_400.0,
+        max_burn_mps: 10.0,
+        target_count: 2,
+        ..Default::default()
+    };
+    problem.targets_lon_rad[0] = 0.5;
+    problem.targets_lon_rad[1] = 7.0; // above 2 pi
+                                      // SAFETY: valid pointers; `ws` has `size` bytes.
+    unsafe {
+        assert_eq!(reconfig_geo_tour_default_settings(&mut settings), 0);
+        assert_eq!(
+            reconfig_geo_tour_solve(ws, &problem, &settings, &mut out),
+            RECONFIG_ERR_WORKSPACE_NOT_INITIALISED
+        );
+        assert_eq!(reconfig_geo_tour_init(ws, size), 0);
+        assert_eq!(
+            reconfig_geo_tour_solve(ws, &problem, &settings, &mut out),
+            RECONFIG_GEO_ERR_OUT_OF_RANGE
+        );
+        let e = out.error;
+        assert_eq!(
+            (e.field, e.index, e.detail, e.value),
+            (RECONFIG_FIELD_GEO_TARGET_LONGITUDE, 1, 1, 7.0)
+        );
+        assert!(e.limit > 6.28 && e.limit < 6.29, "{}", e.limit);
+        problem.targets_lon_rad[1] = 0.7;
+        problem.target_count = 17;
+        assert_eq!(
+            reconfig_geo_tour_solve(ws, &problem, &settings, &mut out),
+            RECONFIG_GEO_ERR_CAPACITY_EXCEEDED
+        );
+        assert_eq!((out.error.value, out.error.limit), (17.0, 16.0));
+        problem.target_count = 0;
+        assert_eq!(
+            reconfig_geo_tour_solve(ws, &problem, &settings, &mut out),
+            RECONFIG_GEO_ERR_NO_TARGETS
+        );
+        problem.target_count = 2;
+        problem.sweep = 3;
+        assert_eq!(
+            reconfig_geo_tour_solve(ws, &problem, &settings, &mut out),
+            RECONFIG_ERR_INVALID_CODE
+        );
+        assert_eq!(
+            (out.error.field, out.error.value, out.error.limit),
+            (RECONFIG_FIELD_GEO_SWEEP, 3.0, 2.0)
+        );
+        problem.sweep = RECONFIG_GEO_SWEEP_EAST;
+        let mut bad = settings;
+        bad.lambert_tol = f64::NAN;
+        assert_eq!(
+            reconfig_geo_tour_solve(ws, &problem, &bad, &mut out),
+            RECONFIG_GEO_ERR_OUT_OF_RANGE
+        );
+        assert_eq!(
+            (out.error.field, out.error.detail),
+            (RECONFIG_FIELD_GEO_LAMBERT_TOL, 2)
+        );
+        // A plannable tour: solved, through the C structs as through the core.
+        assert_eq!(
+            reconfig_geo_tour_solve(ws, &problem, &settings, &mut out),
+            RECONFIG_GEO_SOLVED
+        );
+        assert_eq!((out.usable, out.leg_count, out.status_leg), (1, 2, -1));
+        let mut core_problem = reconfig_core::geo_tour::Problem {
+            start_lon_rad: 0.1,
+            targets_lon_rad: heapless::Vec::new(),
+            mission_time_s: 30.0 * 86_400.0,
+            max_burn_mps: 10.0,
+            sweep: reconfig_core::geo_tour::SweepChoice::East,
+            policy: reconfig_core::geo_tour::MethodPolicy::ByCost,
+        };
+        core_problem.targets_lon_rad.push(0.5).unwrap();
+        core_problem.targets_lon_rad.push(0.7).unwrap();
+        let mut workspace = Box::new(reconfig_core::geo_tour::Workspace::new());
+        let mut solution = Box::new(reconfig_core::geo_tour::Solution::new());
+        reconfig_core::geo_tour::solve(
+            &core_problem,
+            &reconfig_core::geo_tour::Settings::default(),
+            &mut workspace,
+            &mut solution,
+        )
+        .unwrap();
+        assert_eq!(out.total_dv_mps.to_bits(), solution.total_dv_mps.to_bits());
+        assert_eq!(
+            out.legs[1].burns[0].dv_rtn_mps[1].to_bits(),
+            solution.legs[1].burns[0].dv_rtn_mps[1].to_bits()
+        );
+    }
+}

@@ -22,4 +22,10 @@ typedef struct {
     ReconfigBFormProblem problem;
 } FCase;
 
+typedef struct {
+    const char *name;
+    ReconfigGeoProblem problem;
+    ReconfigGeoSettings settings; /* the fixture's own settings */
+} GCase;
+
 #endif

@@ -1,6 +1,6 @@
 /*
- * Plans every planner-A and planner-B fixture (mean elements, and the other input forms through
- * reconfig_impulsive_solve_form) through the C interface and prints,
+ * Plans every planner-A, planner-B (mean elements, and the other input forms through
+ * reconfig_impulsive_solve_form) and GEO-tour fixture through the C interface and prints,
  * per fixture, the status, the cost (planner A: J) or total delta-v (planner B), their raw bits,
  * and a checksum over the bits of the whole returned trajectory or plan.
  *
@@ -30,6 +30,9 @@ static uint64_t b_workspace[B_WORKSPACE_BYTES / 8];
 static ReconfigASolution a_solution;
 static ReconfigBSolution b_solution;
 static ReconfigBFormSolution f_solution;
+#define GEO_WORKSPACE_BYTES (64u * 1024u)
+static uint64_t geo_workspace[GEO_WORKSPACE_BYTES / 8];
+static ReconfigGeoSolution g_solution;
 
 static uint64_t bits(double x) {
     uint64_t b;
@@ -57,6 +60,23 @@ static uint64_t end_checksum(uint64_t h, const ReconfigBEndState *e) {
     }
     for (int k = 0; k < n; k++) h = mix(h, v[k]);
     return h;
+}
+
+/* Checksum over a GEO tour's legs (start, duration, delta-v, every burn's offset and
+ * components) and its mission time; the test computes the same over the Rust solution. */
+static uint64_t geo_checksum(const ReconfigGeoSolution *g) {
+    uint64_t h = UINT64_C(0xcbf29ce484222325);
+    for (int l = 0; l < g->leg_count; l++) {
+        const ReconfigGeoLeg *leg = &g->legs[l];
+        h = mix(h, leg->start_s);
+        h = mix(h, leg->duration_s);
+        h = mix(h, leg->dv_mps);
+        for (int b = 0; b < leg->burn_count; b++) {
+            h = mix(h, leg->burns[b].offset_s);
+            for (int k = 0; k < 3; k++) h = mix(h, leg->burns[b].dv_rtn_mps[k]);
+        }
+    }
+    return mix(h, g->mission_time_s);
 }
 
 static int plan_a(void) {
@@ -154,16 +174,39 @@ static int plan_f(void) {
     return 0;
 }
 
+static int plan_g(void) {
+    for (size_t c = 0; c < sizeof G_CASES / sizeof G_CASES[0]; c++) {
+        int32_t status = reconfig_geo_tour_solve(geo_workspace, &G_CASES[c].problem,
+                                                 &G_CASES[c].settings, &g_solution);
+        if (status < 0) {
+            printf("G %s status=%" PRId32 " field=%" PRId32 " index=%" PRId32 " value=%a limit=%a\n",
+                   G_CASES[c].name, status, g_solution.error.field, g_solution.error.index,
+                   g_solution.error.value, g_solution.error.limit);
+            continue;
+        }
+        printf("G %s status=%" PRId32 " usable=%u legs=%u dv_mps=%.9f dv_bits=%016" PRIx64
+               " checksum=%016" PRIx64 "\n",
+               G_CASES[c].name, status, (unsigned)g_solution.usable,
+               (unsigned)g_solution.leg_count, g_solution.total_dv_mps,
+               bits(g_solution.total_dv_mps), geo_checksum(&g_solution));
+    }
+    return 0;
+}
+
 int main(void) {
     if (reconfig_pseudospectral_workspace_size() > sizeof a_workspace ||
         reconfig_impulsive_workspace_size() > sizeof b_workspace ||
-        reconfig_pseudospectral_workspace_align() > 8 || reconfig_impulsive_workspace_align() > 8) {
-        fprintf(stderr, "workspace buffers too small: A needs %zu, B needs %zu bytes\n",
-                reconfig_pseudospectral_workspace_size(), reconfig_impulsive_workspace_size());
+        reconfig_geo_tour_workspace_size() > sizeof geo_workspace ||
+        reconfig_pseudospectral_workspace_align() > 8 || reconfig_impulsive_workspace_align() > 8 ||
+        reconfig_geo_tour_workspace_align() > 8) {
+        fprintf(stderr, "workspace buffers too small: A needs %zu, B %zu, GEO %zu bytes\n",
+                reconfig_pseudospectral_workspace_size(), reconfig_impulsive_workspace_size(),
+                reconfig_geo_tour_workspace_size());
         return 2;
     }
     if (reconfig_pseudospectral_init(a_workspace, sizeof a_workspace) != 0) return 3;
     if (reconfig_impulsive_init(b_workspace, sizeof b_workspace) != 0) return 3;
-    if (plan_a() != 0 || plan_b() != 0 || plan_f() != 0) return 4;
+    if (reconfig_geo_tour_init(geo_workspace, sizeof geo_workspace) != 0) return 3;
+    if (plan_a() != 0 || plan_b() != 0 || plan_f() != 0 || plan_g() != 0) return 4;
     return 0;
 }

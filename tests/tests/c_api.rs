@@ -7,14 +7,15 @@
 //! the QEMU tests use), planner A with default settings, planner B with default settings or
 //! `Settings::fixed_point_only()` (`+fixed-point` runs), and planner B's other input forms
 //! (ROE, osculating states, the deputy's orbits) through `reconfig_impulsive_solve_form`, whose
-//! end state in the request's form is compared too. Needs `cc`; skipped with a notice when it
+//! end state in the request's form is compared too, and the GEO tour's fixtures with their own
+//! settings through `reconfig_geo_tour_solve`. Needs `cc`; skipped with a notice when it
 //! is missing unless `RECONFIG_REQUIRE_CC=1`.
 
 #[path = "../../firmware/fixture_set.rs"]
 mod fixture_set;
 
 use fixture_set::Planner;
-use reconfig_core::{impulsive, pseudospectral};
+use reconfig_core::{geo_tour, impulsive, pseudospectral};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -234,6 +235,48 @@ fn plan_fields(plan: &impulsive::ImpulsePlan) -> (u8, usize, i32, String) {
     }
 }
 
+fn g_case(name: &str, p: &geo_tour::Problem, st: &geo_tour::Settings) -> String {
+    let targets: Vec<String> = p.targets_lon_rad.iter().map(|v| hexf(*v)).collect();
+    let sweep = match p.sweep {
+        geo_tour::SweepChoice::Cheaper => "RECONFIG_GEO_SWEEP_CHEAPER",
+        geo_tour::SweepChoice::East => "RECONFIG_GEO_SWEEP_EAST",
+        geo_tour::SweepChoice::West => "RECONFIG_GEO_SWEEP_WEST",
+    };
+    let policy = match p.policy {
+        geo_tour::MethodPolicy::ByCost => "RECONFIG_GEO_POLICY_BY_COST",
+        geo_tour::MethodPolicy::PaperRule => "RECONFIG_GEO_POLICY_PAPER_RULE",
+    };
+    format!(
+        "    {{\"{name}\", {{.start_lon_rad = {}, .mission_time_s = {}, .max_burn_mps = {}, \
+         .target_count = {}, .sweep = {sweep}, .policy = {policy}, .targets_lon_rad = {{{}}}}}, \
+         {{.lambert_tol = {}, .time_tol_s = {}, .exchange_margin_mps = {}, .min_radius_km = {}, \
+         .rule_drift_above_rad = {}, .rule_hohmann_above_rad = {}, .rule_radial_above_rad = {}, \
+         .lambert_direct_time_s = {}, .lambert_max_revolutions = {}, .lambert_max_iter = {}, \
+         .well_iterations = {}, .root_max_iter = {}, .price_max_iter = {}, .exchange_rounds = {}, \
+         .gap_max_legs = {}}}}},\n",
+        hexf(p.start_lon_rad),
+        hexf(p.mission_time_s),
+        hexf(p.max_burn_mps),
+        p.targets_lon_rad.len(),
+        targets.join(", "),
+        hexf(st.lambert_tol),
+        hexf(st.time_tol_s),
+        hexf(st.exchange_margin_mps),
+        hexf(st.min_radius_km),
+        hexf(st.rule_drift_above_rad),
+        hexf(st.rule_hohmann_above_rad),
+        hexf(st.rule_radial_above_rad),
+        hexf(st.lambert_direct_time_s),
+        st.lambert_max_revolutions,
+        st.lambert_max_iter,
+        st.well_iterations,
+        st.root_max_iter,
+        st.price_max_iter,
+        st.exchange_rounds,
+        st.gap_max_legs,
+    )
+}
+
 const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
 const FNV_PRIME: u64 = 0x0000_0100_0000_01b3;
 
@@ -337,6 +380,33 @@ fn f_expected(name: &str, fixed_point_only: bool, p: &impulsive::FormProblem) ->
     )
 }
 
+/// The line the C example must print for a GEO tour fixture, from the Rust API.
+fn g_expected(name: &str, p: &geo_tour::Problem, settings: &geo_tour::Settings) -> String {
+    let mut workspace = Box::new(geo_tour::Workspace::new());
+    let mut s = Box::new(geo_tour::Solution::new());
+    geo_tour::solve(p, settings, &mut workspace, &mut s)
+        .unwrap_or_else(|e| panic!("{name}: every GEO fixture is planned ({e})"));
+    let mut h = FNV_OFFSET;
+    for leg in &s.legs {
+        h = mix(mix(mix(h, leg.start_s), leg.duration_s), leg.dv_mps);
+        for b in &leg.burns {
+            h = b
+                .dv_rtn_mps
+                .iter()
+                .fold(mix(h, b.offset_s), |h, v| mix(h, *v));
+        }
+    }
+    h = mix(h, s.mission_time_s);
+    let (status, _) = reconfig_capi::convert_geo::status_to_c(s.info.status);
+    format!(
+        "G {name} status={status} usable={} legs={} dv_mps={:.9} dv_bits={:016x} checksum={h:016x}",
+        u8::from(s.info.status == geo_tour::SolveStatus::Solved),
+        s.legs.len(),
+        s.total_dv_mps,
+        s.total_dv_mps.to_bits(),
+    )
+}
+
 fn run(cmd: &mut Command, what: &str) -> String {
     let out = cmd
         .output()
@@ -364,6 +434,7 @@ fn prepared() -> &'static Prepared {
         let mut a_cases = String::new();
         let mut b_cases = String::new();
         let mut f_cases = String::new();
+        let mut g_cases = String::new();
         let mut expected = Vec::new();
         for f in &fixtures {
             match f.planner {
@@ -384,20 +455,29 @@ fn prepared() -> &'static Prepared {
                     f_cases.push_str(&f_case(&f.name, fixed, &p));
                     expected.push(f_expected(&f.name, fixed, &p));
                 }
-                // The GEO tour has its own image and C interface.
-                Planner::GeoTour => {}
+                Planner::GeoTour => {
+                    let (p, st): (geo_tour::Problem, geo_tour::Settings) =
+                        postcard::from_bytes(&f.problem).unwrap();
+                    g_cases.push_str(&g_case(&f.name, &p, &st));
+                    expected.push(g_expected(&f.name, &p, &st));
+                }
             }
         }
-        // Planner A lines first, then planner B, then the other forms, as the programs print
-        // them (the sort is stable: fixture order within each).
+        // Planner A lines first, then planner B, its other forms and the GEO tour, as the
+        // programs print them (the sort is stable: fixture order within each).
         expected.sort_by_key(|line| match line.as_bytes().first() {
             Some(b'A') => 0,
             Some(b'B') => 1,
-            _ => 2,
+            Some(b'F') => 2,
+            _ => 3,
         });
         assert!(
             expected.iter().any(|l| l.starts_with("F ")),
             "the planner-B form fixtures are among the fixtures"
+        );
+        assert!(
+            expected.iter().any(|l| l.starts_with("G ")),
+            "the GEO tour fixtures are among the fixtures"
         );
         assert!(
             expected
@@ -414,7 +494,8 @@ fn prepared() -> &'static Prepared {
                 "/* Generated by tests/tests/c_api.rs from the fixture files. */\n\
                  static const ACase A_CASES[] = {{\n{a_cases}}};\n\
                  static const BCase B_CASES[] = {{\n{b_cases}}};\n\
-                 static const FCase F_CASES[] = {{\n{f_cases}}};\n"
+                 static const FCase F_CASES[] = {{\n{f_cases}}};\n\
+                 static const GCase G_CASES[] = {{\n{g_cases}}};\n"
             ),
         )
         .unwrap();
@@ -604,7 +685,7 @@ fn m7_c_image_is_bit_identical_to_the_rust_api_on_every_fixture() {
     let mut got = Vec::new();
     for line in stdout
         .lines()
-        .filter(|l| l.starts_with("A ") || l.starts_with("B ") || l.starts_with("F "))
+        .filter(|l| ["A ", "B ", "F ", "G "].iter().any(|p| l.starts_with(p)))
     {
         let (fields, stack) = line
             .rsplit_once(" stack_bytes=")

@@ -82,6 +82,23 @@ static uint64_t end_checksum(uint64_t h, const ReconfigBEndState *e) {
     return h;
 }
 
+/* Checksum over a GEO tour's legs (start, duration, delta-v, every burn's offset and
+ * components) and its mission time; the test computes the same over the Rust solution. */
+static uint64_t geo_checksum(const ReconfigGeoSolution *g) {
+    uint64_t h = UINT64_C(0xcbf29ce484222325);
+    for (int l = 0; l < g->leg_count; l++) {
+        const ReconfigGeoLeg *leg = &g->legs[l];
+        h = mix(h, leg->start_s);
+        h = mix(h, leg->duration_s);
+        h = mix(h, leg->dv_mps);
+        for (int b = 0; b < leg->burn_count; b++) {
+            h = mix(h, leg->burns[b].offset_s);
+            for (int k = 0; k < 3; k++) h = mix(h, leg->burns[b].dv_rtn_mps[k]);
+        }
+    }
+    return mix(h, g->mission_time_s);
+}
+
 /* ---- stack high-water of one call ---- */
 extern uint32_t _stack_bottom;
 #define PAINT 0xCCCCCCCCu
@@ -108,6 +125,8 @@ static uint64_t b_workspace[8192 / 8];
 static ReconfigASolution a_solution;
 static ReconfigBSolution b_solution;
 static ReconfigBFormSolution f_solution;
+static uint64_t geo_workspace[65536 / 8];
+static ReconfigGeoSolution g_solution;
 
 static int plan_a(void) {
     ReconfigASettings settings;
@@ -208,26 +227,50 @@ static int plan_f(void) {
     return 1;
 }
 
+static int plan_g(void) {
+    for (size_t c = 0; c < sizeof G_CASES / sizeof G_CASES[0]; c++) {
+        paint_stack();
+        uintptr_t sp = current_sp();
+        int32_t status = reconfig_geo_tour_solve(geo_workspace, &G_CASES[c].problem,
+                                                 &G_CASES[c].settings, &g_solution);
+        uintptr_t used = sp - (uintptr_t)lowest_touched();
+        at = 0;
+        add("G "); add(G_CASES[c].name);
+        add(" status="); add_i(status);
+        add(" dv_bits="); add_hex(bits(g_solution.total_dv_mps));
+        add(" checksum="); add_hex(geo_checksum(&g_solution));
+        add(" stack_bytes="); add_u(used);
+        add("\n");
+        put(line);
+    }
+    return 1;
+}
+
 int main(void) {
     if (reconfig_pseudospectral_workspace_size() > sizeof a_workspace ||
-        reconfig_impulsive_workspace_size() > sizeof b_workspace) {
+        reconfig_impulsive_workspace_size() > sizeof b_workspace ||
+        reconfig_geo_tour_workspace_size() > sizeof geo_workspace) {
         at = 0;
         add("workspace buffers too small: A needs ");
         add_u(reconfig_pseudospectral_workspace_size());
         add(", B needs ");
         add_u(reconfig_impulsive_workspace_size());
+        add(", GEO needs ");
+        add_u(reconfig_geo_tour_workspace_size());
         add("\n");
         put(line);
         return 0;
     }
     if (reconfig_pseudospectral_init(a_workspace, sizeof a_workspace) != 0) return 0;
     if (reconfig_impulsive_init(b_workspace, sizeof b_workspace) != 0) return 0;
+    if (reconfig_geo_tour_init(geo_workspace, sizeof geo_workspace) != 0) return 0;
     at = 0;
     add("workspace_bytes A="); add_u(reconfig_pseudospectral_workspace_size());
     add(" B="); add_u(reconfig_impulsive_workspace_size());
+    add(" GEO="); add_u(reconfig_geo_tour_workspace_size());
     add("\n");
     put(line);
-    return plan_a() && plan_b() && plan_f();
+    return plan_a() && plan_b() && plan_f() && plan_g();
 }
 
 /* The abort-free proof's symbol (docs/c-api.md, "Abort-free"): defined here because the proof
