@@ -28,6 +28,7 @@
 pub mod capacity;
 pub mod geo_tour;
 pub mod impulsive;
+pub mod indexed;
 pub mod lambert;
 pub mod leo_tour;
 pub mod limits;

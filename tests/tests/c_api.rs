@@ -699,3 +699,66 @@ fn m7_c_image_is_bit_identical_to_the_rust_api_on_every_fixture() {
         assert_eq!(g, e, "the M7 C image and the Rust API differ");
     }
 }
+
+/// The abort-free proof on the host (docs/c-api.md, "Abort-free"): the library built without
+/// std, with `-C panic=abort` and the `abort-proof` panic handler, which calls
+/// `reconfig_capi_panic_path_survived_optimisation`, a function no one defines. The C example
+/// links (it does not define it either) only if no panic path survives optimisation, and then
+/// prints what the Rust API gives. The M7 C image above is the same proof on the flight target.
+#[test]
+fn abort_proof_library_links_with_no_panic_path_left() {
+    if Command::new("cc").arg("--version").output().is_err() {
+        assert!(
+            std::env::var_os("RECONFIG_REQUIRE_CC").is_none(),
+            "cc is required (RECONFIG_REQUIRE_CC=1)"
+        );
+        eprintln!("c_api: skipped, no C compiler `cc`");
+        return;
+    }
+    let root = root();
+    let Prepared { dir, expected } = prepared();
+    // A target folder of its own: `-C panic=abort` and the features differ from the std build.
+    let target_dir = root.join("target/abort-proof");
+    run(
+        cargo()
+            .args([
+                "rustc",
+                "-p",
+                "reconfig-capi",
+                "--release",
+                "--lib",
+                "--crate-type",
+                "staticlib",
+                "--no-default-features",
+                "--features",
+                "abort-proof",
+                "--target-dir",
+            ])
+            .arg(&target_dir)
+            .args(["--", "-C", "panic=abort"]),
+        "cargo rustc -p reconfig-capi (abort-proof staticlib)",
+    );
+    let exe = dir.join("plan_fixtures_abort_proof");
+    run(
+        Command::new("cc")
+            .args(["-std=c99", "-O2", "-Wall", "-Wextra", "-Werror"])
+            .arg("-I")
+            .arg(root.join("capi/include"))
+            .arg("-I")
+            .arg(root.join("examples/c"))
+            .arg("-I")
+            .arg(dir)
+            .arg(root.join("examples/c/plan_fixtures.c"))
+            .arg(target_dir.join("release/libreconfig_capi.a"))
+            .args(["-Wl,--gc-sections", "-lm", "-o"])
+            .arg(&exe),
+        "cc examples/c/plan_fixtures.c against the abort-proof library (an undefined \
+         reconfig_capi_panic_path_survived_optimisation means a panic path is back)",
+    );
+    let stdout = run(&mut Command::new(&exe), "plan_fixtures (abort-proof)");
+    let got: Vec<&str> = stdout.lines().collect();
+    assert_eq!(got.len(), expected.len(), "one line per fixture:\n{stdout}");
+    for (g, e) in got.iter().zip(expected.iter()) {
+        assert_eq!(*g, e.as_str(), "the abort-proof library and Rust differ");
+    }
+}

@@ -17,6 +17,7 @@ use super::lambert_phasing::well_minimum;
 use super::root::illinois;
 use super::table::{bounds, direction_of, LegTable, Point, PointKind, MAX_POINTS};
 use super::types::{Settings, MAX_TARGETS};
+use crate::indexed::IndexedExt as _;
 
 /// What a leg does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -87,7 +88,7 @@ fn drift_beaten(t: &LegTable, price: f64, score: f64) -> bool {
 fn pick(t: &LegTable, price: f64, s: &Settings) -> Option<Pick> {
     let score = |b: &Pick| b.dv_mps + price * b.duration_s;
     let mut best_point: Option<Pick> = None;
-    for (i, p) in t.points.iter().enumerate() {
+    for (i, p) in t.points.iter().indexed() {
         let candidate = point_pick(i, p);
         if best_point.is_none_or(|b| score(&candidate) < score(&b)) {
             best_point = Some(candidate);
@@ -370,7 +371,7 @@ pub(crate) fn allocate(
     let hi_copy = *picks;
     for mask in 0..combos {
         *trial = hi_copy;
-        for (bit, &j) in switching.iter().take(k).enumerate() {
+        for (bit, &j) in switching.iter().take(k).indexed() {
             if (mask >> bit) & 1 == 1 {
                 if let (Some(t), Some(l)) = (trial.get_mut(j), lo_picks.get(j)) {
                     *t = *l;
@@ -441,7 +442,7 @@ fn alternatives(
     let g = Geo::standard();
     let dir = direction_of(t);
     let (phase, cap) = (t.phase_rad, t.cap_mps);
-    for (i, p) in t.points.iter_mut().enumerate() {
+    for (i, p) in t.points.iter_mut().indexed() {
         if let PointKind::Well(m) = p.kind {
             let est = (p.dv_mps - cur.dv_mps) + price * (p.duration_s - cur.duration_s);
             let stale = (p.price - price).abs() > 0.01 * price;

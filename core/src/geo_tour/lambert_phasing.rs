@@ -16,6 +16,7 @@
 
 use super::geo::{inertial_to_rtn, Geo, M_PER_KM, TWO_PI};
 use super::maneuver::{Burn, Direction, Maneuver, Method};
+use crate::indexed::IndexedExt as _;
 use crate::lambert::{self, Branch, LambertSolution};
 
 /// Lambert solver bounds.
@@ -232,7 +233,7 @@ pub(crate) fn well_minimum(
         // ties and when nothing solves).
         let mut best = (f64::INFINITY, 0usize);
         for point in 0..2 {
-            for (i, (_, ac, ad)) in arcs.iter().enumerate() {
+            for (i, (_, ac, ad)) in arcs.iter().indexed() {
                 let a = if point == 0 { ac } else { ad };
                 if let Some((_, dv, _)) = a {
                     if *dv < best.0 {

@@ -54,6 +54,7 @@ pub use types::{
 pub use validate::{MAX_BURN_CAP_MPS, MAX_MISSION_TIME_S};
 pub use workspace::Workspace;
 
+use crate::indexed::IndexedExt as _;
 use allocate::{allocate, Choice};
 use table::{build, point_maneuver};
 
@@ -147,7 +148,7 @@ fn solve_sweep(
         .targets_lon_rad
         .iter()
         .zip(offsets.iter_mut())
-        .enumerate()
+        .indexed()
     {
         *off = wrap_two_pi(sign * (wrap_two_pi(lon) - start));
         if let Some(o) = order.get_mut(i) {
@@ -173,7 +174,7 @@ fn solve_sweep(
     let mut prev_off = 0.0;
     let mut prev_lon = start;
     let mut fastest = 0.0;
-    for (leg, &i) in order.iter().take(n).enumerate() {
+    for (leg, &i) in order.iter().take(n).indexed() {
         let off = key(i);
         let to = problem
             .targets_lon_rad
@@ -246,7 +247,7 @@ fn solve_sweep(
     // Assemble the legs from the picks.
     let mut clock = 0.0;
     let mut failed: Option<u8> = None;
-    for (j, (t, p)) in tables.iter().zip(ws.picks.iter()).enumerate() {
+    for (j, (t, p)) in tables.iter().zip(ws.picks.iter()).indexed() {
         let jj = u8::try_from(j).unwrap_or(u8::MAX);
         let mv = match p.choice {
             Choice::Drift => t.drift.as_ref().map(|d| d.model.maneuver(p.x_km)),
@@ -318,7 +319,7 @@ fn infeasible(
     if fastest_uncapped <= problem.mission_time_s {
         // The cap is what fails: name the leg it slows most (infinite: nothing admissible).
         let mut worst = (0usize, f64::NEG_INFINITY);
-        for (j, t) in tables.iter().enumerate() {
+        for (j, t) in tables.iter().indexed() {
             let slowed = t.fastest_s - t.fastest_uncapped_s;
             if slowed > worst.1 || (t.fastest_s.is_infinite() && worst.1.is_finite()) {
                 worst = (j, slowed);
@@ -327,13 +328,13 @@ fn infeasible(
         SolveStatus::CapTooLow { leg: idx(worst.0) }
     } else if let Some(j) = tables
         .iter()
-        .position(|t| t.fastest_s.is_infinite())
+        .index_of(|t| t.fastest_s.is_infinite())
         .filter(|_| problem.policy == MethodPolicy::PaperRule)
     {
         SolveStatus::RuleMethodInadmissible { leg: idx(j) }
     } else {
         let mut worst = (0usize, f64::NEG_INFINITY);
-        for (j, t) in tables.iter().enumerate() {
+        for (j, t) in tables.iter().indexed() {
             if t.fastest_s > worst.1 {
                 worst = (j, t.fastest_s);
             }

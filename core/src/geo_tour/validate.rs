@@ -2,6 +2,7 @@
 
 use super::error::{check, Field, PlanError};
 use super::types::{Problem, Settings, MAX_GAP_LEGS, MAX_LAMBERT_REVOLUTIONS};
+use crate::indexed::IndexedExt as _;
 use core::f64::consts::PI;
 
 /// Longest mission accepted, s (10 years).
@@ -21,7 +22,7 @@ pub(crate) fn problem(p: &Problem) -> Result<(), PlanError> {
     if p.targets_lon_rad.is_empty() {
         return Err(PlanError::NoTargets);
     }
-    for (i, &lon) in p.targets_lon_rad.iter().enumerate() {
+    for (i, &lon) in p.targets_lon_rad.iter().indexed() {
         let idx = u8::try_from(i).unwrap_or(u8::MAX);
         check(Field::TargetLongitude, idx, lon, -2.0 * PI, 2.0 * PI)?;
     }

@@ -14,6 +14,7 @@
 
 use super::elements::{mean_motion_rad_s, Elements, A, EARTH_J2, EARTH_MU_KM3_S2, EARTH_RADIUS_KM};
 use super::equinoctial::{impulse_matrix, state, true_longitude, LAMBDA};
+use crate::indexed::IndexedExt as _;
 use crate::vec3::dot;
 
 /// Samples per revolution of the Fourier quadrature (harmonics up to 31 in the mean
@@ -72,7 +73,7 @@ fn fourier(rows: &[Elements; SAMPLES]) -> (Coefficients, Coefficients) {
     let step = core::f64::consts::TAU / SAMPLES as f64;
     let mut cos_coef = [[0.0; 6]; HARMONICS];
     let mut sin_coef = [[0.0; 6]; HARMONICS];
-    for (k, (ak, bk)) in cos_coef.iter_mut().zip(sin_coef.iter_mut()).enumerate() {
+    for (k, (ak, bk)) in cos_coef.iter_mut().zip(sin_coef.iter_mut()).indexed() {
         let kf = k as f64 + 1.0;
         let (ck, sk) = (libm::cos(kf * step), libm::sin(kf * step));
         let (mut c, mut s) = (1.0, 0.0);
@@ -95,7 +96,7 @@ fn fourier(rows: &[Elements; SAMPLES]) -> (Coefficients, Coefficients) {
 /// sample): `sum_k (2/k) (A_k sin k theta - B_k cos k theta) / n`.
 fn antiderivative(coef: &(Coefficients, Coefficients), theta: f64, n: f64) -> Elements {
     let mut out = [0.0; 6];
-    for (k, (ak, bk)) in coef.0.iter().zip(coef.1.iter()).enumerate() {
+    for (k, (ak, bk)) in coef.0.iter().zip(coef.1.iter()).indexed() {
         let kf = k as f64 + 1.0;
         let (sin_k, cos_k) = (libm::sin(kf * theta), libm::cos(kf * theta));
         for ((o, a), b) in out.iter_mut().zip(ak.iter()).zip(bk.iter()) {
@@ -114,12 +115,12 @@ pub(crate) fn short_period(q: &Elements, kepler_max_iter: u16) -> Option<Element
     let n = mean_motion_rad_s(q[A]);
     let step = core::f64::consts::TAU / SAMPLES as f64;
     let mut rates = [[0.0; 6]; SAMPLES];
-    for (j, slot) in rates.iter_mut().enumerate() {
+    for (j, slot) in rates.iter_mut().indexed() {
         *slot = j2_rates(q, q[LAMBDA] + step * j as f64, kepler_max_iter)?;
     }
     // a's periodic part at every sample drives the Keplerian term of lambda.
     let coef = fourier(&rates);
-    for (j, r) in rates.iter_mut().enumerate() {
+    for (j, r) in rates.iter_mut().indexed() {
         let delta_a = antiderivative(&coef, step * j as f64, n)[A];
         r[LAMBDA] += -1.5 * n / q[A] * delta_a;
     }

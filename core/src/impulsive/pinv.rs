@@ -9,6 +9,7 @@
 
 use super::status::Stage;
 use super::transfer::{FMatrix, XVector, MAX_UNKNOWNS};
+use crate::indexed::IndexedExt as _;
 use nalgebra::{Cholesky, SMatrix, SVector};
 
 /// Rank and conditioning of one pseudo-inverse.
@@ -63,7 +64,7 @@ pub(crate) fn solve_min_norm(
         return Err(Stage::Svd);
     }
     let mut v = [[0.0f64; 6]; 6];
-    for (j, col) in v.iter_mut().enumerate() {
+    for (j, col) in v.iter_mut().indexed() {
         if let Some(x) = col.get_mut(j) {
             *x = 1.0;
         }

@@ -12,6 +12,7 @@ use super::status::{SolveStatus, Stage};
 use super::transfer::{Context, Points, Sequence};
 use super::types::EquinoctialElements;
 use super::validate::index_u8;
+use crate::indexed::IndexedExt as _;
 
 /// The terminal error `err` (working set; `end` achieved, `wanted` wanted) in the classical
 /// and the equinoctial sets, angles wrapped.
@@ -53,7 +54,7 @@ fn unsafe_arc(model: &Model, seq: &Sequence, n: usize, min_km: f64) -> Option<(u
         .skip(1)
         .map(|s| &s.before)
         .chain(core::iter::once(&seq.end));
-    for (k, el) in after_impulses.enumerate() {
+    for (k, el) in after_impulses.indexed() {
         let perigee = model.perigee_altitude_km(el);
         // NaN fails the comparison and is caught by the non-finite scan.
         if perigee < min_km {

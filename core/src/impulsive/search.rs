@@ -34,6 +34,7 @@ use super::transfer::{build_system, propagate, Context, ImpulseModel, Points, Se
 use super::types::ImpulsePoint;
 use super::work_units;
 use crate::capacity::MAX_IMPULSES;
+use crate::indexed::IndexedExt as _;
 
 /// Phases of one candidate, rad; the first `n` are used.
 type Phases = [f64; MAX_IMPULSES];
@@ -289,7 +290,7 @@ fn insert_top(
     cost: f64,
 ) {
     let keep = keep.min(MAX_SEARCH_STARTS);
-    let Some(pos) = scratch.costs.iter().take(keep).position(|c| cost < *c) else {
+    let Some(pos) = scratch.costs.iter().take(keep).index_of(|c| cost < *c) else {
         return;
     };
     // A better entry nearby: same basin, drop.
@@ -307,7 +308,7 @@ fn insert_top(
         .starts
         .iter()
         .zip(scratch.costs.iter())
-        .enumerate()
+        .indexed()
         .take(keep)
         .skip(pos)
         .find(|(_, (s, c))| c.is_finite() && distance(s, phi, n) <= separation)
@@ -449,7 +450,7 @@ pub(crate) fn search(
     if points_of(&best_phi, n, scorer.u0, max_revolutions, pts).is_none() {
         // Only when no sample was feasible and finite: fall back to evenly spread points.
         let mut phi = [0.0; MAX_IMPULSES];
-        for (k, p) in phi.iter_mut().take(n).enumerate() {
+        for (k, p) in phi.iter_mut().take(n).indexed() {
             *p = TWO_PI * (revs + 1.0) * (k as f64 + 0.5) / n_f;
         }
         let _ = points_of(&phi, n, scorer.u0, max_revolutions, pts);

@@ -13,6 +13,7 @@ use super::transfer::{
     build_system, chief_at, propagate, target_at, Context, ImpulseModel, Points, Sequence, XVector,
 };
 use super::work_units;
+use crate::indexed::IndexedExt as _;
 
 /// Result of a fixed-point run.
 #[derive(Clone, Copy, Debug, Default)]
@@ -417,7 +418,7 @@ fn defect_jacobian(
 ) -> Result<super::transfer::FMatrix, Stage> {
     let mut jac = super::transfer::FMatrix::zeros();
     let columns = pts.n.saturating_mul(3);
-    for (j, mut col) in jac.column_iter_mut().enumerate().take(columns) {
+    for (j, mut col) in jac.column_iter_mut().indexed().take(columns) {
         if !seq.work.spend(work_units::jacobian_column(pts.n)) {
             break;
         }

@@ -15,6 +15,7 @@ use super::status::Stage;
 use super::transfer::{chief_at, propagate, ImpulseModel, Points, Sequence, XVector};
 use super::types::{ImpulsePlan, MeanElements, Problem, RelativeElements};
 use super::validate;
+use crate::indexed::IndexedExt as _;
 
 /// Why [`relative_position_rtn_km`] could not place the deputy.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -79,12 +80,12 @@ pub fn relative_position_rtn_km(
     let ctx = validate::validate(problem, settings).map_err(TrajectoryError::Plan)?;
     let mut pts = Points::new();
     let mut dv = XVector::zeros();
-    for (k, imp) in solution.impulses.iter().enumerate() {
+    for (k, imp) in solution.impulses.iter().indexed() {
         if let Some(p) = pts.at.get_mut(k) {
             p.arg_latitude_rad = imp.arg_latitude_rad;
             p.revolutions = imp.revolutions;
         }
-        for (j, c) in imp.dv_rtn_mps.iter().enumerate() {
+        for (j, c) in imp.dv_rtn_mps.iter().indexed() {
             if let Some(x) = dv.get_mut(k.saturating_mul(3).saturating_add(j)) {
                 *x = *c / M_PER_KM;
             }
@@ -104,7 +105,7 @@ pub fn relative_position_rtn_km(
         .map_err(TrajectoryError::Numerical)?;
     // The deputy after the last impulse at or before t_s (or at the epoch), and that time.
     let mut since = (0.0, ctx.deputy0);
-    for (k, step) in seq.steps.iter().enumerate().take(pts.n) {
+    for (k, step) in seq.steps.iter().indexed().take(pts.n) {
         if step.time_s > t_s {
             break;
         }

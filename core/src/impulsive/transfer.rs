@@ -8,6 +8,7 @@ use super::settings::{ElementSet, Settings};
 use super::status::Stage;
 use super::types::ImpulsePoint;
 use crate::capacity::MAX_IMPULSES;
+use crate::indexed::IndexedExt as _;
 use nalgebra::{ArrayStorage, SMatrix, SVector};
 
 /// Unknowns at capacity: three impulse components per impulse.
@@ -211,7 +212,7 @@ pub(crate) fn propagate(
 pub(crate) fn build_system(ctx: &Context, pts: &Points, seq: &mut Sequence) {
     let t_n = seq.final_time_s;
     seq.f.fill(0.0);
-    for (k, step) in seq.steps.iter().enumerate().take(pts.n) {
+    for (k, step) in seq.steps.iter().indexed().take(pts.n) {
         // P_k B_k: the impulse carried to t_N by the drift's state transition (classical: the
         // paper's I_6 + dD(sigma_{k-1}) (t_N - t_k); dD depends on (a, e, i) only, which do not
         // drift, so sigma_{k-1} and sigma_{k,0} give the same P).

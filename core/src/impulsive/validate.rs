@@ -10,13 +10,14 @@ use super::settings::Settings;
 use super::transfer::Context;
 use super::types::{ImpulsePlan, Problem};
 use crate::capacity::MAX_IMPULSES;
+use crate::indexed::IndexedExt as _;
 
 pub(crate) fn index_u8(k: usize) -> u8 {
     u8::try_from(k).unwrap_or(u8::MAX)
 }
 
 fn check_finite(v: &Elements, what: Quantity) -> Result<(), PlanError> {
-    match v.iter().position(|x| !x.is_finite()) {
+    match v.iter().index_of(|x| !x.is_finite()) {
         Some(k) => Err(PlanError::NotFinite {
             what,
             index: index_u8(k),
@@ -98,7 +99,7 @@ fn check_angle(value: f64, what: Quantity, index: usize) -> Result<(), PlanError
 
 /// The angle entries (i, Omega, omega, M) of an element vector or difference are in range.
 fn check_angles(v: &Elements, what: Quantity) -> Result<(), PlanError> {
-    for (k, value) in v.iter().enumerate().skip(I) {
+    for (k, value) in v.iter().indexed().skip(I) {
         check_angle(*value, what, k)?;
     }
     Ok(())
@@ -129,7 +130,7 @@ pub(crate) fn validate(problem: &Problem, settings: &Settings) -> Result<Context
                 return Err(PlanError::NoImpulses);
             }
             let mut sum: i64 = 0;
-            for (k, p) in points.iter().enumerate() {
+            for (k, p) in points.iter().indexed() {
                 if !p.arg_latitude_rad.is_finite() {
                     return Err(PlanError::NotFinite {
                         what: Quantity::ImpulsePoint,

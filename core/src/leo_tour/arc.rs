@@ -18,6 +18,7 @@ use super::j2::{join, pos, propagate_steps, step_count, vel, Gravity, State};
 use super::shoot::{corrected_lambert, shoot, Family, Offset};
 use super::track::Track;
 use super::types::{ArcSolution, Burn, Settings, Status, MAX_CANDIDATES, MAX_IMPULSES, MAX_VARS};
+use crate::indexed::IndexedExt as _;
 use crate::lambert::{self, Branch};
 use crate::vec3::{add, cross, dot, norm, scale, sub, Vec3};
 use crate::work::Meter;
@@ -265,7 +266,7 @@ impl Ctx<'_> {
         let free = self.impulses.saturating_sub(1);
         let room = self.tf - self.settings.min_gap_s - t1;
         let step = tof.min(room / (free as f64)).max(0.0);
-        for (k, xi) in x.iter_mut().take(free).enumerate() {
+        for (k, xi) in x.iter_mut().take(free).indexed() {
             *xi = t1 + ((k as f64) * step).min(tof);
         }
         for (xi, d) in x.iter_mut().skip(free).zip(dv1.iter()) {
@@ -294,7 +295,7 @@ impl Ctx<'_> {
         let free = self.impulses.saturating_sub(1);
         let room = self.tf - self.settings.min_gap_s - t1;
         let step = (0.5 * period).min(room / (free as f64)).max(0.0);
-        for (k, xi) in x.iter_mut().take(free).enumerate() {
+        for (k, xi) in x.iter_mut().take(free).indexed() {
             *xi = t1 + (k as f64) * step;
         }
         // The first free vector is the transfer's departure burn; the others start at zero.
@@ -429,7 +430,7 @@ impl Ctx<'_> {
                 };
             }
         };
-        for (k, ((state, dv), &epoch)) in pre.iter().zip(t.iter()).take(last).enumerate() {
+        for (k, ((state, dv), &epoch)) in pre.iter().zip(t.iter()).take(last).indexed() {
             fill(k, state, *dv, epoch);
         }
         fill(last, &s, sub(&shot.v_dep_kmps, &vel(&s)), t_last);
@@ -479,7 +480,7 @@ fn insert(out: &mut [Option<Point>; MAX_CANDIDATES], keep: usize, p: Point, near
     let t1 = p.x[0];
     let same = out
         .iter()
-        .position(|q| q.is_some_and(|q| q.fam == p.fam && (q.x[0] - t1).abs() <= near_s));
+        .index_of(|q| q.is_some_and(|q| q.fam == p.fam && (q.x[0] - t1).abs() <= near_s));
     if let Some(i) = same {
         if let Some(slot) = out.get_mut(i) {
             if slot.is_some_and(|q| p.cost < q.cost) {

@@ -11,6 +11,7 @@
 use super::linalg::{cholesky_in_place, set, solve_lower, solve_lower_transposed};
 use super::transcription::{Coefficients, MAX_BLOCKS};
 use crate::capacity::MAX_FREE_PER_AXIS;
+use crate::indexed::IndexedExt as _;
 
 /// Most residual differences kept.
 pub(crate) const MAX_MEMORY: usize = 1;
@@ -173,7 +174,7 @@ impl Anderson {
         }
         solve_lower(&normal, k, &mut rhs);
         solve_lower_transposed(&normal, k, &mut rhs);
-        for (i, gamma) in rhs.iter().enumerate().take(k) {
+        for (i, gamma) in rhs.iter().indexed().take(k) {
             if let Some(dg) = self.delta_g.get(i) {
                 for (nb, db) in point.iter_mut().zip(dg.iter()).take(blocks) {
                     for (slot, d) in nb.iter_mut().zip(db.iter()).take(free) {

@@ -12,6 +12,7 @@
 use super::lgl::LglGrid;
 use super::linalg::{cholesky_in_place, get, set, solve_lower};
 use crate::capacity::{MAX_FREE_PER_AXIS, MAX_NODES};
+use crate::indexed::IndexedExt as _;
 
 /// Per (N, T): the basis and its derivative rows.
 #[derive(Clone, Debug)]
@@ -79,14 +80,14 @@ impl Basis {
         let mut raw_accel = [[0.0; MAX_FREE_PER_AXIS]; MAX_NODES];
         for c in 0..free {
             let mut column = [0.0; MAX_NODES];
-            for (h, slot) in column.iter_mut().enumerate().take(nodes) {
+            for (h, slot) in column.iter_mut().indexed().take(nodes) {
                 *slot = get(&raw, h, c);
             }
             let mut first = [0.0; MAX_NODES];
             grid.differentiate(&column, &mut first);
             let mut second = [0.0; MAX_NODES];
             grid.differentiate(&first, &mut second);
-            for (h, value) in second.iter().enumerate().take(nodes) {
+            for (h, value) in second.iter().indexed().take(nodes) {
                 set(&mut raw_accel, h, c, scale * value);
             }
         }
@@ -109,7 +110,7 @@ impl Basis {
         // Orthonormalise: Zt = Z L^{-T}, i.e. each row r of Z gives row L^{-1} r^T.
         for h in 0..nodes {
             let mut row = [0.0; MAX_FREE_PER_AXIS];
-            for (c, slot) in row.iter_mut().enumerate().take(free) {
+            for (c, slot) in row.iter_mut().indexed().take(free) {
                 *slot = get(&raw, h, c);
             }
             solve_lower(scratch, free, &mut row);
@@ -117,7 +118,7 @@ impl Basis {
                 *dest = row;
             }
             let mut accel_row = [0.0; MAX_FREE_PER_AXIS];
-            for (c, slot) in accel_row.iter_mut().enumerate().take(free) {
+            for (c, slot) in accel_row.iter_mut().indexed().take(free) {
                 *slot = get(&raw_accel, h, c);
             }
             solve_lower(scratch, free, &mut accel_row);
@@ -140,7 +141,7 @@ impl Basis {
         let mut lagrange = [0.0; MAX_NODES];
         grid.lagrange_row(tau, &mut lagrange);
         *out = [0.0; MAX_FREE_PER_AXIS];
-        for (h, weight) in lagrange.iter().enumerate().take(grid.nodes()) {
+        for (h, weight) in lagrange.iter().indexed().take(grid.nodes()) {
             if let Some(row) = self.position.get(h) {
                 for (slot, value) in out.iter_mut().zip(row.iter()).take(self.free) {
                     *slot += weight * value;

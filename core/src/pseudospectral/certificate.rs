@@ -36,6 +36,7 @@ use super::transcription::{
     block_dot, node_value, row_axpy, row_dot, Check, Coefficients, RowId, Transcription, MAX_BLOCKS,
 };
 use crate::capacity::{MAX_ACTIVE, MAX_FREE_PER_AXIS, MAX_NODES};
+use crate::indexed::IndexedExt as _;
 use crate::vec3;
 use serde::{Deserialize, Serialize};
 
@@ -268,12 +269,12 @@ pub(super) fn add_curvature(
     let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
     let block = |sc: u8, axis: usize| usize::from(sc).saturating_mul(3).saturating_add(axis);
     let mut jv = [0.0; 3];
-    for (axis, slot) in jv.iter_mut().enumerate() {
+    for (axis, slot) in jv.iter_mut().indexed() {
         *slot = block_dot(row, v, block(i, axis), free) / mi
             - block_dot(row, v, block(j, axis), free) / mj;
     }
     let along = n[0] * jv[0] + n[1] * jv[1] + n[2] * jv[2];
-    for (axis, (value, normal)) in jv.iter().zip(n.iter()).enumerate() {
+    for (axis, (value, normal)) in jv.iter().zip(n.iter()).indexed() {
         let t = (value - along * normal) * l / length;
         for (sc, mass, sign) in [(i, mi, 1.0), (j, mj, -1.0)] {
             if let Some(values) = out.get_mut(block(sc, axis)) {
@@ -328,7 +329,7 @@ impl Envelope {
         tr.grid.lagrange_row(tau, &mut lagrange);
         for axis in 0..3 {
             let mut values = [0.0; MAX_NODES];
-            for (h, slot) in values.iter_mut().enumerate().take(nodes) {
+            for (h, slot) in values.iter_mut().indexed().take(nodes) {
                 let row = tr.basis.position.get(h)?;
                 *slot = node_value(&tr.base_position, block(i, axis), h)
                     - node_value(&tr.base_position, block(j, axis), h)
@@ -363,9 +364,9 @@ impl Envelope {
         };
         tr.basis
             .position_row(&tr.grid, tau, &mut envelope.position_row);
-        for (f, slot) in envelope.velocity_row.iter_mut().enumerate().take(free) {
+        for (f, slot) in envelope.velocity_row.iter_mut().indexed().take(free) {
             let mut column = [0.0; MAX_NODES];
-            for (h, value) in column.iter_mut().enumerate().take(nodes) {
+            for (h, value) in column.iter_mut().indexed().take(nodes) {
                 *value = tr.basis.position.get(h)?.get(f).copied()?;
             }
             let mut derivative = [0.0; MAX_NODES];
@@ -604,8 +605,8 @@ pub(crate) fn evaluate(
 fn start_vector(tr: &Transcription, qp: &QpState, direction: &mut Coefficients) {
     let free = tr.basis.free;
     *direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
-    for (b, row) in direction.iter_mut().enumerate().take(tr.blocks()) {
-        for (f, slot) in row.iter_mut().enumerate().take(free) {
+    for (b, row) in direction.iter_mut().indexed().take(tr.blocks()) {
+        for (f, slot) in row.iter_mut().indexed().take(free) {
             let k = b.saturating_mul(free).saturating_add(f);
             *slot = libm::sin(0.7 * (k as f64) + 0.3);
         }

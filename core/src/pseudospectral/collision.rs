@@ -3,6 +3,7 @@
 
 use super::guess::AxisLaw;
 use crate::capacity::TEST_POINTS_PER_PAIR;
+use crate::indexed::IndexedExt as _;
 
 /// Offsets of the test points in units of sigma (Huang 2012, eq. 27): the boundaries that split
 /// the central 95.44 % of a normal distribution into equal parts.
@@ -109,7 +110,7 @@ pub(crate) fn test_points(
 ) -> ([f64; TEST_POINTS_PER_PAIR], usize) {
     let mut best_node = 0usize;
     let mut best = f64::INFINITY;
-    for (h, &t) in node_times.iter().enumerate() {
+    for (h, &t) in node_times.iter().indexed() {
         let d = norm2(&analytic_relative(laws_i, laws_j, t));
         if d < best {
             best = d;

@@ -18,6 +18,7 @@ use super::certificate::{add_curvature, dot, project, scale, Envelope};
 use super::qp::QpState;
 use super::transcription::{Coefficients, RowId, Transcription};
 use crate::capacity::MAX_ACTIVE;
+use crate::indexed::IndexedExt as _;
 
 /// Most Lanczos steps (each one product with `P S P`). Stops earlier when the Krylov space is
 /// exhausted or the largest Ritz value has settled (`SETTLED_REL`).
@@ -152,7 +153,7 @@ fn tridiagonal_largest(alpha: &[f64], beta: &[f64], m: usize, known_below: f64) 
         }
     };
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for (i, &a) in alpha.iter().enumerate().take(m) {
+    for (i, &a) in alpha.iter().indexed().take(m) {
         let before = if i > 0 { off(i.saturating_sub(1)) } else { 0.0 };
         let radius = before + off(i);
         lo = lo.min(a - radius);
@@ -177,7 +178,7 @@ fn tridiagonal_largest(alpha: &[f64], beta: &[f64], m: usize, known_below: f64) 
         // Eigenvalues below `mid`: the negative pivots of T - mid I = L D L^T.
         let mut below = 0usize;
         let mut d = 1.0;
-        for (i, &a) in alpha.iter().enumerate().take(m) {
+        for (i, &a) in alpha.iter().indexed().take(m) {
             let coupling = if i > 0 {
                 let b = off(i.saturating_sub(1));
                 b * b / d

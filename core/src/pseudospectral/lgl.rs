@@ -2,6 +2,7 @@
 //! interpolation (Huang 2012, eq. 8-15). Computed once per degree N into fixed arrays.
 
 use crate::capacity::MAX_NODES;
+use crate::indexed::IndexedExt as _;
 
 /// The LGL grid of one degree N: nodes on [-1, 1], weights, differentiation matrix and
 /// barycentric weights. Only the first `N + 1` entries of each array are meaningful.
@@ -225,7 +226,7 @@ impl LglGrid {
     pub fn differentiate(&self, values: &[f64; MAX_NODES], out: &mut [f64; MAX_NODES]) {
         *out = [0.0; MAX_NODES];
         let count = self.nodes();
-        for (h, slot) in out.iter_mut().enumerate().take(count) {
+        for (h, slot) in out.iter_mut().indexed().take(count) {
             if let Some(row) = self.diff.get(h) {
                 *slot = dot(row, values, count);
             }

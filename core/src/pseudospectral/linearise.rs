@@ -11,6 +11,7 @@ use super::transcription::{
 use super::verify::{Minimum, MAX_PRODUCT};
 use super::workspace::Workspace;
 use crate::capacity::MAX_NODES;
+use crate::indexed::IndexedExt as _;
 
 /// A unit vector perpendicular to `velocity`, along the miss vector `relative` when it is not
 /// negligible, else a fixed choice (the coordinate axis least aligned with the velocity, made
@@ -63,7 +64,7 @@ pub(super) fn perpendicular_direction(
     // pair turns the same way, so no pair's choice fights another's.
     let mut axis = 0usize;
     let mut least = f64::INFINITY;
-    for (k, component) in unit_v.iter().enumerate() {
+    for (k, component) in unit_v.iter().indexed() {
         if libm::fabs(*component) < least {
             least = libm::fabs(*component);
             axis = k;
@@ -266,7 +267,7 @@ pub(super) fn block_positions(
 ) {
     let mass = tr.mass_of(block / 3);
     *out = [0.0; MAX_NODES];
-    for (h, slot) in out.iter_mut().enumerate().take(tr.grid.nodes()) {
+    for (h, slot) in out.iter_mut().indexed().take(tr.grid.nodes()) {
         let row = tr.basis.position.get(h);
         let offset = match row {
             Some(row) => block_dot(row, y, block, tr.basis.free) / mass,
@@ -368,7 +369,7 @@ pub(super) fn pair_minimum(ws: &mut Workspace, pair: usize, settings: &Settings)
     let tr = &ws.transcription;
     let (i, j) = tr.pairs.get(pair).copied().unwrap_or((0, 0));
     let mut axes = [[0.0; MAX_NODES]; 3];
-    for (axis, coeffs) in axes.iter_mut().enumerate() {
+    for (axis, coeffs) in axes.iter_mut().indexed() {
         let relative = relative_nodes(tr, &ws.iterate, (i, j), axis);
         ws.bernstein.coefficients(&relative, coeffs);
     }

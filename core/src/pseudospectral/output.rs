@@ -8,6 +8,7 @@ use super::solver::{norm3, per_axis};
 use super::transcription::{block_dot, node_value, Transcription};
 use super::workspace::Workspace;
 use crate::capacity::{MAX_NODES, MAX_SPACECRAFT};
+use crate::indexed::IndexedExt as _;
 
 /// A node control may exceed Umax by this fraction of Umax and still count as within the bound
 /// (the QP's own tolerance is 1e-12 of a row norm).
@@ -71,7 +72,7 @@ pub(super) fn write_solution(ws: &mut Workspace, settings: &Settings, out: &mut 
     let tr = &ws.transcription;
     let nodes = tr.grid.nodes();
     let scale = 2.0 / tr.horizon_tu;
-    for (h, slot) in out.node_times_tu.iter_mut().enumerate().take(nodes) {
+    for (h, slot) in out.node_times_tu.iter_mut().indexed().take(nodes) {
         *slot = tr.time_of(tr.grid.at(h));
     }
     let mut cost = 0.0;
@@ -192,7 +193,7 @@ pub(super) fn dynamics_error(tr: &Transcription, out: &Solution) -> f64 {
                 .zip(out.controls_fu.iter())
                 .take(spacecraft)
             {
-                for (axis, (fa, ga)) in f.iter_mut().zip(g.iter_mut()).enumerate() {
+                for (axis, (fa, ga)) in f.iter_mut().zip(g.iter_mut()).indexed() {
                     let mut u = 0.0;
                     for (l, node) in row.iter().zip(controls.iter()).take(nodes) {
                         u += l * node.get(axis).copied().unwrap_or(0.0);
@@ -207,13 +208,13 @@ pub(super) fn dynamics_error(tr: &Transcription, out: &Solution) -> f64 {
             .iter()
             .zip(second.iter())
             .zip(out.states.iter())
-            .enumerate()
+            .indexed()
             .take(spacecraft)
         {
             let mass = tr.mass_of(sc);
             let start = states.first().copied().unwrap_or([0.0; 6]);
             for (axis, ((fa, ga), (x0, v0))) in
-                f.iter().zip(g.iter()).zip(per_axis(&start)).enumerate()
+                f.iter().zip(g.iter()).zip(per_axis(&start)).indexed()
             {
                 let propagated_v = v0 + fa / mass;
                 let propagated_x = x0 + v0 * t + ga / mass;

@@ -5,6 +5,8 @@
 //! (12.8 KB instead of 25.1 KB), and the same buffer doubles as the dual table of the QP's
 //! capacity-free fallback (`qp_dual.rs`).
 
+use crate::indexed::IndexedExt as _;
+
 /// Numbers a packed lower triangle of order `n` takes.
 pub(crate) const fn packed_len(n: usize) -> usize {
     n.saturating_mul(n.saturating_add(1)) / 2
@@ -57,9 +59,13 @@ pub(crate) fn cholesky<const S: usize>(a: &mut [f64; S], n: usize) -> Option<usi
             row_j.get_mut(..j),
             a.get(start_j..start_j.saturating_add(j)),
         ) {
-            dst.copy_from_slice(src);
+            // Element by element: `copy_from_slice` panics on a length mismatch the compiler
+            // cannot rule out here (both are `j` long).
+            for (d, s) in dst.iter_mut().zip(src) {
+                *d = *s;
+            }
         } else {
-            for (k, slot) in row_j.iter_mut().enumerate().take(j) {
+            for (k, slot) in row_j.iter_mut().indexed().take(j) {
                 *slot = get(a, j, k);
             }
         }
@@ -101,7 +107,7 @@ pub(crate) fn solve_lower<const S: usize, const C: usize>(
                 }
             }
             None => {
-                for (k, bk) in b.iter().enumerate().take(i) {
+                for (k, bk) in b.iter().indexed().take(i) {
                     value -= get(l, i, k) * bk;
                 }
             }
@@ -123,7 +129,7 @@ pub(crate) fn solve_lower_transposed<const S: usize, const C: usize>(
         let mut value = b.get(i).copied().unwrap_or(0.0);
         // Column i below the diagonal: L[k][i] sits k + 1 numbers after L[k - 1][i].
         let mut index = at(i.saturating_add(1), i);
-        for (k, bk) in b.iter().enumerate().take(n).skip(i.saturating_add(1)) {
+        for (k, bk) in b.iter().indexed().take(n).skip(i.saturating_add(1)) {
             value -= l.get(index).copied().unwrap_or(0.0) * bk;
             index = index.saturating_add(k).saturating_add(1);
         }

@@ -16,6 +16,7 @@ use super::transcription::{
 };
 use super::work_units;
 use crate::capacity::{MAX_ACTIVE, MAX_CHECKS_PER_PAIR, MAX_FREE_PER_AXIS, MAX_NODES, MAX_PAIRS};
+use crate::indexed::IndexedExt as _;
 use crate::work::Meter;
 
 /// How a QP ended.
@@ -148,9 +149,9 @@ impl QpState {
             return false;
         }
         let free = tr.basis.free;
-        for (a, &ida) in self.active.iter().enumerate().take(self.count) {
+        for (a, &ida) in self.active.iter().indexed().take(self.count) {
             let va = tr.view(ida);
-            for (b, &idb) in self.active.iter().enumerate().take(a.saturating_add(1)) {
+            for (b, &idb) in self.active.iter().indexed().take(a.saturating_add(1)) {
                 let vb = tr.view(idb);
                 set(&mut self.store, a, b, rows_dot(&va, &vb, free));
             }
@@ -183,7 +184,7 @@ impl QpState {
             let current = self.active.get(k).copied().and_then(tau_of);
             let mut merged_into = None;
             if let Some((pair, tau)) = current {
-                for (e, &earlier) in self.active.iter().enumerate().take(k) {
+                for (e, &earlier) in self.active.iter().indexed().take(k) {
                     if let Some((other_pair, other_tau)) = tau_of(earlier) {
                         if other_pair == pair
                             && libm::fabs(other_tau - tau) < super::transcription::CLOSE_CHECKS_TAU
@@ -463,7 +464,7 @@ pub(crate) fn solve(
             steps = steps.saturating_add(1);
             *iterations = iterations.saturating_add(1);
             let k = state.count;
-            for (j, slot) in g.iter_mut().enumerate().take(k) {
+            for (j, slot) in g.iter_mut().indexed().take(k) {
                 let vj = tr.view(state.active.get(j).copied().unwrap_or(NO_ROW));
                 *slot = rows_dot(&vj, &vp, free);
             }
@@ -475,7 +476,7 @@ pub(crate) fn solve(
             // Primal direction z = a_p - A^T r: the part of a_p orthogonal to the active rows.
             state.direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
             row_axpy(&vp, 1.0, &mut state.direction, free);
-            for (j, rj) in r.iter().enumerate().take(k) {
+            for (j, rj) in r.iter().indexed().take(k) {
                 let vj = tr.view(state.active.get(j).copied().unwrap_or(NO_ROW));
                 row_axpy(&vj, -rj, &mut state.direction, free);
             }
@@ -505,7 +506,7 @@ pub(crate) fn solve(
                 (Some(f), Some((_, t))) => f.min(t),
             };
             if full_step.is_some() {
-                for (b, values) in y.iter_mut().enumerate().take(blocks) {
+                for (b, values) in y.iter_mut().indexed().take(blocks) {
                     if let Some(dir) = state.direction.get(b) {
                         for (slot, d) in values.iter_mut().zip(dir.iter()).take(free) {
                             *slot += step * d;
@@ -513,7 +514,7 @@ pub(crate) fn solve(
                     }
                 }
             }
-            for (j, m) in state.multiplier.iter_mut().enumerate().take(k) {
+            for (j, m) in state.multiplier.iter_mut().indexed().take(k) {
                 *m -= step * r.get(j).copied().unwrap_or(0.0);
             }
             multiplier_p += step;
@@ -534,7 +535,7 @@ pub(crate) fn solve(
                         work,
                     );
                 }
-                for (c, value) in l.iter().enumerate().take(k) {
+                for (c, value) in l.iter().indexed().take(k) {
                     set(&mut state.store, k, c, *value);
                 }
                 set(&mut state.store, k, k, libm::sqrt(z2));

@@ -220,7 +220,8 @@ fn positive_multipliers(state: &QpState) -> usize {
         .iter()
         .take(DUAL_LEN)
         .filter(|v| **v != 0.0)
-        .count()
+        // Counted with `fold`, not `count()`, whose overflow check is a panic path.
+        .fold(0_usize, |n, _| n.wrapping_add(1))
 }
 
 /// Every nonzero value of the dual table with its row, in table order (control rows, then

@@ -14,6 +14,7 @@ use super::workspace::Workspace;
 use crate::capacity::{
     MAX_FREE_PER_AXIS, MAX_NODES, MAX_PAIRS, MAX_SPACECRAFT, TEST_POINTS_PER_PAIR,
 };
+use crate::indexed::IndexedExt as _;
 
 /// Build the grid, basis, base cubics, pairs, pruning windows and check points. The test-point
 /// times per pair go straight into the solution's `test_times` (no workspace copy).
@@ -154,7 +155,7 @@ pub(super) fn setup(
     *test_times = [[0.0; TEST_POINTS_PER_PAIR]; MAX_PAIRS];
     if problem.test_points {
         let mut node_times = [0.0; MAX_NODES];
-        for (h, slot) in node_times.iter_mut().enumerate().take(nodes) {
+        for (h, slot) in node_times.iter_mut().indexed().take(nodes) {
             *slot = tr.time_of(tr.grid.at(h));
         }
         for pair in 0..tr.pair_count {
@@ -221,7 +222,7 @@ pub(super) fn initial_iterate(ws: &mut Workspace, warm: Option<&Solution>, out: 
         for axis in 0..3 {
             let block = sc.saturating_mul(3).saturating_add(axis);
             let mut controls = [0.0; MAX_NODES];
-            for (h, slot) in controls.iter_mut().enumerate().take(nodes) {
+            for (h, slot) in controls.iter_mut().indexed().take(nodes) {
                 *slot = match warm {
                     Some(previous) => previous
                         .controls_fu
@@ -251,7 +252,7 @@ pub(super) fn initial_iterate(ws: &mut Workspace, warm: Option<&Solution>, out: 
         let t = collision::closest_approach(li, lj, 0.0, tr.horizon_tu, 60);
         let relative = collision::analytic_relative(li, lj, t);
         let mut velocity = [0.0; 3];
-        for (axis, slot) in velocity.iter_mut().enumerate() {
+        for (axis, slot) in velocity.iter_mut().indexed() {
             let (Some(a), Some(b)) = (li.get(axis), lj.get(axis)) else {
                 continue;
             };

@@ -18,6 +18,7 @@ use super::validate;
 use super::work_units;
 use super::workspace::Workspace;
 use crate::capacity::MAX_SPACECRAFT;
+use crate::indexed::IndexedExt as _;
 use crate::work::Meter;
 
 pub(super) fn u8_of(value: usize) -> u8 {
@@ -63,11 +64,11 @@ pub(crate) fn solve(
     }
     // The analytic guess per axis (eq. 24-26); an unreachable axis rejects the request.
     let mut laws = [[AxisLaw::default(); 3]; MAX_SPACECRAFT];
-    for (sc, (row, craft)) in laws.iter_mut().zip(problem.spacecraft.iter()).enumerate() {
+    for (sc, (row, craft)) in laws.iter_mut().zip(problem.spacecraft.iter()).indexed() {
         let ends = per_axis(&craft.initial_state)
             .into_iter()
             .zip(per_axis(&craft.final_state));
-        for (axis, (slot, ((p0, v0), (p1, v1)))) in row.iter_mut().zip(ends).enumerate() {
+        for (axis, (slot, ((p0, v0), (p1, v1)))) in row.iter_mut().zip(ends).indexed() {
             let boundary = AxisBoundary {
                 p0,
                 v0,

@@ -11,6 +11,7 @@ use crate::capacity::{
     MAX_CHECKS_PER_PAIR, MAX_FREE_PER_AXIS, MAX_NODES, MAX_PAIRS, MAX_SPACECRAFT,
     MAX_VERIFY_POINTS_PER_PAIR, TEST_POINTS_PER_PAIR,
 };
+use crate::indexed::IndexedExt as _;
 
 /// Blocks of variables: one per spacecraft per axis.
 pub(crate) const MAX_BLOCKS: usize = MAX_SPACECRAFT * 3;
@@ -341,7 +342,7 @@ impl Transcription {
             Source::Node(h) => {
                 let mut out = [0.0; 3];
                 if let Some(&(i, j)) = self.pairs.get(pair) {
-                    for (axis, slot) in out.iter_mut().enumerate() {
+                    for (axis, slot) in out.iter_mut().indexed() {
                         let bi = usize::from(i).saturating_mul(3).saturating_add(axis);
                         let bj = usize::from(j).saturating_mul(3).saturating_add(axis);
                         *slot = node_value(&self.base_position, bi, usize::from(h))
@@ -364,7 +365,7 @@ impl Transcription {
         let (row, _) = self.check_row(source);
         if let Some(&(i, j)) = self.pairs.get(pair) {
             let (mi, mj) = (self.mass_of(usize::from(i)), self.mass_of(usize::from(j)));
-            for (axis, slot) in out.iter_mut().enumerate() {
+            for (axis, slot) in out.iter_mut().indexed() {
                 let bi = usize::from(i).saturating_mul(3).saturating_add(axis);
                 let bj = usize::from(j).saturating_mul(3).saturating_add(axis);
                 *slot += block_dot(row, y, bi, self.basis.free) / mi
@@ -380,7 +381,7 @@ impl Transcription {
     /// the 8-spacecraft crossing: 408 dot products per QP scan instead of about 2,900).
     pub fn node_dots(&self, y: &Coefficients, out: &mut NodeDots) {
         let free = self.basis.free;
-        for (block, row) in out.iter_mut().enumerate().take(self.blocks()) {
+        for (block, row) in out.iter_mut().indexed().take(self.blocks()) {
             for (slot, position) in row
                 .iter_mut()
                 .zip(self.basis.position.iter())
@@ -407,7 +408,7 @@ impl Transcription {
         if let Some(&(i, j)) = self.pairs.get(pair) {
             let (mi, mj) = (self.mass_of(usize::from(i)), self.mass_of(usize::from(j)));
             let h = usize::from(h);
-            for (axis, slot) in out.iter_mut().enumerate() {
+            for (axis, slot) in out.iter_mut().indexed() {
                 let bi = usize::from(i).saturating_mul(3).saturating_add(axis);
                 let bj = usize::from(j).saturating_mul(3).saturating_add(axis);
                 *slot += node_value(dots, bi, h) / mi - node_value(dots, bj, h) / mj;

@@ -4,6 +4,7 @@ use super::error::{Boundary, Capacity, PlanError, Quantity, MAX_MAGNITUDE, MIN_P
 use super::problem::Problem;
 use super::settings::Settings;
 use crate::capacity::{MAX_DEGREE, MAX_SPACECRAFT, MIN_DEGREE};
+use crate::indexed::IndexedExt as _;
 
 fn index(i: usize) -> u8 {
     u8::try_from(i).unwrap_or(u8::MAX)
@@ -57,7 +58,7 @@ pub(crate) fn check(problem: &Problem, settings: &Settings) -> Result<(), PlanEr
             capacity: MAX_DEGREE as u16,
         });
     }
-    for (i, craft) in problem.spacecraft.iter().enumerate() {
+    for (i, craft) in problem.spacecraft.iter().indexed() {
         finite_positive(craft.mass_mu, Quantity::Mass, index(i))?;
         for value in craft.initial_state.iter().chain(craft.final_state.iter()) {
             if !value.is_finite() {
@@ -75,11 +76,11 @@ pub(crate) fn check(problem: &Problem, settings: &Settings) -> Result<(), PlanEr
         }
     }
     let d2 = problem.keep_out_lu * problem.keep_out_lu;
-    for (i, a) in problem.spacecraft.iter().enumerate() {
+    for (i, a) in problem.spacecraft.iter().indexed() {
         for (j, b) in problem
             .spacecraft
             .iter()
-            .enumerate()
+            .indexed()
             .skip(i.saturating_add(1))
         {
             for (boundary, pa, pb) in [

@@ -10,6 +10,7 @@
 use super::lgl::LglGrid;
 use super::linalg::{get, set};
 use crate::capacity::{MAX_DEGREE, MAX_NODES};
+use crate::indexed::IndexedExt as _;
 
 /// Coefficients of a degree-2N polynomial.
 pub(crate) const MAX_PRODUCT: usize = 2 * MAX_DEGREE + 1;
@@ -68,7 +69,9 @@ impl Bernstein {
     /// the Bernstein collocation matrix). Returns false if it is singular.
     pub fn build(&mut self, grid: &LglGrid) -> bool {
         let n = grid.degree;
-        let size = grid.nodes();
+        // At most MAX_NODES by the problem's validation; the clamp lets the compiler see every
+        // row swap below in bounds (no panic path in the flight library).
+        let size = grid.nodes().min(MAX_NODES);
         self.degree = n;
         binomials(n, &mut self.binomial_n);
         binomials(n.saturating_mul(2), &mut self.binomial_2n);
@@ -149,7 +152,7 @@ impl Bernstein {
             .binomial_n
             .iter()
             .zip(x.iter().zip(y.iter()).zip(z.iter()))
-            .enumerate()
+            .indexed()
             .take(size)
         {
             let (Some(targets), Some(c2s)) = (out.get_mut(i..), self.binomial_2n.get(i..)) else {

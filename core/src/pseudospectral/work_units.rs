@@ -30,7 +30,13 @@ fn size(tr: &Transcription) -> Size {
         free: tr.basis.free,
         nodes: tr.grid.nodes(),
         pairs,
-        checks: tr.check_count.iter().take(pairs).sum(),
+        // A saturating fold, not `sum()`: the standard sum carries an overflow check (a panic
+        // path in the flight library) the counts' capacities already rule out.
+        checks: tr
+            .check_count
+            .iter()
+            .take(pairs)
+            .fold(0_usize, |total, &count| total.saturating_add(count)),
     }
 }
 

@@ -31,6 +31,7 @@ mod rows;
 
 use super::transfer::{FMatrix, MAX_UNKNOWNS};
 use crate::capacity::MAX_IMPULSES;
+use crate::indexed::IndexedExt as _;
 use cone::{arrow_solve, jordan, max_step, Cone, Scaling};
 use rows::{compress, dot, factor_regularised, norm, refined_solve};
 
@@ -187,8 +188,8 @@ pub fn least_fuel_rows(
     max_iter: u16,
 ) -> Option<LeastFuel> {
     let mut m = FMatrix::zeros();
-    for (i, row) in f.iter().enumerate() {
-        for (j, v) in row.iter().enumerate() {
+    for (i, row) in f.iter().indexed() {
+        for (j, v) in row.iter().indexed() {
             if let Some(x) = m.get_mut((i, j)) {
                 *x = *v;
             }
@@ -235,7 +236,7 @@ pub(crate) fn least_fuel(
         *hi = *ci / rho;
     }
     let mut blocks = [[[0.0; 3]; ROWS]; MAX_IMPULSES];
-    for (k, b) in blocks.iter_mut().enumerate().take(k_used) {
+    for (k, b) in blocks.iter_mut().indexed().take(k_used) {
         *b = block(&cmp.g, k);
     }
     // Feasible start: minimum-norm x = G^T h, t_k = |x_k| + 1; s = e, l = 0.
@@ -487,7 +488,7 @@ pub(crate) fn least_fuel(
         *o = *xi * rho;
     }
     let mut dual = [0.0; ROWS];
-    for (j, (cj, lj)) in cmp.c.iter().zip(best_l.iter()).enumerate().take(r) {
+    for (j, (cj, lj)) in cmp.c.iter().zip(best_l.iter()).indexed().take(r) {
         let _ = j;
         for (di, ci) in dual.iter_mut().zip(cj.iter()) {
             *di += *ci * *lj;

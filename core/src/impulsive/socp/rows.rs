@@ -4,6 +4,7 @@
 
 use super::ROWS;
 use crate::impulsive::transfer::{FMatrix, MAX_UNKNOWNS};
+use crate::indexed::IndexedExt as _;
 
 /// `a . b`.
 pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
@@ -64,7 +65,7 @@ pub(super) fn compress(f: &FMatrix, columns: usize, y: &[f64; ROWS], rcond: f64)
             fe.iter_mut()
                 .zip(out.d.iter_mut().zip(ye.iter_mut().zip(y.iter()))),
         )
-        .enumerate()
+        .indexed()
         .zip(f.row_iter())
     {
         for (x, fv) in wi.iter_mut().zip(f_row.iter()).take(columns) {
@@ -86,7 +87,7 @@ pub(super) fn compress(f: &FMatrix, columns: usize, y: &[f64; ROWS], rcond: f64)
     for j in 0..ROWS {
         // Pivot: the untaken row with the largest residual.
         let mut best: Option<(usize, f64)> = None;
-        for (i, (wi, t)) in w.iter().zip(taken.iter()).enumerate() {
+        for (i, (wi, t)) in w.iter().zip(taken.iter()).indexed() {
             let n = norm(wi);
             if !*t && best.is_none_or(|(_, b)| n > b) {
                 best = Some((i, n));
@@ -178,7 +179,7 @@ pub(super) fn compress(f: &FMatrix, columns: usize, y: &[f64; ROWS], rcond: f64)
     }
     out.residual = norm(&proj);
     // Back substitution R h = Q^T D y, row j of R against the entries of h after j.
-    for (j, (rj, qj)) in rr.iter().zip(qty.iter()).enumerate().take(r).rev() {
+    for (j, (rj, qj)) in rr.iter().zip(qty.iter()).indexed().take(r).rev() {
         let Some((hj, h_after)) = out.h.get_mut(j..).and_then(<[_]>::split_first_mut) else {
             break;
         };
@@ -244,7 +245,7 @@ pub(super) fn cholesky(m: &mut [[f64; ROWS]; ROWS], r: usize) -> bool {
 /// Solve `L L^T x = b` in place (first `r` entries), `l` as [`cholesky`] leaves it.
 pub(super) fn cholesky_solve(l: &[[f64; ROWS]; ROWS], r: usize, b: &mut [f64; ROWS]) {
     // L y = b: row i of the lower triangle against the entries already solved.
-    for (i, row) in l.iter().enumerate().take(r) {
+    for (i, row) in l.iter().indexed().take(r) {
         let Some((done, rest)) = b.split_at_mut_checked(i) else {
             return;
         };
@@ -261,7 +262,7 @@ pub(super) fn cholesky_solve(l: &[[f64; ROWS]; ROWS], r: usize, b: &mut [f64; RO
         *bi = v / *lii;
     }
     // L^T x = y: row i of the upper triangle (L's column i) against the entries after i.
-    for (i, row) in l.iter().enumerate().take(r).rev() {
+    for (i, row) in l.iter().indexed().take(r).rev() {
         let Some((bi, after)) = b.get_mut(i..).and_then(<[_]>::split_first_mut) else {
             return;
         };
@@ -282,7 +283,7 @@ pub(super) fn cholesky_solve(l: &[[f64; ROWS]; ROWS], r: usize, b: &mut [f64; RO
 pub(super) fn factor_regularised(m: &mut [[f64; ROWS]; ROWS], r: usize) -> Option<f64> {
     let m0 = *m;
     let mut trace = 0.0;
-    for (j, row) in m0.iter().enumerate().take(r) {
+    for (j, row) in m0.iter().indexed().take(r) {
         // The diagonal entry of row j (j < ROWS: one entry).
         for x in row.iter().skip(j).take(1) {
             trace += *x;
@@ -291,7 +292,7 @@ pub(super) fn factor_regularised(m: &mut [[f64; ROWS]; ROWS], r: usize) -> Optio
     for rel in [0.0, 1e-14, 1e-12, 1e-10] {
         *m = m0;
         let delta = rel * trace;
-        for (j, row) in m.iter_mut().enumerate().take(r) {
+        for (j, row) in m.iter_mut().indexed().take(r) {
             for x in row.iter_mut().skip(j).take(1) {
                 *x += delta;
             }
