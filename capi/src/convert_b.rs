@@ -131,7 +131,7 @@ pub(crate) fn relative_to_c(r: &RelativeElements) -> ReconfigBRelativeElements {
     }
 }
 
-fn equinoctial_to_c(e: &EquinoctialElements) -> ReconfigBEquinoctialElements {
+pub(crate) fn equinoctial_to_c(e: &EquinoctialElements) -> ReconfigBEquinoctialElements {
     ReconfigBEquinoctialElements {
         sma_km: e.sma_km,
         mean_longitude_rad: e.mean_longitude_rad,

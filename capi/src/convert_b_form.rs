@@ -1,7 +1,9 @@
 //! Planner B's other input forms: the one place where their C structs become core types and
 //! back (the mean-element form is [`crate::convert_b`]'s).
 
-use crate::convert_b::{mean_from_c, plan_from_c, relative_from_c, relative_to_c};
+use crate::convert_b::{
+    equinoctial_to_c, mean_from_c, plan_from_c, relative_from_c, relative_to_c,
+};
 use crate::status::*;
 use crate::types_b::{ReconfigBEquinoctialElements, ReconfigBMeanElements};
 use crate::types_b_form::*;
@@ -68,17 +70,6 @@ fn mean_to_c(m: &MeanElements) -> ReconfigBMeanElements {
         raan_rad: m.raan_rad,
         argp_rad: m.argp_rad,
         mean_anomaly_rad: m.mean_anomaly_rad,
-    }
-}
-
-fn equinoctial_to_c(e: &EquinoctialElements) -> ReconfigBEquinoctialElements {
-    ReconfigBEquinoctialElements {
-        sma_km: e.sma_km,
-        mean_longitude_rad: e.mean_longitude_rad,
-        ex: e.ex,
-        ey: e.ey,
-        hx: e.hx,
-        hy: e.hy,
     }
 }
 
