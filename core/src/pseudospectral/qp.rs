@@ -98,12 +98,12 @@ impl QpState {
                     .and_then(|row| row.get(usize::from(node)))
                     .is_some_and(|flags| flags & bit != 0)
             }
+            // A row outside the table was never activated.
             RowId::KeepOut { pair, check } => self
                 .keep_out_active
                 .get(usize::from(pair))
                 .and_then(|row| row.get(usize::from(check)))
-                .copied()
-                .unwrap_or(false),
+                .is_some_and(|&active| active),
         }
     }
 
@@ -197,27 +197,13 @@ impl QpState {
             }
             match merged_into {
                 Some(e) => {
-                    let value = self.multiplier.get(k).copied().unwrap_or(0.0);
-                    if let Some(slot) = self.multiplier.get_mut(e) {
-                        *slot += value;
-                    }
-                    // Remove row k (order kept); its active flag stays off.
-                    let id = self.active.get(k).copied().unwrap_or(NO_ROW);
-                    self.mark(id, false);
-                    for m in k..self.count.saturating_sub(1) {
-                        let next = m.saturating_add(1);
-                        if let (Some(&row), Some(&mult)) =
-                            (self.active.get(next), self.multiplier.get(next))
-                        {
-                            if let Some(slot) = self.active.get_mut(m) {
-                                *slot = row;
-                            }
-                            if let Some(slot) = self.multiplier.get_mut(m) {
-                                *slot = mult;
-                            }
+                    // `k` and `e < k` are live rows (`k < count`), so both multipliers exist.
+                    if let (Some(&value), true) = (self.multiplier.get(k), e < k) {
+                        if let Some(slot) = self.multiplier.get_mut(e) {
+                            *slot += value;
                         }
                     }
-                    self.count = self.count.saturating_sub(1);
+                    self.remove_active(k);
                 }
                 None => k = k.saturating_add(1),
             }
@@ -236,21 +222,30 @@ impl QpState {
         if index >= self.count {
             return true;
         }
-        let id = self.active.get(index).copied().unwrap_or(NO_ROW);
+        self.remove_active(index);
+        self.refactor(tr)
+    }
+
+    /// Remove live row `index` from the active set: its flag goes off, the rows after it (and
+    /// their multipliers) move down one place in order. Nothing for an index not live.
+    fn remove_active(&mut self, index: usize) {
+        let live = self.count.min(MAX_ACTIVE);
+        let Some(&id) = self.active.get(..live).and_then(|rows| rows.get(index)) else {
+            return;
+        };
         self.mark(id, false);
-        for k in index..self.count.saturating_sub(1) {
-            let next = k.saturating_add(1);
-            if let (Some(&row), Some(&mult)) = (self.active.get(next), self.multiplier.get(next)) {
-                if let Some(slot) = self.active.get_mut(k) {
-                    *slot = row;
-                }
-                if let Some(slot) = self.multiplier.get_mut(k) {
-                    *slot = mult;
-                }
+        // Non-empty: `index < live`. The last live slot keeps its old value (outside the set).
+        if let Some(rows) = self.active.get_mut(index..live) {
+            if !rows.is_empty() {
+                rows.copy_within(1.., 0);
+            }
+        }
+        if let Some(multipliers) = self.multiplier.get_mut(index..live) {
+            if !multipliers.is_empty() {
+                multipliers.copy_within(1.., 0);
             }
         }
         self.count = self.count.saturating_sub(1);
-        self.refactor(tr)
     }
 }
 
@@ -262,23 +257,16 @@ fn most_violated(tr: &Transcription, state: &QpState, y: &Coefficients) -> Optio
         Some((_, v)) if v <= value => {}
         _ => best = Some((id, value)),
     };
-    for block in 0..tr.blocks() {
-        let flags = state
-            .control_active
-            .get(block)
-            .copied()
-            .unwrap_or([0; MAX_NODES]);
-        for node in 0..tr.grid.nodes() {
-            let norm = tr.basis.accel_norm.get(node).copied().unwrap_or(0.0);
+    // Blocks and nodes within the transcription's (validated) counts, walked with their flags.
+    let nodes = tr.grid.nodes();
+    for (block, flags) in state.control_active.iter().take(tr.blocks()).indexed() {
+        let node_rows = tr.basis.accel_norm.iter().zip(tr.basis.accel.iter());
+        for (node, ((&norm, row), &flag)) in node_rows.zip(flags.iter()).take(nodes).indexed() {
             if norm <= 0.0 {
                 continue;
             }
-            let Some(row) = tr.basis.accel.get(node) else {
-                continue;
-            };
             let control = super::transcription::node_value(&tr.base_control, block, node)
                 + block_dot(row, y, block, free);
-            let flag = flags.get(node).copied().unwrap_or(0);
             let (b, h) = (block as u8, node as u8);
             if flag & 1 == 0 {
                 let slack = (tr.max_control_fu - control) / norm;
@@ -306,21 +294,15 @@ fn most_violated(tr: &Transcription, state: &QpState, y: &Coefficients) -> Optio
     }
     let mut dots: NodeDots = [[0.0; MAX_NODES]; MAX_BLOCKS];
     tr.node_dots(y, &mut dots);
-    for pair in 0..tr.pair_count {
-        let count = tr.check_count.get(pair).copied().unwrap_or(0);
-        let (i, j) = tr.pairs.get(pair).copied().unwrap_or((0, 0));
+    // Pairs within the transcription's count, each with its checks and their active flags.
+    let pair_rows = tr.check_count.iter().zip(tr.pairs.iter());
+    let check_rows = tr.checks.iter().zip(state.keep_out_active.iter());
+    for (pair, ((&count, &(i, j)), (checks, active_flags))) in
+        pair_rows.zip(check_rows).take(tr.pair_count).indexed()
+    {
         let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
         let mass_factor = libm::sqrt(1.0 / (mi * mi) + 1.0 / (mj * mj));
-        for c in 0..count {
-            let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)) else {
-                continue;
-            };
-            let active = state
-                .keep_out_active
-                .get(pair)
-                .and_then(|row| row.get(c))
-                .copied()
-                .unwrap_or(true);
+        for (c, (check, &active)) in checks.iter().zip(active_flags.iter()).take(count).indexed() {
             if check.pruned || active {
                 continue;
             }
@@ -355,7 +337,10 @@ fn exists(tr: &Transcription, id: RowId) -> bool {
         }
         RowId::KeepOut { pair, check } => {
             usize::from(pair) < tr.pair_count
-                && usize::from(check) < tr.check_count.get(usize::from(pair)).copied().unwrap_or(0)
+                && tr
+                    .check_count
+                    .get(usize::from(pair))
+                    .is_some_and(|&count| usize::from(check) < count)
         }
     }
 }
@@ -366,12 +351,12 @@ fn most_violated_hint(
     tr: &Transcription,
     state: &QpState,
     y: &Coefficients,
-    hint: &[RowId],
+    (hint, hint_count): (&[RowId; MAX_ACTIVE], usize),
     tol: f64,
 ) -> Option<(RowId, f64)> {
     let free = tr.basis.free;
     let mut best: Option<(RowId, f64)> = None;
-    for &id in hint {
+    for &id in hint.iter().take(hint_count) {
         if state.is_active(id) || !exists(tr, id) {
             continue;
         }
@@ -436,7 +421,7 @@ pub(crate) fn solve(
         if !work.spend(work_units::qp_hint(tr, hint_count)) {
             return QpOutcome::IterationLimit;
         }
-        let hinted = most_violated_hint(tr, state, y, hint.get(..hint_count).unwrap_or(&[]), tol);
+        let hinted = most_violated_hint(tr, state, y, (&hint, hint_count), tol);
         let picked = match hinted {
             Some(row) => Some(row),
             None => {
@@ -464,8 +449,8 @@ pub(crate) fn solve(
             steps = steps.saturating_add(1);
             *iterations = iterations.saturating_add(1);
             let k = state.count;
-            for (j, slot) in g.iter_mut().indexed().take(k) {
-                let vj = tr.view(state.active.get(j).copied().unwrap_or(NO_ROW));
+            for (slot, &row) in g.iter_mut().zip(state.active.iter()).take(k) {
+                let vj = tr.view(row);
                 *slot = rows_dot(&vj, &vp, free);
             }
             // r = G^{-1} g; keep l = L^{-1} g for appending p to the factor.
@@ -476,8 +461,8 @@ pub(crate) fn solve(
             // Primal direction z = a_p - A^T r: the part of a_p orthogonal to the active rows.
             state.direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
             row_axpy(&vp, 1.0, &mut state.direction, free);
-            for (j, rj) in r.iter().indexed().take(k) {
-                let vj = tr.view(state.active.get(j).copied().unwrap_or(NO_ROW));
+            for (rj, &row) in r.iter().zip(state.active.iter()).take(k) {
+                let vj = tr.view(row);
                 row_axpy(&vj, -rj, &mut state.direction, free);
             }
             let z2 = dense_norm2(&state.direction, blocks, free);
@@ -490,10 +475,10 @@ pub(crate) fn solve(
                 None
             };
             let mut partial: Option<(usize, f64)> = None;
-            for j in 0..k {
-                let rj = r.get(j).copied().unwrap_or(0.0);
+            for (j, (&rj, &multiplier_j)) in r.iter().zip(state.multiplier.iter()).take(k).indexed()
+            {
                 if rj > 0.0 {
-                    let ratio = state.multiplier.get(j).copied().unwrap_or(0.0) / rj;
+                    let ratio = multiplier_j / rj;
                     if partial.is_none_or(|(_, best)| ratio < best) {
                         partial = Some((j, ratio));
                     }
@@ -514,8 +499,8 @@ pub(crate) fn solve(
                     }
                 }
             }
-            for (j, m) in state.multiplier.iter_mut().indexed().take(k) {
-                *m -= step * r.get(j).copied().unwrap_or(0.0);
+            for (m, rj) in state.multiplier.iter_mut().zip(r.iter()).take(k) {
+                *m -= step * rj;
             }
             multiplier_p += step;
             let full = matches!(full_step, Some(f) if f <= step);
