@@ -197,26 +197,27 @@ fn for_each_multiplier(tr: &Transcription, qp: &QpState, mut f: impl FnMut(RowId
     }
 }
 
-/// The public description of a row.
-fn describe(tr: &Transcription, id: RowId) -> ActiveConstraint {
+/// The public description of a row; `None` for a keep-out row the transcription does not hold
+/// (never for a row of the QP's active set: the certificate then says its list is incomplete).
+fn describe(tr: &Transcription, id: RowId) -> Option<ActiveConstraint> {
     match id {
-        RowId::Control { block, node, upper } => ActiveConstraint::Control {
+        RowId::Control { block, node, upper } => Some(ActiveConstraint::Control {
             spacecraft: block / 3,
             axis: block % 3,
             node,
             upper,
-        },
+        }),
         RowId::KeepOut { pair, check } => {
             let p = usize::from(pair);
-            let tau = tr
+            let check = tr
                 .checks
                 .get(p)
-                .and_then(|row| row.get(usize::from(check)))
-                .map_or(0.0, |c| c.tau);
-            ActiveConstraint::KeepOut {
-                pair: tr.pairs.get(p).copied().unwrap_or((0, 0)),
-                time_tu: tr.time_of(tau),
-            }
+                .and_then(|row| row.get(usize::from(check)))?;
+            let &pair = tr.pairs.get(p)?;
+            Some(ActiveConstraint::KeepOut {
+                pair,
+                time_tu: tr.time_of(check.tau),
+            })
         }
     }
 }
@@ -387,14 +388,14 @@ impl Envelope {
         let (i, j) = self.pair;
         let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
         let mut sum = 0.0;
-        for axis in 0..3 {
+        let along = self.along_position.iter().zip(self.along_velocity.iter());
+        for (axis, (&a, &b)) in along.indexed() {
             let (bi, bj) = (block(i, axis), block(j, axis));
             let p = block_dot(&self.position_row, v, bi, free) / mi
                 - block_dot(&self.position_row, v, bj, free) / mj;
             let q = block_dot(&self.velocity_row, v, bi, free) / mi
                 - block_dot(&self.velocity_row, v, bj, free) / mj;
-            sum += self.along_position.get(axis).copied().unwrap_or(0.0) * p
-                + self.along_velocity.get(axis).copied().unwrap_or(0.0) * q;
+            sum += a * p + b * q;
         }
         sum
     }
@@ -404,9 +405,8 @@ impl Envelope {
         let free = tr.basis.free;
         let (i, j) = self.pair;
         let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
-        for axis in 0..3 {
-            let a = self.along_position.get(axis).copied().unwrap_or(0.0);
-            let b = self.along_velocity.get(axis).copied().unwrap_or(0.0);
+        let along = self.along_position.iter().zip(self.along_velocity.iter());
+        for (axis, (&a, &b)) in along.indexed() {
             for (sc, mass, sign) in [(i, mi, 1.0), (j, mj, -1.0)] {
                 if let Some(values) = out.get_mut(block(sc, axis)) {
                     let scale = alpha * sign / mass;
@@ -469,14 +469,12 @@ pub(crate) fn evaluate(
         row_axpy(&view, -value, direction, free);
         let slack = row_dot(&view, y, free) - view.rhs;
         complementarity = complementarity.max(value * libm::fabs(slack));
-        if out
-            .multipliers
-            .push(Multiplier {
-                constraint: describe(tr, id),
-                value,
-            })
-            .is_err()
-        {
+        let listed = describe(tr, id).is_some_and(|constraint| {
+            out.multipliers
+                .push(Multiplier { constraint, value })
+                .is_ok()
+        });
+        if !listed {
             out.multipliers_complete = false;
         }
     });
@@ -518,9 +516,11 @@ pub(crate) fn evaluate(
         }
         if let Some(envelope) = Envelope::new(tr, y, p, c.tau, value) {
             let mut norm2 = 0.0;
-            for axis in 0..3 {
-                let a = envelope.along_position.get(axis).copied().unwrap_or(0.0);
-                let b = envelope.along_velocity.get(axis).copied().unwrap_or(0.0);
+            let along = envelope
+                .along_position
+                .iter()
+                .zip(envelope.along_velocity.iter());
+            for (&a, &b) in along {
                 for (pv, qv) in envelope
                     .position_row
                     .iter()

@@ -52,7 +52,8 @@ pub(super) fn state_scale(out: &Solution) -> f64 {
 pub(super) fn write_solution(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -> bool {
     let mut verified = true;
     let mut least = f64::INFINITY;
-    for pair in 0..ws.transcription.pair_count {
+    let pairs = ws.transcription.pairs;
+    for (pair, &pair_ids) in pairs.iter().take(ws.transcription.pair_count).indexed() {
         let minimum = pair_minimum(ws, pair, settings);
         let separation = libm::sqrt(minimum.value_squared.max(0.0));
         if !minimum.certified || separation < ws.transcription.keep_out_lu - settings.verify_tol_lu
@@ -62,7 +63,7 @@ pub(super) fn write_solution(ws: &mut Workspace, settings: &Settings, out: &mut 
         if separation < least {
             least = separation;
             out.min_separation_lu = separation;
-            out.min_separation_pair = ws.transcription.pairs.get(pair).copied().unwrap_or((0, 0));
+            out.min_separation_pair = pair_ids;
             out.min_separation_time_tu = minimum.at_s * ws.transcription.horizon_tu;
         }
     }
@@ -83,20 +84,21 @@ pub(super) fn write_solution(ws: &mut Workspace, settings: &Settings, out: &mut 
             block_positions(tr, &ws.iterate, block, &mut positions);
             let mut velocities = [0.0; MAX_NODES];
             tr.grid.differentiate(&positions, &mut velocities);
-            for h in 0..nodes {
+            // Every node's row, weight, position and velocity together (`nodes` <= MAX_NODES).
+            let node_values = tr.basis.accel.iter().zip(tr.grid.weight.iter());
+            let node_states = positions.iter().zip(velocities.iter());
+            for (h, ((row, &w), (&position, &velocity))) in
+                node_values.zip(node_states).take(nodes).indexed()
+            {
                 let control = node_value(&tr.base_control, block, h)
-                    + match tr.basis.accel.get(h) {
-                        Some(row) => block_dot(row, &ws.iterate, block, tr.basis.free),
-                        None => 0.0,
-                    };
-                let w = tr.grid.weight.get(h).copied().unwrap_or(0.0);
+                    + block_dot(row, &ws.iterate, block, tr.basis.free);
                 cost += 0.25 * tr.horizon_tu * w * control * control;
                 if let Some(state) = out.states.get_mut(sc).and_then(|row| row.get_mut(h)) {
                     if let Some(p) = state.get_mut(axis) {
-                        *p = positions.get(h).copied().unwrap_or(0.0);
+                        *p = position;
                     }
                     if let Some(v) = state.get_mut(axis.saturating_add(3)) {
-                        *v = scale * velocities.get(h).copied().unwrap_or(0.0);
+                        *v = scale * velocity;
                     }
                 }
                 if let Some(u) = out
@@ -113,15 +115,18 @@ pub(super) fn write_solution(ws: &mut Workspace, settings: &Settings, out: &mut 
     out.cost = cost;
     // Largest violation of a checked constraint.
     let mut violation = 0.0f64;
-    for pair in 0..tr.pair_count {
-        for c in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
-            if let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)) {
-                if check.pruned {
-                    continue;
-                }
-                let relative = tr.relative(pair, check.source, &ws.iterate);
-                violation = violation.max(tr.keep_out_lu - norm3(&relative));
+    let pair_checks = tr
+        .checks
+        .iter()
+        .zip(tr.check_count.iter())
+        .take(tr.pair_count);
+    for (pair, (checks, &count)) in pair_checks.clone().indexed() {
+        for check in checks.iter().take(count) {
+            if check.pruned {
+                continue;
             }
+            let relative = tr.relative(pair, check.source, &ws.iterate);
+            violation = violation.max(tr.keep_out_lu - norm3(&relative));
         }
     }
     for sc in out.controls_fu.iter().take(tr.spacecraft) {
@@ -133,14 +138,9 @@ pub(super) fn write_solution(ws: &mut Workspace, settings: &Settings, out: &mut 
     }
     out.info.max_violation = violation;
     out.info.keep_out_checks = 0;
-    for pair in 0..tr.pair_count {
-        for c in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
-            if tr
-                .checks
-                .get(pair)
-                .and_then(|row| row.get(c))
-                .is_some_and(|k| !k.pruned)
-            {
+    for (checks, &count) in pair_checks {
+        for check in checks.iter().take(count) {
+            if !check.pruned {
                 out.info.keep_out_checks = out.info.keep_out_checks.saturating_add(1);
             }
         }
