@@ -110,23 +110,18 @@ impl Anderson {
         if self.has_last {
             let slot = self.next;
             if let (Some(df), Some(dg)) = (self.delta_f.get_mut(slot), self.delta_g.get_mut(slot)) {
-                for b in 0..blocks {
-                    if let (Some(dfb), Some(dgb), Some(fb), Some(gb), Some(lfb), Some(lgb)) = (
-                        df.get_mut(b),
-                        dg.get_mut(b),
-                        f.get(b),
-                        g.get(b),
-                        self.last_f.get(b),
-                        self.last_g.get(b),
-                    ) {
-                        for c in 0..free {
-                            if let (Some(a), Some(bb)) = (dfb.get_mut(c), dgb.get_mut(c)) {
-                                *a = fb.get(c).copied().unwrap_or(0.0)
-                                    - lfb.get(c).copied().unwrap_or(0.0);
-                                *bb = gb.get(c).copied().unwrap_or(0.0)
-                                    - lgb.get(c).copied().unwrap_or(0.0);
-                            }
-                        }
+                // The differences of this step and the last, block by block and coefficient by
+                // coefficient within the live sizes (every array holds MAX_BLOCKS blocks of
+                // MAX_FREE_PER_AXIS coefficients).
+                let deltas = df.iter_mut().zip(dg.iter_mut());
+                let now = f.iter().zip(g.iter());
+                let last = self.last_f.iter().zip(self.last_g.iter());
+                for ((dfb, dgb), ((fb, gb), (lfb, lgb))) in deltas.zip(now.zip(last)).take(blocks) {
+                    let slots = dfb.iter_mut().zip(dgb.iter_mut());
+                    let values = fb.iter().zip(gb.iter()).zip(lfb.iter().zip(lgb.iter()));
+                    for ((a, bb), ((fc, gc), (lfc, lgc))) in slots.zip(values).take(free) {
+                        *a = fc - lfc;
+                        *bb = gc - lgc;
                     }
                 }
             }

@@ -192,11 +192,11 @@ impl LglGrid {
             }
         }
         let mut denominator = 0.0;
-        for k in 0..=n {
-            let term = self.bary.get(k).copied().unwrap_or(0.0) / (tau - self.at(k));
-            if let Some(slot) = out.get_mut(k) {
-                *slot = term;
-            }
+        // Nodes 0..=n with their barycentric weights (n < MAX_NODES, the grid's capacity).
+        let nodes = self.bary.iter().zip(self.tau.iter()).zip(out.iter_mut());
+        for ((&weight, &node), slot) in nodes.take(n.saturating_add(1)) {
+            let term = weight / (tau - node);
+            *slot = term;
             denominator += term;
         }
         for k in 0..=n {

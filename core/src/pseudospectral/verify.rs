@@ -177,7 +177,7 @@ impl Bernstein {
     /// `coeffs`, to absolute tolerance `tol`, with at most `budget` subdivisions.
     pub fn minimum(&mut self, coeffs: &[f64; MAX_PRODUCT], tol: f64, budget: u32) -> Minimum {
         let degree = self.degree.saturating_mul(2);
-        let first = coeffs.first().copied().unwrap_or(0.0);
+        let &[first, ..] = coeffs;
         let last = coeffs.get(degree).copied().unwrap_or(0.0);
         let mut best = if first <= last {
             Minimum {
@@ -224,8 +224,9 @@ impl Bernstein {
             // (No copies of the interval: the subdivision is most of a verification's work.)
             let mut left = [0.0; MAX_PRODUCT];
             for r in 0..=degree {
+                let &mut [c_first, ..] = c;
                 if let Some(slot) = left.get_mut(r) {
-                    *slot = c.first().copied().unwrap_or(0.0);
+                    *slot = c_first;
                 }
                 // c[k] <- (c[k] + c[k + 1]) / 2 for k < degree - r, in increasing k (each reads
                 // its right neighbour before that one is replaced): the same sums, walked by
@@ -242,7 +243,7 @@ impl Bernstein {
                 }
             }
             let mid = 0.5 * (lo + hi);
-            let value_mid = c.first().copied().unwrap_or(f64::INFINITY);
+            let &mut [value_mid, ..] = c;
             if value_mid < best.value_squared {
                 best.value_squared = value_mid;
                 best.at_s = mid;
