@@ -84,13 +84,15 @@ fn example_one_printed_order_is_solved_and_below_the_published_total() {
     for (n, a) in arcs.iter().enumerate() {
         assert_eq!(a.solution.status, Status::Solved, "arc {n}");
         total += a.solution.total_dv_mps;
-        // Arcs 2-4 are below Table 2; arc 1 (425.21 against 418.445) is not yet.
-        if n > 0 {
-            assert!(a.solution.total_dv_mps <= published[n], "arc {n}");
-        }
+        // Every arc at or below Table 2 (411.731 / 390.588 / 342.433 / 99.432 against
+        // 418.445 / 412.098 / 347.365 / 115.743 m/s).
+        assert!(a.solution.total_dv_mps <= published[n], "arc {n}");
     }
     assert!(total <= f.published.total_dv_mps.unwrap(), "{total}");
-    assert!((total - 1273.884).abs() < 0.01, "{total}");
+    // Issue 13's figure: the total at most 1245 m/s (the paper's stochastic search leaves
+    // at least 3.8 % on the table).
+    assert!(total <= 1245.0, "{total}");
+    assert!((total - 1244.184).abs() < 0.01, "{total}");
     // The oracle flies every client from the epoch with its own integrator: the misses include
     // the planning model's RK4 error in the clients' states at each arc start (measured 0.2 /
     // 18.9 / 32.3 / 43.4 m), which is what re-planning against the truth is for.

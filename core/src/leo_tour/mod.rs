@@ -83,21 +83,41 @@ pub fn solve_arc(problem: &ArcProblem, settings: &Settings) -> Result<ArcSolutio
         b_end,
         meter,
         evals: 0,
+        secant: shoot::Secant::default(),
     };
     let candidates = ctx.grid();
-    let mut best: Option<ArcSolution> = None;
-    for p in candidates.iter().flatten() {
-        let q = ctx.refine(*p);
+    let mut best: Option<(ArcSolution, arc::Point)> = None;
+    let consider = |ctx: &mut Ctx, q: arc::Point, best: &mut Option<(ArcSolution, arc::Point)>| {
         if let Some(sol) = ctx.finish(&q) {
-            let better = best.is_none_or(|b| {
+            let better = best.as_ref().is_none_or(|(b, _)| {
                 let rank = |s: &ArcSolution| u8::from(s.status == Status::ArrivalMissed);
-                (rank(&sol), sol.total_dv_mps) < (rank(&b), b.total_dv_mps)
+                (rank(&sol), sol.total_dv_mps) < (rank(b), b.total_dv_mps)
             });
             if better {
-                best = Some(sol);
+                *best = Some((sol, q));
             }
         }
+    };
+    for p in candidates.iter().flatten() {
+        let q = ctx.refine(*p);
+        consider(&mut ctx, q, &mut best);
     }
+    // Hops: the best plan with its intermediate impulses moved by half revolutions (to the
+    // other node of the plane change), refined again.
+    for _round in 0..settings.hop_rounds {
+        let Some((_, q0)) = best else { break };
+        let mut any = false;
+        for hop in ctx.hops(&q0).iter().flatten() {
+            let q = ctx.refine(*hop);
+            let before = best.map(|(b, _)| b.total_dv_mps);
+            consider(&mut ctx, q, &mut best);
+            any |= best.map(|(b, _)| b.total_dv_mps) != before;
+        }
+        if !any {
+            break;
+        }
+    }
+    let best = best.map(|(b, _)| b);
     match best {
         Some(mut sol) => {
             sol.evaluations = ctx.evals;

@@ -10,6 +10,8 @@ pub const MAX_IMPULSES: usize = 4;
 pub const MAX_VARS: usize = (MAX_IMPULSES - 1) + 3 * (MAX_IMPULSES - 2);
 /// Candidates kept from the coarse epoch grid for the local refinement.
 pub const MAX_CANDIDATES: usize = 8;
+/// Hops tried from the best plan per round: each free epoch alone and all together, both ways.
+pub const MAX_HOPS: usize = 2 * MAX_IMPULSES;
 /// Checkpoints of each client's trajectory (states stored at equal spacing over the arc).
 pub const CHECKPOINTS: usize = 64;
 
@@ -40,6 +42,9 @@ pub struct Settings {
     pub grid_points: u16,
     /// Grid candidates refined locally (at most [`MAX_CANDIDATES`]).
     pub candidates: u8,
+    /// Rounds of hops from the best refined plan (its intermediate impulse epochs moved by
+    /// half revolutions, refined again); a round that finds nothing better ends them.
+    pub hop_rounds: u8,
     /// Cost evaluations of one local refinement.
     pub search_max_evals: u32,
     /// First compass step of an impulse epoch, s.
@@ -68,7 +73,8 @@ impl Default for Settings {
             shoot_max_iter: 30,
             arrival_tol_km: 1e-6,
             grid_points: 96,
-            candidates: 4,
+            candidates: 8,
+            hop_rounds: 3,
             search_max_evals: 4000,
             search_step_s: 600.0,
             search_step_kmps: 0.02,

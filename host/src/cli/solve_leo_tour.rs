@@ -11,7 +11,7 @@ use crate::truth::plan_check::{full_model, j2_model, TruthSettings};
 use crate::truth::propagate::{propagate, Burn, EciState};
 use anyhow::{anyhow, Result};
 use reconfig_core::leo_tour::j2::State;
-use reconfig_core::leo_tour::shoot::{corrected_lambert, shoot, Family, Offset};
+use reconfig_core::leo_tour::shoot::{corrected_lambert, shoot, Family, Offset, Secant};
 use reconfig_core::leo_tour::{propagate as core_propagate, solve_arc, ArcProblem, ArcSolution};
 use reconfig_core::work::Meter;
 use serde_json::json;
@@ -207,6 +207,7 @@ pub fn replan_last_leg(
         dur - t_last,
         fam,
         &off,
+        &mut Secant::default(),
         &mut meter,
     ) {
         if shot.miss_km <= 1.0 {
