@@ -1,5 +1,6 @@
 //! Multi-target rendezvous tour in LEO under J2 (issue 13, after Zhang et al.'s servicing
-//! tour): here the on-board per-arc rendezvous.
+//! tour): the on-board per-arc rendezvous and the sequencing ([`sequence`], branch-and-bound
+//! over the order with the lower bound of [`bound`]).
 //!
 //! One arc: the chaser starts on client A's state at the arc start and must arrive on client
 //! B's position and velocity at a fixed epoch, with `M <= 4` impulses at free epochs inside the
@@ -11,15 +12,18 @@
 //!    branch, aimed with the J2 offset of the client's own orbit;
 //! 3. from the best grid candidates, a compass search over the free epochs and the free impulse
 //!    vectors, the last leg's J2 correction frozen and re-shot (aim-point iteration, [`shoot`])
-//!    at each halving of the step;
-//! 4. the best plan flown again in the planning model with an exact J2 shooting: its arrival
+//!    after each sweep that moved, by a quasi-Newton aim-point iteration;
+//! 4. hops: the best plan's free epochs moved by half revolutions, refined again;
+//! 5. the best plan flown again in the planning model with an exact J2 shooting: its arrival
 //!    miss decides the status ([`Status::Solved`] only when within `arrival_tol_km`).
 //!
 //! See `docs/leo-tour.md`.
 
 mod arc;
+pub mod bound;
 pub mod elements;
 pub mod j2;
+pub mod sequence;
 pub mod shoot;
 pub mod track;
 mod types;

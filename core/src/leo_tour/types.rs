@@ -205,6 +205,8 @@ pub enum Field {
     MinGap = 20,
     /// `Settings::work_budget`.
     WorkBudget = 21,
+    /// `Settings::hop_rounds`.
+    HopRounds = 22,
 }
 
 /// Why an arc was not planned.

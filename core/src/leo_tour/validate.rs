@@ -60,6 +60,7 @@ pub fn check(problem: &ArcProblem, settings: &Settings) -> Result<(), PlanError>
         1.0,
         MAX_CANDIDATES as f64,
     )?;
+    range(Field::HopRounds, f64::from(s.hop_rounds), 0.0, 16.0)?;
     range(
         Field::SearchMaxEvals,
         f64::from(s.search_max_evals),

@@ -10,11 +10,14 @@ use crate::truth::integrator::Tolerance;
 use crate::truth::plan_check::{full_model, j2_model, TruthSettings};
 use crate::truth::propagate::{propagate, Burn, EciState};
 use anyhow::{anyhow, Result};
+use reconfig_core::leo_tour::bound::plane_of;
 use reconfig_core::leo_tour::j2::State;
+use reconfig_core::leo_tour::sequence::{best_order, Sequence, SequenceStatus};
 use reconfig_core::leo_tour::shoot::{corrected_lambert, shoot, Family, Offset, Secant};
 use reconfig_core::leo_tour::{propagate as core_propagate, solve_arc, ArcProblem, ArcSolution};
 use reconfig_core::work::Meter;
 use serde_json::json;
+use std::collections::HashMap;
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -35,6 +38,77 @@ pub struct PlannedArc {
     pub problem: ArcProblem,
     /// Planning time, s.
     pub solve_time_s: f64,
+}
+
+/// The order chosen by the core's sequencing for a fixture with a `[sequence]` table.
+#[derive(Debug, Clone, Copy)]
+pub struct ChosenOrder {
+    /// The core's outcome (order, per-arc starts and durations, pruning counts).
+    pub sequence: Sequence,
+    /// Wall time of the sequencing (every arc it planned), s.
+    pub time_s: f64,
+}
+
+/// Choose the order of `f`'s tour with the core's branch-and-bound (each arc planned by the
+/// core's per-arc rendezvous with the `[sequence]` settings; an arc met twice, with the same
+/// clients, start and duration, is planned once), and return the fixture with that order and
+/// its intervals.
+///
+/// # Errors
+/// A client without an elliptic plane, or a sequencing request the core refuses.
+pub fn choose_order(f: &LeoTourFixture) -> Result<Option<(LeoTourFixture, ChosenOrder)>> {
+    let Some(spec) = f.sequence else {
+        return Ok(None);
+    };
+    let g = f.settings.gravity();
+    let planes = f
+        .clients
+        .iter()
+        .enumerate()
+        .map(|(k, s)| {
+            plane_of(&g, s).ok_or_else(|| anyhow!("client {} has no elliptic plane", k + 1))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let mut states: HashMap<(usize, u64), Option<State>> = HashMap::new();
+    let mut arcs: HashMap<(usize, usize, u64, u64), Option<f64>> = HashMap::new();
+    let started = Instant::now();
+    let sequence = best_order(&g, &planes, &spec.settings, |i, j, t0, dt| {
+        if let Some(c) = arcs.get(&(i, j, t0.to_bits(), dt.to_bits())) {
+            return *c;
+        }
+        let mut at = |k: usize| {
+            *states
+                .entry((k, t0.to_bits()))
+                .or_insert_with(|| core_propagate(&f.settings, &f.clients[k], t0))
+        };
+        let cost = match (at(i), at(j)) {
+            (Some(from), Some(to)) => solve_arc(
+                &ArcProblem {
+                    from,
+                    to,
+                    duration_s: dt,
+                    impulses: f.impulses,
+                },
+                &spec.arc_settings,
+            )
+            .ok()
+            .filter(|s| s.status != reconfig_core::leo_tour::Status::ArrivalMissed)
+            .map(|s| s.total_dv_mps),
+            _ => None,
+        };
+        arcs.insert((i, j, t0.to_bits(), dt.to_bits()), cost);
+        cost
+    })
+    .map_err(|e| anyhow!("sequencing refused: {e:?}"))?;
+    let time_s = started.elapsed().as_secs_f64();
+    let n = usize::from(sequence.len);
+    let mut chosen = f.clone();
+    chosen.order = sequence.order[..n]
+        .iter()
+        .map(|&k| usize::from(k))
+        .collect();
+    chosen.intervals_s = sequence.durations_s[..n.saturating_sub(1)].to_vec();
+    Ok(Some((chosen, ChosenOrder { sequence, time_s })))
 }
 
 /// Plan every arc of the fixture's order.
@@ -285,6 +359,23 @@ pub fn replan_last_leg(
     Ok(best)
 }
 
+fn sequence_json(c: &ChosenOrder) -> serde_json::Value {
+    let q = &c.sequence;
+    let n = usize::from(q.len);
+    json!({
+        "status": format!("{:?}", q.status),
+        "order": q.order[..n].iter().map(|&k| usize::from(k) + 1).collect::<Vec<_>>(),
+        "total_dv_mps": q.total_dv_mps,
+        "durations_s": q.durations_s[..n.saturating_sub(1)].to_vec(),
+        "arcs_planned": q.arcs_planned,
+        "arcs_in_tree": q.arcs_in_tree,
+        "orders_completed": q.orders_completed,
+        "orders_total": q.orders_total,
+        "bound_violations": q.bound_violations,
+        "time_s": c.time_s,
+    })
+}
+
 /// `a x = b` for a 3x3 `a` by Cramer's rule; `None` when `a` is (nearly) singular.
 fn solve3(a: &[[f64; 3]; 3], b: &[f64; 3]) -> Option<[f64; 3]> {
     let det = |m: &[[f64; 3]; 3]| {
@@ -312,6 +403,21 @@ fn solve3(a: &[[f64; 3]; 3], b: &[f64; 3]) -> Option<[f64; 3]> {
 /// # Errors
 /// A truth-model propagation error.
 pub fn run(f: &LeoTourFixture, json_output: bool) -> Result<ExitCode> {
+    let chosen = match choose_order(f) {
+        Ok(c) => c,
+        Err(e) => return Ok(report_rejection(&f.name, &e, json_output)),
+    };
+    if let Some((_, c)) = &chosen {
+        if c.sequence.status == SequenceStatus::NoOrder {
+            let e = anyhow!(
+                "sequencing: no order could be planned ({} arcs tried)",
+                c.sequence.arcs_planned
+            );
+            return Ok(report_rejection(&f.name, &e, json_output));
+        }
+    }
+    let f = chosen.as_ref().map_or(f, |(g, _)| g);
+    let seq_json = chosen.as_ref().map(|(_, c)| sequence_json(c));
     let arcs = match plan(f) {
         Ok(a) => a,
         Err(e) => return Ok(report_rejection(&f.name, &e, json_output)),
@@ -370,6 +476,7 @@ pub fn run(f: &LeoTourFixture, json_output: bool) -> Result<ExitCode> {
                 "status": status,
                 "order": f.order.iter().map(|k| k + 1).collect::<Vec<_>>(),
                 "total_dv_mps": total,
+                "sequence": seq_json,
                 "arcs": arcs_json,
                 "published": {
                     "arc_dv_mps": f.published.arc_dv_mps,
@@ -380,6 +487,21 @@ pub fn run(f: &LeoTourFixture, json_output: bool) -> Result<ExitCode> {
     } else {
         let order: Vec<String> = f.order.iter().map(|k| (k + 1).to_string()).collect();
         println!("{}: {status}, order {}", f.name, order.join(" -> "));
+        if let Some((_, c)) = &chosen {
+            let q = &c.sequence;
+            println!(
+                "  sequencing: {:?}, {:.3} m/s with the sequencing search; planned {} of the tree's {} arcs ({:.1} %), {} of {} orders completed, {} bound violations, {:.2} s",
+                q.status,
+                q.total_dv_mps,
+                q.arcs_planned,
+                q.arcs_in_tree,
+                100.0 * f64::from(q.arcs_planned) / f64::from(q.arcs_in_tree.max(1)),
+                q.orders_completed,
+                q.orders_total,
+                q.bound_violations,
+                c.time_s
+            );
+        }
         for (n, (a, j2m, fm, after)) in rows.iter().enumerate() {
             let s = &a.solution;
             let published = f

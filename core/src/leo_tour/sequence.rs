@@ -1,0 +1,565 @@
+//! The visiting order of a tour: exhaustive depth-first enumeration with branch-and-bound.
+//!
+//! A node is a partial order; its cost is the sum of its arcs' planned Δv, and its bound adds,
+//! for every client not yet visited, the cheapest bound of any arc that can enter it (each is
+//! entered exactly once, from the current client or another unvisited one) with the node
+//! drift allowed over the whole tour ([`bound::arc_bound_any_mps`]). Before an arc is planned
+//! its own bound at its known start and duration ([`bound::arc_bound_mps`]) is checked
+//! against the incumbent, so a pruned arc is never planned. Children are tried cheapest bound
+//! first, ties by client number: deterministic.
+//!
+//! The arc cost depends on the start epoch (the nodes drift apart under J2), so the arc
+//! planner is a callback given the start and the duration; the bound follows the drift with
+//! the epoch and allows the chaser's own drift over the arc (see [`bound`]). Every planned arc
+//! is compared with its bound: a plan cheaper than its bound would make the pruning unsafe,
+//! and the outcome then says [`SequenceStatus::BoundViolated`].
+//!
+//! Worst case: every order of the clients, `N!` leaves (`(N-1)!` with the first fixed) and
+//! at most `N! (1 + 1/1! + 1/2! + ...) < e N!` arcs planned; `max_arcs` stops it first.
+
+use super::bound::{self, BoundSettings, Plane};
+use super::j2::Gravity;
+use crate::indexed::IndexedExt as _;
+
+/// Most clients of a tour.
+pub const MAX_CLIENTS: usize = 8;
+
+/// How each arc's duration is chosen.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Intervals {
+    /// By position in the tour (arc 1, arc 2, ...), whatever the clients: the printed
+    /// intervals of the paper's tours.
+    ByPosition([f64; MAX_CLIENTS - 1]),
+    /// The paper's rule (eq. 9-11): `Δt_max = revolutions` periods of the tour's first client;
+    /// where the node gap closes (`ΔΩ ΔΩ̇ <= 0`) the time for J2 to close it if shorter than
+    /// `Δt_max`, else `Δt_max`; where it opens, `Δt_max / 2`. An arc is never shorter than
+    /// `min_duration_s` (the rule can give a closing time near zero).
+    PaperRule {
+        /// X, target revolutions per `Δt_max`.
+        revolutions: f64,
+        /// Shortest arc, s.
+        min_duration_s: f64,
+    },
+}
+
+/// Settings of the sequencing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SequenceSettings {
+    /// The first client (0-based), or `None` for a free first client.
+    pub first: Option<u8>,
+    /// Arc durations.
+    pub intervals: Intervals,
+    /// The bound's conservatism.
+    pub bound: BoundSettings,
+    /// Most arcs planned (the callback's calls); the enumeration stops there.
+    pub max_arcs: u32,
+}
+
+/// What the returned order is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SequenceStatus {
+    /// Every order was either planned or pruned by the bound, and no planned arc was cheaper
+    /// than its bound: the order is the cheapest for the arc planner given.
+    Optimal,
+    /// The enumeration finished but some planned arc was cheaper than its bound: the order is
+    /// the cheapest of those planned, and a pruned order might have been cheaper.
+    BoundViolated,
+    /// `max_arcs` stopped the enumeration: the best order planned so far.
+    ArcLimit,
+    /// No order could be planned (every one has an arc the planner refused).
+    NoOrder,
+}
+
+/// The outcome of a sequencing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sequence {
+    /// What the order is.
+    pub status: SequenceStatus,
+    /// The order, 0-based client indices; `len` of them.
+    pub order: [u8; MAX_CLIENTS],
+    /// Clients in the order.
+    pub len: u8,
+    /// The planned Δv of the order, m/s.
+    pub total_dv_mps: f64,
+    /// The arcs' start epochs (from the tour epoch), s; `len - 1` of them.
+    pub starts_s: [f64; MAX_CLIENTS - 1],
+    /// The arcs' durations, s.
+    pub durations_s: [f64; MAX_CLIENTS - 1],
+    /// Arcs planned (callback calls).
+    pub arcs_planned: u32,
+    /// Arcs in the whole enumeration tree (what planning every order would take with each
+    /// arc of a shared prefix planned once).
+    pub arcs_in_tree: u32,
+    /// Complete orders reached (each planned to the end).
+    pub orders_completed: u32,
+    /// Orders in the enumeration.
+    pub orders_total: u32,
+    /// Planned arcs cheaper than their bound.
+    pub bound_violations: u32,
+}
+
+/// Why a sequencing was refused.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SequenceError {
+    /// Fewer than two or more than [`MAX_CLIENTS`] clients.
+    Clients {
+        /// Clients given.
+        count: usize,
+    },
+    /// The first client is not one of the clients.
+    First {
+        /// The index given.
+        index: u8,
+    },
+    /// A client's state has no elliptic plane.
+    Client {
+        /// Which client (0-based).
+        index: usize,
+    },
+    /// An interval is not finite and positive (position, value).
+    Interval {
+        /// Arc position (0-based).
+        position: usize,
+        /// The value given, s.
+        value_s: f64,
+    },
+}
+
+struct Search<'a, F> {
+    g: &'a Gravity,
+    planes: &'a [Plane],
+    settings: &'a SequenceSettings,
+    /// Each client's cheapest entry bound from a given client: `any[j][i]`.
+    any: [[f64; MAX_CLIENTS]; MAX_CLIENTS],
+    plan_arc: F,
+    best: Option<Sequence>,
+    path: [u8; MAX_CLIENTS],
+    starts: [f64; MAX_CLIENTS - 1],
+    durations: [f64; MAX_CLIENTS - 1],
+    arcs_planned: u32,
+    orders_completed: u32,
+    violations: u32,
+    stopped: bool,
+}
+
+fn factorial(n: usize) -> u32 {
+    (1..=u32::try_from(n).unwrap_or(0)).fold(1_u32, u32::saturating_mul)
+}
+
+/// The arcs of the enumeration tree below a node with `remaining` clients to visit.
+fn tree_arcs(remaining: usize) -> u32 {
+    // T(r) = r (1 + T(r - 1)): r children, each one arc plus its own subtree.
+    (1..=remaining).fold(0_u32, |acc, k| {
+        acc.saturating_add(1)
+            .saturating_mul(u32::try_from(k).unwrap_or(u32::MAX))
+    })
+}
+
+impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
+    fn duration(&self, position: usize, from: usize, to: usize, start_s: f64) -> Option<f64> {
+        match self.settings.intervals {
+            Intervals::ByPosition(list) => list.get(position).copied(),
+            Intervals::PaperRule {
+                revolutions,
+                min_duration_s,
+            } => {
+                let first = self.planes.get(usize::from(*self.path.first()?))?;
+                let period = 2.0
+                    * core::f64::consts::PI
+                    * libm::sqrt(first.a_km * first.a_km * first.a_km / self.g.mu_km3_s2);
+                let dt_max = revolutions * period;
+                let (c, t) = (self.planes.get(from)?, self.planes.get(to)?);
+                let raan = |p: &Plane| p.raan_rad + p.raan_rate_rad_s * start_s;
+                let mut d_raan = raan(t) - raan(c);
+                d_raan -= 2.0
+                    * core::f64::consts::PI
+                    * libm::round(d_raan / (2.0 * core::f64::consts::PI));
+                let d_rate = t.raan_rate_rad_s - c.raan_rate_rad_s;
+                let dt = if d_raan * d_rate <= 0.0 {
+                    let elim = if d_rate == 0.0 {
+                        f64::INFINITY
+                    } else {
+                        (d_raan / d_rate).abs()
+                    };
+                    elim.min(dt_max)
+                } else {
+                    0.5 * dt_max
+                };
+                Some(dt.max(min_duration_s))
+            }
+        }
+    }
+
+    /// The bound of the clients still to visit from `current`.
+    fn rest_bound(&self, current: usize, visited: u16) -> f64 {
+        let n = self.planes.len();
+        let unvisited = |k: usize| visited & (1_u16 << k) == 0;
+        (0..n)
+            .filter(|&j| unvisited(j))
+            .map(|j| {
+                let row = self.any.get(j);
+                (0..n)
+                    .filter(|&i| i != j && (i == current || unvisited(i)))
+                    .filter_map(|i| row.and_then(|r| r.get(i)).copied())
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .map(|b| if b.is_finite() { b } else { 0.0 })
+            .sum()
+    }
+
+    fn incumbent(&self) -> f64 {
+        self.best.map_or(f64::INFINITY, |b| b.total_dv_mps)
+    }
+
+    /// Extend the partial order of `depth` clients (the last `current`), at `time_s`, cost
+    /// `cost`, visited set `visited`.
+    fn extend(&mut self, depth: usize, current: usize, time_s: f64, cost: f64, visited: u16) {
+        let n = self.planes.len();
+        if depth == n {
+            self.orders_completed = self.orders_completed.saturating_add(1);
+            if cost < self.incumbent() {
+                self.best = Some(Sequence {
+                    status: SequenceStatus::Optimal,
+                    order: self.path,
+                    len: u8::try_from(n).unwrap_or(0),
+                    total_dv_mps: cost,
+                    starts_s: self.starts,
+                    durations_s: self.durations,
+                    arcs_planned: 0,
+                    arcs_in_tree: 0,
+                    orders_completed: 0,
+                    orders_total: 0,
+                    bound_violations: 0,
+                });
+            }
+            return;
+        }
+        let Some(position) = depth.checked_sub(1) else {
+            return;
+        };
+        // Children with their arc bounds, cheapest first (ties by client number).
+        let mut kids = [(f64::INFINITY, 0_usize, 0.0_f64); MAX_CLIENTS];
+        let mut count = 0_usize;
+        for j in (0..n).filter(|&j| visited & (1_u16 << j) == 0) {
+            let Some(dt) = self.duration(position, current, j, time_s) else {
+                continue;
+            };
+            let (Some(a), Some(b)) = (self.planes.get(current), self.planes.get(j)) else {
+                continue;
+            };
+            let lb = bound::arc_bound_mps(self.g, a, b, time_s, dt, &self.settings.bound);
+            if let Some(slot) = kids.get_mut(count) {
+                *slot = (lb, j, dt);
+                count = count.saturating_add(1);
+            }
+        }
+        let kids = kids.get_mut(..count).unwrap_or(&mut []);
+        kids.sort_unstable_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+        for &(lb, j, dt) in kids.iter() {
+            if self.stopped {
+                return;
+            }
+            let next_visited = visited | (1_u16 << j);
+            if cost + lb + self.rest_bound(j, next_visited) >= self.incumbent() {
+                continue;
+            }
+            if self.arcs_planned >= self.settings.max_arcs {
+                self.stopped = true;
+                return;
+            }
+            self.arcs_planned = self.arcs_planned.saturating_add(1);
+            let Some(dv) = (self.plan_arc)(current, j, time_s, dt) else {
+                continue;
+            };
+            if !dv.is_finite() {
+                continue;
+            }
+            if dv < lb {
+                self.violations = self.violations.saturating_add(1);
+            }
+            let next_cost = cost + dv;
+            if next_cost + self.rest_bound(j, next_visited) >= self.incumbent() {
+                continue;
+            }
+            let (Some(p), Some(s), Some(d)) = (
+                self.path.get_mut(depth),
+                self.starts.get_mut(position),
+                self.durations.get_mut(position),
+            ) else {
+                continue;
+            };
+            *p = u8::try_from(j).unwrap_or(0);
+            *s = time_s;
+            *d = dt;
+            self.extend(
+                depth.saturating_add(1),
+                j,
+                time_s + dt,
+                next_cost,
+                next_visited,
+            );
+        }
+    }
+}
+
+/// The cheapest visiting order of the clients (`planes`, from [`bound::plane_of`] of their
+/// states at the tour epoch), each arc planned by `plan_arc(from, to, start_s, duration_s)`
+/// (its Δv in m/s, or `None` when it cannot be planned).
+///
+/// # Errors
+/// [`SequenceError`] for a request outside the limits.
+pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
+    g: &Gravity,
+    planes: &[Plane],
+    settings: &SequenceSettings,
+    plan_arc: F,
+) -> Result<Sequence, SequenceError> {
+    let n = planes.len();
+    if !(2..=MAX_CLIENTS).contains(&n) {
+        return Err(SequenceError::Clients { count: n });
+    }
+    if let Some(f) = settings.first {
+        if usize::from(f) >= n {
+            return Err(SequenceError::First { index: f });
+        }
+    }
+    if let Intervals::ByPosition(list) = settings.intervals {
+        for (position, &value_s) in list.iter().take(n.saturating_sub(1)).indexed() {
+            if !(value_s.is_finite() && value_s > 0.0) {
+                return Err(SequenceError::Interval { position, value_s });
+            }
+        }
+    }
+    if let Intervals::PaperRule {
+        revolutions,
+        min_duration_s,
+    } = settings.intervals
+    {
+        for (position, value_s) in [(0, revolutions), (1, min_duration_s)] {
+            if !(value_s.is_finite() && value_s > 0.0) {
+                return Err(SequenceError::Interval { position, value_s });
+            }
+        }
+    }
+    // The whole tour lasts at most (n - 1) of the longest interval.
+    let longest = match settings.intervals {
+        Intervals::ByPosition(list) => list
+            .iter()
+            .take(n.saturating_sub(1))
+            .fold(0.0_f64, |m, &v| m.max(v)),
+        Intervals::PaperRule {
+            revolutions,
+            min_duration_s,
+        } => {
+            let a_max = planes.iter().fold(0.0_f64, |m, p| m.max(p.a_km));
+            let period =
+                2.0 * core::f64::consts::PI * libm::sqrt(a_max * a_max * a_max / g.mu_km3_s2);
+            (revolutions * period).max(min_duration_s)
+        }
+    };
+    let horizon_s = longest * (n as f64);
+    let mut any = [[f64::INFINITY; MAX_CLIENTS]; MAX_CLIENTS];
+    for (row, b) in any.iter_mut().zip(planes.iter()) {
+        for (cell, a) in row.iter_mut().zip(planes.iter()) {
+            *cell = bound::arc_bound_any_mps(g, a, b, horizon_s, &settings.bound);
+        }
+    }
+    let mut search = Search {
+        g,
+        planes,
+        settings,
+        any,
+        plan_arc,
+        best: None,
+        path: [0; MAX_CLIENTS],
+        starts: [0.0; MAX_CLIENTS - 1],
+        durations: [0.0; MAX_CLIENTS - 1],
+        arcs_planned: 0,
+        orders_completed: 0,
+        violations: 0,
+        stopped: false,
+    };
+    let firsts = settings
+        .first
+        .map_or(0..n, |f| usize::from(f)..usize::from(f) + 1);
+    for first in firsts {
+        if search.stopped {
+            break;
+        }
+        if let Some(p) = search.path.first_mut() {
+            *p = u8::try_from(first).unwrap_or(0);
+        }
+        search.extend(1, first, 0.0, 0.0, 1_u16 << first);
+    }
+    let first_choices = if settings.first.is_some() { 1 } else { n };
+    let per_first = factorial(n.saturating_sub(1));
+    let orders_total = per_first.saturating_mul(u32::try_from(first_choices).unwrap_or(0));
+    let arcs_in_tree =
+        tree_arcs(n.saturating_sub(1)).saturating_mul(u32::try_from(first_choices).unwrap_or(0));
+    let status = if search.stopped {
+        SequenceStatus::ArcLimit
+    } else if search.violations > 0 {
+        SequenceStatus::BoundViolated
+    } else {
+        SequenceStatus::Optimal
+    };
+    let mut out = match search.best {
+        Some(b) => b,
+        None => Sequence {
+            status: SequenceStatus::NoOrder,
+            order: [0; MAX_CLIENTS],
+            len: 0,
+            total_dv_mps: f64::INFINITY,
+            starts_s: [0.0; MAX_CLIENTS - 1],
+            durations_s: [0.0; MAX_CLIENTS - 1],
+            arcs_planned: 0,
+            arcs_in_tree: 0,
+            orders_completed: 0,
+            orders_total: 0,
+            bound_violations: 0,
+        },
+    };
+    if out.status != SequenceStatus::NoOrder {
+        out.status = status;
+    } else if search.stopped {
+        out.status = SequenceStatus::ArcLimit;
+    }
+    out.arcs_planned = search.arcs_planned;
+    out.arcs_in_tree = arcs_in_tree;
+    out.orders_completed = search.orders_completed;
+    out.orders_total = orders_total;
+    out.bound_violations = search.violations;
+    Ok(out)
+}
+
+#[cfg(test)]
+#[allow(
+    clippy::unwrap_used,
+    clippy::indexing_slicing,
+    clippy::arithmetic_side_effects
+)]
+mod tests {
+    use super::*;
+    extern crate std;
+    use std::vec::Vec;
+
+    fn planes(n: usize) -> Vec<Plane> {
+        (0..n)
+            .map(|k| Plane {
+                a_km: 6800.0 + 60.0 * (k as f64),
+                e: 0.0,
+                i_rad: (97.0 + 0.3 * ((k * 7 % 5) as f64)).to_radians(),
+                raan_rad: (40.0 + 1.7 * ((k * 3 % 7) as f64)).to_radians(),
+                raan_rate_rad_s: 0.0,
+            })
+            .collect()
+    }
+
+    const G: Gravity = Gravity {
+        mu_km3_s2: 398_600.441_8,
+        re_km: 6378.137,
+        j2: 0.0,
+    };
+
+    #[test]
+    fn branch_and_bound_finds_the_brute_force_optimum() {
+        // A synthetic arc cost: the bound at zero margins plus a position-dependent
+        // surcharge, so the bound (with its margins) is admissible and the order matters.
+        for n in 3..=6 {
+            let p = planes(n);
+            let tight = BoundSettings {
+                band_margin_km: 0.0,
+                band_margin_rad: 0.0,
+                margin: 0.0,
+            };
+            let cost = |i: usize, j: usize, t: f64, d: f64| {
+                bound::arc_bound_mps(&G, &p[i], &p[j], t, d, &tight)
+                    + 3.0 * (((i * 5 + j * 3) % 7) as f64)
+                    + t * 1e-5
+            };
+            let settings = SequenceSettings {
+                first: None,
+                intervals: Intervals::ByPosition([8e4, 1.6e5, 1.6e5, 1.6e5, 1.6e5, 1.6e5, 1.6e5]),
+                bound: BoundSettings::default(),
+                max_arcs: 1_000_000,
+            };
+            let s = best_order(&G, &p, &settings, |i, j, t, d| Some(cost(i, j, t, d))).unwrap();
+            // Brute force over every permutation.
+            let mut idx: Vec<usize> = (0..n).collect();
+            let mut best = f64::INFINITY;
+            permute(&mut idx, 0, &mut |o: &[usize]| {
+                let mut t = 0.0;
+                let mut c = 0.0;
+                for (k, w) in o.windows(2).enumerate() {
+                    let d = [8e4, 1.6e5, 1.6e5, 1.6e5, 1.6e5, 1.6e5, 1.6e5][k];
+                    c += cost(w[0], w[1], t, d);
+                    t += d;
+                }
+                best = best.min(c);
+            });
+            assert_eq!(s.status, SequenceStatus::Optimal);
+            assert!(
+                (s.total_dv_mps - best).abs() < 1e-9,
+                "n {n}: {} vs {best}",
+                s.total_dv_mps
+            );
+            assert!(s.arcs_planned < s.arcs_in_tree, "n {n}: no pruning");
+            assert_eq!(s.orders_total, factorial(n));
+            assert_eq!(s.arcs_in_tree, [0, 0, 2, 12, 60, 320, 1950][n]);
+            std::println!(
+                "n {n}: planned {} of {} arcs, {} of {} orders",
+                s.arcs_planned,
+                s.arcs_in_tree,
+                s.orders_completed,
+                s.orders_total
+            );
+        }
+    }
+
+    fn permute(v: &mut Vec<usize>, k: usize, f: &mut dyn FnMut(&[usize])) {
+        if k == v.len() {
+            f(v);
+            return;
+        }
+        for i in k..v.len() {
+            v.swap(k, i);
+            permute(v, k + 1, f);
+            v.swap(k, i);
+        }
+    }
+
+    #[test]
+    fn a_cost_below_the_bound_is_reported_and_limits_stop_it() {
+        let p = planes(4);
+        let settings = SequenceSettings {
+            first: Some(0),
+            intervals: Intervals::ByPosition([8e4; MAX_CLIENTS - 1]),
+            bound: BoundSettings::default(),
+            max_arcs: 1_000,
+        };
+        let s = best_order(&G, &p, &settings, |_, _, _, _| Some(0.0)).unwrap();
+        assert_eq!(s.status, SequenceStatus::BoundViolated);
+        assert!(s.bound_violations > 0);
+        let few = SequenceSettings {
+            max_arcs: 2,
+            ..settings
+        };
+        let s = best_order(&G, &p, &few, |_, _, _, _| Some(100.0)).unwrap();
+        assert_eq!(s.status, SequenceStatus::ArcLimit);
+        assert_eq!(s.arcs_planned, 2);
+        let s = best_order(&G, &p, &settings, |_, _, _, _| None).unwrap();
+        assert_eq!(s.status, SequenceStatus::NoOrder);
+        assert!(matches!(
+            best_order(&G, &p[..1], &settings, |_, _, _, _| None),
+            Err(SequenceError::Clients { count: 1 })
+        ));
+        let bad = SequenceSettings {
+            first: Some(9),
+            ..settings
+        };
+        assert!(matches!(
+            best_order(&G, &p, &bad, |_, _, _, _| None),
+            Err(SequenceError::First { index: 9 })
+        ));
+    }
+}
