@@ -17,9 +17,7 @@
 use super::j2::{join, pos, propagate_steps, step_count, vel, Gravity, State};
 use super::shoot::{corrected_lambert, shoot, Family, Offset, Secant};
 use super::track::Track;
-use super::types::{
-    ArcSolution, Burn, Settings, Status, MAX_CANDIDATES, MAX_HOPS, MAX_IMPULSES, MAX_VARS,
-};
+use super::types::{ArcSolution, Burn, Settings, Status, MAX_CANDIDATES, MAX_IMPULSES, MAX_VARS};
 use crate::indexed::IndexedExt as _;
 use crate::lambert::{self, Branch};
 use crate::vec3::{add, cross, dot, norm, scale, sub, Vec3};
@@ -62,7 +60,7 @@ fn families(max_revs: u16) -> impl Iterator<Item = Family> {
     }))
 }
 
-fn period_s(mu: f64, s: &State) -> f64 {
+pub(crate) fn period_s(mu: f64, s: &State) -> f64 {
     let r = norm(&pos(s));
     let v = vel(s);
     let a = 1.0 / (2.0 / r - dot(&v, &v) / mu);
@@ -81,7 +79,7 @@ impl Ctx<'_> {
     }
 
     /// The epochs of `x` if they are in order with the least gaps, else `None`.
-    fn epochs(&self, x: &[f64; MAX_VARS]) -> Option<[f64; MAX_IMPULSES]> {
+    pub(crate) fn epochs(&self, x: &[f64; MAX_VARS]) -> Option<[f64; MAX_IMPULSES]> {
         let mut t = [self.tf; MAX_IMPULSES];
         let free = self.impulses.saturating_sub(1);
         let mut prev = -self.settings.min_gap_s;
@@ -99,7 +97,7 @@ impl Ctx<'_> {
     /// Fly `x` to the last leg's departure: (burn k's pre-burn state and Δv for k < M-1, the
     /// state before impulse M-1, the epochs).
     #[allow(clippy::type_complexity)]
-    fn fly_to_last_leg(
+    pub(crate) fn fly_to_last_leg(
         &mut self,
         x: &[f64; MAX_VARS],
     ) -> Option<([(State, Vec3); MAX_IMPULSES], State, [f64; MAX_IMPULSES])> {
@@ -149,7 +147,11 @@ impl Ctx<'_> {
     }
 
     /// The cheapest family of the last leg at `x` (offset frozen).
-    fn best_family(&mut self, x: &[f64; MAX_VARS], off: &Offset) -> Option<(Family, f64)> {
+    pub(crate) fn best_family(
+        &mut self,
+        x: &[f64; MAX_VARS],
+        off: &Offset,
+    ) -> Option<(Family, f64)> {
         let mut best: Option<(Family, f64)> = None;
         for fam in families(self.settings.max_revolutions) {
             if let Some(c) = self.cost(x, fam, off) {
@@ -312,88 +314,6 @@ impl Ctx<'_> {
         Point { x, fam, off, cost }
     }
 
-    /// Hops from `p`: its free epochs moved by half a revolution of client A's orbit (each
-    /// epoch alone, then all together, both ways), a moved impulse keeping its radial,
-    /// along-track and normal components; each with its cheapest last-leg family. A plane
-    /// change is cheapest at a node, and the nodes are half a revolution apart: the compass
-    /// search cannot cross that far from a basin, a hop can.
-    pub fn hops(&mut self, p: &Point) -> [Option<Point>; MAX_HOPS] {
-        let mut out = [None; MAX_HOPS];
-        let free = self.impulses.saturating_sub(1);
-        let Some(s0) = self
-            .a
-            .state_at(&self.g, self.settings, 0.0, &mut self.meter)
-        else {
-            return out;
-        };
-        let half = 0.5 * period_s(self.settings.mu_km3_s2, &s0);
-        // Moves: epoch k alone for k < free, then every free epoch; each +half and -half.
-        let moves = (0..=free).flat_map(|k| [half, -half].map(move |d| (k, d)));
-        for (slot, (k, d)) in out.iter_mut().zip(moves) {
-            let mut x = p.x;
-            let mut ok = true;
-            for (j, xj) in x.iter_mut().take(free).indexed() {
-                if j == k || k == free {
-                    *xj += d;
-                }
-            }
-            // A moved free impulse keeps its RTN components at its new epoch.
-            let vectors = free.min(self.impulses.saturating_sub(2));
-            for j in 0..vectors {
-                if !(j == k || k == free) {
-                    continue;
-                }
-                let old = self.chaser_state(&p.x, j);
-                let new = self.chaser_state(&x, j);
-                let (Some(old), Some(new)) = (old, new) else {
-                    ok = false;
-                    break;
-                };
-                let lo = free.saturating_add(j.saturating_mul(3));
-                let Some(dv) = x.get_mut(lo..lo.saturating_add(3)) else {
-                    ok = false;
-                    break;
-                };
-                let [a, b, c] = [dv.first(), dv.get(1), dv.get(2)];
-                let (Some(&a), Some(&b), Some(&c)) = (a, b, c) else {
-                    ok = false;
-                    break;
-                };
-                let local = rtn(&old, &[a, b, c]);
-                let inertial = from_rtn(&new, &local);
-                for (o, v) in dv.iter_mut().zip(inertial.iter()) {
-                    *o = *v;
-                }
-            }
-            if !ok || self.epochs(&x).is_none() {
-                continue;
-            }
-            if let Some((fam, cost)) = self.best_family(&x, &p.off) {
-                *slot = Some(Point {
-                    x,
-                    fam,
-                    off: p.off,
-                    cost,
-                });
-            }
-            if self.meter.exhausted() {
-                break;
-            }
-        }
-        out
-    }
-
-    /// The chaser's state just before free impulse `j` of the plan `x` (on client A's orbit
-    /// for the first, else flown through the earlier free impulses).
-    fn chaser_state(&mut self, x: &[f64; MAX_VARS], j: usize) -> Option<State> {
-        if j == 0 {
-            let t = *x.first()?;
-            return self.a.state_at(&self.g, self.settings, t, &mut self.meter);
-        }
-        let (pre, _, _) = self.fly_to_last_leg(x)?;
-        pre.get(j).map(|(s, _)| *s)
-    }
-
     /// Re-shoot the last leg at `p` (exact J2): `p` with the new offset and its cost, or
     /// `None` when the shooting did not reach `arrival_tol_km`.
     fn reshoot(&mut self, p: &Point) -> Option<Point> {
@@ -547,24 +467,6 @@ impl Ctx<'_> {
             work_units: self.meter.used(),
         })
     }
-}
-
-/// RTN components `local` of `state`'s frame as an inertial vector.
-fn from_rtn(state: &State, local: &Vec3) -> Vec3 {
-    let r = pos(state);
-    let h = cross(&r, &vel(state));
-    let rn = norm(&r);
-    let hn = norm(&h);
-    if rn <= 0.0 || hn <= 0.0 {
-        return [0.0; 3];
-    }
-    let ir = scale(&r, 1.0 / rn);
-    let ih = scale(&h, 1.0 / hn);
-    let it = cross(&ih, &ir);
-    add(
-        &add(&scale(&ir, local[0]), &scale(&it, local[1])),
-        &scale(&ih, local[2]),
-    )
 }
 
 /// `dv` in the RTN frame of `state`.

@@ -20,6 +20,7 @@
 //! See `docs/leo-tour.md`.
 
 mod arc;
+mod arc_hops;
 pub mod bound;
 pub mod elements;
 pub mod j2;

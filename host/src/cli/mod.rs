@@ -3,6 +3,8 @@
 pub mod demo;
 pub mod fairness;
 pub mod feed;
+pub mod leo_tour_rounds;
+pub mod leo_tour_sequence;
 pub mod montecarlo;
 pub mod plot;
 pub mod serve;

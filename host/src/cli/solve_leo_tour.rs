@@ -1,8 +1,12 @@
 //! `reconfig solve` for LEO tour fixtures: each arc of the fixture's order planned by the
 //! core's per-arc rendezvous (`reconfig_core::leo_tour::solve_arc`), then flown in the host
 //! truth model (J2 alone with the core's constants, and the full model) to report each arc's
-//! arrival miss. No re-planning yet: the misses are those of the plan as made.
+//! arrival miss, with each arc's last leg re-planned against the truth model; the order chosen
+//! first for a `[sequence]` fixture (`leo_tour_sequence`), and the chained multi-round
+//! correction after (`leo_tour_rounds`).
 
+use crate::cli::leo_tour_rounds::{print_rounds, rounds_json};
+use crate::cli::leo_tour_sequence::{choose_order, sequence_json};
 use crate::cli::solve::{report_rejection, EXIT_NOT_USABLE, EXIT_USABLE};
 use crate::fixture::leo_tour::LeoTourFixture;
 use crate::truth::ephemeris::julian_date;
@@ -10,14 +14,12 @@ use crate::truth::integrator::Tolerance;
 use crate::truth::plan_check::{full_model, j2_model, TruthSettings};
 use crate::truth::propagate::{propagate, Burn, EciState};
 use anyhow::{anyhow, Result};
-use reconfig_core::leo_tour::bound::plane_of;
 use reconfig_core::leo_tour::j2::State;
-use reconfig_core::leo_tour::sequence::{best_order, Sequence, SequenceStatus};
+use reconfig_core::leo_tour::sequence::SequenceStatus;
 use reconfig_core::leo_tour::shoot::{corrected_lambert, shoot, Family, Offset, Secant};
 use reconfig_core::leo_tour::{propagate as core_propagate, solve_arc, ArcProblem, ArcSolution};
 use reconfig_core::work::Meter;
 use serde_json::json;
-use std::collections::HashMap;
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -38,77 +40,6 @@ pub struct PlannedArc {
     pub problem: ArcProblem,
     /// Planning time, s.
     pub solve_time_s: f64,
-}
-
-/// The order chosen by the core's sequencing for a fixture with a `[sequence]` table.
-#[derive(Debug, Clone, Copy)]
-pub struct ChosenOrder {
-    /// The core's outcome (order, per-arc starts and durations, pruning counts).
-    pub sequence: Sequence,
-    /// Wall time of the sequencing (every arc it planned), s.
-    pub time_s: f64,
-}
-
-/// Choose the order of `f`'s tour with the core's branch-and-bound (each arc planned by the
-/// core's per-arc rendezvous with the `[sequence]` settings; an arc met twice, with the same
-/// clients, start and duration, is planned once), and return the fixture with that order and
-/// its intervals.
-///
-/// # Errors
-/// A client without an elliptic plane, or a sequencing request the core refuses.
-pub fn choose_order(f: &LeoTourFixture) -> Result<Option<(LeoTourFixture, ChosenOrder)>> {
-    let Some(spec) = f.sequence else {
-        return Ok(None);
-    };
-    let g = f.settings.gravity();
-    let planes = f
-        .clients
-        .iter()
-        .enumerate()
-        .map(|(k, s)| {
-            plane_of(&g, s).ok_or_else(|| anyhow!("client {} has no elliptic plane", k + 1))
-        })
-        .collect::<Result<Vec<_>>>()?;
-    let mut states: HashMap<(usize, u64), Option<State>> = HashMap::new();
-    let mut arcs: HashMap<(usize, usize, u64, u64), Option<f64>> = HashMap::new();
-    let started = Instant::now();
-    let sequence = best_order(&g, &planes, &spec.settings, |i, j, t0, dt| {
-        if let Some(c) = arcs.get(&(i, j, t0.to_bits(), dt.to_bits())) {
-            return *c;
-        }
-        let mut at = |k: usize| {
-            *states
-                .entry((k, t0.to_bits()))
-                .or_insert_with(|| core_propagate(&f.settings, &f.clients[k], t0))
-        };
-        let cost = match (at(i), at(j)) {
-            (Some(from), Some(to)) => solve_arc(
-                &ArcProblem {
-                    from,
-                    to,
-                    duration_s: dt,
-                    impulses: f.impulses,
-                },
-                &spec.arc_settings,
-            )
-            .ok()
-            .filter(|s| s.status != reconfig_core::leo_tour::Status::ArrivalMissed)
-            .map(|s| s.total_dv_mps),
-            _ => None,
-        };
-        arcs.insert((i, j, t0.to_bits(), dt.to_bits()), cost);
-        cost
-    })
-    .map_err(|e| anyhow!("sequencing refused: {e:?}"))?;
-    let time_s = started.elapsed().as_secs_f64();
-    let n = usize::from(sequence.len);
-    let mut chosen = f.clone();
-    chosen.order = sequence.order[..n]
-        .iter()
-        .map(|&k| usize::from(k))
-        .collect();
-    chosen.intervals_s = sequence.durations_s[..n.saturating_sub(1)].to_vec();
-    Ok(Some((chosen, ChosenOrder { sequence, time_s })))
 }
 
 /// Plan every arc of the fixture's order.
@@ -202,6 +133,31 @@ pub fn replan_last_leg(
     arc: &PlannedArc,
     settings: &reconfig_core::leo_tour::Settings,
 ) -> Result<(f64, f64)> {
+    replan_last_leg_states(arc, settings).map(|r| (r.miss_m, r.dv_mps))
+}
+
+/// What a last-leg re-plan in the truth model reached.
+#[derive(Debug, Clone, Copy)]
+pub struct Replanned {
+    /// Arrival miss, m.
+    pub miss_m: f64,
+    /// The arc's Δv after the re-plan, m/s.
+    pub dv_mps: f64,
+    /// The chaser's truth state at the arrival after the matching burn (the reached position,
+    /// the client's velocity).
+    pub chaser_end: EciState,
+    /// The client's truth state at the arrival.
+    pub client_end: EciState,
+}
+
+/// [`replan_last_leg`] with the states it reached.
+///
+/// # Errors
+/// As [`replan_last_leg`]; also when no truth flight of the re-planned leg succeeded.
+pub fn replan_last_leg_states(
+    arc: &PlannedArc,
+    settings: &reconfig_core::leo_tour::Settings,
+) -> Result<Replanned> {
     let s = &arc.solution;
     let m = usize::from(s.impulses);
     let last = m - 2;
@@ -289,6 +245,7 @@ pub fn replan_last_leg(
         }
     }
     let mut best = (f64::INFINITY, f64::INFINITY);
+    let mut best_end: Option<EciState> = None;
     let mut jac = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     let mut prev: Option<([f64; 3], [f64; 3])> = None;
     for _ in 0..20 {
@@ -325,6 +282,7 @@ pub fn replan_last_leg(
         let total = free + dv(&v_dep, &r.vel_km_s) + dv(&client.end.vel_km_s, &end.vel_km_s);
         if miss_m < best.0 {
             best = (miss_m, total);
+            best_end = Some(end);
         }
         if miss_m < 1e-3 {
             break;
@@ -356,23 +314,15 @@ pub fn replan_last_leg(
             *o -= d;
         }
     }
-    Ok(best)
-}
-
-fn sequence_json(c: &ChosenOrder) -> serde_json::Value {
-    let q = &c.sequence;
-    let n = usize::from(q.len);
-    json!({
-        "status": format!("{:?}", q.status),
-        "order": q.order[..n].iter().map(|&k| usize::from(k) + 1).collect::<Vec<_>>(),
-        "total_dv_mps": q.total_dv_mps,
-        "durations_s": q.durations_s[..n.saturating_sub(1)].to_vec(),
-        "arcs_planned": q.arcs_planned,
-        "arcs_in_tree": q.arcs_in_tree,
-        "orders_completed": q.orders_completed,
-        "orders_total": q.orders_total,
-        "bound_violations": q.bound_violations,
-        "time_s": c.time_s,
+    let end = best_end.ok_or_else(|| anyhow!("no truth flight of the re-planned last leg"))?;
+    Ok(Replanned {
+        miss_m: best.0,
+        dv_mps: best.1,
+        chaser_end: EciState {
+            pos_km: end.pos_km,
+            vel_km_s: client.end.vel_km_s,
+        },
+        client_end: client.end,
     })
 }
 
@@ -435,6 +385,8 @@ pub fn run(f: &LeoTourFixture, json_output: bool) -> Result<ExitCode> {
         let after = replan_last_leg(a, &f.settings).unwrap_or((f64::NAN, f64::NAN));
         rows.push((a, j2_miss, full_miss, after));
     }
+    // The chained multi-round correction in the truth model; an error is reported, not fatal.
+    let rounds = crate::cli::leo_tour_rounds::multi_round(f);
     if json_output {
         let arcs_json: Vec<_> = rows
             .iter()
@@ -478,6 +430,7 @@ pub fn run(f: &LeoTourFixture, json_output: bool) -> Result<ExitCode> {
                 "total_dv_mps": total,
                 "sequence": seq_json,
                 "arcs": arcs_json,
+                "multi_round": rounds_json(&rounds),
                 "published": {
                     "arc_dv_mps": f.published.arc_dv_mps,
                     "total_dv_mps": f.published.total_dv_mps,
@@ -543,6 +496,7 @@ pub fn run(f: &LeoTourFixture, json_output: bool) -> Result<ExitCode> {
             .total_dv_mps
             .map_or(String::new(), |p| format!(" (published {p:.3})"));
         println!("  total {total:.3} m/s{published}");
+        print_rounds(&rounds);
     }
     Ok(ExitCode::from(if usable {
         EXIT_USABLE
