@@ -49,6 +49,7 @@ fn main() {
     let has = |feature: &str| std::env::var_os(format!("CARGO_FEATURE_{feature}")).is_some();
     let (with_a, with_b) = (has("PSEUDOSPECTRAL"), has("IMPULSIVE"));
     let with_geo = has("GEO_TOUR");
+    let with_leo = has("LEO_TOUR");
     for f in &fixtures {
         println!("cargo:rerun-if-changed={}", f.file.display());
         let carried = match f.planner {
@@ -58,6 +59,7 @@ fn main() {
             | fixture_set::Planner::ImpulsiveForm
             | fixture_set::Planner::ImpulsiveFormFixedPoint => with_b,
             fixture_set::Planner::GeoTour => with_geo,
+            fixture_set::Planner::LeoArc => with_leo,
         };
         if !carried {
             continue;
@@ -69,6 +71,7 @@ fn main() {
             fixture_set::Planner::ImpulsiveForm => "Planner::ImpulsiveForm",
             fixture_set::Planner::ImpulsiveFormFixedPoint => "Planner::ImpulsiveFormFixedPoint",
             fixture_set::Planner::GeoTour => "Planner::GeoTour",
+            fixture_set::Planner::LeoArc => "Planner::LeoArc",
         };
         writeln!(
             code,

@@ -29,6 +29,10 @@ pub enum Planner {
     /// The GEO servicing tour, `reconfig_core::geo_tour`, with the fixture's settings: carried
     /// only by the GEO image (`cargo firmware-geo`).
     GeoTour,
+    /// One arc of the LEO rendezvous tour, `reconfig_core::leo_tour::solve_arc`, with the
+    /// fixture's settings: carried only by the LEO image (`cargo firmware-leo`). Baked from the
+    /// single-arc LEO fixtures (an order of two clients, no sequencing).
+    LeoArc,
 }
 
 impl Planner {
@@ -41,6 +45,7 @@ impl Planner {
             | Self::ImpulsiveForm
             | Self::ImpulsiveFormFixedPoint => "impulsive",
             Self::GeoTour => "geo-tour",
+            Self::LeoArc => "leo-tour",
         }
     }
 }
@@ -100,8 +105,35 @@ pub fn encode_all(dir: &Path) -> Result<Vec<EncodedFixture>, String> {
     let mut out: Vec<EncodedFixture> = Vec::new();
     for file in fixture_files(dir)? {
         let text = std::fs::read_to_string(&file).unwrap_or_default();
-        // The LEO tour (issue 13) has no on-board image yet: its fixtures are host-only.
+        // The LEO tour (issue 13): its single-arc fixtures run on the LEO image; a whole tour
+        // (several arcs, the truth model, the sequencing) is host-only.
         if reconfig_host::fixture::leo_tour::is_leo_tour(&text) {
+            let f = reconfig_host::fixture::leo_tour::load(&file).map_err(|e| format!("{e:#}"))?;
+            if f.order.len() != 2 || f.sequence.is_some() {
+                continue;
+            }
+            let (Some(&from), Some(&to), Some(&duration_s)) =
+                (f.order.first(), f.order.get(1), f.intervals_s.first())
+            else {
+                continue;
+            };
+            let problem = reconfig_core::leo_tour::ArcProblem {
+                from: f.clients[from],
+                to: f.clients[to],
+                duration_s,
+                impulses: f.impulses,
+            };
+            let problem = postcard::to_stdvec(&(&problem, &f.settings))
+                .map_err(|e| format!("{}: {e}", f.name))?;
+            push_unique(
+                &mut out,
+                EncodedFixture {
+                    name: f.name,
+                    file,
+                    planner: Planner::LeoArc,
+                    problem,
+                },
+            )?;
             continue;
         }
         if reconfig_host::fixture::geo_tour::is_geo_tour(&text) {

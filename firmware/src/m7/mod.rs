@@ -32,6 +32,8 @@ use measure::{measured, repaint_stack, systick};
 use output::{fail, print_result, report, Out};
 #[cfg(feature = "geo_tour")]
 use reconfig_core::geo_tour;
+#[cfg(feature = "leo_tour")]
+use reconfig_core::leo_tour;
 use reconfig_core::{impulsive, pseudospectral};
 
 /// Which planner a baked-in fixture is for.
@@ -51,6 +53,8 @@ pub enum Planner {
     ImpulsiveFormFixedPoint,
     /// The GEO servicing tour (the GEO image); its bytes carry `(Problem, Settings)`.
     GeoTour,
+    /// One arc of the LEO tour (the LEO image); its bytes carry `(ArcProblem, Settings)`.
+    LeoArc,
 }
 
 /// A fixture baked in by `build.rs`: the postcard bytes of the planner's `Problem`.
@@ -196,6 +200,8 @@ fn main() -> ! {
                     &mut *IM_SOLUTION,
                 );
             }
+            #[cfg(feature = "leo_tour")]
+            Planner::LeoArc => run_leo_arc(&mut out, (index, marker, fixture)),
             #[cfg(feature = "geo_tour")]
             Planner::GeoTour => run_geo_tour(
                 &mut out,
@@ -366,6 +372,30 @@ fn run_geo_tour(
         figures,
     );
     print_result(out, index, &run.result.map(|()| &*solution));
+}
+
+/// One LEO arc (the LEO image): its bytes carry `(ArcProblem, Settings)`. The arc planner
+/// keeps its state on the stack (no workspace), so its stack figure is its memory.
+#[cfg(feature = "leo_tour")]
+#[inline(never)]
+fn run_leo_arc(out: &mut Out, (index, marker, fixture): (usize, u32, &Fixture)) {
+    repaint_stack();
+    let (problem, settings): (leo_tour::ArcProblem, leo_tour::Settings) = decode(fixture);
+    let run = measured(marker, || {
+        leo_tour::solve_arc(black_box(&problem), black_box(&settings))
+    });
+    let units = run.result.as_ref().ok().map(|s| s.work_units);
+    let figures = (run.ticks, units);
+    report(
+        out,
+        index,
+        fixture,
+        "leo-tour",
+        run.result.is_ok(),
+        run.stack_bytes,
+        figures,
+    );
+    print_result(out, index, &run.result);
 }
 
 #[panic_handler]

@@ -3,7 +3,7 @@
 
 use std::fmt::Write as _;
 
-use reconfig_core::{geo_tour, impulsive, pseudospectral};
+use reconfig_core::{geo_tour, impulsive, leo_tour, pseudospectral};
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 
@@ -84,5 +84,11 @@ pub fn host_result(planner: Planner, problem: &[u8]) -> Vec<u8> {
             },
             |result, s| encode(&result.map(|()| s)),
         ),
+        // A LEO arc's bytes carry `(ArcProblem, Settings)`; the arc planner has no workspace.
+        Planner::LeoArc => {
+            let (p, settings): (leo_tour::ArcProblem, leo_tour::Settings) =
+                postcard::from_bytes(problem).expect("the baked problem decodes");
+            encode(&leo_tour::solve_arc(&p, &settings))
+        }
     }
 }

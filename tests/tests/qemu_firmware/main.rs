@@ -22,8 +22,9 @@
 //!
 //! Modules: [`prerequisites`] (what the run needs, skip or fail), [`image`] (build, run and parse
 //! an image), [`host`] (the host's result of a fixture), [`record`] (the figures file, drift
-//! and budget checks), [`disassembly`] (the fused multiply-add check), [`default_image`] and
-//! [`geo_image`] (the tests of each image).
+//! and budget checks), [`disassembly`] (the fused multiply-add check), [`default_image`],
+//! [`geo_image`] and [`leo_image`] (the tests of each image; the LEO arc image's record is its
+//! own file, `fixtures/golden/m7-figures-leo.toml`).
 
 #[path = "../../../firmware/fixture_set.rs"]
 mod fixture_set;
@@ -33,5 +34,6 @@ mod disassembly;
 mod geo_image;
 mod host;
 mod image;
+mod leo_image;
 mod prerequisites;
 mod record;
