@@ -125,6 +125,38 @@ pub enum SequenceError {
     },
 }
 
+/// The paper's interval rule (eq. 9-11) for an arc from `chaser` to `target` starting at
+/// `start_s` (nodes drifted there at their secular rates): `Δt_max = revolutions` periods of
+/// the tour's `first` client; where the node gap closes (`ΔΩ ΔΩ̇ <= 0`) the time for J2 to close
+/// it (`|ΔΩ / ΔΩ̇|`, the printed ratio's magnitude) if shorter than `Δt_max`, else `Δt_max`;
+/// where it opens, `Δt_max / 2`; never below `min_duration_s`.
+pub fn paper_rule_duration_s(
+    g: &Gravity,
+    first: &Plane,
+    (chaser, target): (&Plane, &Plane),
+    start_s: f64,
+    (revolutions, min_duration_s): (f64, f64),
+) -> f64 {
+    let two_pi = 2.0 * core::f64::consts::PI;
+    let period = two_pi * libm::sqrt(first.a_km * first.a_km * first.a_km / g.mu_km3_s2);
+    let dt_max = revolutions * period;
+    let raan = |p: &Plane| p.raan_rad + p.raan_rate_rad_s * start_s;
+    let mut d_raan = raan(target) - raan(chaser);
+    d_raan -= two_pi * libm::round(d_raan / two_pi);
+    let d_rate = target.raan_rate_rad_s - chaser.raan_rate_rad_s;
+    let dt = if d_raan * d_rate <= 0.0 {
+        let elim = if d_rate == 0.0 {
+            f64::INFINITY
+        } else {
+            (d_raan / d_rate).abs()
+        };
+        elim.min(dt_max)
+    } else {
+        0.5 * dt_max
+    };
+    dt.max(min_duration_s)
+}
+
 struct Search<'a, F> {
     g: &'a Gravity,
     planes: &'a [Plane],
@@ -164,28 +196,14 @@ impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
                 min_duration_s,
             } => {
                 let first = self.planes.get(usize::from(*self.path.first()?))?;
-                let period = 2.0
-                    * core::f64::consts::PI
-                    * libm::sqrt(first.a_km * first.a_km * first.a_km / self.g.mu_km3_s2);
-                let dt_max = revolutions * period;
                 let (c, t) = (self.planes.get(from)?, self.planes.get(to)?);
-                let raan = |p: &Plane| p.raan_rad + p.raan_rate_rad_s * start_s;
-                let mut d_raan = raan(t) - raan(c);
-                d_raan -= 2.0
-                    * core::f64::consts::PI
-                    * libm::round(d_raan / (2.0 * core::f64::consts::PI));
-                let d_rate = t.raan_rate_rad_s - c.raan_rate_rad_s;
-                let dt = if d_raan * d_rate <= 0.0 {
-                    let elim = if d_rate == 0.0 {
-                        f64::INFINITY
-                    } else {
-                        (d_raan / d_rate).abs()
-                    };
-                    elim.min(dt_max)
-                } else {
-                    0.5 * dt_max
-                };
-                Some(dt.max(min_duration_s))
+                Some(paper_rule_duration_s(
+                    self.g,
+                    first,
+                    (c, t),
+                    start_s,
+                    (revolutions, min_duration_s),
+                ))
             }
         }
     }

@@ -219,3 +219,87 @@ pub fn shoot(
         ..b
     })
 }
+
+/// [`shoot`] from `start`, and where that does not reach `accept_km`, again with continuation
+/// in J2 from the two-body Lambert leg: J2 scaled up in steps of `1/stages`, each shooting
+/// started from the previous step's offset scaled by the ratio of the J2 values (the offset is
+/// nearly linear in J2) and its quasi-Newton matrix; a step whose shooting fails (its first
+/// Lambert solve has no solution in the family) or does not reach `accept_km` is halved, at
+/// most `3 stages` shootings in all. On long legs (20-30 revolutions: thousands of km of J2
+/// drift) a start far from the answer can leave the family's Lambert solutions before the
+/// aim-point iteration settles; each step starts within a fraction of its own offset. The
+/// better of the direct and the continued full-J2 shots, or `None` (a continuation that does
+/// not reach full J2 gives no shot).
+#[allow(clippy::too_many_arguments)]
+pub fn shoot_continued(
+    g: &Gravity,
+    settings: &Settings,
+    from: &State,
+    target_r: &Vec3,
+    tof_s: f64,
+    fam: Family,
+    start: &Offset,
+    (stages, accept_km): (u8, f64),
+    secant: &mut Secant,
+    meter: &mut Meter,
+) -> Option<Shot> {
+    let direct = shoot(
+        g, settings, from, target_r, tof_s, fam, start, secant, meter,
+    );
+    if direct.is_some_and(|s| s.miss_km <= accept_km) || stages == 0 {
+        return direct;
+    }
+    *secant = Secant::default();
+    let mut off = Offset::default();
+    let mut reached = 0.0_f64;
+    let mut increment = 1.0 / f64::from(stages);
+    let mut continued: Option<Shot> = None;
+    for _ in 0..u16::from(stages).saturating_mul(3) {
+        let fraction = (reached + increment).min(1.0);
+        let scaled = Gravity {
+            j2: g.j2 * fraction,
+            ..*g
+        };
+        let trial_start = Offset {
+            dr_km: if reached > 0.0 {
+                scale(&off.dr_km, fraction / reached)
+            } else {
+                off.dr_km
+            },
+            dv_kmps: off.dv_kmps,
+        };
+        let mut trial_secant = *secant;
+        let shot = shoot(
+            &scaled,
+            settings,
+            from,
+            target_r,
+            tof_s,
+            fam,
+            &trial_start,
+            &mut trial_secant,
+            meter,
+        )
+        .filter(|s| s.miss_km <= accept_km);
+        match shot {
+            Some(s) => {
+                off = s.offset;
+                *secant = trial_secant;
+                reached = fraction;
+                if reached >= 1.0 {
+                    continued = Some(s);
+                    break;
+                }
+            }
+            None => increment *= 0.5,
+        }
+        if meter.exhausted() {
+            break;
+        }
+    }
+    match (direct, continued) {
+        (Some(d), Some(c)) if d.miss_km < c.miss_km => Some(d),
+        (d, None) => d,
+        (_, c) => c,
+    }
+}

@@ -151,3 +151,69 @@ fn the_quasi_newton_shooting_converges_in_a_few_iterations() {
     assert!(again.miss_km <= 1e-6, "{}", again.miss_km);
     assert!(iterations <= 6, "{iterations}");
 }
+
+#[test]
+fn continuation_in_j2_recovers_a_shooting_started_far_away() {
+    // The paper's arc's last leg (14 revolutions) aimed from 3000 km off the answer: the
+    // direct shooting does not reach 1e-6 km within its iterations, continuation in J2 from
+    // the two-body leg does, and reaches the same departure velocity as a good start.
+    use shoot::{shoot, shoot_continued, Family, Offset, Secant};
+    let p = paper_arc();
+    let settings = Settings {
+        shoot_max_iter: 6,
+        ..Settings::default()
+    };
+    let g = settings.gravity();
+    let n = j2::step_count(p.duration_s, settings.step_s, 100_000).unwrap();
+    let end = j2::propagate_steps(&g, &p.to, p.duration_s, n).unwrap();
+    let target = j2::pos(&end);
+    let fam = Family {
+        revs: 14,
+        branch: crate::lambert::Branch::Left,
+    };
+    let far = Offset {
+        dr_km: [3000.0, -2000.0, 1000.0],
+        dv_kmps: [0.0; 3],
+    };
+    let mut meter = crate::work::Meter::new(u64::MAX);
+    let direct = shoot(
+        &g,
+        &settings,
+        &p.from,
+        &target,
+        p.duration_s,
+        fam,
+        &far,
+        &mut Secant::default(),
+        &mut meter,
+    );
+    assert!(direct.is_none_or(|d| d.miss_km > 1e-6), "{direct:?}");
+    let continued = shoot_continued(
+        &g,
+        &settings,
+        &p.from,
+        &target,
+        p.duration_s,
+        fam,
+        &far,
+        (8, 1e-6),
+        &mut Secant::default(),
+        &mut meter,
+    )
+    .unwrap();
+    assert!(continued.miss_km <= 1e-6, "{}", continued.miss_km);
+    let good = shoot(
+        &g,
+        &Settings::default(),
+        &p.from,
+        &target,
+        p.duration_s,
+        fam,
+        &Offset::default(),
+        &mut Secant::default(),
+        &mut meter,
+    )
+    .unwrap();
+    let dv = crate::vec3::norm(&crate::vec3::sub(&continued.v_dep_kmps, &good.v_dep_kmps));
+    assert!(dv < 1e-9, "{dv} km/s");
+}

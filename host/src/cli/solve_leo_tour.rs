@@ -16,7 +16,7 @@ use crate::truth::propagate::{propagate, Burn, EciState};
 use anyhow::{anyhow, Result};
 use reconfig_core::leo_tour::j2::State;
 use reconfig_core::leo_tour::sequence::SequenceStatus;
-use reconfig_core::leo_tour::shoot::{corrected_lambert, shoot, Family, Offset, Secant};
+use reconfig_core::leo_tour::shoot::{corrected_lambert, shoot_continued, Family, Offset, Secant};
 use reconfig_core::leo_tour::{propagate as core_propagate, solve_arc, ArcProblem, ArcSolution};
 use reconfig_core::work::Meter;
 use serde_json::json;
@@ -88,6 +88,19 @@ fn eci(s: &State) -> EciState {
 /// Arrival miss (m) of `arc`'s plan flown in the truth model `model` (J2 alone or full), the
 /// chaser and the client both starting from their planning states at the arc start.
 pub fn truth_miss_m(arc: &PlannedArc, full: bool) -> Result<f64> {
+    let (chaser, client) = truth_flight(arc, full)?;
+    let d: Vec<f64> = (0..3)
+        .map(|k| chaser.pos_km[k] - client.pos_km[k])
+        .collect();
+    Ok((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt() * 1e3)
+}
+
+/// `arc`'s plan (every burn, the last included) flown in the truth model (J2 alone or full)
+/// from the arc's start states: (the chaser's end state, the client's).
+///
+/// # Errors
+/// A truth-model propagation error.
+pub fn truth_flight(arc: &PlannedArc, full: bool) -> Result<(EciState, EciState)> {
     let ts = TruthSettings {
         epoch_jd: julian_date(2022, 11, 3, 0, 0, 0.0) + arc.start_s / 86_400.0,
         ..TruthSettings::default_settings()
@@ -116,10 +129,7 @@ pub fn truth_miss_m(arc: &PlannedArc, full: bool) -> Result<f64> {
         &Tolerance::TRUTH,
     )?;
     let client = propagate(&model, &eci(&arc.problem.to), &[], dur, &Tolerance::TRUTH)?;
-    let d: Vec<f64> = (0..3)
-        .map(|k| chaser.end.pos_km[k] - client.end.pos_km[k])
-        .collect();
-    Ok((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt() * 1e3)
+    Ok((chaser.end, client.end))
 }
 
 /// The arc's last leg re-planned against the full truth model from the truth state reached at
@@ -228,28 +238,71 @@ pub fn replan_last_leg_states(
     let mut meter = Meter::new(u64::MAX);
     // Then the core's J2 shooting from the reached truth state (the planning model's own
     // correction): the truth iterations start a J2-to-truth difference away, not a
-    // two-body-to-truth one.
-    if let Some(shot) = shoot(
-        &settings.gravity(),
-        settings,
-        &from,
-        &client.end.pos_km,
-        dur - t_last,
-        fam,
-        &off,
-        &mut Secant::default(),
-        &mut meter,
-    ) {
-        if shot.miss_km <= 1.0 {
+    // two-body-to-truth one, and with the J2 model's Jacobian of the miss in the aim offset
+    // (the inverse of the shooting's quasi-Newton matrix), which the truth model's is close
+    // to: on 30-revolution legs the identity start diverged (a 11 km miss went to 2500 km).
+    let mut secant = Secant::default();
+    let mut jac = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    // Continuation: first the J2 shooting from the plan's own departure state (the planning
+    // model's flight of the burns before the last leg, where the core's search converged), then
+    // from the truth state with that offset and quasi-Newton matrix. Started from the client's
+    // two-body offset directly, the shooting from the truth state could fail on 30-revolution
+    // legs (thousands of km of J2 drift) and the truth iterations then diverged.
+    let g = settings.gravity();
+    let planned_departure = (|| {
+        let mut state = arc.problem.from;
+        let mut t = 0.0;
+        for b in &s.burns[..last] {
+            state = core_propagate(settings, &state, b.epoch_s - t)?;
+            for k in 0..3 {
+                state[3 + k] += b.dv_kmps[k];
+            }
+            t = b.epoch_s;
+        }
+        core_propagate(settings, &state, t_last - t)
+    })();
+    let target = client.end.pos_km;
+    let j2_shot = |from: &State, start: &Offset, secant: &mut Secant, meter: &mut Meter| {
+        shoot_continued(
+            &g,
+            settings,
+            from,
+            &target,
+            dur - t_last,
+            fam,
+            start,
+            (8, 1e-3),
+            secant,
+            meter,
+        )
+        .filter(|shot| shot.miss_km <= 1.0)
+    };
+    if let Some(dep) = planned_departure {
+        if let Some(shot) = j2_shot(&dep, &off, &mut secant, &mut meter) {
             off = shot.offset;
+        }
+    }
+    if let Some(shot) = j2_shot(&from, &off, &mut secant, &mut meter) {
+        off = shot.offset;
+        let h = secant.inv_jac;
+        let cols: Vec<Option<[f64; 3]>> = (0..3)
+            .map(|k| {
+                let mut e = [0.0; 3];
+                e[k] = 1.0;
+                solve3(&h, &e)
+            })
+            .collect();
+        if let [Some(c0), Some(c1), Some(c2)] = cols[..] {
+            jac = std::array::from_fn(|i| [c0[i], c1[i], c2[i]]);
         }
     }
     let mut best = (f64::INFINITY, f64::INFINITY);
     let mut best_end: Option<EciState> = None;
-    let mut jac = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     let mut prev: Option<([f64; 3], [f64; 3])> = None;
     for _ in 0..20 {
-        let (v_dep, _) = corrected_lambert(
+        // A Lambert leg that does not solve at a moved aim point ends the re-plan with the
+        // best flight so far (none at all is an error, below).
+        let Some((v_dep, _)) = corrected_lambert(
             settings,
             &from,
             &client.end.pos_km,
@@ -257,8 +310,9 @@ pub fn replan_last_leg_states(
             fam,
             &off,
             &mut meter,
-        )
-        .ok_or_else(|| anyhow!("the re-planned last leg has no Lambert solution"))?;
+        ) else {
+            break;
+        };
         let start = EciState {
             pos_km: r.pos_km,
             vel_km_s: v_dep,
@@ -314,7 +368,9 @@ pub fn replan_last_leg_states(
             *o -= d;
         }
     }
-    let end = best_end.ok_or_else(|| anyhow!("no truth flight of the re-planned last leg"))?;
+    let end = best_end.ok_or_else(|| {
+        anyhow!("the re-planned last leg has no Lambert solution or no truth flight")
+    })?;
     Ok(Replanned {
         miss_m: best.0,
         dv_mps: best.1,
