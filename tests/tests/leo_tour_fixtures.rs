@@ -192,7 +192,7 @@ fn example_one_flown_in_the_truth_model_with_multi_round_correction_arrives_with
     // The paper's multi-round correction, chained: each arc planned by the core from the truth
     // states reached (JGM-3 8x8, drag, Sun, Moon), its last leg re-planned against the truth,
     // the next arc starting where the chaser really is. Issue 13: every arrival within 1 m
-    // (the paper's tolerance was 5 km); measured 0.67 / 0.03 / 0.08 / 0.05 mm after, 3.9 /
+    // (the paper's tolerance was 5 km); measured 0.08 / 0.03 / 0.10 / 0.02 mm after, 3.9 /
     // 0.15 / 4.5 / 18.0 km before; flown 1246.041 m/s.
     let f = load(&fixtures_dir().join("leo-tour-example1-printed.toml")).unwrap();
     let rounds = multi_round(&f).unwrap();

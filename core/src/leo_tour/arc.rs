@@ -469,19 +469,25 @@ impl Ctx<'_> {
     }
 }
 
-/// `dv` in the RTN frame of `state`.
-pub fn rtn(state: &State, dv: &Vec3) -> Vec3 {
+/// The radial, along-track and normal unit vectors of `state`; `None` for a degenerate state.
+pub(crate) fn rtn_axes(state: &State) -> Option<[Vec3; 3]> {
     let r = pos(state);
     let h = cross(&r, &vel(state));
     let rn = norm(&r);
     let hn = norm(&h);
     if rn <= 0.0 || hn <= 0.0 {
-        return [0.0; 3];
+        return None;
     }
     let ir = scale(&r, 1.0 / rn);
     let ih = scale(&h, 1.0 / hn);
-    let it = cross(&ih, &ir);
-    [dot(dv, &ir), dot(dv, &it), dot(dv, &ih)]
+    Some([ir, cross(&ih, &ir), ih])
+}
+
+/// `dv` in the RTN frame of `state`.
+pub fn rtn(state: &State, dv: &Vec3) -> Vec3 {
+    rtn_axes(state).map_or([0.0; 3], |[ir, it, ih]| {
+        [dot(dv, &ir), dot(dv, &it), dot(dv, &ih)]
+    })
 }
 
 /// Insert `p` into the sorted list of the `keep` cheapest, one per family and neighbourhood

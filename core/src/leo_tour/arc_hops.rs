@@ -1,11 +1,11 @@
 //! Hops of the per-arc search: the best refined plan with its free impulse epochs moved by half
 //! a revolution, so the refinement can restart in the basin of the other node.
 
-use super::arc::{period_s, rtn, Ctx, Point};
-use super::j2::{pos, vel, State};
+use super::arc::{period_s, rtn, rtn_axes, Ctx, Point};
+use super::j2::State;
 use super::types::{MAX_HOPS, MAX_VARS};
 use crate::indexed::IndexedExt as _;
-use crate::vec3::{add, cross, norm, scale, Vec3};
+use crate::vec3::{add, scale, Vec3};
 
 impl Ctx<'_> {
     /// Hops from `p`: its free epochs moved by half a revolution of client A's orbit (each
@@ -93,18 +93,10 @@ impl Ctx<'_> {
 
 /// RTN components `local` of `state`'s frame as an inertial vector.
 fn from_rtn(state: &State, local: &Vec3) -> Vec3 {
-    let r = pos(state);
-    let h = cross(&r, &vel(state));
-    let rn = norm(&r);
-    let hn = norm(&h);
-    if rn <= 0.0 || hn <= 0.0 {
-        return [0.0; 3];
-    }
-    let ir = scale(&r, 1.0 / rn);
-    let ih = scale(&h, 1.0 / hn);
-    let it = cross(&ih, &ir);
-    add(
-        &add(&scale(&ir, local[0]), &scale(&it, local[1])),
-        &scale(&ih, local[2]),
-    )
+    rtn_axes(state).map_or([0.0; 3], |[ir, it, ih]| {
+        add(
+            &add(&scale(&ir, local[0]), &scale(&it, local[1])),
+            &scale(&ih, local[2]),
+        )
+    })
 }

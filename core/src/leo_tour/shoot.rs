@@ -90,7 +90,7 @@ impl Default for Secant {
 
 impl Secant {
     /// `H v`.
-    fn apply(&self, v: &Vec3) -> Vec3 {
+    pub fn apply(&self, v: &Vec3) -> Vec3 {
         let [r0, r1, r2] = &self.inv_jac;
         [dot(r0, v), dot(r1, v), dot(r2, v)]
     }
@@ -98,7 +98,7 @@ impl Secant {
     /// Broyden's ("second") update on the inverse: after a step `s` of the aim offset that
     /// changed the miss by `y`, `H += (s - H y) y^T / (y^T y)`, so that `H y = s`. A zero or
     /// non-finite `y` leaves `H` as it is.
-    fn update(&mut self, s: &Vec3, y: &Vec3) {
+    pub fn update(&mut self, s: &Vec3, y: &Vec3) {
         let yy = dot(y, y);
         if !(yy > 0.0 && yy.is_finite()) {
             return;

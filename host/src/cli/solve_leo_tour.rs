@@ -242,7 +242,6 @@ pub fn replan_last_leg_states(
     // (the inverse of the shooting's quasi-Newton matrix), which the truth model's is close
     // to: on 30-revolution legs the identity start diverged (a 11 km miss went to 2500 km).
     let mut secant = Secant::default();
-    let mut jac = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     // Continuation: first the J2 shooting from the plan's own departure state (the planning
     // model's flight of the burns before the last leg, where the core's search converged), then
     // from the truth state with that offset and quasi-Newton matrix. Started from the client's
@@ -282,23 +281,17 @@ pub fn replan_last_leg_states(
             off = shot.offset;
         }
     }
+    // The truth iterations keep the J2 shooting's quasi-Newton matrix as their start: the
+    // truth model's Jacobian of the miss in the aim offset is close to the J2 model's.
     if let Some(shot) = j2_shot(&from, &off, &mut secant, &mut meter) {
         off = shot.offset;
-        let h = secant.inv_jac;
-        let cols: Vec<Option<[f64; 3]>> = (0..3)
-            .map(|k| {
-                let mut e = [0.0; 3];
-                e[k] = 1.0;
-                solve3(&h, &e)
-            })
-            .collect();
-        if let [Some(c0), Some(c1), Some(c2)] = cols[..] {
-            jac = std::array::from_fn(|i| [c0[i], c1[i], c2[i]]);
-        }
+    } else {
+        secant = Secant::default();
     }
     let mut best = (f64::INFINITY, f64::INFINITY);
     let mut best_end: Option<EciState> = None;
     let mut prev: Option<([f64; 3], [f64; 3])> = None;
+    let norm3 = |v: &[f64; 3]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
     for _ in 0..20 {
         // A Lambert leg that does not solve at a moved aim point ends the re-plan with the
         // best flight so far (none at all is an error, below).
@@ -341,28 +334,18 @@ pub fn replan_last_leg_states(
         if miss_m < 1e-3 {
             break;
         }
-        // Broyden's secant update of the miss's Jacobian in the aim offset (the plain
-        // aim-point step contracts only ~0.7 per flight in the full model).
+        // Broyden's update of the inverse Jacobian (the core's `Secant`, as in its J2
+        // shooting; the plain aim-point step contracts only ~0.7 per flight in the full model).
         let m3 = [miss[0], miss[1], miss[2]];
         if let Some((d_prev, m_prev)) = prev {
             let dd: [f64; 3] = std::array::from_fn(|k| off.dr_km[k] - d_prev[k]);
             let dm: [f64; 3] = std::array::from_fn(|k| m3[k] - m_prev[k]);
-            let dd2: f64 = dd.iter().map(|x| x * x).sum();
-            if dd2 > 0.0 {
-                let bdd: [f64; 3] =
-                    std::array::from_fn(|i| (0..3).map(|j| jac[i][j] * dd[j]).sum());
-                for i in 0..3 {
-                    for j in 0..3 {
-                        jac[i][j] += (dm[i] - bdd[i]) * dd[j] / dd2;
-                    }
-                }
-            }
+            secant.update(&dd, &dm);
         }
         prev = Some((off.dr_km, m3));
-        // A secant step longer than twice the plain one is not trusted (the plain step).
-        let norm3 = |v: &[f64; 3]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let step = solve3(&jac, &m3)
-            .filter(|st| norm3(st) <= 2.0 * norm3(&m3))
+        // A quasi-Newton step longer than five plain ones is not trusted (the plain step).
+        let step = Some(secant.apply(&m3))
+            .filter(|st| st.iter().all(|v| v.is_finite()) && norm3(st) <= 5.0 * norm3(&m3))
             .unwrap_or(m3);
         for (o, d) in off.dr_km.iter_mut().zip(&step) {
             *o -= d;
@@ -380,28 +363,6 @@ pub fn replan_last_leg_states(
         },
         client_end: client.end,
     })
-}
-
-/// `a x = b` for a 3x3 `a` by Cramer's rule; `None` when `a` is (nearly) singular.
-fn solve3(a: &[[f64; 3]; 3], b: &[f64; 3]) -> Option<[f64; 3]> {
-    let det = |m: &[[f64; 3]; 3]| {
-        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
-    };
-    let d = det(a);
-    if d.is_nan() || d.abs() <= 1e-12 {
-        return None;
-    }
-    let mut x = [0.0; 3];
-    for (k, xk) in x.iter_mut().enumerate() {
-        let mut m = *a;
-        for i in 0..3 {
-            m[i][k] = b[i];
-        }
-        *xk = det(&m) / d;
-    }
-    Some(x)
 }
 
 /// Solve and report a LEO tour fixture.

@@ -7,7 +7,8 @@ use reconfig_core::{geo_tour, impulsive, leo_tour, pseudospectral};
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 
-use crate::fixture_set::Planner;
+use crate::fixture_set::{EncodedFixture, Planner};
+use crate::image::Run;
 
 pub fn hex(bytes: &[u8]) -> String {
     bytes.iter().fold(String::new(), |mut s, b| {
@@ -90,5 +91,28 @@ pub fn host_result(planner: Planner, problem: &[u8]) -> Vec<u8> {
                 postcard::from_bytes(problem).expect("the baked problem decodes");
             encode(&leo_tour::solve_arc(&p, &settings))
         }
+    }
+}
+
+/// The image `image` ran exactly `fixtures` (all of `planner`), each with the host's result
+/// byte for byte.
+pub fn assert_bit_identical(run: &Run, fixtures: &[EncodedFixture], planner: Planner, image: &str) {
+    assert!(!fixtures.is_empty(), "no {image} fixtures to compare");
+    let names: Vec<&str> = fixtures.iter().map(|f| f.name.as_str()).collect();
+    let m7_names: Vec<&str> = run.fixtures.iter().map(|f| f.name.as_str()).collect();
+    assert_eq!(
+        m7_names, names,
+        "the {image} image ran a different fixture set"
+    );
+    for (fixture, m7) in fixtures.iter().zip(&run.fixtures) {
+        assert_eq!(m7.planner, planner.key(), "{}", fixture.name);
+        let host = hex(&host_result(planner, &fixture.problem));
+        assert!(
+            host == m7.hex,
+            "{}: the host and the emulated Cortex-M7 differ (host {} bytes, M7 {} bytes)",
+            fixture.name,
+            host.len() / 2,
+            m7.hex.len() / 2
+        );
     }
 }

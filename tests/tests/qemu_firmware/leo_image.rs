@@ -7,7 +7,7 @@ use std::sync::OnceLock;
 
 use crate::disassembly::assert_no_fused_multiply_add;
 use crate::fixture_set::{self, Planner};
-use crate::host::{hex, host_result};
+use crate::host::assert_bit_identical;
 use crate::image::{build_and_run, or_skip, Run};
 use crate::prerequisites::{notice, root, skip};
 use crate::record::{
@@ -48,25 +48,7 @@ fn leo_results_are_bit_identical_to_the_host() {
     let Some(run) = or_skip(test, run()) else {
         return;
     };
-    let fixtures = leo_fixtures();
-    assert!(
-        !fixtures.is_empty(),
-        "no single-arc LEO fixtures to compare"
-    );
-    let names: Vec<&str> = fixtures.iter().map(|f| f.name.as_str()).collect();
-    let m7_names: Vec<&str> = run.fixtures.iter().map(|f| f.name.as_str()).collect();
-    assert_eq!(m7_names, names, "the LEO image ran a different fixture set");
-    for (fixture, m7) in fixtures.iter().zip(&run.fixtures) {
-        assert_eq!(m7.planner, Planner::LeoArc.key(), "{}", fixture.name);
-        let host = hex(&host_result(Planner::LeoArc, &fixture.problem));
-        assert!(
-            host == m7.hex,
-            "{}: the host and the emulated Cortex-M7 differ (host {} bytes, M7 {} bytes)",
-            fixture.name,
-            host.len() / 2,
-            m7.hex.len() / 2
-        );
-    }
+    assert_bit_identical(run, &leo_fixtures(), Planner::LeoArc, "LEO");
 }
 
 #[test]
