@@ -124,7 +124,7 @@ impl Ctx<'_> {
     }
 
     /// Cost (km/s) of `x` with the last leg's offset frozen.
-    fn cost(&mut self, x: &[f64; MAX_VARS], fam: Family, off: &Offset) -> Option<f64> {
+    pub(crate) fn cost(&mut self, x: &[f64; MAX_VARS], fam: Family, off: &Offset) -> Option<f64> {
         self.evals = self.evals.saturating_add(1);
         let (pre, s, t) = self.fly_to_last_leg(x)?;
         let t_last = *t.get(self.impulses.checked_sub(2)?)?;
@@ -168,7 +168,7 @@ impl Ctx<'_> {
 
     /// The offset estimated from the client's own orbit: where two-body and J2 flights of the
     /// client from `t_s` to the arrival differ (the transfer ends on that orbit).
-    fn client_offset(&mut self, t_s: f64) -> Option<Offset> {
+    pub(crate) fn client_offset(&mut self, t_s: f64) -> Option<Offset> {
         let sb = self
             .b
             .state_at(&self.g, self.settings, t_s, &mut self.meter)?;

@@ -21,6 +21,7 @@
 
 mod arc;
 mod arc_hops;
+mod arc_warm;
 pub mod bound;
 pub mod elements;
 pub mod j2;
@@ -54,6 +55,28 @@ pub fn propagate(settings: &Settings, state: &j2::State, dt_s: f64) -> Option<j2
 /// [`PlanError`]: a field out of range, a client trajectory that cannot be propagated, no
 /// transfer found, or the budget spent before any plan.
 pub fn solve_arc(problem: &ArcProblem, settings: &Settings) -> Result<ArcSolution, PlanError> {
+    solve_arc_from(problem, settings, None)
+}
+
+/// Plan one arc warm-started from `plan`, an earlier plan of the same arc (same epochs from
+/// the arc start): it is the one candidate of the local search (then the hops) instead of the
+/// grid; where that gives no plan, the full search runs.
+///
+/// # Errors
+/// As [`solve_arc`].
+pub fn solve_arc_warm(
+    problem: &ArcProblem,
+    settings: &Settings,
+    plan: &ArcSolution,
+) -> Result<ArcSolution, PlanError> {
+    solve_arc_from(problem, settings, Some(plan))
+}
+
+fn solve_arc_from(
+    problem: &ArcProblem,
+    settings: &Settings,
+    warm: Option<&ArcSolution>,
+) -> Result<ArcSolution, PlanError> {
     validate::check(problem, settings)?;
     let g = settings.gravity();
     let mut meter = Meter::new(settings.work_budget);
@@ -90,7 +113,10 @@ pub fn solve_arc(problem: &ArcProblem, settings: &Settings) -> Result<ArcSolutio
         evals: 0,
         secant: shoot::Secant::default(),
     };
-    let candidates = ctx.grid();
+    let mut candidates = match warm {
+        Some(plan) => ctx.warm_candidates(plan),
+        None => ctx.grid(),
+    };
     let mut best: Option<(ArcSolution, arc::Point)> = None;
     let consider = |ctx: &mut Ctx, q: arc::Point, best: &mut Option<(ArcSolution, arc::Point)>| {
         if let Some(sol) = ctx.finish(&q) {
@@ -106,6 +132,15 @@ pub fn solve_arc(problem: &ArcProblem, settings: &Settings) -> Result<ArcSolutio
     for p in candidates.iter().flatten() {
         let q = ctx.refine(*p);
         consider(&mut ctx, q, &mut best);
+    }
+    // A warm start that gives no arriving plan falls back to the full search.
+    let warm_failed = best.is_none_or(|(b, _)| b.status == Status::ArrivalMissed);
+    if warm.is_some() && warm_failed && !ctx.meter.exhausted() {
+        candidates = ctx.grid();
+        for p in candidates.iter().flatten() {
+            let q = ctx.refine(*p);
+            consider(&mut ctx, q, &mut best);
+        }
     }
     // Hops: the best plan with its intermediate impulses moved by half revolutions (to the
     // other node of the plane change), refined again.

@@ -3,7 +3,8 @@
 //! reached, then its last leg re-planned against the truth model, and the next arc starting
 //! from where the chaser really is.
 //!
-//! Round n: the clients' truth states at the arc start (each flown in the truth model from the
+//! Round n (warm-started from the tour's plan of the same arc, `solve_arc_warm`): the clients'
+//! truth states at the arc start (each flown in the truth model from the
 //! tour epoch), the chaser's truth state (the end of round n − 1, or the first client's state
 //! at the epoch); the core plans the arc from those osculating states in its J2 model
 //! (`leo_tour::solve_arc`, the planning model re-initialised from the truth, as in the paper);
@@ -20,7 +21,7 @@ use crate::truth::plan_check::{full_model, TruthSettings};
 use crate::truth::propagate::{propagate, EciState};
 use anyhow::{anyhow, Result};
 use reconfig_core::leo_tour::j2::State;
-use reconfig_core::leo_tour::{solve_arc, ArcProblem, ArcSolution, Status};
+use reconfig_core::leo_tour::{solve_arc, solve_arc_warm, ArcProblem, ArcSolution, Status};
 use serde_json::json;
 use std::time::Instant;
 
@@ -65,12 +66,14 @@ fn to_eci(s: &State) -> EciState {
     }
 }
 
-/// Fly the fixture's tour (its order and intervals) with the chained multi-round correction.
+/// Fly the fixture's tour (its order and intervals) with the chained multi-round correction,
+/// each round's arc warm-started from `planned`'s plan of the same arc where there is one
+/// (`leo_tour::solve_arc_warm`; the full search otherwise).
 ///
 /// # Errors
 /// A truth-model propagation error, a core refusal of an arc, or a re-plan with no truth
 /// flight.
-pub fn multi_round(f: &LeoTourFixture) -> Result<Vec<Round>> {
+pub fn multi_round(f: &LeoTourFixture, planned: &[PlannedArc]) -> Result<Vec<Round>> {
     let ts = TruthSettings {
         epoch_jd: julian_date(2022, 11, 3, 0, 0, 0.0),
         ..TruthSettings::default_settings()
@@ -112,8 +115,14 @@ pub fn multi_round(f: &LeoTourFixture) -> Result<Vec<Round>> {
             impulses: f.impulses,
         };
         let started = Instant::now();
-        let solution = solve_arc(&problem, &f.settings)
-            .map_err(|e| anyhow!("round {} -> {}: {e:?}", from + 1, to + 1))?;
+        let warm = planned
+            .iter()
+            .find(|a| a.from == from && a.to == to && a.start_s.to_bits() == t0.to_bits());
+        let solution = match warm {
+            Some(a) => solve_arc_warm(&problem, &f.settings, &a.solution),
+            None => solve_arc(&problem, &f.settings),
+        }
+        .map_err(|e| anyhow!("round {} -> {}: {e:?}", from + 1, to + 1))?;
         let solve_time_s = started.elapsed().as_secs_f64();
         let arc = PlannedArc {
             from,

@@ -403,7 +403,7 @@ pub fn run(f: &LeoTourFixture, json_output: bool) -> Result<ExitCode> {
         rows.push((a, j2_miss, full_miss, after));
     }
     // The chained multi-round correction in the truth model; an error is reported, not fatal.
-    let rounds = crate::cli::leo_tour_rounds::multi_round(f);
+    let rounds = crate::cli::leo_tour_rounds::multi_round(f, &arcs);
     if json_output {
         let arcs_json: Vec<_> = rows
             .iter()

@@ -145,7 +145,12 @@ fn geo_figures_are_within_budget() {
         reconfig_tests::m7_record::update_geo_docs().expect("regenerate the docs");
         reconfig_tests::m7_record::update_images_docs().expect("regenerate the docs");
     }
-    assert_figures(&figures, updating, "GEO image", &measured_path);
+    assert_figures(
+        &figures,
+        updating,
+        ("GEO image", FIGURES_FILE),
+        &measured_path,
+    );
 }
 
 #[test]

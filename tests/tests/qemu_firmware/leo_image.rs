@@ -135,7 +135,12 @@ fn leo_figures_match_the_record() {
             "wrote the LEO image's figures to {LEO_FIGURES_FILE}"
         ));
     }
-    assert_figures(&figures, updating, "LEO image", &measured_path);
+    assert_figures(
+        &figures,
+        updating,
+        ("LEO image", LEO_FIGURES_FILE),
+        &measured_path,
+    );
 }
 
 #[test]

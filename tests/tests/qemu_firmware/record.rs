@@ -129,7 +129,12 @@ pub fn assert_systick_agrees(run: &Run, instructions: &[u64]) {
 /// it: a change toward a budget is seen when it happens, not when the budget breaks; skipped
 /// when `updating`, which accepts the new record) and on any figure over its budget.
 /// `measured_path` is where this run wrote what it measured.
-pub fn assert_figures(figures: &[Figure], updating: bool, image: &str, measured_path: &Path) {
+pub fn assert_figures(
+    figures: &[Figure],
+    updating: bool,
+    (image, record_file): (&str, &str),
+    measured_path: &Path,
+) {
     let mut report = String::from("figure | measured | recorded | budget\n");
     for f in figures {
         let recorded = f.recorded.map_or("-".to_owned(), |r| r.to_string());
@@ -167,7 +172,7 @@ pub fn assert_figures(figures: &[Figure], updating: bool, image: &str, measured_
         .collect();
     assert!(
         drifted.is_empty(),
-        "{image} figures drifted more than {:.0} % from {FIGURES_FILE}:\n{}\nIf the change is \
+        "{image} figures drifted more than {:.0} % from {record_file}:\n{}\nIf the change is \
          intended, accept the new record (and say why in the commit message):\n  {UPDATE_COMMAND}\n\
          (the measured figures are in {})",
         DRIFT_TOLERANCE * 100.0,
