@@ -204,7 +204,7 @@ fn example_one_flown_in_the_truth_model_with_multi_round_correction_arrives_with
         // Uncorrected, the J2 plan misses by far more than the tolerance: the correction is
         // doing the work (a wrong truth model or no correction would fail one or the other).
         assert!(r.miss_before_m > 100.0, "{}", r.miss_before_m);
-        assert!((r.dv_after_mps - r.solution.total_dv_mps).abs() < 1.0);
+        assert!((r.dv_after_mps - r.arc.solution.total_dv_mps).abs() < 1.0);
     }
     let flown: f64 = rounds.iter().map(|r| r.dv_after_mps).sum();
     assert!((flown - 1241.160).abs() < 0.05, "{flown}");

@@ -160,6 +160,8 @@ pub fn paper_rule_duration_s(
 struct Search<'a, F> {
     g: &'a Gravity,
     planes: &'a [Plane],
+    /// `planes.len()`, checked to be at most [`MAX_CLIENTS`]: client numbers are `u8`.
+    count: u8,
     settings: &'a SequenceSettings,
     /// Each client's cheapest entry bound from a given client: `any[j][i]`.
     any: [[f64; MAX_CLIENTS]; MAX_CLIENTS],
@@ -174,17 +176,14 @@ struct Search<'a, F> {
     stopped: bool,
 }
 
-fn factorial(n: usize) -> u32 {
-    (1..=u32::try_from(n).unwrap_or(0)).fold(1_u32, u32::saturating_mul)
+fn factorial(n: u8) -> u32 {
+    (1..=u32::from(n)).fold(1_u32, u32::saturating_mul)
 }
 
 /// The arcs of the enumeration tree below a node with `remaining` clients to visit.
-fn tree_arcs(remaining: usize) -> u32 {
+fn tree_arcs(remaining: u8) -> u32 {
     // T(r) = r (1 + T(r - 1)): r children, each one arc plus its own subtree.
-    (1..=remaining).fold(0_u32, |acc, k| {
-        acc.saturating_add(1)
-            .saturating_mul(u32::try_from(k).unwrap_or(u32::MAX))
-    })
+    (1..=u32::from(remaining)).fold(0_u32, |acc, k| acc.saturating_add(1).saturating_mul(k))
 }
 
 impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
@@ -232,14 +231,13 @@ impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
     /// Extend the partial order of `depth` clients (the last `current`), at `time_s`, cost
     /// `cost`, visited set `visited`.
     fn extend(&mut self, depth: usize, current: usize, time_s: f64, cost: f64, visited: u16) {
-        let n = self.planes.len();
-        if depth == n {
+        if depth == usize::from(self.count) {
             self.orders_completed = self.orders_completed.saturating_add(1);
             if cost < self.incumbent() {
                 self.best = Some(Sequence {
                     status: SequenceStatus::Optimal,
                     order: self.path,
-                    len: u8::try_from(n).unwrap_or(0),
+                    len: self.count,
                     total_dv_mps: cost,
                     starts_s: self.starts,
                     durations_s: self.durations,
@@ -256,13 +254,14 @@ impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
             return;
         };
         // Children with their arc bounds, cheapest first (ties by client number).
-        let mut kids = [(f64::INFINITY, 0_usize, 0.0_f64); MAX_CLIENTS];
+        let mut kids = [(f64::INFINITY, 0_u8, 0.0_f64); MAX_CLIENTS];
         let mut count = 0_usize;
-        for j in (0..n).filter(|&j| visited & (1_u16 << j) == 0) {
-            let Some(dt) = self.duration(position, current, j, time_s) else {
+        for j in (0..self.count).filter(|&j| visited & (1_u16 << j) == 0) {
+            let Some(dt) = self.duration(position, current, usize::from(j), time_s) else {
                 continue;
             };
-            let (Some(a), Some(b)) = (self.planes.get(current), self.planes.get(j)) else {
+            let (Some(a), Some(b)) = (self.planes.get(current), self.planes.get(usize::from(j)))
+            else {
                 continue;
             };
             let lb = bound::arc_bound_mps(self.g, a, b, time_s, dt, &self.settings.bound);
@@ -271,9 +270,13 @@ impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
                 count = count.saturating_add(1);
             }
         }
-        let kids = kids.get_mut(..count).unwrap_or(&mut []);
+        // At most one child per client: `count <= MAX_CLIENTS`.
+        let Some(kids) = kids.get_mut(..count) else {
+            return;
+        };
         kids.sort_unstable_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
-        for &(lb, j, dt) in kids.iter() {
+        for &(lb, client, dt) in kids.iter() {
+            let j = usize::from(client);
             if self.stopped {
                 return;
             }
@@ -306,7 +309,7 @@ impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
             ) else {
                 continue;
             };
-            *p = u8::try_from(j).unwrap_or(0);
+            *p = client;
             *s = time_s;
             *d = dt;
             self.extend(
@@ -333,11 +336,12 @@ pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
     plan_arc: F,
 ) -> Result<Sequence, SequenceError> {
     let n = planes.len();
-    if !(2..=MAX_CLIENTS).contains(&n) {
-        return Err(SequenceError::Clients { count: n });
-    }
+    let count = match u8::try_from(n) {
+        Ok(count) if (2..=MAX_CLIENTS).contains(&n) => count,
+        _ => return Err(SequenceError::Clients { count: n }),
+    };
     if let Some(f) = settings.first {
-        if usize::from(f) >= n {
+        if f >= count {
             return Err(SequenceError::First { index: f });
         }
     }
@@ -385,6 +389,7 @@ pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
     let mut search = Search {
         g,
         planes,
+        count,
         settings,
         any,
         plan_arc,
@@ -397,23 +402,20 @@ pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
         violations: 0,
         stopped: false,
     };
-    let firsts = settings
-        .first
-        .map_or(0..n, |f| usize::from(f)..usize::from(f) + 1);
+    let firsts = settings.first.map_or(0..count, |f| f..f.saturating_add(1));
     for first in firsts {
         if search.stopped {
             break;
         }
         if let Some(p) = search.path.first_mut() {
-            *p = u8::try_from(first).unwrap_or(0);
+            *p = first;
         }
-        search.extend(1, first, 0.0, 0.0, 1_u16 << first);
+        search.extend(1, usize::from(first), 0.0, 0.0, 1_u16 << first);
     }
-    let first_choices = if settings.first.is_some() { 1 } else { n };
-    let per_first = factorial(n.saturating_sub(1));
-    let orders_total = per_first.saturating_mul(u32::try_from(first_choices).unwrap_or(0));
-    let arcs_in_tree =
-        tree_arcs(n.saturating_sub(1)).saturating_mul(u32::try_from(first_choices).unwrap_or(0));
+    let first_choices = u32::from(if settings.first.is_some() { 1 } else { count });
+    let per_first = factorial(count.saturating_sub(1));
+    let orders_total = per_first.saturating_mul(first_choices);
+    let arcs_in_tree = tree_arcs(count.saturating_sub(1)).saturating_mul(first_choices);
     let status = if search.stopped {
         SequenceStatus::ArcLimit
     } else if search.violations > 0 {
@@ -522,7 +524,7 @@ mod tests {
                 s.total_dv_mps
             );
             assert!(s.arcs_planned < s.arcs_in_tree, "n {n}: no pruning");
-            assert_eq!(s.orders_total, factorial(n));
+            assert_eq!(s.orders_total, factorial(u8::try_from(n).unwrap()));
             assert_eq!(s.arcs_in_tree, [0, 0, 2, 12, 60, 320, 1950][n]);
             std::println!(
                 "n {n}: planned {} of {} arcs, {} of {} orders",

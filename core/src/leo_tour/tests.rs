@@ -105,6 +105,19 @@ fn a_tiny_budget_is_a_named_refusal_not_a_panic() {
     assert!(matches!(e, PlanError::BudgetExhausted { .. }), "{e:?}");
 }
 
+/// The paper's arc flown as one last leg from its start: the client's arrival position (the
+/// planning model) and the 14-revolution family that reaches it.
+fn paper_last_leg(settings: &Settings) -> (crate::vec3::Vec3, shoot::Family) {
+    let p = paper_arc();
+    let n = j2::step_count(p.duration_s, settings.step_s, 100_000).unwrap();
+    let end = j2::propagate_steps(&settings.gravity(), &p.to, p.duration_s, n).unwrap();
+    let fam = shoot::Family {
+        revs: 14,
+        branch: crate::lambert::Branch::Left,
+    };
+    (j2::pos(&end), fam)
+}
+
 #[test]
 fn the_quasi_newton_shooting_converges_in_a_few_iterations() {
     // The paper's arc's last leg from the arc start: 83 304 s, 14 revolutions. The plain
@@ -112,17 +125,11 @@ fn the_quasi_newton_shooting_converges_in_a_few_iterations() {
     // used all 30 iterations and stopped near 2e-5 km); Broyden's update reaches 1e-6 km
     // within 8 from the two-body aim (measured 7), and a shooting of a leg departing 60 s
     // (about 450 km) later that starts with the first's matrix and offset within 6 (measured 6).
-    use shoot::{shoot, Family, Offset, Secant};
+    use shoot::{shoot, Offset, Secant};
     let p = paper_arc();
     let settings = Settings::default();
     let g = settings.gravity();
-    let n = j2::step_count(p.duration_s, settings.step_s, 100_000).unwrap();
-    let end = j2::propagate_steps(&g, &p.to, p.duration_s, n).unwrap();
-    let target = j2::pos(&end);
-    let fam = Family {
-        revs: 14,
-        branch: crate::lambert::Branch::Left,
-    };
+    let (target, fam) = paper_last_leg(&settings);
     let run = |from: &j2::State, tof_s: f64, start: &Offset, secant: &mut Secant| {
         let mut meter = crate::work::Meter::new(u64::MAX);
         let shot = shoot(
@@ -157,20 +164,14 @@ fn continuation_in_j2_recovers_a_shooting_started_far_away() {
     // The paper's arc's last leg (14 revolutions) aimed from 3000 km off the answer: the
     // direct shooting does not reach 1e-6 km within its iterations, continuation in J2 from
     // the two-body leg does, and reaches the same departure velocity as a good start.
-    use shoot::{shoot, shoot_continued, Family, Offset, Secant};
+    use shoot::{shoot, shoot_continued, Offset, Secant};
     let p = paper_arc();
     let settings = Settings {
         shoot_max_iter: 6,
         ..Settings::default()
     };
     let g = settings.gravity();
-    let n = j2::step_count(p.duration_s, settings.step_s, 100_000).unwrap();
-    let end = j2::propagate_steps(&g, &p.to, p.duration_s, n).unwrap();
-    let target = j2::pos(&end);
-    let fam = Family {
-        revs: 14,
-        branch: crate::lambert::Branch::Left,
-    };
+    let (target, fam) = paper_last_leg(&settings);
     let far = Offset {
         dr_km: [3000.0, -2000.0, 1000.0],
         dv_kmps: [0.0; 3],

@@ -21,23 +21,16 @@ use crate::truth::plan_check::{full_model, TruthSettings};
 use crate::truth::propagate::{propagate, EciState};
 use anyhow::{anyhow, Result};
 use reconfig_core::leo_tour::j2::State;
-use reconfig_core::leo_tour::{solve_arc, solve_arc_warm, ArcProblem, ArcSolution, Status};
+use reconfig_core::leo_tour::{solve_arc, solve_arc_warm, ArcProblem, Status};
 use serde_json::json;
 use std::time::Instant;
 
 /// One round of the chained correction.
 #[derive(Debug, Clone)]
 pub struct Round {
-    /// Client index (0-based) the arc leaves.
-    pub from: usize,
-    /// Client index (0-based) the arc reaches.
-    pub to: usize,
-    /// Arc start from the tour epoch, s.
-    pub start_s: f64,
-    /// Arc end from the tour epoch, s.
-    pub end_s: f64,
-    /// The core's plan from the truth states at the arc start.
-    pub solution: ArcSolution,
+    /// The core's plan of the arc from the truth states at its start (those states are its
+    /// problem).
+    pub arc: PlannedArc,
     /// Truth-model arrival miss of that plan as made, m.
     pub miss_before_m: f64,
     /// Truth-model arrival miss after the last leg's re-plan, m.
@@ -50,8 +43,6 @@ pub struct Round {
     /// Distance between the chaser's truth state at the arc start and the client's (the
     /// previous round's arrival miss carried in), m.
     pub start_offset_m: f64,
-    /// Core planning time, s.
-    pub solve_time_s: f64,
 }
 
 fn to_state(s: &EciState) -> State {
@@ -123,7 +114,6 @@ pub fn multi_round(f: &LeoTourFixture, planned: &[PlannedArc]) -> Result<Vec<Rou
             None => solve_arc(&problem, &f.settings),
         }
         .map_err(|e| anyhow!("round {} -> {}: {e:?}", from + 1, to + 1))?;
-        let solve_time_s = started.elapsed().as_secs_f64();
         let arc = PlannedArc {
             from,
             to,
@@ -131,7 +121,7 @@ pub fn multi_round(f: &LeoTourFixture, planned: &[PlannedArc]) -> Result<Vec<Rou
             end_s: t0 + interval,
             solution,
             problem,
-            solve_time_s,
+            solve_time_s: started.elapsed().as_secs_f64(),
         };
         let miss_before_m = truth_miss_m(&arc, true)?;
         // A re-plan that fails (its Lambert leg does not solve from the truth state, or its
@@ -142,21 +132,16 @@ pub fn multi_round(f: &LeoTourFixture, planned: &[PlannedArc]) -> Result<Vec<Rou
                 Ok(r) if r.miss_m < miss_before_m => (r.miss_m, r.dv_mps, r.chaser_end, true),
                 _ => {
                     let (end, _) = truth_flight(&arc, true)?;
-                    (miss_before_m, solution.total_dv_mps, end, false)
+                    (miss_before_m, arc.solution.total_dv_mps, end, false)
                 }
             };
         rounds.push(Round {
-            from,
-            to,
-            start_s: t0,
-            end_s: t0 + interval,
-            solution,
+            arc,
             miss_before_m,
             miss_after_m,
             dv_after_mps,
             corrected,
             start_offset_m,
-            solve_time_s,
         });
         chaser = end;
         t0 += interval;
@@ -168,7 +153,7 @@ pub fn multi_round(f: &LeoTourFixture, planned: &[PlannedArc]) -> Result<Vec<Rou
 pub fn all_within(rounds: &[Round], tol_m: f64) -> bool {
     rounds
         .iter()
-        .all(|r| r.solution.status == Status::Solved && r.corrected && r.miss_after_m <= tol_m)
+        .all(|r| r.arc.solution.status == Status::Solved && r.corrected && r.miss_after_m <= tol_m)
 }
 
 /// `multi_round`'s outcome as JSON (an error as `{"error": ...}`).
@@ -178,12 +163,12 @@ pub fn rounds_json(rounds: &Result<Vec<Round>>) -> serde_json::Value {
         Ok(rs) => json!({
             "total_dv_after_mps": rs.iter().map(|r| r.dv_after_mps).sum::<f64>(),
             "arcs": rs.iter().map(|r| json!({
-                "from": r.from + 1,
-                "to": r.to + 1,
-                "start_s": r.start_s,
-                "end_s": r.end_s,
-                "status": format!("{:?}", r.solution.status),
-                "dv_mps": r.solution.total_dv_mps,
+                "from": r.arc.from + 1,
+                "to": r.arc.to + 1,
+                "start_s": r.arc.start_s,
+                "end_s": r.arc.end_s,
+                "status": format!("{:?}", r.arc.solution.status),
+                "dv_mps": r.arc.solution.total_dv_mps,
                 "dv_after_mps": r.dv_after_mps,
                 "corrected": r.corrected,
                 "start_offset_m": r.start_offset_m,
@@ -202,11 +187,11 @@ pub fn print_rounds(rounds: &Result<Vec<Round>>) {
             for r in rs {
                 println!(
                     "    arc {} -> {}  {:?}{}  dv {:.3} m/s planned, {:.3} m/s flown; start offset {:.3e} m; truth miss {:.3} m before, {:.3e} m after",
-                    r.from + 1,
-                    r.to + 1,
-                    r.solution.status,
+                    r.arc.from + 1,
+                    r.arc.to + 1,
+                    r.arc.solution.status,
                     if r.corrected { "" } else { " (last leg not re-planned: flown as made)" },
-                    r.solution.total_dv_mps,
+                    r.arc.solution.total_dv_mps,
                     r.dv_after_mps,
                     r.start_offset_m,
                     r.miss_before_m,
