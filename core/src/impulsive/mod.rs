@@ -27,22 +27,22 @@
 //! ## Bounds
 //! Every loop is bounded by a field of [`Settings`]; see its docs for the worst case.
 
-mod elements;
+pub(crate) mod elements;
 mod equinoctial;
 mod equinoctial_drift;
 mod error;
 mod form_problem;
 mod forms;
 mod gve;
-mod kepler;
+pub(crate) mod kepler;
 mod min_fuel;
 mod model;
-mod nonlinear;
+pub(crate) mod nonlinear;
 mod osculating;
 mod pinv;
 mod returned;
 mod search;
-mod secular;
+pub(crate) mod secular;
 mod settings;
 mod socp;
 mod solution;

@@ -85,11 +85,21 @@ pub(crate) fn elements_from_state(
     vel_km_s: &Vec3,
     near: &Elements,
 ) -> Option<Elements> {
+    elements_from_state_with(EARTH_MU_KM3_S2, pos_km, vel_km_s, near)
+}
+
+/// [`elements_from_state`] with the gravitational parameter `mu_km3_s2`.
+pub(crate) fn elements_from_state_with(
+    mu_km3_s2: f64,
+    pos_km: &Vec3,
+    vel_km_s: &Vec3,
+    near: &Elements,
+) -> Option<Elements> {
     let r = norm(pos_km);
     let v2 = dot(vel_km_s, vel_km_s);
     let h = cross(pos_km, vel_km_s);
     let hn = norm(&h);
-    let energy_term = 2.0 / r - v2 / EARTH_MU_KM3_S2;
+    let energy_term = 2.0 / r - v2 / mu_km3_s2;
     if !(r > 0.0 && hn > 0.0 && energy_term > 0.0) {
         return None;
     }
@@ -97,7 +107,7 @@ pub(crate) fn elements_from_state(
     let rv = dot(pos_km, vel_km_s);
     let mut ecc_vec = [0.0; 3];
     for ((o, p), v) in ecc_vec.iter_mut().zip(pos_km.iter()).zip(vel_km_s.iter()) {
-        *o = ((v2 - EARTH_MU_KM3_S2 / r) * *p - rv * *v) / EARTH_MU_KM3_S2;
+        *o = ((v2 - mu_km3_s2 / r) * *p - rv * *v) / mu_km3_s2;
     }
     let e = norm(&ecc_vec);
     if e.is_nan() || e >= 1.0 {

@@ -7,26 +7,47 @@ use super::elements::{
 };
 use nalgebra::SMatrix;
 
+/// The constants of the secular theory: gravitational parameter (km^3/s^2), equatorial
+/// radius (km) and J2. Planner B uses the Earth's ([`EARTH`]); the LEO tour its settings'.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Constants {
+    pub mu_km3_s2: f64,
+    pub re_km: f64,
+    pub j2: f64,
+}
+
+/// The Earth constants of planner B.
+pub(crate) const EARTH: Constants = Constants {
+    mu_km3_s2: EARTH_MU_KM3_S2,
+    re_km: EARTH_RADIUS_KM,
+    j2: EARTH_J2,
+};
+
 /// `C = 3 J2 Re^2 / (2 (1 - e^2)^2) sqrt(mu / a^7)`, rad/s.
-fn j2_coefficient(sma_km: f64, ecc: f64) -> f64 {
+fn j2_coefficient(k: &Constants, sma_km: f64, ecc: f64) -> f64 {
     let one_minus_e2 = 1.0 - ecc * ecc;
     let a2 = sma_km * sma_km;
     let a7 = a2 * a2 * a2 * sma_km;
-    3.0 * EARTH_J2 * EARTH_RADIUS_KM * EARTH_RADIUS_KM / (2.0 * one_minus_e2 * one_minus_e2)
-        * libm::sqrt(EARTH_MU_KM3_S2 / a7)
+    3.0 * k.j2 * k.re_km * k.re_km / (2.0 * one_minus_e2 * one_minus_e2)
+        * libm::sqrt(k.mu_km3_s2 / a7)
 }
 
 /// `D(sigma) = [0, 0, 0, n_Omega, n_omega, n + n_M]`, rad/s in the angle rows.
 pub(crate) fn rates(el: &Elements) -> Elements {
+    rates_with(&EARTH, el)
+}
+
+/// [`rates`] with the constants `k`: the first-order secular J2 rates of mean elements.
+pub(crate) fn rates_with(k: &Constants, el: &Elements) -> Elements {
     let (a, e, i) = (el[A], el[E], el[I]);
-    let c = j2_coefficient(a, e);
+    let c = j2_coefficient(k, a, e);
     let cos_i = libm::cos(i);
     let cos2 = cos_i * cos_i;
     let eta = libm::sqrt(1.0 - e * e);
     let mut d = [0.0; 6];
     d[RAAN] = -c * cos_i;
     d[ARGP] = 0.5 * c * (5.0 * cos2 - 1.0);
-    d[MA] = mean_motion_rad_s(a) + 0.5 * c * eta * (3.0 * cos2 - 1.0);
+    d[MA] = libm::sqrt(k.mu_km3_s2 / (a * a * a)) + 0.5 * c * eta * (3.0 * cos2 - 1.0);
     d
 }
 
@@ -40,7 +61,7 @@ pub(crate) fn arg_latitude_rate_rad_s(el: &Elements) -> f64 {
 /// which hold the paper's `M_3x3` (checked against finite differences in the tests).
 pub(crate) fn rates_jacobian(el: &Elements) -> SMatrix<f64, 6, 6> {
     let (a, e, i) = (el[A], el[E], el[I]);
-    let c = j2_coefficient(a, e);
+    let c = j2_coefficient(&EARTH, a, e);
     let one_minus_e2 = 1.0 - e * e;
     let eta = libm::sqrt(one_minus_e2);
     let (sin_i, cos_i) = (libm::sin(i), libm::cos(i));

@@ -14,7 +14,9 @@
 //! `log2(search_step_s / search_min_step_s) + 1` of them) `shoot_max_iter` propagations; all of
 //! it charged to the work budget, which stops the search first when smaller.
 
-use super::j2::{join, pos, propagate_steps, step_count, vel, Gravity, State};
+use super::flight::{Flight, Model};
+use super::j2::{join, pos, vel, Gravity, State};
+use super::mean_j2::{self, MeanOrbit};
 use super::shoot::{corrected_lambert, shoot, Family, Offset, Secant};
 use super::track::Track;
 use super::types::{ArcSolution, Burn, Settings, Status, MAX_CANDIDATES, MAX_IMPULSES, MAX_VARS};
@@ -32,11 +34,27 @@ pub(crate) struct Ctx<'a> {
     pub a: Track,
     pub b: Track,
     pub b_end: State,
+    /// The model of the flights now (the search's, or the planning model's for the polish
+    /// and the final check).
+    pub flight: Flight,
+    /// The clients' mean orbits at the arc start (the search model's client states); `None`
+    /// where the conversion failed (the search model then has no client states).
+    pub mean_a: Option<MeanOrbit>,
+    pub mean_b: Option<MeanOrbit>,
     pub meter: Meter,
     pub evals: u32,
     /// The shootings' quasi-Newton matrix, carried from one shooting to the next of a
     /// refinement (reset at each candidate).
     pub secant: Secant,
+}
+
+/// One of the arc's two clients.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Client {
+    /// Client A: the chaser's start.
+    A,
+    /// Client B: the rendezvous target.
+    B,
 }
 
 /// A grid candidate or a refined point.
@@ -46,6 +64,16 @@ pub(crate) struct Point {
     pub fam: Family,
     pub off: Offset,
     pub cost: f64,
+    /// Whether `off` is a converged shooting at `x` (so `cost` is the cost of a plan that
+    /// arrives, in the model it was shot in).
+    pub shot: bool,
+}
+
+impl Point {
+    /// The ranking of refined points: shot ones first, then the cheaper.
+    pub fn better_than(&self, other: &Self) -> bool {
+        (!self.shot, self.cost) < (!other.shot, other.cost)
+    }
 }
 
 fn families(max_revs: u16) -> impl Iterator<Item = Family> {
@@ -72,6 +100,33 @@ pub(crate) fn period_s(mu: f64, s: &State) -> f64 {
 }
 
 impl Ctx<'_> {
+    /// Client `which`'s state at `t_s` in the model of the flights now: from its checkpoints
+    /// in the planning model, flown from the arc start in the search model.
+    pub(crate) fn client_state(&mut self, which: Client, t_s: f64) -> Option<State> {
+        let (track, mean) = match which {
+            Client::A => (&self.a, self.mean_a),
+            Client::B => (&self.b, self.mean_b),
+        };
+        match self.flight.model {
+            Model::Planning => track.state_at(&self.g, self.settings, t_s, &mut self.meter),
+            Model::MeanElements => {
+                if !self.meter.spend(mean_j2::STATE_UNITS) {
+                    return None;
+                }
+                mean?.state_at(&self.g, t_s)
+            }
+        }
+    }
+
+    /// `f` run with the flights in `model`, the model restored after.
+    pub(crate) fn in_model<T>(&mut self, model: Model, f: impl FnOnce(&mut Self) -> T) -> T {
+        let saved = self.flight.model;
+        self.flight.model = model;
+        let out = f(self);
+        self.flight.model = saved;
+        out
+    }
+
     fn nvars(&self) -> usize {
         self.impulses
             .saturating_sub(1)
@@ -103,9 +158,7 @@ impl Ctx<'_> {
     ) -> Option<([(State, Vec3); MAX_IMPULSES], State, [f64; MAX_IMPULSES])> {
         let t = self.epochs(x)?;
         let t1 = *t.first()?;
-        let mut s = self
-            .a
-            .state_at(&self.g, self.settings, t1, &mut self.meter)?;
+        let mut s = self.client_state(Client::A, t1)?;
         let mut pre = [([0.0; 6], [0.0; 3]); MAX_IMPULSES];
         let free_vectors = self.impulses.saturating_sub(2);
         let dvs = x.get(self.impulses.saturating_sub(1)..)?.chunks_exact(3);
@@ -114,11 +167,7 @@ impl Ctx<'_> {
             *slot = (s, dv);
             let after = join(&pos(&s), &add(&vel(&s), &dv));
             let dt = *w.get(1)? - *w.first()?;
-            let n = step_count(dt, self.settings.step_s, self.settings.max_steps)?;
-            if !self.meter.spend(u64::from(n)) {
-                return None;
-            }
-            s = propagate_steps(&self.g, &after, dt, n)?;
+            s = self.flight.fly(&after, dt, &mut self.meter)?;
         }
         Some((pre, s, t))
     }
@@ -169,9 +218,7 @@ impl Ctx<'_> {
     /// The offset estimated from the client's own orbit: where two-body and J2 flights of the
     /// client from `t_s` to the arrival differ (the transfer ends on that orbit).
     pub(crate) fn client_offset(&mut self, t_s: f64) -> Option<Offset> {
-        let sb = self
-            .b
-            .state_at(&self.g, self.settings, t_s, &mut self.meter)?;
+        let sb = self.client_state(Client::B, t_s)?;
         let (r, v) = lambert::propagate(
             self.settings.mu_km3_s2,
             &pos(&sb),
@@ -195,7 +242,7 @@ impl Ctx<'_> {
         let spacing = span / g;
         for j in 0..self.settings.grid_points {
             let t1 = f64::from(j) * spacing;
-            let Some(sa) = self.a.state_at(&self.g, self.settings, t1, &mut self.meter) else {
+            let Some(sa) = self.client_state(Client::A, t1) else {
                 break;
             };
             let Some(off) = self.client_offset(t1) else {
@@ -239,9 +286,7 @@ impl Ctx<'_> {
     /// the client's plane and the plane change is made by the first two impulses; the last
     /// leg's family the cheapest.
     fn plane_seed(&mut self, t1: f64, sa: &State) -> Option<Point> {
-        let sb = self
-            .b
-            .state_at(&self.g, self.settings, t1, &mut self.meter)?;
+        let sb = self.client_state(Client::B, t1)?;
         let hb = cross(&pos(&sb), &vel(&sb));
         let hb = scale(&hb, 1.0 / norm(&hb));
         let ra = pos(sa);
@@ -282,7 +327,13 @@ impl Ctx<'_> {
         let t2 = t1 + step;
         let off = self.client_offset(t2)?;
         let (fam, cost) = self.best_family(&x, &off)?;
-        Some(Point { x, fam, off, cost })
+        Some(Point {
+            x,
+            fam,
+            off,
+            cost,
+            shot: false,
+        })
     }
 
     /// A grid point as a point of the M-impulse variables: the intermediate impulses start at
@@ -311,7 +362,13 @@ impl Ctx<'_> {
                 *xi = *d;
             }
         }
-        Point { x, fam, off, cost }
+        Point {
+            x,
+            fam,
+            off,
+            cost,
+            shot: false,
+        }
     }
 
     /// Re-shoot the last leg at `p` (exact J2): `p` with the new offset and its cost, or
@@ -321,7 +378,7 @@ impl Ctx<'_> {
         let t_last = *t.get(self.impulses.checked_sub(2)?)?;
         let target = pos(&self.b_end);
         let shot = shoot(
-            &self.g,
+            &self.flight,
             self.settings,
             &s,
             &target,
@@ -338,19 +395,52 @@ impl Ctx<'_> {
         Some(Point {
             off: shot.offset,
             cost,
+            shot: true,
             ..*p
         })
     }
 
-    /// Bounded compass search from `p`.
+    /// Bounded compass search from `p` (the search's first steps and budget; the last leg's
+    /// family picked again at the start).
     pub fn refine(&mut self, p: Point) -> Point {
+        let s = self.settings;
+        self.refine_with(
+            p,
+            (s.search_step_s, s.search_step_kmps),
+            s.search_max_evals,
+            true,
+        )
+    }
+
+    /// The polish of a search-model point in the model of the flights now: the compass
+    /// search from a sixteenth of the search's first steps, `polish_max_evals` evaluations,
+    /// the family kept.
+    pub fn polish(&mut self, p: Point) -> Point {
+        let s = self.settings;
+        self.refine_with(
+            p,
+            (s.search_step_s, s.search_step_kmps),
+            s.polish_max_evals,
+            false,
+        )
+    }
+
+    /// Bounded compass search from `p` with first steps `(epoch s, component km/s)`, at most
+    /// `budget` evaluations.
+    fn refine_with(
+        &mut self,
+        p: Point,
+        (first_step_s, first_step_kmps): (f64, f64),
+        budget: u32,
+        pick_family: bool,
+    ) -> Point {
         let nv = self.nvars();
         let free = self.impulses.saturating_sub(1);
         // With three or more impulses the last leg's family may change once the intermediate
         // burns exist; pick it again at the start.
-        let mut best = p;
+        let mut best = Point { shot: false, ..p };
         self.secant = Secant::default();
-        if self.impulses > 2 {
+        if self.impulses > 2 && pick_family {
             if let Some((fam, c)) = self.best_family(&p.x, &p.off) {
                 best.fam = fam;
                 best.cost = c;
@@ -362,10 +452,9 @@ impl Ctx<'_> {
         // The last point whose J2 shooting converged: the search returns there when the
         // frozen offset has led it where no J2 transfer of the family exists.
         let mut anchor = best;
-        let mut step_t = self.settings.search_step_s;
-        let mut step_v = self.settings.search_step_kmps;
+        let mut step_t = first_step_s;
+        let mut step_v = first_step_kmps;
         let start_evals = self.evals;
-        let budget = self.settings.search_max_evals;
         'levels: while step_t >= self.settings.search_min_step_s {
             let mut improved = true;
             while improved {
@@ -395,7 +484,7 @@ impl Ctx<'_> {
                 // stands only if its exact (J2-shot) cost is below the anchor's.
                 if improved {
                     match self.reshoot(&best) {
-                        Some(q) if q.cost < anchor.cost => {
+                        Some(q) if q.better_than(&anchor) => {
                             best = q;
                             anchor = q;
                         }
@@ -415,12 +504,16 @@ impl Ctx<'_> {
     /// Fly `p` in the planning model with an exact J2 shooting of the last leg, and check the
     /// arrival: the plan the caller gets.
     pub fn finish(&mut self, p: &Point) -> Option<ArcSolution> {
+        self.in_model(Model::Planning, |ctx| ctx.finish_in_planning_model(p))
+    }
+
+    fn finish_in_planning_model(&mut self, p: &Point) -> Option<ArcSolution> {
         let (pre, s, t) = self.fly_to_last_leg(&p.x)?;
         let last = self.impulses.checked_sub(2)?;
         let t_last = *t.get(last)?;
         let target = pos(&self.b_end);
         let shot = shoot(
-            &self.g,
+            &self.flight,
             self.settings,
             &s,
             &target,

@@ -1,7 +1,7 @@
 //! Hops of the per-arc search: the best refined plan with its free impulse epochs moved by half
 //! a revolution, so the refinement can restart in the basin of the other node.
 
-use super::arc::{period_s, rtn, rtn_axes, Ctx, Point};
+use super::arc::{period_s, rtn, rtn_axes, Client, Ctx, Point};
 use super::j2::State;
 use super::types::{MAX_HOPS, MAX_VARS};
 use crate::indexed::IndexedExt as _;
@@ -16,10 +16,7 @@ impl Ctx<'_> {
     pub fn hops(&mut self, p: &Point) -> [Option<Point>; MAX_HOPS] {
         let mut out = [None; MAX_HOPS];
         let free = self.impulses.saturating_sub(1);
-        let Some(s0) = self
-            .a
-            .state_at(&self.g, self.settings, 0.0, &mut self.meter)
-        else {
+        let Some(s0) = self.client_state(Client::A, 0.0) else {
             return out;
         };
         let half = 0.5 * period_s(self.settings.mu_km3_s2, &s0);
@@ -70,6 +67,7 @@ impl Ctx<'_> {
                     fam,
                     off: p.off,
                     cost,
+                    shot: false,
                 });
             }
             if self.meter.exhausted() {
@@ -84,7 +82,7 @@ impl Ctx<'_> {
     fn chaser_state(&mut self, x: &[f64; MAX_VARS], j: usize) -> Option<State> {
         if j == 0 {
             let t = *x.first()?;
-            return self.a.state_at(&self.g, self.settings, t, &mut self.meter);
+            return self.client_state(Client::A, t);
         }
         let (pre, _, _) = self.fly_to_last_leg(x)?;
         pre.get(j).map(|(s, _)| *s)

@@ -49,7 +49,13 @@ impl Ctx<'_> {
             None => self.best_family(&x, &off),
         };
         if let (Some(slot), Some((fam, cost))) = (out.first_mut(), chosen) {
-            *slot = Some(Point { x, fam, off, cost });
+            *slot = Some(Point {
+                x,
+                fam,
+                off,
+                cost,
+                shot: false,
+            });
         }
         out
     }

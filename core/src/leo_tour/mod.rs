@@ -24,7 +24,9 @@ mod arc_hops;
 mod arc_warm;
 pub mod bound;
 pub mod elements;
+pub mod flight;
 pub mod j2;
+pub mod mean_j2;
 pub mod sequence;
 pub mod shoot;
 pub mod track;
@@ -38,7 +40,8 @@ pub use arc::rtn;
 pub use types::*;
 
 use crate::work::Meter;
-use arc::Ctx;
+use arc::{Ctx, Point};
+use flight::Model;
 use j2::{propagate_steps, step_count};
 use track::Track;
 
@@ -72,11 +75,9 @@ pub fn solve_arc_warm(
     solve_arc_from(problem, settings, Some(plan))
 }
 
-fn solve_arc_from(
-    problem: &ArcProblem,
-    settings: &Settings,
-    warm: Option<&ArcSolution>,
-) -> Result<ArcSolution, PlanError> {
+/// The search's context for `problem`: the request checked, the clients' checkpoints and
+/// mean orbits, the flights in `settings.search_model`.
+fn context<'a>(problem: &ArcProblem, settings: &'a Settings) -> Result<Ctx<'a>, PlanError> {
     validate::check(problem, settings)?;
     let g = settings.gravity();
     let mut meter = Meter::new(settings.work_budget);
@@ -101,7 +102,7 @@ fn solve_arc_from(
     meter.charge(u64::from(n));
     let b_end = propagate_steps(&g, &problem.to, tf, n)
         .ok_or(PlanError::Propagation { field: Field::To })?;
-    let mut ctx = Ctx {
+    Ok(Ctx {
         settings,
         g,
         impulses: usize::from(problem.impulses),
@@ -109,52 +110,85 @@ fn solve_arc_from(
         a,
         b,
         b_end,
+        flight: settings.flight(settings.search_model),
+        mean_a: mean_j2::MeanOrbit::of_state(&g, &problem.from),
+        mean_b: mean_j2::MeanOrbit::of_state(&g, &problem.to),
         meter,
         evals: 0,
         secant: shoot::Secant::default(),
+    })
+}
+
+/// The arc's Δv estimate, m/s: the cost of the best plan the search finds in
+/// `settings.search_model`, shot in that model, without the planning model's polish and
+/// check (with `search_model = Planning`, the planned arc's Δv). The sequencing's arc cost:
+/// the order is chosen on these, and the chosen order planned with [`solve_arc`].
+///
+/// # Errors
+/// As [`solve_arc`]; [`PlanError::NoTransfer`] when no plan of the search was shot.
+pub fn estimate_arc_mps(problem: &ArcProblem, settings: &Settings) -> Result<f64, PlanError> {
+    if settings.search_model == Model::Planning {
+        return solve_arc(problem, settings).and_then(|s| {
+            if s.status == Status::ArrivalMissed {
+                Err(PlanError::NoTransfer)
+            } else {
+                Ok(s.total_dv_mps)
+            }
+        });
+    }
+    let mut ctx = context(problem, settings)?;
+    let kept = search(&mut ctx, None);
+    match kept.first().copied().flatten() {
+        Some(p) if p.shot && p.cost.is_finite() => Ok(p.cost * 1e3),
+        _ if ctx.meter.exhausted() => Err(PlanError::BudgetExhausted {
+            used: ctx.meter.used(),
+            budget: settings.work_budget,
+        }),
+        _ => Err(PlanError::NoTransfer),
+    }
+}
+
+fn solve_arc_from(
+    problem: &ArcProblem,
+    settings: &Settings,
+    warm: Option<&ArcSolution>,
+) -> Result<ArcSolution, PlanError> {
+    let mut ctx = context(problem, settings)?;
+    let exhausted = |m: &Meter| PlanError::BudgetExhausted {
+        used: m.used(),
+        budget: settings.work_budget,
     };
-    let mut candidates = match warm {
-        Some(plan) => ctx.warm_candidates(plan),
-        None => ctx.grid(),
-    };
-    let mut best: Option<(ArcSolution, arc::Point)> = None;
-    let consider = |ctx: &mut Ctx, q: arc::Point, best: &mut Option<(ArcSolution, arc::Point)>| {
-        if let Some(sol) = ctx.finish(&q) {
-            let better = best.as_ref().is_none_or(|(b, _)| {
-                let rank = |s: &ArcSolution| u8::from(s.status == Status::ArrivalMissed);
-                (rank(&sol), sol.total_dv_mps) < (rank(b), b.total_dv_mps)
-            });
-            if better {
-                *best = Some((sol, q));
+    let mut best: Option<(ArcSolution, Point)> = None;
+    let kept = search(&mut ctx, warm);
+    match settings.search_model {
+        Model::Planning => {
+            for q in kept.iter().flatten() {
+                consider(&mut ctx, *q, &mut best);
             }
         }
-    };
-    for p in candidates.iter().flatten() {
-        let q = ctx.refine(*p);
-        consider(&mut ctx, q, &mut best);
-    }
-    // A warm start that gives no arriving plan falls back to the full search.
-    let warm_failed = best.is_none_or(|(b, _)| b.status == Status::ArrivalMissed);
-    if warm.is_some() && warm_failed && !ctx.meter.exhausted() {
-        candidates = ctx.grid();
-        for p in candidates.iter().flatten() {
-            let q = ctx.refine(*p);
-            consider(&mut ctx, q, &mut best);
-        }
-    }
-    // Hops: the best plan with its intermediate impulses moved by half revolutions (to the
-    // other node of the plane change), refined again.
-    for _round in 0..settings.hop_rounds {
-        let Some((_, q0)) = best else { break };
-        let mut any = false;
-        for hop in ctx.hops(&q0).iter().flatten() {
-            let q = ctx.refine(*hop);
-            let before = best.map(|(b, _)| b.total_dv_mps);
-            consider(&mut ctx, q, &mut best);
-            any |= best.map(|(b, _)| b.total_dv_mps) != before;
-        }
-        if !any {
-            break;
+        Model::MeanElements => {
+            // The search model ranked the plans; each kept one is shot again and polished in
+            // the planning model, which decides.
+            ctx.flight.model = Model::Planning;
+            for q in kept.iter().flatten() {
+                let polished = ctx.polish(*q);
+                consider(&mut ctx, polished, &mut best);
+            }
+            // A warm plan is polished as it is too: the search model's optimum can lie a few
+            // m/s from the planning model's, and the warm plan is near the latter.
+            if let Some(plan) = warm {
+                for p in ctx.warm_candidates(plan).iter().flatten() {
+                    let polished = ctx.polish(*p);
+                    consider(&mut ctx, polished, &mut best);
+                }
+            }
+            // Where that gives no arriving plan, the search runs again in the planning model.
+            let failed = best.is_none_or(|(b, _)| b.status == Status::ArrivalMissed);
+            if failed && !ctx.meter.exhausted() {
+                for q in search(&mut ctx, warm).iter().flatten() {
+                    consider(&mut ctx, *q, &mut best);
+                }
+            }
         }
     }
     let best = best.map(|(b, _)| b);
@@ -170,4 +204,76 @@ fn solve_arc_from(
         None if ctx.meter.exhausted() => Err(exhausted(&ctx.meter)),
         None => Err(PlanError::NoTransfer),
     }
+}
+
+/// Finish `q` in the planning model and keep it in `best` if it beats it (arriving first,
+/// then the cheaper).
+fn consider(ctx: &mut Ctx, q: Point, best: &mut Option<(ArcSolution, Point)>) {
+    if let Some(sol) = ctx.finish(&q) {
+        let better = best.as_ref().is_none_or(|(b, _)| {
+            let rank = |s: &ArcSolution| u8::from(s.status == Status::ArrivalMissed);
+            (rank(&sol), sol.total_dv_mps) < (rank(b), b.total_dv_mps)
+        });
+        if better {
+            *best = Some((sol, q));
+        }
+    }
+}
+
+/// Refined points kept for the planning model's final check (and the polish).
+const KEPT: usize = 2;
+
+/// Keep `q` among the `KEPT` best (shot first, then the cheaper); whether it is the new best.
+fn keep(kept: &mut [Option<Point>; KEPT], q: Point) -> bool {
+    let Some(pos) = kept
+        .iter()
+        .position(|k| k.is_none_or(|k| q.better_than(&k)))
+    else {
+        return false;
+    };
+    // Shift the worse ones down by one (the last falls off).
+    let mut carry = Some(q);
+    for slot in kept.iter_mut().skip(pos) {
+        core::mem::swap(slot, &mut carry);
+    }
+    pos == 0
+}
+
+/// The search in the model of `ctx`'s flights: the candidates (the grid, or the warm plan
+/// with the grid behind it when it gives no shot plan) refined, then the hops; the `KEPT`
+/// best refined points.
+fn search(ctx: &mut Ctx, warm: Option<&ArcSolution>) -> [Option<Point>; KEPT] {
+    let mut kept = [None; KEPT];
+    let candidates = match warm {
+        Some(plan) => ctx.warm_candidates(plan),
+        None => ctx.grid(),
+    };
+    for p in candidates.iter().flatten() {
+        let q = ctx.refine(*p);
+        keep(&mut kept, q);
+    }
+    // A warm start that gives no shot plan falls back to the grid.
+    let warm_failed = kept.first().copied().flatten().is_none_or(|b| !b.shot);
+    if warm.is_some() && warm_failed && !ctx.meter.exhausted() {
+        for p in ctx.grid().iter().flatten() {
+            let q = ctx.refine(*p);
+            keep(&mut kept, q);
+        }
+    }
+    // Hops: the best plan with its intermediate impulses moved by half revolutions (to the
+    // other node of the plane change), refined again.
+    for _round in 0..ctx.settings.hop_rounds {
+        let Some(q0) = kept.first().copied().flatten() else {
+            break;
+        };
+        let mut any = false;
+        for hop in ctx.hops(&q0).iter().flatten() {
+            let q = ctx.refine(*hop);
+            any |= keep(&mut kept, q);
+        }
+        if !any || ctx.meter.exhausted() {
+            break;
+        }
+    }
+    kept
 }

@@ -12,7 +12,8 @@
 //! The converged aim offset (and the velocity the J2 flight adds at arrival) is the [`Offset`]
 //! that the search keeps frozen between re-shootings: the "J2-corrected Lambert".
 
-use super::j2::{join, pos, propagate_steps, step_count, vel, Gravity, State};
+use super::flight::Flight;
+use super::j2::{join, pos, vel, State};
 use super::types::Settings;
 use crate::lambert::{self, Branch};
 use crate::vec3::{add, cross, dot, norm, scale, sub, Vec3};
@@ -134,7 +135,7 @@ pub struct Shot {
 /// restarts from the best shot, so the iteration is never worse than the plain one for long.
 #[allow(clippy::too_many_arguments)]
 pub fn shoot(
-    g: &Gravity,
+    flight: &Flight,
     settings: &Settings,
     from: &State,
     target_r: &Vec3,
@@ -144,7 +145,6 @@ pub fn shoot(
     secant: &mut Secant,
     meter: &mut Meter,
 ) -> Option<Shot> {
-    let n = step_count(tof_s, settings.step_s, settings.max_steps)?;
     let mut off = *start;
     let mut best: Option<Shot> = None;
     // The best shot's flown offset and miss: the secant update and every step start there.
@@ -167,10 +167,7 @@ pub fn shoot(
         ) else {
             break;
         };
-        if !meter.spend(u64::from(n)) {
-            break;
-        }
-        let Some(end) = propagate_steps(g, &join(&pos(from), &v_dep), tof_s, n) else {
+        let Some(end) = flight.fly(&join(&pos(from), &v_dep), tof_s, meter) else {
             break;
         };
         let miss = sub(&pos(&end), target_r);
@@ -232,7 +229,7 @@ pub fn shoot(
 /// not reach full J2 gives no shot).
 #[allow(clippy::too_many_arguments)]
 pub fn shoot_continued(
-    g: &Gravity,
+    flight: &Flight,
     settings: &Settings,
     from: &State,
     target_r: &Vec3,
@@ -244,7 +241,7 @@ pub fn shoot_continued(
     meter: &mut Meter,
 ) -> Option<Shot> {
     let direct = shoot(
-        g, settings, from, target_r, tof_s, fam, start, secant, meter,
+        flight, settings, from, target_r, tof_s, fam, start, secant, meter,
     );
     if direct.is_some_and(|s| s.miss_km <= accept_km) || stages == 0 {
         return direct;
@@ -256,10 +253,7 @@ pub fn shoot_continued(
     let mut continued: Option<Shot> = None;
     for _ in 0..u16::from(stages).saturating_mul(3) {
         let fraction = (reached + increment).min(1.0);
-        let scaled = Gravity {
-            j2: g.j2 * fraction,
-            ..*g
-        };
+        let scaled = flight.with_j2_fraction(fraction);
         let trial_start = Offset {
             dr_km: if reached > 0.0 {
                 scale(&off.dr_km, fraction / reached)

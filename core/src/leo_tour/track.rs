@@ -37,6 +37,12 @@ impl Track {
         Some(Self { states, spacing_s })
     }
 
+    /// The state at the arc start.
+    pub fn start(&self) -> State {
+        let [first, ..] = self.states;
+        first
+    }
+
     /// The state at `t_s` (clamped to the arc), from the checkpoint at or before it.
     pub fn state_at(
         &self,

@@ -1,5 +1,6 @@
 //! Settings, problem, solution and errors of the per-arc rendezvous.
 
+use super::flight::{Flight, Model};
 use super::j2::{Gravity, State};
 use crate::vec3::Vec3;
 use serde::{Deserialize, Serialize};
@@ -55,8 +56,16 @@ pub struct Settings {
     pub search_min_step_s: f64,
     /// Least time between two impulses (and before the arrival), s.
     pub min_gap_s: f64,
-    /// Work budget (units: one RK4 step = 1 unit, one Lambert solve = 8 units).
+    /// Work budget (units: one RK4 step = 1 unit, one Lambert solve = 8 units, one flight
+    /// of the search model 6 units).
     pub work_budget: u64,
+    /// The model of the grid, the local searches and the hops: `MeanElements` (the
+    /// first-order J2 theory in closed form, then a polish in the planning model) or
+    /// `Planning` (everything in the planning model, the slow reference).
+    pub search_model: Model,
+    /// Cost evaluations of the planning-model polish of each of the best search-model plans
+    /// (with `search_model = MeanElements`).
+    pub polish_max_evals: u32,
 }
 
 impl Default for Settings {
@@ -74,13 +83,15 @@ impl Default for Settings {
             arrival_tol_km: 1e-6,
             grid_points: 96,
             candidates: 8,
-            hop_rounds: 3,
+            hop_rounds: 6,
             search_max_evals: 4000,
             search_step_s: 600.0,
             search_step_kmps: 0.02,
             search_min_step_s: 1e-3,
             min_gap_s: 60.0,
             work_budget: 400_000_000,
+            search_model: Model::MeanElements,
+            polish_max_evals: 600,
         }
     }
 }
@@ -92,6 +103,16 @@ impl Settings {
             mu_km3_s2: self.mu_km3_s2,
             re_km: self.re_km,
             j2: self.j2,
+        }
+    }
+
+    /// Flights in `model` with these settings' constants and step bounds.
+    pub fn flight(&self, model: Model) -> Flight {
+        Flight {
+            g: self.gravity(),
+            model,
+            step_s: self.step_s,
+            max_steps: self.max_steps,
         }
     }
 }
@@ -207,6 +228,8 @@ pub enum Field {
     WorkBudget = 21,
     /// `Settings::hop_rounds`.
     HopRounds = 22,
+    /// `Settings::polish_max_evals`.
+    PolishMaxEvals = 23,
 }
 
 /// Why an arc was not planned.

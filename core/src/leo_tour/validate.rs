@@ -67,6 +67,12 @@ pub fn check(problem: &ArcProblem, settings: &Settings) -> Result<(), PlanError>
         0.0,
         1e6,
     )?;
+    range(
+        Field::PolishMaxEvals,
+        f64::from(s.polish_max_evals),
+        0.0,
+        1e6,
+    )?;
     range(Field::SearchStep, s.search_step_s, 0.0, 1e5)?;
     range(Field::SearchStepKmps, s.search_step_kmps, 0.0, 1.0)?;
     range(Field::SearchMinStep, s.search_min_step_s, 1e-6, 1e5)?;

@@ -1,13 +1,14 @@
 //! The tour's order for a fixture with a `[sequence]` table: the core's branch-and-bound
-//! (`reconfig_core::leo_tour::sequence`), each arc planned by the core's per-arc rendezvous
-//! with the table's faster search.
+//! (`reconfig_core::leo_tour::sequence`), each arc's cost the core's estimate
+//! (`leo_tour::estimate_arc_mps`: the per-arc search in the search model, with the table's
+//! faster settings).
 
 use crate::fixture::leo_tour::LeoTourFixture;
 use anyhow::{anyhow, Result};
 use reconfig_core::leo_tour::bound::plane_of;
 use reconfig_core::leo_tour::j2::State;
 use reconfig_core::leo_tour::sequence::{best_order, Sequence};
-use reconfig_core::leo_tour::{propagate as core_propagate, solve_arc, ArcProblem};
+use reconfig_core::leo_tour::{estimate_arc_mps, propagate as core_propagate, ArcProblem};
 use serde_json::json;
 use std::collections::HashMap;
 use std::time::Instant;
@@ -54,7 +55,7 @@ pub fn choose_order(f: &LeoTourFixture) -> Result<Option<(LeoTourFixture, Chosen
                 .or_insert_with(|| core_propagate(&f.settings, &f.clients[k], t0))
         };
         let cost = match (at(i), at(j)) {
-            (Some(from), Some(to)) => solve_arc(
+            (Some(from), Some(to)) => estimate_arc_mps(
                 &ArcProblem {
                     from,
                     to,
@@ -63,9 +64,7 @@ pub fn choose_order(f: &LeoTourFixture) -> Result<Option<(LeoTourFixture, Chosen
                 },
                 &spec.arc_settings,
             )
-            .ok()
-            .filter(|s| s.status != reconfig_core::leo_tour::Status::ArrivalMissed)
-            .map(|s| s.total_dv_mps),
+            .ok(),
             _ => None,
         };
         arcs.insert((i, j, t0.to_bits(), dt.to_bits()), cost);

@@ -14,6 +14,7 @@ use crate::truth::integrator::Tolerance;
 use crate::truth::plan_check::{full_model, j2_model, TruthSettings};
 use crate::truth::propagate::{propagate, Burn, EciState};
 use anyhow::{anyhow, Result};
+use reconfig_core::leo_tour::flight::Model;
 use reconfig_core::leo_tour::j2::State;
 use reconfig_core::leo_tour::sequence::SequenceStatus;
 use reconfig_core::leo_tour::shoot::{corrected_lambert, shoot_continued, Family, Offset, Secant};
@@ -247,7 +248,7 @@ pub fn replan_last_leg_states(
     // from the truth state with that offset and quasi-Newton matrix. Started from the client's
     // two-body offset directly, the shooting from the truth state could fail on 30-revolution
     // legs (thousands of km of J2 drift) and the truth iterations then diverged.
-    let g = settings.gravity();
+    let planning_model = settings.flight(Model::Planning);
     let planned_departure = (|| {
         let mut state = arc.problem.from;
         let mut t = 0.0;
@@ -263,7 +264,7 @@ pub fn replan_last_leg_states(
     let target = client.end.pos_km;
     let j2_shot = |from: &State, start: &Offset, secant: &mut Secant, meter: &mut Meter| {
         shoot_continued(
-            &g,
+            &planning_model,
             settings,
             from,
             &target,
