@@ -327,6 +327,13 @@ pub fn solve_from(
             // T(x = 0) = acos(lambda) + lambda sqrt(1 - lambda^2) + K pi bounds the least
             // time of the K-revolution family from above: only shorter times need the Halley
             // search for it.
+            // Every K-revolution transfer takes more than K pi (non-dimensional): the time
+            // is the direct part (positive) plus K pi / (1 - x^2)^(3/2). Equivalently K
+            // periods of the least-energy orbit (a = s/2) fit in the time of flight. Shorter
+            // times are refused before the least-time search.
+            if revs > 0 && t_nd <= m * pi {
+                return Err(LambertError::NoSolution);
+            }
             let t_00 = libm::acos(lam) + lam * libm::sqrt((1.0 - lam * lam).max(0.0)) + m * pi;
             if revs > 0 && t_nd < t_00 {
                 let t_min = min_tof(lam, m, max_iter, tol).ok_or(LambertError::NotConverged)?;

@@ -41,13 +41,13 @@ fn paper_single_arc_is_solved_below_the_published_cost() {
     let sol = solve_arc(&paper_arc(), &Settings::default()).unwrap();
     std::println!("{sol:#?}");
     // The published burns are 149.590 / 234.056 / 53.811 m/s (437.457 m/s, section 3.2) and
-    // 418.445 m/s for the same arc in Table 2; this search finds 411.857 m/s (see
+    // 418.445 m/s for the same arc in Table 2; this search finds 411.778 m/s (see
     // docs/leo-tour.md): below both.
     assert_eq!(sol.status, Status::Solved);
     assert!(sol.miss_m <= 1e-3);
     assert!(sol.total_dv_mps <= 418.445, "{}", sol.total_dv_mps);
     assert!(
-        (sol.total_dv_mps - 411.857).abs() < 0.01,
+        (sol.total_dv_mps - 411.778).abs() < 0.01,
         "{}",
         sol.total_dv_mps
     );
@@ -63,7 +63,7 @@ fn paper_single_arc_is_solved_below_the_published_cost() {
 fn the_search_model_finds_the_planning_models_plan_for_a_tenth_of_the_work() {
     // The same arc searched in the planning model throughout (the reference) and in the
     // search model (first-order J2 in closed form, then the planning model's polish and
-    // check). Measured: 411.731 m/s with 40.5 M work units against 411.857 with 2.26 M.
+    // check). Measured: 411.810 m/s with 35.1 M work units against 411.778 with 1.18 M.
     let reference = solve_arc(
         &paper_arc(),
         &Settings {
@@ -83,7 +83,7 @@ fn the_search_model_finds_the_planning_models_plan_for_a_tenth_of_the_work() {
     assert_eq!(reference.status, Status::Solved);
     assert_eq!(fast.status, Status::Solved);
     assert!(fast.total_dv_mps <= reference.total_dv_mps + 0.5);
-    assert!(fast.work_units * 10 <= reference.work_units);
+    assert!(fast.work_units * 20 <= reference.work_units);
 }
 
 #[test]

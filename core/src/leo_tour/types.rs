@@ -87,7 +87,7 @@ impl Default for Settings {
             search_max_evals: 4000,
             search_step_s: 600.0,
             search_step_kmps: 0.02,
-            search_min_step_s: 1e-3,
+            search_min_step_s: 0.5,
             min_gap_s: 60.0,
             work_budget: 400_000_000,
             search_model: Model::MeanElements,
