@@ -1,10 +1,11 @@
 //! The planning model: Newtonian gravity plus the J2 zonal term, integrated by classical
 //! fourth-order Runge-Kutta with a fixed step.
 //!
-//! Why fixed-step RK4 and not an analytic mean-element model: a rendezvous must end on the
-//! client's *osculating* position, and over a 15-revolution arc the short-period J2 terms (a
-//! moves by about +-10 km in LEO) shift the phase by degrees; integrating the J2 force avoids
-//! any mean/osculating conversion. The step is a setting (`Settings::step_s`); a propagation
+//! Why fixed-step RK4 decides and not an analytic mean-element model: a rendezvous must end on
+//! the client's *osculating* position, and over a 15-revolution arc the first-order theory
+//! leaves 0.1-3 km (the neglected second-order terms); integrating the J2 force avoids any
+//! mean/osculating conversion. The search ranks plans in that theory
+//! ([`super::mean_j2`], much cheaper) and every returned plan is flown here. The step is a setting (`Settings::step_s`); a propagation
 //! over `dt` takes `ceil(|dt| / step)` equal steps (so every end point is reached exactly) and
 //! is refused beyond `Settings::max_steps` steps. Its error against the host truth model's
 //! J2-only mode is in `docs/leo-tour.md`.
