@@ -111,7 +111,7 @@ pub fn step_count(dt_s: f64, step_s: f64, max_steps: u32) -> Option<u32> {
 /// state leaves the finite numbers (e.g. a transfer through the Earth's centre).
 pub fn propagate_steps(g: &Gravity, s: &State, dt_s: f64, n: u32) -> Option<State> {
     if n == 0 {
-        return Some(*s);
+        return s.iter().all(|v| v.is_finite()).then_some(*s);
     }
     let h = dt_s / f64::from(n);
     let mut x = *s;
