@@ -17,7 +17,7 @@
 use super::flight::{Flight, Model};
 use super::j2::{join, pos, vel, Gravity, State};
 use super::mean_j2::{self, MeanOrbit};
-use super::shoot::{corrected_lambert, shoot, Family, Offset, Secant};
+use super::shoot::{corrected_lambert, corrected_lambert_from, shoot, Family, Offset, Secant};
 use super::track::Track;
 use super::types::{ArcSolution, Burn, Settings, Status, MAX_CANDIDATES, MAX_IMPULSES, MAX_VARS};
 use crate::indexed::IndexedExt as _;
@@ -46,6 +46,9 @@ pub(crate) struct Ctx<'a> {
     /// The shootings' quasi-Newton matrix, carried from one shooting to the next of a
     /// refinement (reset at each candidate).
     pub secant: Secant,
+    /// The last leg's last Lambert solution (family, Izzo's x): the warm start of the next
+    /// solve of that family (the compass search moves a little at a time).
+    pub lambert_guess: Option<(Family, f64)>,
 }
 
 /// One of the arc's two clients.
@@ -175,35 +178,55 @@ impl Ctx<'_> {
     /// Cost (km/s) of `x` with the last leg's offset frozen.
     pub(crate) fn cost(&mut self, x: &[f64; MAX_VARS], fam: Family, off: &Offset) -> Option<f64> {
         self.evals = self.evals.saturating_add(1);
-        let (pre, s, t) = self.fly_to_last_leg(x)?;
+        let flown = self.fly_to_last_leg(x)?;
+        self.last_leg_cost(&flown, fam, off)
+    }
+
+    /// The cost of a plan flown to its last leg (`fly_to_last_leg`'s output) with the last
+    /// leg in `fam`, offset frozen.
+    #[allow(clippy::type_complexity)]
+    fn last_leg_cost(
+        &mut self,
+        (pre, s, t): &([(State, Vec3); MAX_IMPULSES], State, [f64; MAX_IMPULSES]),
+        fam: Family,
+        off: &Offset,
+    ) -> Option<f64> {
         let t_last = *t.get(self.impulses.checked_sub(2)?)?;
-        let (v_dep, v_arr) = corrected_lambert(
+        let guess = self
+            .lambert_guess
+            .and_then(|(f, x)| (f == fam).then_some(x));
+        let (v_dep, v_arr, x) = corrected_lambert_from(
             self.settings,
-            &s,
+            s,
             &pos(&self.b_end),
             self.tf - t_last,
             fam,
             off,
+            guess,
             &mut self.meter,
         )?;
+        self.lambert_guess = Some((fam, x));
         let free: f64 = pre
             .iter()
             .take(self.impulses.saturating_sub(2))
             .map(|(_, dv)| norm(dv))
             .sum();
-        let c = free + norm(&sub(&v_dep, &vel(&s))) + norm(&sub(&vel(&self.b_end), &v_arr));
+        let c = free + norm(&sub(&v_dep, &vel(s))) + norm(&sub(&vel(&self.b_end), &v_arr));
         c.is_finite().then_some(c)
     }
 
-    /// The cheapest family of the last leg at `x` (offset frozen).
+    /// The cheapest family of the last leg at `x` (offset frozen): `x` flown once to its last
+    /// leg, then one Lambert solve per family (one evaluation).
     pub(crate) fn best_family(
         &mut self,
         x: &[f64; MAX_VARS],
         off: &Offset,
     ) -> Option<(Family, f64)> {
+        self.evals = self.evals.saturating_add(1);
+        let flown = self.fly_to_last_leg(x)?;
         let mut best: Option<(Family, f64)> = None;
         for fam in families(self.settings.max_revolutions) {
-            if let Some(c) = self.cost(x, fam, off) {
+            if let Some(c) = self.last_leg_cost(&flown, fam, off) {
                 if best.is_none_or(|(_, b)| c < b) {
                     best = Some((fam, c));
                 }

@@ -116,6 +116,7 @@ fn context<'a>(problem: &ArcProblem, settings: &'a Settings) -> Result<Ctx<'a>, 
         meter,
         evals: 0,
         secant: shoot::Secant::default(),
+        lambert_guess: None,
     })
 }
 

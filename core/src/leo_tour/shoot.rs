@@ -51,13 +51,30 @@ pub fn corrected_lambert(
     off: &Offset,
     meter: &mut Meter,
 ) -> Option<(Vec3, Vec3)> {
+    corrected_lambert_from(settings, from, target_r, tof_s, fam, off, None, meter)
+        .map(|(v1, v2, _)| (v1, v2))
+}
+
+/// [`corrected_lambert`] started from `guess` (Izzo's x of a nearby solve of the same family;
+/// see [`lambert::solve_from`]): (departure velocity, arrival velocity, the solution's x).
+#[allow(clippy::too_many_arguments)]
+pub fn corrected_lambert_from(
+    settings: &Settings,
+    from: &State,
+    target_r: &Vec3,
+    tof_s: f64,
+    fam: Family,
+    off: &Offset,
+    guess: Option<f64>,
+    meter: &mut Meter,
+) -> Option<(Vec3, Vec3, f64)> {
     if !meter.spend(LAMBERT_UNITS) {
         return None;
     }
     let r1 = pos(from);
     let normal = cross(&r1, &vel(from));
     let aim = add(target_r, &off.dr_km);
-    let sol = lambert::solve(
+    let sol = lambert::solve_from(
         settings.mu_km3_s2,
         &r1,
         &aim,
@@ -67,9 +84,10 @@ pub fn corrected_lambert(
         &normal,
         settings.lambert_max_iter,
         settings.lambert_tol,
+        guess,
     )
     .ok()?;
-    Some((sol.v1_kmps, add(&sol.v2_kmps, &off.dv_kmps)))
+    Some((sol.v1_kmps, add(&sol.v2_kmps, &off.dv_kmps), sol.x))
 }
 
 /// Broyden's estimate of the inverse Jacobian of the arrival miss over the aim offset: the
