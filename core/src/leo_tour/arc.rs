@@ -31,8 +31,10 @@ pub(crate) struct Ctx<'a> {
     pub g: Gravity,
     pub impulses: usize,
     pub tf: f64,
-    pub a: Track,
-    pub b: Track,
+    /// The clients' checkpoints in the planning model (`None` for an estimate, which never
+    /// flies in the planning model).
+    pub a: Option<Track>,
+    pub b: Option<Track>,
     pub b_end: State,
     /// The model of the flights now (the search's, or the planning model's for the polish
     /// and the final check).
@@ -111,7 +113,11 @@ impl Ctx<'_> {
             Client::B => (&self.b, self.mean_b),
         };
         match self.flight.model {
-            Model::Planning => track.state_at(&self.g, self.settings, t_s, &mut self.meter),
+            Model::Planning => {
+                track
+                    .as_ref()?
+                    .state_at(&self.g, self.settings, t_s, &mut self.meter)
+            }
             Model::MeanElements => {
                 if !self.meter.spend(mean_j2::STATE_UNITS) {
                     return None;

@@ -4,7 +4,7 @@
 //! terms, in Lyddane's form that stays regular at small eccentricity: Schaub & Junkins,
 //! *Analytical Mechanics of Space Systems*, appendix F, without its long-period terms), moves
 //! the mean node, perigee and mean anomaly at their first-order secular rates (the one
-//! implementation of planner B, [`crate::impulsive::secular`]), and maps back. Its cost does
+//! implementation of planner B, `impulsive::secular`), and maps back. Its cost does
 //! not depend on the span: a Kepler solve and a few dozen trigonometric calls, against
 //! `span / step_s` RK4 steps of the planning model ([`super::j2`]).
 //!
@@ -16,7 +16,7 @@
 //! Accuracy (unit tests, against the planning model's RK4 at 20 s): the neglected second-order
 //! terms leave of the order of a kilometre after a day in LEO. The search only ranks plans
 //! with it; every plan it returns is flown and shot again in the planning model
-//! ([`super::arc`]), which decides the status.
+//! (`leo_tour::arc`), which decides the status.
 
 use super::elements::{state_of, Classical};
 use super::j2::{join, pos, vel, Gravity, State};
