@@ -7,14 +7,9 @@ use super::elements::{
 };
 use nalgebra::SMatrix;
 
-/// The constants of the secular theory: gravitational parameter (km^3/s^2), equatorial
-/// radius (km) and J2. Planner B uses the Earth's ([`EARTH`]); the LEO tour its settings'.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Constants {
-    pub mu_km3_s2: f64,
-    pub re_km: f64,
-    pub j2: f64,
-}
+/// The constants of the secular theory (gravitational parameter, equatorial radius, J2):
+/// planner B uses the Earth's ([`EARTH`]); the LEO tour its settings'.
+pub(crate) type Constants = crate::leo_tour::j2::Gravity;
 
 /// The Earth constants of planner B.
 pub(crate) const EARTH: Constants = Constants {

@@ -23,7 +23,7 @@ use super::j2::{join, pos, vel, Gravity, State};
 use crate::impulsive::elements::{wrap_pi, Elements, A, ARGP, E, I, MA, RAAN};
 use crate::impulsive::kepler::true_anomaly;
 use crate::impulsive::nonlinear::elements_from_state_with;
-use crate::impulsive::secular::{rates_with, Constants};
+use crate::impulsive::secular::rates_with;
 
 // The secular rates are those of the last three elements (node, perigee, mean anomaly).
 const _: () = assert!(RAAN + 1 == ARGP && ARGP + 1 == MA && MA == 5);
@@ -39,14 +39,6 @@ pub const FLIGHT_UNITS: u64 = 9;
 /// Work units charged for the state of a [`MeanOrbit`] at an epoch (the conversion to mean
 /// elements made once): measured as [`FLIGHT_UNITS`], 0.34 us (4.4 RK4 steps).
 pub const STATE_UNITS: u64 = 4;
-
-fn constants(g: &Gravity) -> Constants {
-    Constants {
-        mu_km3_s2: g.mu_km3_s2,
-        re_km: g.re_km,
-        j2: g.j2,
-    }
-}
 
 /// The first-order short-period J2 terms added to `el` (`sign = 1`: mean to osculating;
 /// `sign = -1`: osculating to mean, to first order). `None` when Kepler's equation does not
@@ -177,7 +169,7 @@ impl MeanOrbit {
     pub fn of_state(g: &Gravity, state: &State) -> Option<Self> {
         let osc = elements_from_state_with(g.mu_km3_s2, &pos(state), &vel(state), &[0.0; 6])?;
         let mean = to_mean(g, &osc)?;
-        let d = rates_with(&constants(g), &mean);
+        let d = rates_with(g, &mean);
         let d2 = second_order_rates(g, &mean);
         // The angle rows RAAN, ARGP, MA are the last three of an element vector.
         let mut rates = [0.0; 3];

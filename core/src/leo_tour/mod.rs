@@ -93,6 +93,8 @@ fn context<'a>(
         used: m.used(),
         budget: settings.work_budget,
     };
+    // The clients' mean orbits: one conversion each (charged as a flight).
+    meter.charge(2 * mean_j2::FLIGHT_UNITS);
     let mean_a = mean_j2::MeanOrbit::of_state(&g, &problem.from);
     let mean_b = mean_j2::MeanOrbit::of_state(&g, &problem.to);
     let (a, b, b_end) = if with_planning_model {
