@@ -448,7 +448,7 @@ impl Ctx<'_> {
         let s = self.settings;
         self.refine_with(
             p,
-            (s.search_step_s, s.search_step_kmps),
+            (s.search_step_s / 16.0, s.search_step_kmps / 16.0),
             s.polish_max_evals,
             false,
         )

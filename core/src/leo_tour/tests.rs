@@ -63,7 +63,7 @@ fn paper_single_arc_is_solved_below_the_published_cost() {
 fn the_search_model_finds_the_planning_models_plan_for_a_tenth_of_the_work() {
     // The same arc searched in the planning model throughout (the reference) and in the
     // search model (first-order J2 in closed form, then the planning model's polish and
-    // check). Measured: 411.810 m/s with 33.0 M work units against 411.778 with 0.90 M.
+    // check). Measured: 411.810 m/s with 33.0 M work units against 411.778 with 0.88 M.
     let reference = solve_arc(
         &paper_arc(),
         &Settings {
