@@ -44,11 +44,12 @@ pub struct Plane {
     pub raan_rate_rad_s: f64,
 }
 
-/// The first-order secular J2 node rate of an orbit, rad/s.
+/// The first-order secular J2 node rate of an orbit, rad/s (planner B's secular theory, the
+/// one implementation).
 pub fn raan_rate_rad_s(g: &Gravity, a_km: f64, e: f64, i_rad: f64) -> f64 {
-    let p = a_km * (1.0 - e * e);
-    let n = libm::sqrt(g.mu_km3_s2 / (a_km * a_km * a_km));
-    -1.5 * n * g.j2 * (g.re_km / p) * (g.re_km / p) * libm::cos(i_rad)
+    let [_, _, _, raan, _, _] =
+        crate::impulsive::secular::rates_with(g, &[a_km, e, i_rad, 0.0, 0.0, 0.0]);
+    raan
 }
 
 /// The plane of `s`; `None` for a degenerate or non-elliptic state.
