@@ -57,14 +57,14 @@ pub struct Settings {
     /// Least time between two impulses (and before the arrival), s.
     pub min_gap_s: f64,
     /// Work budget (units: one RK4 step = 1 unit, one Lambert solve = 8 units, one flight
-    /// of the search model 6 units).
+    /// of the search model 9 units, one client state of the search model 4 units).
     pub work_budget: u64,
     /// The model of the grid, the local searches and the hops: `MeanElements` (the
     /// first-order J2 theory in closed form, then a polish in the planning model) or
     /// `Planning` (everything in the planning model, the slow reference).
     pub search_model: Model,
-    /// Cost evaluations of the planning-model polish of each of the best search-model plans
-    /// (with `search_model = MeanElements`).
+    /// Cost evaluations of the planning-model polish of the best search-model plan (and of
+    /// a warm start's plan), with `search_model = MeanElements`.
     pub polish_max_evals: u32,
 }
 
