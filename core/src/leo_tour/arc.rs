@@ -113,11 +113,7 @@ impl Ctx<'_> {
             Client::B => (&self.b, self.mean_b),
         };
         match self.flight.model {
-            Model::Planning => {
-                track
-                    .as_ref()?
-                    .state_at(&self.g, self.settings, t_s, &mut self.meter)
-            }
+            Model::Planning => track.as_ref()?.state_at(&self.flight, t_s, &mut self.meter),
             Model::MeanElements => {
                 if !self.meter.spend(mean_j2::STATE_UNITS) {
                     return None;

@@ -98,19 +98,18 @@ fn context<'a>(
     let mean_a = mean_j2::MeanOrbit::of_state(&g, &problem.from);
     let mean_b = mean_j2::MeanOrbit::of_state(&g, &problem.to);
     let (a, b, b_end) = if with_planning_model {
-        let a = Track::new(&g, settings, &problem.from, tf, &mut meter).ok_or(
-            if meter.exhausted() {
+        let planning = settings.flight(Model::Planning);
+        let a =
+            Track::new(&planning, &problem.from, tf, &mut meter).ok_or(if meter.exhausted() {
                 exhausted(&meter)
             } else {
                 PlanError::Propagation { field: Field::From }
-            },
-        )?;
-        let b =
-            Track::new(&g, settings, &problem.to, tf, &mut meter).ok_or(if meter.exhausted() {
-                exhausted(&meter)
-            } else {
-                PlanError::Propagation { field: Field::To }
             })?;
+        let b = Track::new(&planning, &problem.to, tf, &mut meter).ok_or(if meter.exhausted() {
+            exhausted(&meter)
+        } else {
+            PlanError::Propagation { field: Field::To }
+        })?;
         let n = step_count(tf, settings.step_s, settings.max_steps.saturating_mul(64))
             .ok_or(PlanError::Propagation { field: Field::To })?;
         meter.charge(u64::from(n));
