@@ -8,11 +8,14 @@ use std::sync::OnceLock;
 use crate::disassembly::assert_no_fused_multiply_add;
 use crate::fixture_set::{self, Planner};
 use crate::host::{hex, host_result};
-use crate::image::{build_and_run, build_image_in, or_skip, run_firmware, FixtureReport, Run};
-use crate::prerequisites::{check_prerequisites, notice, root, skip};
+use crate::image::{
+    build_and_run, build_image_in, instructions_or_skip, or_skip, run_firmware, FixtureReport, Run,
+};
+use crate::prerequisites::{check_prerequisites, notice, root};
 use crate::record::{
-    assert_figures, assert_systick_agrees, record_entries, record_image_ram, tables_by, updating,
-    BUDGET_RAM_BYTES, BUDGET_STACK_BYTES, FIGURES_FILE, RECORD_LOCK, UPDATE_COMMAND,
+    assert_figures, assert_systick_agrees, read_record, record_entries, record_image_ram,
+    tables_by, updating, BUDGET_RAM_BYTES, BUDGET_STACK_BYTES, FIGURES_FILE, RECORD_LOCK,
+    UPDATE_COMMAND,
 };
 
 const BIN: &str = "reconfig-firmware";
@@ -171,20 +174,12 @@ fn figures_are_within_budget() {
     let Some(Runs { run, images }) = or_skip(test, runs()) else {
         return;
     };
-    let Some(instructions) = &run.instructions else {
-        skip(
-            test,
-            "the QEMU instruction-counting plugin could not be built or loaded; the note above \
-             says why and what to install",
-        );
+    let Some(instructions) = instructions_or_skip(test, run) else {
         return;
     };
     assert_systick_agrees(run, instructions);
     let path = root().join(FIGURES_FILE);
-    let file: toml::Table = match std::fs::read_to_string(&path) {
-        Ok(text) => toml::from_str(&text).unwrap_or_else(|e| panic!("{FIGURES_FILE}: {e}")),
-        Err(_) => toml::Table::new(),
-    };
+    let file = read_record(FIGURES_FILE);
     let recorded_binary = file.get("binary").and_then(|v| v.as_table());
     let recorded_fixtures = tables_by(&file, "fixture", "name");
 

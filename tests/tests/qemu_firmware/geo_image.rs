@@ -6,13 +6,13 @@ use std::fmt::Write as _;
 use std::sync::OnceLock;
 
 use crate::disassembly::assert_no_fused_multiply_add;
-use crate::fixture_set::{self, Planner};
-use crate::host::assert_bit_identical;
-use crate::image::{build_and_run, or_skip, Run};
-use crate::prerequisites::{notice, root, skip};
+use crate::fixture_set::Planner;
+use crate::host::{assert_bit_identical, fixtures_of};
+use crate::image::{build_and_run, instructions_or_skip, or_skip, Run};
+use crate::prerequisites::{notice, root};
 use crate::record::{
-    assert_figures, assert_systick_agrees, record_entries, record_image_ram, tables_by, updating,
-    BUDGET_RAM_BYTES, BUDGET_STACK_BYTES, FIGURES_FILE, RECORD_LOCK,
+    assert_figures, assert_systick_agrees, read_record, record_entries, record_image_ram,
+    tables_by, updating, BUDGET_RAM_BYTES, BUDGET_STACK_BYTES, FIGURES_FILE, RECORD_LOCK,
 };
 
 /// The GEO image's binary.
@@ -41,21 +41,13 @@ fn run() -> &'static Result<Run, String> {
     RUN.get_or_init(|| build_and_run(BIN, Some("geo_tour"), "geo-image"))
 }
 
-fn geo_fixtures() -> Vec<fixture_set::EncodedFixture> {
-    fixture_set::encode_all(&root().join("fixtures"))
-        .expect("fixtures load")
-        .into_iter()
-        .filter(|f| f.planner == Planner::GeoTour)
-        .collect()
-}
-
 #[test]
 fn geo_results_are_bit_identical_to_the_host() {
     let test = "geo_results_are_bit_identical_to_the_host";
     let Some(run) = or_skip(test, run()) else {
         return;
     };
-    assert_bit_identical(run, &geo_fixtures(), Planner::GeoTour, "GEO");
+    assert_bit_identical(run, &fixtures_of(Planner::GeoTour), Planner::GeoTour, "GEO");
 }
 
 #[test]
@@ -64,18 +56,12 @@ fn geo_figures_are_within_budget() {
     let Some(run) = or_skip(test, run()) else {
         return;
     };
-    let Some(instructions) = &run.instructions else {
-        skip(
-            test,
-            "the QEMU instruction-counting plugin could not be built or loaded",
-        );
+    let Some(instructions) = instructions_or_skip(test, run) else {
         return;
     };
     assert_systick_agrees(run, instructions);
     let path = root().join(FIGURES_FILE);
-    let record_text = std::fs::read_to_string(&path).unwrap_or_default();
-    let file: toml::Table =
-        toml::from_str(&record_text).unwrap_or_else(|e| panic!("{FIGURES_FILE}: {e}"));
+    let file = read_record(FIGURES_FILE);
     let recorded_binary = file.get("geo_binary").and_then(|v| v.as_table());
     let recorded_fixtures = tables_by(&file, "geo_fixture", "name");
     let mut figures = Vec::new();

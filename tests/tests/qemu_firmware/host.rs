@@ -10,6 +10,15 @@ use serde::Serialize;
 use crate::fixture_set::{EncodedFixture, Planner};
 use crate::image::Run;
 
+/// The repository's fixtures of one planner, encoded as the firmware bakes them.
+pub fn fixtures_of(planner: Planner) -> Vec<EncodedFixture> {
+    crate::fixture_set::encode_all(&crate::prerequisites::root().join("fixtures"))
+        .expect("fixtures load")
+        .into_iter()
+        .filter(|f| f.planner == planner)
+        .collect()
+}
+
 pub fn hex(bytes: &[u8]) -> String {
     bytes.iter().fold(String::new(), |mut s, b| {
         let _ = write!(s, "{b:02x}");

@@ -58,6 +58,20 @@ pub fn or_skip<T>(test: &str, run: &'static Result<T, String>) -> Option<&'stati
     }
 }
 
+/// The run's instruction counts per solve, or `None` after reporting a skip (the QEMU
+/// instruction-counting plugin did not load).
+pub fn instructions_or_skip<'a>(test: &str, run: &'a Run) -> Option<&'a [u64]> {
+    let counts = run.instructions.as_deref();
+    if counts.is_none() {
+        skip(
+            test,
+            "the QEMU instruction-counting plugin could not be built or loaded; the note above \
+             says why and what to install",
+        );
+    }
+    counts
+}
+
 /// Build one image (`bin`; with exactly `features`, or the default features for `None`) as its
 /// cargo alias does; the ELF's path.
 pub fn build_image(bin: &str, features: Option<&str>) -> Result<PathBuf, String> {

@@ -6,13 +6,13 @@ use std::fmt::Write as _;
 use std::sync::OnceLock;
 
 use crate::disassembly::assert_no_fused_multiply_add;
-use crate::fixture_set::{self, Planner};
-use crate::host::assert_bit_identical;
-use crate::image::{build_and_run, or_skip, Run};
-use crate::prerequisites::{notice, root, skip};
+use crate::fixture_set::Planner;
+use crate::host::{assert_bit_identical, fixtures_of};
+use crate::image::{build_and_run, instructions_or_skip, or_skip, Run};
+use crate::prerequisites::{notice, root};
 use crate::record::{
-    assert_figures, assert_systick_agrees, record_entries, record_image_ram, tables_by, updating,
-    BUDGET_STACK_BYTES,
+    assert_figures, assert_systick_agrees, read_record, record_entries, record_image_ram,
+    tables_by, updating, BUDGET_STACK_BYTES,
 };
 
 /// The LEO image's binary.
@@ -35,21 +35,13 @@ fn run() -> &'static Result<Run, String> {
     RUN.get_or_init(|| build_and_run(BIN, Some("leo_tour"), "leo-image"))
 }
 
-fn leo_fixtures() -> Vec<fixture_set::EncodedFixture> {
-    fixture_set::encode_all(&root().join("fixtures"))
-        .expect("fixtures load")
-        .into_iter()
-        .filter(|f| f.planner == Planner::LeoArc)
-        .collect()
-}
-
 #[test]
 fn leo_results_are_bit_identical_to_the_host() {
     let test = "leo_results_are_bit_identical_to_the_host";
     let Some(run) = or_skip(test, run()) else {
         return;
     };
-    assert_bit_identical(run, &leo_fixtures(), Planner::LeoArc, "LEO");
+    assert_bit_identical(run, &fixtures_of(Planner::LeoArc), Planner::LeoArc, "LEO");
 }
 
 #[test]
@@ -58,18 +50,12 @@ fn leo_figures_match_the_record() {
     let Some(run) = or_skip(test, run()) else {
         return;
     };
-    let Some(instructions) = &run.instructions else {
-        skip(
-            test,
-            "the QEMU instruction-counting plugin could not be built or loaded",
-        );
+    let Some(instructions) = instructions_or_skip(test, run) else {
         return;
     };
     assert_systick_agrees(run, instructions);
     let path = root().join(LEO_FIGURES_FILE);
-    let record_text = std::fs::read_to_string(&path).unwrap_or_default();
-    let file: toml::Table =
-        toml::from_str(&record_text).unwrap_or_else(|e| panic!("{LEO_FIGURES_FILE}: {e}"));
+    let file = read_record(LEO_FIGURES_FILE);
     let mut figures = Vec::new();
     let mut text = String::from(
         "# LEO tour per-arc image (cargo firmware-leo): written by leo_figures_match_the_record\n\

@@ -14,6 +14,15 @@ pub const UPDATE_COMMAND: &str =
 /// A measured figure further than this (relative) from the record fails the drift check.
 const DRIFT_TOLERANCE: f64 = 0.01;
 
+/// A record file (`file`, from the repository root) as a table: empty when it does not exist
+/// yet, a failure when it does not parse.
+pub fn read_record(file: &str) -> toml::Table {
+    match std::fs::read_to_string(crate::prerequisites::root().join(file)) {
+        Ok(text) => toml::from_str(&text).unwrap_or_else(|e| panic!("{file}: {e}")),
+        Err(_) => toml::Table::new(),
+    }
+}
+
 /// Default budgets for a figure with no entry in the figures file (the on-board budgets of
 /// docs/firmware.md; a fixture's entry may set its own).
 pub const BUDGET_RAM_BYTES: u64 = 256 * 1024;
