@@ -139,6 +139,7 @@ fn context<'a>(
         evals: 0,
         secant: shoot::Secant::default(),
         lambert_guess: None,
+        start_cache: None,
     })
 }
 
