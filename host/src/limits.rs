@@ -1,9 +1,10 @@
 //! Limits files (`serve --limits FILE`, `solve --limits FILE`, `feed --limits FILE`) and
 //! fixture `[settings]` tables, both read as partial TOML tables over the core's defaults.
 //!
-//! A limits file has a `[pseudospectral]` and an `[impulsive]` table whose keys are the fields
-//! of `reconfig_core::limits::{pseudospectral, impulsive}::Limits` (the settings' own names);
-//! keys left out keep the built-in limit. Unknown keys are an error.
+//! A limits file has `[pseudospectral]`, `[impulsive]`, `[geo_tour]` and `[leo_tour]` tables
+//! whose keys are the fields of `reconfig_core::limits::{pseudospectral, impulsive, geo_tour,
+//! leo_tour}::Limits` (the settings' own names); keys left out keep the built-in limit.
+//! Unknown keys are an error.
 
 use anyhow::{anyhow, Context, Result};
 use reconfig_core::limits::Limits;
@@ -94,6 +95,13 @@ mod tests {
             Limits::default().impulsive.fixed_point_max_iter
         );
         assert!(parse("[impulsive]\nsearch_sample = 500\n").is_err());
+        let l = parse("[leo_tour]\nhop_rounds = 2\n").unwrap();
+        assert_eq!(l.leo_tour.hop_rounds, 2);
+        assert_eq!(
+            l.leo_tour.grid_points,
+            Limits::default().leo_tour.grid_points
+        );
+        assert!(parse("[leo_tour]\nhop_round = 2\n").is_err());
         assert!(parse("[pseudospectral]\nsqp_max_iter = -1\n").is_err());
         let round = parse(&default_toml().unwrap()).unwrap();
         assert_eq!(round, Limits::default());

@@ -232,6 +232,38 @@ pub enum Field {
     PolishMaxEvals = 23,
 }
 
+impl Field {
+    /// The field's name in a request (and a fixture).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::From => "from",
+            Self::To => "to",
+            Self::Duration => "duration_s",
+            Self::Impulses => "impulses",
+            Self::Mu => "mu_km3_s2",
+            Self::EquatorialRadius => "re_km",
+            Self::J2 => "j2",
+            Self::Step => "step_s",
+            Self::MaxSteps => "max_steps",
+            Self::LambertMaxIter => "lambert_max_iter",
+            Self::LambertTol => "lambert_tol",
+            Self::MaxRevolutions => "max_revolutions",
+            Self::ShootMaxIter => "shoot_max_iter",
+            Self::ArrivalTol => "arrival_tol_km",
+            Self::GridPoints => "grid_points",
+            Self::Candidates => "candidates",
+            Self::SearchMaxEvals => "search_max_evals",
+            Self::SearchStep => "search_step_s",
+            Self::SearchStepKmps => "search_step_kmps",
+            Self::SearchMinStep => "search_min_step_s",
+            Self::MinGap => "min_gap_s",
+            Self::WorkBudget => "work_budget",
+            Self::HopRounds => "hop_rounds",
+            Self::PolishMaxEvals => "polish_max_evals",
+        }
+    }
+}
+
 /// Why an arc was not planned.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub enum PlanError {
@@ -262,3 +294,28 @@ pub enum PlanError {
         budget: u64,
     },
 }
+
+impl core::fmt::Display for PlanError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match *self {
+            Self::OutOfRange {
+                field,
+                value,
+                min,
+                max,
+            } => write!(f, "{} = {value} is outside [{min}, {max}]", field.name()),
+            Self::Propagation { field } => write!(
+                f,
+                "client state `{}` cannot be propagated over the arc",
+                field.name()
+            ),
+            Self::NoTransfer => f.write_str("no transfer of the grid reached the client"),
+            Self::BudgetExhausted { used, budget } => write!(
+                f,
+                "work budget spent before any plan ({used} of {budget} units)"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for PlanError {}

@@ -18,6 +18,7 @@
 pub mod geo_tour;
 pub mod impulsive;
 mod impulsive_forms;
+pub mod leo_tour;
 pub mod pseudospectral;
 
 use crate::wire::Request;
@@ -152,6 +153,36 @@ pub enum Setting {
     ImpDeputyTargetPerigeeAltitudeKm = 101,
     /// Planner B, input forms: `|sin i|` of the chief a relative state in ROE is given on.
     ImpRoeChiefSinInclination = 102,
+    /// LEO tour arc: impulse count M of the arc.
+    LeoImpulses = 128,
+    /// LEO tour arc: `step_s`.
+    LeoStepS = 129,
+    /// LEO tour arc: `max_steps`.
+    LeoMaxSteps = 130,
+    /// LEO tour arc: `lambert_max_iter`.
+    LeoLambertMaxIter = 131,
+    /// LEO tour arc: `lambert_tol`.
+    LeoLambertTol = 132,
+    /// LEO tour arc: `max_revolutions`.
+    LeoMaxRevolutions = 133,
+    /// LEO tour arc: `shoot_max_iter`.
+    LeoShootMaxIter = 134,
+    /// LEO tour arc: `arrival_tol_km`.
+    LeoArrivalTolKm = 135,
+    /// LEO tour arc: `grid_points`.
+    LeoGridPoints = 136,
+    /// LEO tour arc: `candidates`.
+    LeoCandidates = 137,
+    /// LEO tour arc: `hop_rounds`.
+    LeoHopRounds = 138,
+    /// LEO tour arc: `search_max_evals`.
+    LeoSearchMaxEvals = 139,
+    /// LEO tour arc: `search_min_step_s`.
+    LeoSearchMinStepS = 140,
+    /// LEO tour arc: `work_budget`.
+    LeoWorkBudget = 141,
+    /// LEO tour arc: `polish_max_evals`.
+    LeoPolishMaxEvals = 142,
 }
 
 impl Setting {
@@ -221,6 +252,21 @@ impl Setting {
             Self::ImpDeputyTargetEccentricity => "deputy.target.eccentricity",
             Self::ImpDeputyTargetPerigeeAltitudeKm => "deputy.target.perigee_altitude_km",
             Self::ImpRoeChiefSinInclination => "relative.roe chief |sin i|",
+            Self::LeoImpulses => "impulses",
+            Self::LeoStepS => "step_s",
+            Self::LeoMaxSteps => "max_steps",
+            Self::LeoLambertMaxIter => "lambert_max_iter",
+            Self::LeoLambertTol => "lambert_tol",
+            Self::LeoMaxRevolutions => "max_revolutions",
+            Self::LeoShootMaxIter => "shoot_max_iter",
+            Self::LeoArrivalTolKm => "arrival_tol_km",
+            Self::LeoGridPoints => "grid_points",
+            Self::LeoCandidates => "candidates",
+            Self::LeoHopRounds => "hop_rounds",
+            Self::LeoSearchMaxEvals => "search_max_evals",
+            Self::LeoSearchMinStepS => "search_min_step_s",
+            Self::LeoWorkBudget => "work_budget",
+            Self::LeoPolishMaxEvals => "polish_max_evals",
         }
     }
 
@@ -229,7 +275,8 @@ impl Setting {
         match self as u8 {
             0..=31 => crate::wire::Planner::Pseudospectral,
             32..=63 | 96..=127 => crate::wire::Planner::Impulsive,
-            _ => crate::wire::Planner::GeoTour,
+            64..=95 => crate::wire::Planner::GeoTour,
+            _ => crate::wire::Planner::LeoArc,
         }
     }
 }
@@ -306,6 +353,8 @@ pub struct Limits {
     pub impulsive: impulsive::Limits,
     /// The GEO servicing tour.
     pub geo_tour: geo_tour::Limits,
+    /// The LEO tour's per-arc rendezvous.
+    pub leo_tour: leo_tour::Limits,
 }
 
 impl Limits {
@@ -320,6 +369,7 @@ impl Limits {
             }
             Request::Impulsive { problem, settings } => self.impulsive.check(problem, settings),
             Request::GeoTour { problem, settings } => self.geo_tour.check(problem, settings),
+            Request::LeoArc { problem, settings } => self.leo_tour.check(problem, settings),
             Request::ImpulsiveForm { problem, settings } => {
                 self.impulsive.check_form(problem, settings)
             }

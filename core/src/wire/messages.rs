@@ -1,7 +1,7 @@
 //! What a frame carries: the requests a feeder sends and the outcomes the service answers.
 
 use super::FrameError;
-use crate::{geo_tour, impulsive, pseudospectral};
+use crate::{geo_tour, impulsive, leo_tour, pseudospectral};
 use serde::{Deserialize, Serialize};
 
 /// A planning request for either planner.
@@ -39,6 +39,13 @@ pub enum Request {
         /// Loop bounds and tolerances.
         settings: impulsive::Settings,
     },
+    /// One arc of the LEO tour (the per-arc rendezvous under J2).
+    LeoArc {
+        /// The arc: the clients' states at its start, its duration and impulse count.
+        problem: leo_tour::ArcProblem,
+        /// Loop bounds, tolerances and the work budget.
+        settings: leo_tour::Settings,
+    },
 }
 
 impl Request {
@@ -48,6 +55,7 @@ impl Request {
             Self::Pseudospectral { .. } => Planner::Pseudospectral,
             Self::Impulsive { .. } | Self::ImpulsiveForm { .. } => Planner::Impulsive,
             Self::GeoTour { .. } => Planner::GeoTour,
+            Self::LeoArc { .. } => Planner::LeoArc,
         }
     }
 }
@@ -62,6 +70,8 @@ pub enum Planner {
     Impulsive = 1,
     /// The GEO servicing tour.
     GeoTour = 2,
+    /// One arc of the LEO tour.
+    LeoArc = 3,
 }
 
 /// What the service answers to one request.
@@ -97,6 +107,10 @@ pub enum Outcome {
         /// The plan's end state in the user's form.
         end_state: impulsive::EndState,
     },
+    /// The LEO arc planned; the solution's `status` says how it ended.
+    LeoArc(leo_tour::ArcSolution),
+    /// The LEO arc planner rejected the request.
+    LeoArcRejected(leo_tour::PlanError),
 }
 
 /// How long an expired request waited and the deadline it had, in microseconds.
@@ -136,6 +150,10 @@ pub enum OutcomeRef<'a> {
         /// The plan's end state in the user's form.
         end_state: impulsive::EndState,
     },
+    /// See [`Outcome::LeoArc`].
+    LeoArc(&'a leo_tour::ArcSolution),
+    /// See [`Outcome::LeoArcRejected`].
+    LeoArcRejected(leo_tour::PlanError),
 }
 
 impl Outcome {
@@ -158,6 +176,8 @@ impl Outcome {
                 solution,
                 end_state: *end_state,
             },
+            Self::LeoArc(s) => OutcomeRef::LeoArc(s),
+            Self::LeoArcRejected(e) => OutcomeRef::LeoArcRejected(*e),
         }
     }
 }

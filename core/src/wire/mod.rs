@@ -40,7 +40,9 @@ pub use messages::{Expiry, Outcome, OutcomeRef, Planner, Request};
 /// 4: planner A's certificate gained `flat_direction_probed`; planner-B requests in the user's
 ///    input forms (`Request::ImpulsiveForm`, answered by `Outcome::ImpulsiveForm` with the end
 ///    state in the same form), `PlanError::InputForm`, and the limits' form checks (`Rule::Below`).
-pub const PROTOCOL_VERSION: u16 = 4;
+/// 5: the LEO tour's arcs (`Request::LeoArc`, answered by `Outcome::LeoArc` or
+///    `Outcome::LeoArcRejected`), `Planner::LeoArc` and its limits (`Setting::Leo*`).
+pub const PROTOCOL_VERSION: u16 = 5;
 /// First two bytes of a request frame.
 pub const REQUEST_MAGIC: [u8; 2] = *b"RQ";
 /// First two bytes of a response frame.

@@ -102,9 +102,27 @@ pub fn fixture_items(paths: &[PathBuf]) -> Vec<Item> {
     let mut items = Vec::new();
     for path in paths {
         let text = std::fs::read_to_string(path).unwrap_or_default();
-        // The LEO tour (issue 13) is not on the wire yet: its fixtures are solved by
-        // `reconfig solve` only.
+        // The LEO tour: one request per arc of the fixture's order (a `[sequence]` fixture
+        // has no order until the sequencing, which is not a wire request: `reconfig solve`).
         if fixture::leo_tour::is_leo_tour(&text) {
+            match fixture::leo_tour::load(path)
+                .and_then(|f| crate::cli::solve_leo_tour::arc_problems(&f).map(|a| (f, a)))
+            {
+                Ok((f, arcs)) => {
+                    for (k, (from, to, _, problem)) in arcs.into_iter().enumerate() {
+                        items.push(Item {
+                            label: format!("{} arc {} ({}->{})", f.name, k + 1, from + 1, to + 1),
+                            planner: Some(Planner::LeoArc),
+                            size: format!("M{}", problem.impulses),
+                            payload: Payload::Request(Box::new(Request::LeoArc {
+                                problem,
+                                settings: f.settings,
+                            })),
+                        });
+                    }
+                }
+                Err(e) => eprintln!("skipped {}: {e:#}", path.display()),
+            }
             continue;
         }
         if fixture::geo_tour::is_geo_tour(&text) {

@@ -63,6 +63,23 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     }
     if fixture::leo_tour::is_leo_tour(&text) {
         let f = fixture::leo_tour::load(&args.file)?;
+        // Every arc request the tour makes (and those of its sequencing) has the fixture's
+        // impulse count and settings: the service's check on those.
+        let leo = &limits.leo_tour;
+        let started = Instant::now();
+        let checked = leo
+            .check_impulses(f.impulses)
+            .and_then(|()| leo.check_settings(&f.settings))
+            .and_then(|()| {
+                f.sequence
+                    .as_ref()
+                    .map_or(Ok(()), |s| leo.check_settings(&s.arc_settings))
+            });
+        let check_time_s = started.elapsed().as_secs_f64();
+        if let Err(violation) = checked {
+            report_refusal(&f.name, &violation, check_time_s, args.json);
+            return Ok(ExitCode::from(EXIT_REJECTED));
+        }
         return crate::cli::solve_leo_tour::run(&f, args.json);
     }
     let fixture = fixture::load(&args.file)?;

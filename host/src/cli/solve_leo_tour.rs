@@ -43,12 +43,16 @@ pub struct PlannedArc {
     pub solve_time_s: f64,
 }
 
-/// Plan every arc of the fixture's order.
+/// One arc of the fixture's order as the core's request: (from, to, start from the tour
+/// epoch in s, the problem), the clients propagated to the arc start in the planning model.
+pub type ArcRequest = (usize, usize, f64, ArcProblem);
+
+/// The arcs of the fixture's order as the core's requests.
 ///
 /// # Errors
-/// A client that cannot be propagated to an arc start, or the core's `PlanError` (as text).
-pub fn plan(f: &LeoTourFixture) -> Result<Vec<PlannedArc>> {
-    let mut arcs = Vec::new();
+/// A client that cannot be propagated to an arc start.
+pub fn arc_problems(f: &LeoTourFixture) -> Result<Vec<ArcRequest>> {
+    let mut out = Vec::new();
     let mut t0 = 0.0;
     for (pair, &interval) in f.order.windows(2).zip(f.intervals_s.iter()) {
         let (from, to) = (pair[0], pair[1]);
@@ -62,19 +66,31 @@ pub fn plan(f: &LeoTourFixture) -> Result<Vec<PlannedArc>> {
             duration_s: interval,
             impulses: f.impulses,
         };
+        out.push((from, to, t0, problem));
+        t0 += interval;
+    }
+    Ok(out)
+}
+
+/// Plan every arc of the fixture's order.
+///
+/// # Errors
+/// A client that cannot be propagated to an arc start, or the core's `PlanError` (as text).
+pub fn plan(f: &LeoTourFixture) -> Result<Vec<PlannedArc>> {
+    let mut arcs = Vec::new();
+    for (from, to, start_s, problem) in arc_problems(f)? {
         let started = Instant::now();
         let solution = solve_arc(&problem, &f.settings)
-            .map_err(|e| anyhow!("arc {} -> {}: {e:?}", from + 1, to + 1))?;
+            .map_err(|e| anyhow!("arc {} -> {}: {e}", from + 1, to + 1))?;
         arcs.push(PlannedArc {
             from,
             to,
-            start_s: t0,
-            end_s: t0 + interval,
+            start_s,
+            end_s: start_s + problem.duration_s,
             solution,
             problem,
             solve_time_s: started.elapsed().as_secs_f64(),
         });
-        t0 += interval;
     }
     Ok(arcs)
 }

@@ -116,6 +116,7 @@ pub fn print_table(items: &[Item], verdicts: &[Verdict], limit: usize) {
             Some(wire::Planner::Pseudospectral) => "pseudospectral",
             Some(wire::Planner::Impulsive) => "impulsive",
             Some(wire::Planner::GeoTour) => "geo-tour",
+            Some(wire::Planner::LeoArc) => "leo-arc",
             None => "fault",
         };
         println!(

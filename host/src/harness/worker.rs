@@ -4,7 +4,7 @@
 
 use reconfig_core::limits::Limits;
 use reconfig_core::wire::{self, Outcome, OutcomeRef, Request};
-use reconfig_core::{geo_tour, impulsive, pseudospectral};
+use reconfig_core::{geo_tour, impulsive, leo_tour, pseudospectral};
 use std::time::Instant;
 
 /// Stack size for threads that own a [`Worker`]: workspaces are boxed, but building them goes
@@ -141,6 +141,15 @@ impl Worker {
                     Err(e) => encode(frame.seq, ns, &OutcomeRef::GeoTourRejected(e), out),
                 }
             }
+            Request::LeoArc { problem, settings } => {
+                // No workspace: the arc planner's state is on the stack (fixed size).
+                let result = leo_tour::solve_arc(problem, settings);
+                let ns = elapsed_ns(start);
+                match result {
+                    Ok(sol) => encode(frame.seq, ns, &OutcomeRef::LeoArc(&sol), out),
+                    Err(e) => encode(frame.seq, ns, &OutcomeRef::LeoArcRejected(e), out),
+                }
+            }
         }
     }
 }
@@ -204,6 +213,15 @@ pub fn summarize(outcome: &Outcome) -> (String, String, String, String) {
             format!("{}", s.info.price_iterations),
         ),
         Outcome::GeoTourRejected(e) => {
+            (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
+        }
+        Outcome::LeoArc(s) => (
+            format!("{:?}", s.status),
+            format!("dv={:.4} m/s", s.total_dv_mps),
+            "-".into(),
+            format!("{}", s.evaluations),
+        ),
+        Outcome::LeoArcRejected(e) => {
             (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
         }
         Outcome::BadRequest(e) => (

@@ -1,0 +1,116 @@
+//! The LEO tour's arcs over the wire: the request and the plan round-trip byte for byte, the
+//! flight service's worker answers what a direct solve gives, a setting above the service's
+//! limits is refused by name before any solve, and a request outside the planner's ranges is
+//! answered with the planner's error naming the field.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use reconfig_core::leo_tour::{solve_arc, ArcProblem, Field, PlanError, Settings, Status};
+use reconfig_core::limits::{Rule, Setting};
+use reconfig_core::wire::{
+    decode_request, decode_response, encode_request, encode_response, Outcome, OutcomeRef, Request,
+    REQUEST_MAX_BYTES, RESPONSE_MAX_BYTES,
+};
+use reconfig_host::cli::solve_leo_tour::arc_problems;
+use reconfig_host::fixture::leo_tour;
+use reconfig_host::harness::worker::Worker;
+use reconfig_tests::fixtures_dir;
+
+/// The paper's single arc (client 1 -> 2, Example I) as the fixture gives it.
+fn paper_arc() -> (ArcProblem, Settings) {
+    let f = leo_tour::load(&fixtures_dir().join("leo-tour-example1-single-arc.toml")).unwrap();
+    let arcs = arc_problems(&f).unwrap();
+    assert_eq!(arcs.len(), 1);
+    (arcs[0].3, f.settings)
+}
+
+/// The outcome the worker answers to `request`.
+fn answer(worker: &mut Worker, request: &Request) -> Outcome {
+    let mut buf = vec![0u8; REQUEST_MAX_BYTES];
+    let n = encode_request(11, request, &mut buf).unwrap();
+    let mut out = vec![0u8; RESPONSE_MAX_BYTES];
+    let m = worker.handle(&buf[..n], &mut out);
+    let back = decode_response(&out[..m]).unwrap();
+    assert_eq!(back.seq, 11);
+    back.outcome
+}
+
+#[test]
+fn the_paper_arc_round_trips_and_the_worker_answers_the_direct_solve() {
+    let (problem, settings) = paper_arc();
+    let request = Request::LeoArc { problem, settings };
+    let mut buf = vec![0u8; REQUEST_MAX_BYTES];
+    let n = encode_request(7, &request, &mut buf).unwrap();
+    assert_eq!(decode_request(&buf[..n]).unwrap().request, request);
+
+    let direct = solve_arc(&problem, &settings).unwrap();
+    assert_eq!(direct.status, Status::Solved);
+    // The published arc costs 418.445 m/s; ours is below it (docs/leo-tour.md).
+    assert!(direct.total_dv_mps < 418.445, "{}", direct.total_dv_mps);
+    let mut rbuf = vec![0u8; RESPONSE_MAX_BYTES];
+    let m = encode_response(7, 1, &OutcomeRef::LeoArc(&direct), &mut rbuf).unwrap();
+    println!("LEO arc: request {n} bytes, response {m} bytes");
+    assert_eq!(
+        decode_response(&rbuf[..m]).unwrap().outcome,
+        Outcome::LeoArc(direct)
+    );
+
+    let mut worker = Worker::new();
+    assert_eq!(answer(&mut worker, &request), Outcome::LeoArc(direct));
+}
+
+#[test]
+fn a_setting_above_the_service_limits_is_refused_by_name_unsolved() {
+    let (problem, settings) = paper_arc();
+    let request = Request::LeoArc {
+        problem,
+        settings: Settings {
+            search_max_evals: 1_000_000,
+            ..settings
+        },
+    };
+    let mut worker = Worker::new();
+    match answer(&mut worker, &request) {
+        Outcome::LimitExceeded(v) => {
+            assert_eq!(
+                (v.setting, v.value, v.limit, v.rule),
+                (
+                    Setting::LeoSearchMaxEvals,
+                    1e6,
+                    f64::from(Settings::default().search_max_evals),
+                    Rule::AtMost
+                )
+            );
+            assert!(v.to_string().contains("search_max_evals"), "{v}");
+        }
+        other => panic!("expected LimitExceeded, got {other:?}"),
+    }
+}
+
+#[test]
+fn a_request_outside_the_planners_ranges_is_answered_with_the_field() {
+    let (problem, settings) = paper_arc();
+    let request = Request::LeoArc {
+        problem: ArcProblem {
+            duration_s: -5.0,
+            ..problem
+        },
+        settings,
+    };
+    let mut worker = Worker::new();
+    match answer(&mut worker, &request) {
+        Outcome::LeoArcRejected(e) => {
+            assert!(
+                matches!(
+                    e,
+                    PlanError::OutOfRange {
+                        field: Field::Duration,
+                        ..
+                    }
+                ),
+                "{e:?}"
+            );
+            assert!(e.to_string().starts_with("duration_s = -5"), "{e}");
+        }
+        other => panic!("expected LeoArcRejected, got {other:?}"),
+    }
+}
