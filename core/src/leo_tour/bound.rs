@@ -28,6 +28,7 @@
 use super::j2::{pos, vel, Gravity, State};
 use crate::vec3::{cross, dot, norm};
 use core::f64::consts::PI;
+use serde::{Deserialize, Serialize};
 
 /// The plane and size of a client's orbit at the tour epoch, with its secular node rate.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -85,7 +86,7 @@ pub fn plane_of(g: &Gravity, s: &State) -> Option<Plane> {
 }
 
 /// How conservative the bound is.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct BoundSettings {
     /// Semi-major-axis band margin on each side of the two clients', km.
     pub band_margin_km: f64,

@@ -32,6 +32,7 @@ pub mod j2;
 pub mod mean_j2;
 pub mod sequence;
 pub mod shoot;
+pub mod tour_order;
 pub mod track;
 mod types;
 pub mod validate;

@@ -20,12 +20,13 @@
 use super::bound::{self, BoundSettings, Plane};
 use super::j2::Gravity;
 use crate::indexed::IndexedExt as _;
+use serde::{Deserialize, Serialize};
 
 /// Most clients of a tour.
 pub const MAX_CLIENTS: usize = 8;
 
 /// How each arc's duration is chosen.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub enum Intervals {
     /// By position in the tour (arc 1, arc 2, ...), whatever the clients: the printed
     /// intervals of the paper's tours.
@@ -43,7 +44,7 @@ pub enum Intervals {
 }
 
 /// Settings of the sequencing.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SequenceSettings {
     /// The first client (0-based), or `None` for a free first client.
     pub first: Option<u8>,
@@ -56,7 +57,7 @@ pub struct SequenceSettings {
 }
 
 /// What the returned order is.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub enum SequenceStatus {
     /// Every order was either planned or pruned by the bound, and no planned arc was cheaper
     /// than its bound: the order is the cheapest for the arc planner given.
@@ -71,7 +72,7 @@ pub enum SequenceStatus {
 }
 
 /// The outcome of a sequencing.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Sequence {
     /// What the order is.
     pub status: SequenceStatus,
@@ -99,7 +100,7 @@ pub struct Sequence {
 }
 
 /// Why a sequencing was refused.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub enum SequenceError {
     /// Fewer than two or more than [`MAX_CLIENTS`] clients.
     Clients {
@@ -123,7 +124,64 @@ pub enum SequenceError {
         /// The value given, s.
         value_s: f64,
     },
+    /// A margin of the bound is not finite and non-negative (`margin` also below 1).
+    BoundMargin {
+        /// Which margin.
+        field: BoundField,
+        /// The value given.
+        value: f64,
+    },
 }
+
+/// A margin of [`BoundSettings`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum BoundField {
+    /// `band_margin_km`.
+    BandMarginKm,
+    /// `band_margin_rad`.
+    BandMarginRad,
+    /// `margin`.
+    Margin,
+}
+
+impl BoundField {
+    /// The margin's name in a request.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::BandMarginKm => "band_margin_km",
+            Self::BandMarginRad => "band_margin_rad",
+            Self::Margin => "margin",
+        }
+    }
+}
+
+impl core::fmt::Display for SequenceError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match *self {
+            Self::Clients { count } => {
+                write!(f, "{count} clients: a tour takes 2..={MAX_CLIENTS}")
+            }
+            Self::First { index } => write!(f, "first client {index} is not one of the clients"),
+            Self::Client { index } => write!(f, "client {index} has no elliptic orbit plane"),
+            Self::Interval { position, value_s } => write!(
+                f,
+                "interval {position} = {value_s} s is not finite and positive"
+            ),
+            Self::BoundMargin { field, value } => write!(
+                f,
+                "bound {} = {value} is not finite, non-negative{}",
+                field.name(),
+                if field == BoundField::Margin {
+                    " and below 1"
+                } else {
+                    ""
+                }
+            ),
+        }
+    }
+}
+
+impl core::error::Error for SequenceError {}
 
 /// The paper's interval rule (eq. 9-11) for an arc from `chaser` to `target` starting at
 /// `start_s` (nodes drifted there at their secular rates): `Δt_max = revolutions` periods of
@@ -361,6 +419,17 @@ pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
             if !(value_s.is_finite() && value_s > 0.0) {
                 return Err(SequenceError::Interval { position, value_s });
             }
+        }
+    }
+    // A negative or NaN margin would make the bound prune orders it must not.
+    let b = &settings.bound;
+    for (field, value, below) in [
+        (BoundField::BandMarginKm, b.band_margin_km, f64::INFINITY),
+        (BoundField::BandMarginRad, b.band_margin_rad, f64::INFINITY),
+        (BoundField::Margin, b.margin, 1.0),
+    ] {
+        if !(value.is_finite() && value >= 0.0 && value < below) {
+            return Err(SequenceError::BoundMargin { field, value });
         }
     }
     // The whole tour lasts at most (n - 1) of the longest interval.

@@ -6,6 +6,7 @@
 //! bounds their cost, so any value passes here (the planner validates their ranges).
 
 use super::{at_least, at_most, LimitViolation, Setting};
+use crate::leo_tour::sequence::{SequenceSettings, MAX_CLIENTS};
 use crate::leo_tour::{ArcProblem, Settings, MAX_IMPULSES};
 use serde::{Deserialize, Serialize};
 
@@ -45,11 +46,26 @@ pub struct Limits {
     pub work_budget: u64,
     /// Most evaluations of the planning-model polish.
     pub polish_max_evals: u32,
+    /// Most clients of a sequencing.
+    pub clients: u8,
+    /// Most arcs a sequencing estimates.
+    pub max_arcs: u32,
+    /// Least band margin of the sequencing's bound, km.
+    pub band_margin_km: f64,
+    /// Least inclination band margin of the bound, rad.
+    pub band_margin_rad: f64,
+    /// Least relative margin of the bound.
+    pub bound_margin: f64,
 }
+
+/// The arcs a sequencing may estimate by default: the whole tree of five clients (320) with
+/// room, about 0.4 s on the development machine at 1.7 ms an arc.
+pub const DEFAULT_MAX_ARCS: u32 = 400;
 
 impl Default for Limits {
     fn default() -> Self {
         let d = Settings::default();
+        let b = crate::leo_tour::bound::BoundSettings::default();
         Self {
             impulses: MAX_IMPULSES as u8,
             step_s: d.step_s,
@@ -66,6 +82,11 @@ impl Default for Limits {
             search_min_step_s: d.search_min_step_s,
             work_budget: d.work_budget,
             polish_max_evals: d.polish_max_evals,
+            clients: MAX_CLIENTS as u8,
+            max_arcs: DEFAULT_MAX_ARCS,
+            band_margin_km: b.band_margin_km,
+            band_margin_rad: b.band_margin_rad,
+            bound_margin: b.margin,
         }
     }
 }
@@ -78,6 +99,47 @@ impl Limits {
     pub fn check(&self, problem: &ArcProblem, settings: &Settings) -> Result<(), LimitViolation> {
         self.check_impulses(problem.impulses)?;
         self.check_settings(settings)
+    }
+
+    /// Check a sequencing request: its client count, impulses, its own settings (the arc
+    /// limit and the bound's margins: a smaller margin prunes more) and the arc settings.
+    ///
+    /// # Errors
+    /// The first [`LimitViolation`].
+    pub fn check_sequence(
+        &self,
+        clients: usize,
+        impulses: u8,
+        settings: &SequenceSettings,
+        arc_settings: &Settings,
+    ) -> Result<(), LimitViolation> {
+        // Exact: at most a few digits.
+        #[allow(clippy::cast_precision_loss)]
+        at_most(Setting::LeoClients, clients as f64, f64::from(self.clients))?;
+        self.check_impulses(impulses)?;
+        let SequenceSettings {
+            first: _,     // a choice of the tour, not of work
+            intervals: _, // the problem (validated by the sequencing)
+            bound,
+            max_arcs,
+        } = *settings;
+        at_most(
+            Setting::LeoMaxArcs,
+            f64::from(max_arcs),
+            f64::from(self.max_arcs),
+        )?;
+        at_least(
+            Setting::LeoBandMarginKm,
+            bound.band_margin_km,
+            self.band_margin_km,
+        )?;
+        at_least(
+            Setting::LeoBandMarginRad,
+            bound.band_margin_rad,
+            self.band_margin_rad,
+        )?;
+        at_least(Setting::LeoBoundMargin, bound.margin, self.bound_margin)?;
+        self.check_settings(arc_settings)
     }
 
     /// Check an arc's impulse count (a tour's arcs all have the same).

@@ -183,6 +183,16 @@ pub enum Setting {
     LeoWorkBudget = 141,
     /// LEO tour arc: `polish_max_evals`.
     LeoPolishMaxEvals = 142,
+    /// LEO tour sequencing: `max_arcs`.
+    LeoMaxArcs = 143,
+    /// LEO tour sequencing: the bound's `band_margin_km`.
+    LeoBandMarginKm = 144,
+    /// LEO tour sequencing: the bound's `band_margin_rad`.
+    LeoBandMarginRad = 145,
+    /// LEO tour sequencing: the bound's `margin`.
+    LeoBoundMargin = 146,
+    /// LEO tour sequencing: the client count.
+    LeoClients = 147,
 }
 
 impl Setting {
@@ -267,6 +277,11 @@ impl Setting {
             Self::LeoSearchMinStepS => "search_min_step_s",
             Self::LeoWorkBudget => "work_budget",
             Self::LeoPolishMaxEvals => "polish_max_evals",
+            Self::LeoMaxArcs => "max_arcs",
+            Self::LeoBandMarginKm => "bound.band_margin_km",
+            Self::LeoBandMarginRad => "bound.band_margin_rad",
+            Self::LeoBoundMargin => "bound.margin",
+            Self::LeoClients => "clients",
         }
     }
 
@@ -276,7 +291,8 @@ impl Setting {
             0..=31 => crate::wire::Planner::Pseudospectral,
             32..=63 | 96..=127 => crate::wire::Planner::Impulsive,
             64..=95 => crate::wire::Planner::GeoTour,
-            _ => crate::wire::Planner::LeoArc,
+            128..=142 => crate::wire::Planner::LeoArc,
+            _ => crate::wire::Planner::LeoSequence,
         }
     }
 }
@@ -370,6 +386,14 @@ impl Limits {
             Request::Impulsive { problem, settings } => self.impulsive.check(problem, settings),
             Request::GeoTour { problem, settings } => self.geo_tour.check(problem, settings),
             Request::LeoArc { problem, settings } => self.leo_tour.check(problem, settings),
+            Request::LeoSequence {
+                clients,
+                impulses,
+                settings,
+                arc_settings,
+            } => self
+                .leo_tour
+                .check_sequence(clients.len(), *impulses, settings, arc_settings),
             Request::ImpulsiveForm { problem, settings } => {
                 self.impulsive.check_form(problem, settings)
             }

@@ -46,6 +46,17 @@ pub enum Request {
         /// Loop bounds, tolerances and the work budget.
         settings: leo_tour::Settings,
     },
+    /// The LEO tour's order (`leo_tour::tour_order::choose_order`).
+    LeoSequence {
+        /// The clients' inertial states at the tour epoch, km and km/s.
+        clients: heapless::Vec<leo_tour::j2::State, { leo_tour::sequence::MAX_CLIENTS }>,
+        /// Impulses per arc.
+        impulses: u8,
+        /// First client, arc durations, the bound's margins, the arc limit.
+        settings: leo_tour::sequence::SequenceSettings,
+        /// The per-arc search's settings for the arc estimates.
+        arc_settings: leo_tour::Settings,
+    },
 }
 
 impl Request {
@@ -56,6 +67,7 @@ impl Request {
             Self::Impulsive { .. } | Self::ImpulsiveForm { .. } => Planner::Impulsive,
             Self::GeoTour { .. } => Planner::GeoTour,
             Self::LeoArc { .. } => Planner::LeoArc,
+            Self::LeoSequence { .. } => Planner::LeoSequence,
         }
     }
 }
@@ -72,6 +84,8 @@ pub enum Planner {
     GeoTour = 2,
     /// One arc of the LEO tour.
     LeoArc = 3,
+    /// The LEO tour's order.
+    LeoSequence = 4,
 }
 
 /// What the service answers to one request.
@@ -111,6 +125,10 @@ pub enum Outcome {
     LeoArc(leo_tour::ArcSolution),
     /// The LEO arc planner rejected the request.
     LeoArcRejected(leo_tour::PlanError),
+    /// The LEO tour's order; its `status` says what the order is.
+    LeoSequence(leo_tour::sequence::Sequence),
+    /// The LEO tour's sequencing rejected the request.
+    LeoSequenceRejected(leo_tour::sequence::SequenceError),
 }
 
 /// How long an expired request waited and the deadline it had, in microseconds.
@@ -154,6 +172,10 @@ pub enum OutcomeRef<'a> {
     LeoArc(&'a leo_tour::ArcSolution),
     /// See [`Outcome::LeoArcRejected`].
     LeoArcRejected(leo_tour::PlanError),
+    /// See [`Outcome::LeoSequence`].
+    LeoSequence(&'a leo_tour::sequence::Sequence),
+    /// See [`Outcome::LeoSequenceRejected`].
+    LeoSequenceRejected(leo_tour::sequence::SequenceError),
 }
 
 impl Outcome {
@@ -178,6 +200,8 @@ impl Outcome {
             },
             Self::LeoArc(s) => OutcomeRef::LeoArc(s),
             Self::LeoArcRejected(e) => OutcomeRef::LeoArcRejected(*e),
+            Self::LeoSequence(q) => OutcomeRef::LeoSequence(q),
+            Self::LeoSequenceRejected(e) => OutcomeRef::LeoSequenceRejected(*e),
         }
     }
 }

@@ -41,7 +41,9 @@ pub use messages::{Expiry, Outcome, OutcomeRef, Planner, Request};
 ///    input forms (`Request::ImpulsiveForm`, answered by `Outcome::ImpulsiveForm` with the end
 ///    state in the same form), `PlanError::InputForm`, and the limits' form checks (`Rule::Below`).
 /// 5: the LEO tour's arcs (`Request::LeoArc`, answered by `Outcome::LeoArc` or
-///    `Outcome::LeoArcRejected`), `Planner::LeoArc` and its limits (`Setting::Leo*`).
+///    `Outcome::LeoArcRejected`) and order (`Request::LeoSequence`, answered by
+///    `Outcome::LeoSequence` or `Outcome::LeoSequenceRejected`), `Planner::LeoArc` and
+///    `Planner::LeoSequence`, and their limits (`Setting::Leo*`).
 pub const PROTOCOL_VERSION: u16 = 5;
 /// First two bytes of a request frame.
 pub const REQUEST_MAGIC: [u8; 2] = *b"RQ";

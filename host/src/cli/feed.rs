@@ -102,12 +102,21 @@ pub fn fixture_items(paths: &[PathBuf]) -> Vec<Item> {
     let mut items = Vec::new();
     for path in paths {
         let text = std::fs::read_to_string(path).unwrap_or_default();
-        // The LEO tour: one request per arc of the fixture's order (a `[sequence]` fixture
-        // has no order until the sequencing, which is not a wire request: `reconfig solve`).
+        // The LEO tour: a `[sequence]` fixture as one request for its order, any other as
+        // one request per arc of its order.
         if fixture::leo_tour::is_leo_tour(&text) {
             match fixture::leo_tour::load(path)
                 .and_then(|f| crate::cli::solve_leo_tour::arc_problems(&f).map(|a| (f, a)))
             {
+                Ok((f, _)) if f.sequence.is_some() => match leo_sequence_request(&f) {
+                    Ok(request) => items.push(Item {
+                        label: format!("{} order", f.name),
+                        planner: Some(Planner::LeoSequence),
+                        size: format!("N{}", f.clients.len()),
+                        payload: Payload::Request(Box::new(request)),
+                    }),
+                    Err(e) => eprintln!("skipped {}: {e:#}", path.display()),
+                },
                 Ok((f, arcs)) => {
                     for (k, (from, to, _, problem)) in arcs.into_iter().enumerate() {
                         items.push(Item {
@@ -172,6 +181,24 @@ pub fn fixture_items(paths: &[PathBuf]) -> Vec<Item> {
         }
     }
     items
+}
+
+/// The sequencing request of a `[sequence]` LEO tour fixture.
+///
+/// # Errors
+/// A fixture without a `[sequence]` table or with more clients than a request carries.
+pub fn leo_sequence_request(f: &fixture::leo_tour::LeoTourFixture) -> Result<Request> {
+    let spec = f
+        .sequence
+        .ok_or_else(|| anyhow!("{} has no [sequence] table", f.name))?;
+    let clients = heapless::Vec::from_slice(&f.clients)
+        .map_err(|_| anyhow!("{} has {} clients", f.name, f.clients.len()))?;
+    Ok(Request::LeoSequence {
+        clients,
+        impulses: f.impulses,
+        settings: spec.settings,
+        arc_settings: spec.arc_settings,
+    })
 }
 
 /// Every `*.toml` in a folder, sorted.

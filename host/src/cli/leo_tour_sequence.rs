@@ -1,16 +1,13 @@
-//! The tour's order for a fixture with a `[sequence]` table: the core's branch-and-bound
-//! (`reconfig_core::leo_tour::sequence`), each arc's cost the core's estimate
-//! (`leo_tour::estimate_arc_mps`: the per-arc search in the search model, with the table's
-//! faster settings).
+//! The tour's order for a fixture with a `[sequence]` table: the core's on-board sequencing
+//! (`reconfig_core::leo_tour::tour_order`: the branch-and-bound of `leo_tour::sequence`, each
+//! arc's cost the core's estimate `leo_tour::estimate_arc_mps`, the per-arc search in the
+//! search model with the table's faster settings).
 
 use crate::fixture::leo_tour::LeoTourFixture;
 use anyhow::{anyhow, Result};
-use reconfig_core::leo_tour::bound::plane_of;
-use reconfig_core::leo_tour::j2::State;
-use reconfig_core::leo_tour::sequence::{best_order, Sequence};
-use reconfig_core::leo_tour::{estimate_arc_mps, propagate as core_propagate, ArcProblem};
+use reconfig_core::leo_tour::sequence::Sequence;
+use reconfig_core::leo_tour::tour_order;
 use serde_json::json;
-use std::collections::HashMap;
 use std::time::Instant;
 
 /// The order chosen by the core's sequencing for a fixture with a `[sequence]` table.
@@ -22,55 +19,22 @@ pub struct ChosenOrder {
     pub time_s: f64,
 }
 
-/// Choose the order of `f`'s tour with the core's branch-and-bound (each arc planned by the
-/// core's per-arc rendezvous with the `[sequence]` settings; an arc met twice, with the same
-/// clients, start and duration, is planned once), and return the fixture with that order and
-/// its intervals.
+/// Choose the order of `f`'s tour with the core's on-board sequencing
+/// (`leo_tour::tour_order::choose_order`: branch-and-bound, each arc's cost the per-arc
+/// search's estimate with the `[sequence]` settings), and return the fixture with that order
+/// and its intervals.
 ///
 /// # Errors
-/// A client without an elliptic plane, or a sequencing request the core refuses.
+/// A sequencing request the core refuses (too few or many clients, a client without an
+/// elliptic plane, intervals out of range).
 pub fn choose_order(f: &LeoTourFixture) -> Result<Option<(LeoTourFixture, ChosenOrder)>> {
     let Some(spec) = f.sequence else {
         return Ok(None);
     };
-    let g = f.settings.gravity();
-    let planes = f
-        .clients
-        .iter()
-        .enumerate()
-        .map(|(k, s)| {
-            plane_of(&g, s).ok_or_else(|| anyhow!("client {} has no elliptic plane", k + 1))
-        })
-        .collect::<Result<Vec<_>>>()?;
-    let mut states: HashMap<(usize, u64), Option<State>> = HashMap::new();
-    let mut arcs: HashMap<(usize, usize, u64, u64), Option<f64>> = HashMap::new();
     let started = Instant::now();
-    let sequence = best_order(&g, &planes, &spec.settings, |i, j, t0, dt| {
-        if let Some(c) = arcs.get(&(i, j, t0.to_bits(), dt.to_bits())) {
-            return *c;
-        }
-        let mut at = |k: usize| {
-            *states
-                .entry((k, t0.to_bits()))
-                .or_insert_with(|| core_propagate(&f.settings, &f.clients[k], t0))
-        };
-        let cost = match (at(i), at(j)) {
-            (Some(from), Some(to)) => estimate_arc_mps(
-                &ArcProblem {
-                    from,
-                    to,
-                    duration_s: dt,
-                    impulses: f.impulses,
-                },
-                &spec.arc_settings,
-            )
-            .ok(),
-            _ => None,
-        };
-        arcs.insert((i, j, t0.to_bits(), dt.to_bits()), cost);
-        cost
-    })
-    .map_err(|e| anyhow!("sequencing refused: {e:?}"))?;
+    let sequence =
+        tour_order::choose_order(&f.clients, f.impulses, &spec.settings, &spec.arc_settings)
+            .map_err(|e| anyhow!("sequencing refused: {e:?}"))?;
     let time_s = started.elapsed().as_secs_f64();
     let n = usize::from(sequence.len);
     let mut chosen = f.clone();

@@ -117,6 +117,7 @@ pub fn print_table(items: &[Item], verdicts: &[Verdict], limit: usize) {
             Some(wire::Planner::Impulsive) => "impulsive",
             Some(wire::Planner::GeoTour) => "geo-tour",
             Some(wire::Planner::LeoArc) => "leo-arc",
+            Some(wire::Planner::LeoSequence) => "leo-sequence",
             None => "fault",
         };
         println!(

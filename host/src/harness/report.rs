@@ -134,6 +134,7 @@ fn planner_name(item: &Item) -> String {
         Some(reconfig_core::wire::Planner::Impulsive) => "impulsive".into(),
         Some(reconfig_core::wire::Planner::GeoTour) => "geo-tour".into(),
         Some(reconfig_core::wire::Planner::LeoArc) => "leo-arc".into(),
+        Some(reconfig_core::wire::Planner::LeoSequence) => "leo-sequence".into(),
         None => "faults".into(),
     }
 }

@@ -150,6 +150,20 @@ impl Worker {
                     Err(e) => encode(frame.seq, ns, &OutcomeRef::LeoArcRejected(e), out),
                 }
             }
+            Request::LeoSequence {
+                clients,
+                impulses,
+                settings,
+                arc_settings,
+            } => {
+                let result =
+                    leo_tour::tour_order::choose_order(clients, *impulses, settings, arc_settings);
+                let ns = elapsed_ns(start);
+                match result {
+                    Ok(q) => encode(frame.seq, ns, &OutcomeRef::LeoSequence(&q), out),
+                    Err(e) => encode(frame.seq, ns, &OutcomeRef::LeoSequenceRejected(e), out),
+                }
+            }
         }
     }
 }
@@ -222,6 +236,24 @@ pub fn summarize(outcome: &Outcome) -> (String, String, String, String) {
             format!("{}", s.evaluations),
         ),
         Outcome::LeoArcRejected(e) => {
+            (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
+        }
+        Outcome::LeoSequence(q) => (
+            format!(
+                "{:?} {}",
+                q.status,
+                q.order
+                    .iter()
+                    .take(usize::from(q.len))
+                    .map(|k| (k + 1).to_string())
+                    .collect::<Vec<_>>()
+                    .join(">")
+            ),
+            format!("dv={:.4} m/s", q.total_dv_mps),
+            "-".into(),
+            format!("{}", q.arcs_planned),
+        ),
+        Outcome::LeoSequenceRejected(e) => {
             (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
         }
         Outcome::BadRequest(e) => (

@@ -1,7 +1,7 @@
-//! The LEO tour's arcs over the wire: the request and the plan round-trip byte for byte, the
-//! flight service's worker answers what a direct solve gives, a setting above the service's
-//! limits is refused by name before any solve, and a request outside the planner's ranges is
-//! answered with the planner's error naming the field.
+//! The LEO tour over the wire: an arc's request and plan round-trip byte for byte, the flight
+//! service's worker answers an arc and a sequencing with what a direct solve gives, a setting
+//! above the service's limits is refused by name before any solve, and a request outside the
+//! planner's ranges is answered with the planner's error naming the field.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use reconfig_core::leo_tour::{solve_arc, ArcProblem, Field, PlanError, Settings, Status};
@@ -10,6 +10,8 @@ use reconfig_core::wire::{
     decode_request, decode_response, encode_request, encode_response, Outcome, OutcomeRef, Request,
     REQUEST_MAX_BYTES, RESPONSE_MAX_BYTES,
 };
+use reconfig_host::cli::feed::leo_sequence_request;
+use reconfig_host::cli::leo_tour_sequence::choose_order;
 use reconfig_host::cli::solve_leo_tour::arc_problems;
 use reconfig_host::fixture::leo_tour;
 use reconfig_host::harness::worker::Worker;
@@ -112,5 +114,55 @@ fn a_request_outside_the_planners_ranges_is_answered_with_the_field() {
             assert!(e.to_string().starts_with("duration_s = -5"), "{e}");
         }
         other => panic!("expected LeoArcRejected, got {other:?}"),
+    }
+}
+
+#[test]
+fn the_sequencing_request_is_answered_with_the_hosts_order() {
+    let f = leo_tour::load(&fixtures_dir().join("leo-tour-example1-sequence.toml")).unwrap();
+    let request = leo_sequence_request(&f).unwrap();
+    let mut buf = vec![0u8; REQUEST_MAX_BYTES];
+    let n = encode_request(3, &request, &mut buf).unwrap();
+    println!("LEO sequencing request: {n} bytes");
+    let (_, chosen) = choose_order(&f).unwrap().unwrap();
+    let mut worker = Worker::new();
+    let Outcome::LeoSequence(q) = answer(&mut worker, &request) else {
+        panic!("expected LeoSequence");
+    };
+    // The one implementation: the service's answer is the host command's, bit for bit.
+    assert_eq!(q, chosen.sequence);
+    assert_eq!(&q.order[..5], &[3, 2, 0, 4, 1]);
+    assert_eq!((q.arcs_planned, q.arcs_in_tree), (129, 320));
+}
+
+#[test]
+fn a_sequencing_with_a_thinner_bound_margin_is_refused_by_name() {
+    let f = leo_tour::load(&fixtures_dir().join("leo-tour-example1-sequence.toml")).unwrap();
+    let Request::LeoSequence {
+        clients,
+        impulses,
+        mut settings,
+        arc_settings,
+    } = leo_sequence_request(&f).unwrap()
+    else {
+        panic!("a sequencing request");
+    };
+    settings.bound.margin = 0.0;
+    let request = Request::LeoSequence {
+        clients: clients.clone(),
+        impulses,
+        settings,
+        arc_settings,
+    };
+    let mut worker = Worker::new();
+    match answer(&mut worker, &request) {
+        Outcome::LimitExceeded(v) => {
+            assert_eq!(
+                (v.setting, v.value, v.limit, v.rule),
+                (Setting::LeoBoundMargin, 0.0, 0.05, Rule::AtLeast)
+            );
+            assert!(v.to_string().contains("bound.margin"), "{v}");
+        }
+        other => panic!("expected LimitExceeded, got {other:?}"),
     }
 }

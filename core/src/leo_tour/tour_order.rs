@@ -1,0 +1,184 @@
+//! The tour's order from the clients' states, on board: [`sequence::best_order`] with each
+//! arc's cost the per-arc search's estimate ([`super::estimate_arc_mps`]), the clients flown to
+//! each arc start in the planning model ([`super::propagate`]).
+//!
+//! The enumeration meets the same arc (same clients, start and duration) under different
+//! prefixes, and the same client state at an arc start many times: both are kept in
+//! fixed-size caches, so each is computed once while the caches have room (and computed
+//! again, with the same result, once they are full).
+//!
+//! Worst case: `settings.max_arcs` arc costs, each at most two propagations of at most
+//! `arc_settings.max_steps` RK4 steps and one estimate within `arc_settings.work_budget`.
+
+use super::bound::{plane_of, Plane};
+use super::j2::State;
+use super::sequence::{best_order, Sequence, SequenceError, SequenceSettings, MAX_CLIENTS};
+use super::{estimate_arc_mps, propagate, ArcProblem, Settings};
+
+/// Client states at arc starts kept: every client at every start of a tour of
+/// [`MAX_CLIENTS`] with durations by position.
+const STATE_CACHE: usize = MAX_CLIENTS * (MAX_CLIENTS - 1);
+
+/// Arc costs kept: every (from, to) pair at every position of such a tour.
+const ARC_CACHE: usize = MAX_CLIENTS * (MAX_CLIENTS - 1) * (MAX_CLIENTS - 1);
+
+/// A fixed-capacity memo of `K -> V` searched linearly (hundreds of entries, each lookup far
+/// cheaper than what it saves: an RK4 propagation or an arc estimate).
+struct Memo<K, V, const N: usize> {
+    entries: [Option<(K, V)>; N],
+    len: usize,
+}
+
+impl<K: Copy + PartialEq, V: Copy, const N: usize> Memo<K, V, N> {
+    fn new() -> Self {
+        Self {
+            entries: [None; N],
+            len: 0,
+        }
+    }
+
+    fn get(&self, key: &K) -> Option<V> {
+        self.entries
+            .iter()
+            .take(self.len)
+            .flatten()
+            .find(|(k, _)| k == key)
+            .map(|(_, v)| *v)
+    }
+
+    /// Keep `value` under `key` while there is room (a full memo keeps what it has).
+    fn put(&mut self, key: K, value: V) {
+        if let Some(slot) = self.entries.get_mut(self.len) {
+            *slot = Some((key, value));
+            self.len = self.len.saturating_add(1);
+        }
+    }
+}
+
+/// The cheapest visiting order of the clients (`clients`: inertial states at the tour epoch,
+/// km and km/s, at most [`MAX_CLIENTS`]), with `impulses` per arc, each arc's cost the
+/// estimate of the per-arc search with `arc_settings` (which also give the planning model the
+/// clients are flown in).
+///
+/// # Errors
+/// [`SequenceError`]: a client count outside `2..=MAX_CLIENTS`, a client state with no
+/// elliptic plane, or sequencing settings out of range.
+pub fn choose_order(
+    clients: &[State],
+    impulses: u8,
+    settings: &SequenceSettings,
+    arc_settings: &Settings,
+) -> Result<Sequence, SequenceError> {
+    let g = arc_settings.gravity();
+    let count = SequenceError::Clients {
+        count: clients.len(),
+    };
+    if clients.len() > MAX_CLIENTS || clients.len() < 2 {
+        return Err(count);
+    }
+    // Filled from the first client's plane; only the first `clients.len()` are read.
+    let first =
+        plane_of(&g, clients.first().ok_or(count)?).ok_or(SequenceError::Client { index: 0 })?;
+    let mut planes: [Plane; MAX_CLIENTS] = [first; MAX_CLIENTS];
+    for (index, (slot, s)) in planes.iter_mut().zip(clients).enumerate() {
+        *slot = plane_of(&g, s).ok_or(SequenceError::Client { index })?;
+    }
+    let planes = planes.get(..clients.len()).ok_or(count)?;
+    let mut states: Memo<(usize, u64), Option<State>, STATE_CACHE> = Memo::new();
+    let mut arcs: Memo<(usize, usize, u64, u64), Option<f64>, ARC_CACHE> = Memo::new();
+    best_order(&g, planes, settings, |i, j, t0, dt| {
+        let key = (i, j, t0.to_bits(), dt.to_bits());
+        if let Some(cost) = arcs.get(&key) {
+            return cost;
+        }
+        let mut at = |k: usize| -> Option<State> {
+            let key = (k, t0.to_bits());
+            if let Some(s) = states.get(&key) {
+                return s;
+            }
+            let s = propagate(arc_settings, clients.get(k)?, t0);
+            states.put(key, s);
+            s
+        };
+        let cost = match (at(i), at(j)) {
+            (Some(from), Some(to)) => estimate_arc_mps(
+                &ArcProblem {
+                    from,
+                    to,
+                    duration_s: dt,
+                    impulses,
+                },
+                arc_settings,
+            )
+            .ok(),
+            _ => None,
+        };
+        arcs.put(key, cost);
+        cost
+    })
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::indexing_slicing)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use std::string::ToString as _;
+
+    #[test]
+    fn the_memo_finds_what_it_kept_and_stops_keeping_when_full() {
+        let mut m: Memo<u32, f64, 2> = Memo::new();
+        assert_eq!(m.get(&1), None);
+        m.put(1, 10.0);
+        m.put(2, 20.0);
+        m.put(3, 30.0);
+        assert_eq!(
+            (m.get(&1), m.get(&2), m.get(&3)),
+            (Some(10.0), Some(20.0), None)
+        );
+    }
+
+    #[test]
+    fn too_few_or_degenerate_clients_are_named() {
+        let s = SequenceSettings {
+            first: None,
+            intervals: super::super::sequence::Intervals::ByPosition([86_400.0; 7]),
+            bound: super::super::bound::BoundSettings::default(),
+            max_arcs: 10,
+        };
+        let a = [7000.0, 0.0, 0.0, 0.0, 7.546, 0.0];
+        assert_eq!(
+            choose_order(&[a], 3, &s, &Settings::default()).unwrap_err(),
+            SequenceError::Clients { count: 1 }
+        );
+        assert_eq!(
+            choose_order(&[a; 9], 3, &s, &Settings::default()).unwrap_err(),
+            SequenceError::Clients { count: 9 }
+        );
+        let b = [7100.0, 0.0, 0.0, 0.0, 7.49, 0.1];
+        let nan_margin = SequenceSettings {
+            bound: super::super::bound::BoundSettings {
+                margin: f64::NAN,
+                ..s.bound
+            },
+            ..s
+        };
+        let e = choose_order(&[a, b], 3, &nan_margin, &Settings::default()).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                SequenceError::BoundMargin {
+                    field: super::super::sequence::BoundField::Margin,
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
+        assert!(e.to_string().starts_with("bound margin = NaN"), "{e}");
+        let radial = [7000.0, 0.0, 0.0, 7.5, 0.0, 0.0];
+        assert_eq!(
+            choose_order(&[a, radial], 3, &s, &Settings::default()).unwrap_err(),
+            SequenceError::Client { index: 1 }
+        );
+    }
+}
