@@ -88,6 +88,28 @@ fn rejected_inputs_exit_2_in_both_planners() {
 }
 
 #[test]
+fn leo_tour_fixtures_outside_the_service_limits_exit_2_unsolved() {
+    // The sequencing's arc limit (400 by default), checked before anything is planned.
+    let p = variant(
+        "leo-tour-example1-sequence",
+        &[("max_arcs = 400", "max_arcs = 5000")],
+        "many-arcs",
+    );
+    let (code, out) = solve(&p);
+    assert_eq!(code, 2, "{out}");
+    assert!(out.contains("max_arcs"), "{out}");
+    // An arc setting above its ceiling in a plain tour fixture.
+    let p = variant(
+        "leo-tour-example1-single-arc",
+        &[("[published]", "[settings]\nhop_rounds = 60\n\n[published]")],
+        "hops",
+    );
+    let (code, out) = solve(&p);
+    assert_eq!(code, 2, "{out}");
+    assert!(out.contains("hop_rounds"), "{out}");
+}
+
+#[test]
 fn input_forms_follow_the_same_exit_codes() {
     // ROE and osculating-state fixtures: usable plans.
     for stem in ["wang2018-gco-to-pco-2imp-roe", "sso-leo-pair-e0-2imp-state"] {

@@ -52,7 +52,8 @@ pub(crate) struct Ctx<'a> {
     /// solve of that family (the compass search moves a little at a time).
     pub lambert_guess: Option<(Family, f64)>,
     /// Client A's last state asked for (model, epoch bits): the compass search asks for the
-    /// same first epoch in most of its evaluations.
+    /// same first epoch in most of its evaluations. The flights' constants never change
+    /// within an arc (the J2 continuation flies a scaled copy), so model and epoch decide.
     pub start_cache: Option<((Model, u64), State)>,
 }
 

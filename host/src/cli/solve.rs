@@ -71,9 +71,9 @@ pub fn run(args: &Args) -> Result<ExitCode> {
             .check_impulses(f.impulses)
             .and_then(|()| leo.check_settings(&f.settings))
             .and_then(|()| {
-                f.sequence
-                    .as_ref()
-                    .map_or(Ok(()), |s| leo.check_settings(&s.arc_settings))
+                f.sequence.as_ref().map_or(Ok(()), |s| {
+                    leo.check_sequence(f.clients.len(), f.impulses, &s.settings, &s.arc_settings)
+                })
             });
         let check_time_s = started.elapsed().as_secs_f64();
         if let Err(violation) = checked {
