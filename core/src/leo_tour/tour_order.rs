@@ -76,11 +76,12 @@ pub fn choose_order(
     if clients.len() > MAX_CLIENTS || clients.len() < 2 {
         return Err(count);
     }
-    // Filled from the first client's plane; only the first `clients.len()` are read.
+    // Filled with the first client's plane, the others set below; only the first
+    // `clients.len()` are read.
     let first =
         plane_of(&g, clients.first().ok_or(count)?).ok_or(SequenceError::Client { index: 0 })?;
     let mut planes: [Plane; MAX_CLIENTS] = [first; MAX_CLIENTS];
-    for (index, (slot, s)) in planes.iter_mut().zip(clients).enumerate() {
+    for (index, (slot, s)) in planes.iter_mut().zip(clients).enumerate().skip(1) {
         *slot = plane_of(&g, s).ok_or(SequenceError::Client { index })?;
     }
     let planes = planes.get(..clients.len()).ok_or(count)?;

@@ -105,31 +105,8 @@ pub fn fixture_items(paths: &[PathBuf]) -> Vec<Item> {
         // The LEO tour: a `[sequence]` fixture as one request for its order, any other as
         // one request per arc of its order.
         if fixture::leo_tour::is_leo_tour(&text) {
-            match fixture::leo_tour::load(path)
-                .and_then(|f| crate::cli::solve_leo_tour::arc_problems(&f).map(|a| (f, a)))
-            {
-                Ok((f, _)) if f.sequence.is_some() => match leo_sequence_request(&f) {
-                    Ok(request) => items.push(Item {
-                        label: format!("{} order", f.name),
-                        planner: Some(Planner::LeoSequence),
-                        size: format!("N{}", f.clients.len()),
-                        payload: Payload::Request(Box::new(request)),
-                    }),
-                    Err(e) => eprintln!("skipped {}: {e:#}", path.display()),
-                },
-                Ok((f, arcs)) => {
-                    for (k, (from, to, _, problem)) in arcs.into_iter().enumerate() {
-                        items.push(Item {
-                            label: format!("{} arc {} ({}->{})", f.name, k + 1, from + 1, to + 1),
-                            planner: Some(Planner::LeoArc),
-                            size: format!("M{}", problem.impulses),
-                            payload: Payload::Request(Box::new(Request::LeoArc {
-                                problem,
-                                settings: f.settings,
-                            })),
-                        });
-                    }
-                }
+            match fixture::leo_tour::load(path).and_then(|f| leo_items(&f)) {
+                Ok(leo) => items.extend(leo),
                 Err(e) => eprintln!("skipped {}: {e:#}", path.display()),
             }
             continue;
@@ -181,6 +158,33 @@ pub fn fixture_items(paths: &[PathBuf]) -> Vec<Item> {
         }
     }
     items
+}
+
+/// The feed items of a LEO tour fixture: with a `[sequence]` table one request for its
+/// order, else one request per arc of its order.
+fn leo_items(f: &fixture::leo_tour::LeoTourFixture) -> Result<Vec<Item>> {
+    if f.sequence.is_some() {
+        return Ok(vec![Item {
+            label: format!("{} order", f.name),
+            planner: Some(Planner::LeoSequence),
+            size: format!("N{}", f.clients.len()),
+            payload: Payload::Request(Box::new(leo_sequence_request(f)?)),
+        }]);
+    }
+    let arcs = crate::cli::solve_leo_tour::arc_problems(f)?;
+    Ok(arcs
+        .into_iter()
+        .enumerate()
+        .map(|(k, (from, to, _, problem))| Item {
+            label: format!("{} arc {} ({}->{})", f.name, k + 1, from + 1, to + 1),
+            planner: Some(Planner::LeoArc),
+            size: format!("M{}", problem.impulses),
+            payload: Payload::Request(Box::new(Request::LeoArc {
+                problem,
+                settings: f.settings,
+            })),
+        })
+        .collect())
 }
 
 /// The sequencing request of a `[sequence]` LEO tour fixture.

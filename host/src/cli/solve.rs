@@ -66,19 +66,22 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         // Every arc request the tour makes (and those of its sequencing) has the fixture's
         // impulse count and settings: the service's check on those.
         let leo = &limits.leo_tour;
-        let started = Instant::now();
-        let checked = leo
-            .check_impulses(f.impulses)
-            .and_then(|()| leo.check_settings(&f.settings))
-            .and_then(|()| {
-                f.sequence.as_ref().map_or(Ok(()), |s| {
-                    leo.check_sequence(f.clients.len(), f.impulses, &s.settings, &s.arc_settings)
+        let check = || {
+            leo.check_impulses(f.impulses)
+                .and_then(|()| leo.check_settings(&f.settings))
+                .and_then(|()| {
+                    f.sequence.as_ref().map_or(Ok(()), |s| {
+                        leo.check_sequence(
+                            f.clients.len(),
+                            f.impulses,
+                            &s.settings,
+                            &s.arc_settings,
+                        )
+                    })
                 })
-            });
-        let check_time_s = started.elapsed().as_secs_f64();
-        if let Err(violation) = checked {
-            report_refusal(&f.name, &violation, check_time_s, args.json);
-            return Ok(ExitCode::from(EXIT_REJECTED));
+        };
+        if let Some(code) = refuse_if(check, &f.name, args.json) {
+            return Ok(code);
         }
         return crate::cli::solve_leo_tour::run(&f, args.json);
     }
@@ -127,8 +130,18 @@ fn refuse_outside(
     name: &str,
     json_output: bool,
 ) -> Option<ExitCode> {
+    refuse_if(|| limits.check(request), name, json_output)
+}
+
+/// The verdict of a limits `check` (timed): `None` when it passes, else the refusal is
+/// reported and its exit code returned.
+fn refuse_if(
+    check: impl FnOnce() -> Result<(), LimitViolation>,
+    name: &str,
+    json_output: bool,
+) -> Option<ExitCode> {
     let started = Instant::now();
-    let checked = limits.check(request);
+    let checked = check();
     let check_time_s = started.elapsed().as_secs_f64();
     let violation = checked.err()?;
     report_refusal(name, &violation, check_time_s, json_output);
