@@ -3,6 +3,7 @@
 
 use super::arc::{period_s, rtn, rtn_axes, Client, Ctx, Point};
 use super::j2::State;
+use super::shoot::Secant;
 use super::types::{MAX_HOPS, MAX_VARS};
 use crate::indexed::IndexedExt as _;
 use crate::vec3::{add, scale, Vec3};
@@ -68,6 +69,7 @@ impl Ctx<'_> {
                     off: p.off,
                     cost,
                     shot: false,
+                    secant: Secant::default(),
                 });
             }
             if self.meter.exhausted() {

@@ -3,7 +3,7 @@
 //! ones by kilometres) as the one candidate instead of the grid.
 
 use super::arc::{Ctx, Point};
-use super::shoot::Family;
+use super::shoot::{Family, Secant};
 use super::types::{ArcSolution, MAX_CANDIDATES, MAX_VARS};
 
 impl Ctx<'_> {
@@ -55,6 +55,7 @@ impl Ctx<'_> {
                 off,
                 cost,
                 shot: false,
+                secant: Secant::default(),
             });
         }
         out
