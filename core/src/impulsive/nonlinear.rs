@@ -95,6 +95,17 @@ pub(crate) fn elements_from_state_with(
     vel_km_s: &Vec3,
     near: &Elements,
 ) -> Option<Elements> {
+    elements_and_true_anomaly_with(mu_km3_s2, pos_km, vel_km_s, near).map(|(el, _)| el)
+}
+
+/// [`elements_from_state_with`] and the true anomaly (rad, not wrapped) it converted to the
+/// mean anomaly: a caller that needs both skips solving Kepler's equation back.
+pub(crate) fn elements_and_true_anomaly_with(
+    mu_km3_s2: f64,
+    pos_km: &Vec3,
+    vel_km_s: &Vec3,
+    near: &Elements,
+) -> Option<(Elements, f64)> {
     let r = norm(pos_km);
     let v2 = dot(vel_km_s, vel_km_s);
     let h = cross(pos_km, vel_km_s);
@@ -120,7 +131,8 @@ pub(crate) fn elements_from_state_with(
     let ahead = cross(&h_unit, &node);
     let theta = libm::atan2(dot(pos_km, &ahead), dot(pos_km, &node));
     let w = libm::atan2(dot(&ecc_vec, &ahead), dot(&ecc_vec, &node));
-    let m = mean_from_true(theta - w, e);
+    let nu = theta - w;
+    let m = mean_from_true(nu, e);
     let el = [
         a,
         e,
@@ -129,8 +141,8 @@ pub(crate) fn elements_from_state_with(
         near[ARGP] + wrap_pi(w - near[ARGP]),
         near[MA] + wrap_pi(m - near[MA]),
     ];
-    if el.iter().all(|x| x.is_finite()) {
-        Some(el)
+    if el.iter().all(|x| x.is_finite()) && nu.is_finite() {
+        Some((el, nu))
     } else {
         None
     }

@@ -22,7 +22,7 @@ use super::elements::{state_of, Classical};
 use super::j2::{join, pos, vel, Gravity, State};
 use crate::impulsive::elements::{wrap_pi, Elements, A, ARGP, E, I, MA, RAAN};
 use crate::impulsive::kepler::true_anomaly;
-use crate::impulsive::nonlinear::elements_from_state_with;
+use crate::impulsive::nonlinear::elements_and_true_anomaly_with;
 use crate::impulsive::secular::rates_with;
 
 // The secular rates are those of the last three elements (node, perigee, mean anomaly).
@@ -43,7 +43,7 @@ pub const STATE_UNITS: u64 = 4;
 /// The first-order short-period J2 terms added to `el` (`sign = 1`: mean to osculating;
 /// `sign = -1`: osculating to mean, to first order). `None` when Kepler's equation does not
 /// converge or a result is not finite.
-fn short_period(g: &Gravity, el: &Elements, sign: f64) -> Option<Elements> {
+fn short_period(g: &Gravity, el: &Elements, sign: f64, nu: Option<f64>) -> Option<Elements> {
     let (a, e, i, raan, argp, m) = (el[A], el[E], el[I], el[RAAN], el[ARGP], el[MA]);
     let gamma = sign * 0.5 * g.j2 * (g.re_km / a) * (g.re_km / a);
     let eta2 = 1.0 - e * e;
@@ -51,19 +51,23 @@ fn short_period(g: &Gravity, el: &Elements, sign: f64) -> Option<Elements> {
     let eta3 = eta2 * eta;
     let eta6 = eta3 * eta3;
     let gamma_p = gamma / (eta2 * eta2);
-    let (f, ok) = true_anomaly(m, e, KEPLER_MAX_ITER);
-    if !ok {
-        return None;
-    }
+    let f = match nu {
+        Some(f) => f,
+        None => match true_anomaly(m, e, KEPLER_MAX_ITER) {
+            (f, true) => f,
+            (_, false) => return None,
+        },
+    };
     let (sin_f, cos_f) = libm::sincos(f);
     let a_r = (1.0 + e * cos_f) / eta2;
     let a_r3 = a_r * a_r * a_r;
     let (sin_i, th) = libm::sincos(i);
     let th2 = th * th;
     let s2 = 1.0 - th2;
+    // The angles 2ω + kf for k = 1, 2, 3 by the addition formulas (one sincos, not three).
     let (s_f, c_f) = libm::sincos(2.0 * argp + f);
-    let (s_2f, c_2f) = libm::sincos(2.0 * argp + 2.0 * f);
-    let (s_3f, c_3f) = libm::sincos(2.0 * argp + 3.0 * f);
+    let (s_2f, c_2f) = (s_f * cos_f + c_f * sin_f, c_f * cos_f - s_f * sin_f);
+    let (s_3f, c_3f) = (s_2f * cos_f + c_2f * sin_f, c_2f * cos_f - s_2f * sin_f);
     // The equation of the centre plus e sin f.
     let centre = wrap_pi(f - m) + e * sin_f;
     let cubic = 3.0 * cos_f + 3.0 * e * cos_f * cos_f + e * e * cos_f * cos_f * cos_f;
@@ -92,7 +96,11 @@ fn short_period(g: &Gravity, el: &Elements, sign: f64) -> Option<Elements> {
     let (sin_m, cos_m) = libm::sincos(m);
     let d1 = (e + de) * sin_m + e_dm * cos_m;
     let d2 = (e + de) * cos_m - e_dm * sin_m;
-    let (sin_h, cos_h) = libm::sincos(0.5 * i);
+    // Half the inclination (in [0, π/2]) from its cosine.
+    let (sin_h, cos_h) = (
+        libm::sqrt((0.5 * (1.0 - th)).max(0.0)),
+        libm::sqrt((0.5 * (1.0 + th)).max(0.0)),
+    );
     let (sin_o, cos_o) = libm::sincos(raan);
     let tilt = sin_h + 0.5 * cos_h * di;
     let d3 = tilt * sin_o + sin_h * d_raan * cos_o;
@@ -115,8 +123,8 @@ fn short_period(g: &Gravity, el: &Elements, sign: f64) -> Option<Elements> {
 /// elements and subtracted (first order: the conversions are inverse to each other up to
 /// J2^2 terms, a few metres; fixed-point corrections that make them exact were measured to
 /// change the flights by less than their own error and cost a third of a flight each).
-fn to_mean(g: &Gravity, osc: &Elements) -> Option<Elements> {
-    short_period(g, osc, -1.0)
+fn to_mean(g: &Gravity, osc: &Elements, nu: f64) -> Option<Elements> {
+    short_period(g, osc, -1.0, Some(nu))
 }
 
 /// Brouwer's second-order (J2^2) secular rates of the node, the perigee and the mean anomaly
@@ -167,8 +175,9 @@ impl MeanOrbit {
     /// The mean orbit of an osculating `state`; `None` for a state that is not a
     /// non-degenerate ellipse or a conversion that does not converge.
     pub fn of_state(g: &Gravity, state: &State) -> Option<Self> {
-        let osc = elements_from_state_with(g.mu_km3_s2, &pos(state), &vel(state), &[0.0; 6])?;
-        let mean = to_mean(g, &osc)?;
+        let (osc, nu) =
+            elements_and_true_anomaly_with(g.mu_km3_s2, &pos(state), &vel(state), &[0.0; 6])?;
+        let mean = to_mean(g, &osc, nu)?;
         let d = rates_with(g, &mean);
         let d2 = second_order_rates(g, &mean);
         // The angle rows RAAN, ARGP, MA are the last three of an element vector.
@@ -188,7 +197,7 @@ impl MeanOrbit {
         for (angle, r) in mean.iter_mut().skip(RAAN).zip(self.rates) {
             *angle = wrap_pi(*angle + r * dt_s);
         }
-        let el = short_period(g, &mean, 1.0)?;
+        let el = short_period(g, &mean, 1.0, None)?;
         let (nu, ok) = true_anomaly(el[MA], el[E], KEPLER_MAX_ITER);
         if !ok {
             return None;
