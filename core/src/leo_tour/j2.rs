@@ -43,12 +43,14 @@ pub fn join(r: &Vec3, v: &Vec3) -> State {
 
 /// Gravitational acceleration (two-body + J2), km/s^2.
 pub fn acceleration(g: &Gravity, r: &Vec3) -> Vec3 {
+    // One square root and one division per call (the step's four calls are most of a flight).
     let r2 = dot(r, r);
-    let rn = libm::sqrt(r2);
-    let inv_r3 = 1.0 / (r2 * rn);
+    let inv_r = 1.0 / libm::sqrt(r2);
+    let inv_r2 = inv_r * inv_r;
+    let inv_r3 = inv_r2 * inv_r;
     let central = scale(r, -g.mu_km3_s2 * inv_r3);
-    let z2_r2 = r[2] * r[2] / r2;
-    let k = -1.5 * g.j2 * g.mu_km3_s2 * g.re_km * g.re_km * inv_r3 / r2;
+    let z2_r2 = r[2] * r[2] * inv_r2;
+    let k = -1.5 * g.j2 * g.mu_km3_s2 * g.re_km * g.re_km * inv_r3 * inv_r2;
     let j2 = [
         k * r[0] * (1.0 - 5.0 * z2_r2),
         k * r[1] * (1.0 - 5.0 * z2_r2),

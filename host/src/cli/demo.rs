@@ -197,6 +197,14 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     opts.window = 2 * workers;
     opts.first_seq = 1 + items.len() as u64;
     let saturated = sequential.as_ref().ok().map(|_| feeder::run(&items, &opts));
+    // The LEO tour's on-board part: the sequencing, then its arcs on every worker.
+    let onboard = crate::cli::demo_leo_onboard::run(
+        &instance,
+        &dir,
+        workers,
+        1 + 2 * items.len() as u64,
+        &reconfig_core::limits::Limits::default(),
+    );
     let stopped_cleanly = service.stop()?;
     let _ = crate::harness::remove_instance_segment(&instance);
     let sequential = sequential?;
@@ -223,6 +231,17 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         args.json.as_deref(),
         &reconfig_core::limits::Limits::default(),
     )?;
+    let onboard_ok = match &onboard {
+        Ok(r) => {
+            crate::cli::demo_leo_onboard::print(r, workers);
+            r.correct
+        }
+        Err(e) => {
+            println!("LEO on-board part FAILED: {e:#}");
+            false
+        }
+    };
+    let ok = ok && onboard_ok;
     println!(
         "flight service stopped {}",
         if stopped_cleanly {

@@ -162,7 +162,7 @@ pub fn fixture_items(paths: &[PathBuf]) -> Vec<Item> {
 
 /// The feed items of a LEO tour fixture: with a `[sequence]` table one request for its
 /// order, else one request per arc of its order.
-fn leo_items(f: &fixture::leo_tour::LeoTourFixture) -> Result<Vec<Item>> {
+pub fn leo_items(f: &fixture::leo_tour::LeoTourFixture) -> Result<Vec<Item>> {
     if f.sequence.is_some() {
         return Ok(vec![Item {
             label: format!("{} order", f.name),

@@ -36,14 +36,27 @@ pub fn choose_order(f: &LeoTourFixture) -> Result<Option<(LeoTourFixture, Chosen
         tour_order::choose_order(&f.clients, f.impulses, &spec.settings, &spec.arc_settings)
             .map_err(|e| anyhow!("sequencing refused: {e:?}"))?;
     let time_s = started.elapsed().as_secs_f64();
+    Ok(Some((with_order(f, &sequence), ChosenOrder { sequence, time_s })))
+}
+
+/// `f` with the order and the arc durations of `sequence` (still with its `[sequence]`
+/// table).
+pub fn with_order(f: &LeoTourFixture, sequence: &Sequence) -> LeoTourFixture {
     let n = usize::from(sequence.len);
     let mut chosen = f.clone();
-    chosen.order = sequence.order[..n]
+    chosen.order = sequence
+        .order
         .iter()
+        .take(n)
         .map(|&k| usize::from(k))
         .collect();
-    chosen.intervals_s = sequence.durations_s[..n.saturating_sub(1)].to_vec();
-    Ok(Some((chosen, ChosenOrder { sequence, time_s })))
+    chosen.intervals_s = sequence
+        .durations_s
+        .iter()
+        .take(n.saturating_sub(1))
+        .copied()
+        .collect();
+    chosen
 }
 
 pub fn sequence_json(c: &ChosenOrder) -> serde_json::Value {

@@ -1,6 +1,7 @@
 //! One module per subcommand of `reconfig`.
 
 pub mod demo;
+pub mod demo_leo_onboard;
 pub mod fairness;
 pub mod feed;
 pub mod leo_tour_rounds;
