@@ -92,9 +92,15 @@ pub fn run(
             arc_solve_ms.push(*solve_ns as f64 / 1e6);
         }
     }
-    let correct = all_correct(&sequencing, &seq_run, limits) && all_correct(&arcs, &arc_run, limits);
+    let correct =
+        all_correct(&sequencing, &seq_run, limits) && all_correct(&arcs, &arc_run, limits);
     Ok(OnboardRun {
-        order: q.order.iter().take(usize::from(q.len)).map(|&k| usize::from(k) + 1).collect(),
+        order: q
+            .order
+            .iter()
+            .take(usize::from(q.len))
+            .map(|&k| usize::from(k) + 1)
+            .collect(),
         sequencing_ms: seq_rtt_ms,
         arcs_ms,
         arc_solve_ms,
@@ -114,7 +120,9 @@ fn answered(run: &FeedRun, k: usize) -> Result<(f64, &[u8])> {
 
 fn all_correct(items: &[Item], run: &FeedRun, limits: &Limits) -> bool {
     let expected = check::expected(run, limits);
-    check::verify(items, run, &expected).iter().all(|v| v.correct)
+    check::verify(items, run, &expected)
+        .iter()
+        .all(|v| v.correct)
 }
 
 /// Print the run: the order, the two times, the total against [`BUDGET_MS`].
@@ -132,7 +140,11 @@ pub fn print(r: &OnboardRun, workers: usize) {
         solves.join(" / "),
         r.total_ms(),
         BUDGET_MS,
-        if r.total_ms() <= BUDGET_MS { "met" } else { "NOT met" },
+        if r.total_ms() <= BUDGET_MS {
+            "met"
+        } else {
+            "NOT met"
+        },
         if r.correct { "correct" } else { "NOT correct" },
     );
 }

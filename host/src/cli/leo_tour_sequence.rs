@@ -36,7 +36,10 @@ pub fn choose_order(f: &LeoTourFixture) -> Result<Option<(LeoTourFixture, Chosen
         tour_order::choose_order(&f.clients, f.impulses, &spec.settings, &spec.arc_settings)
             .map_err(|e| anyhow!("sequencing refused: {e:?}"))?;
     let time_s = started.elapsed().as_secs_f64();
-    Ok(Some((with_order(f, &sequence), ChosenOrder { sequence, time_s })))
+    Ok(Some((
+        with_order(f, &sequence),
+        ChosenOrder { sequence, time_s },
+    )))
 }
 
 /// `f` with the order and the arc durations of `sequence` (still with its `[sequence]`

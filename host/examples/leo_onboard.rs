@@ -1,0 +1,74 @@
+//! The LEO tour's on-board part timed in one thread: the core's sequencing (for a fixture with
+//! a `[sequence]` table) and every arc of the order planned with `leo_tour::solve_arc`, as
+//! `reconfig solve` runs them but without the truth-model checks. Prints each run and the
+//! fastest of the runs (the figure docs/leo-tour.md quotes).
+//!
+//! `cargo run --release -p reconfig-host --example leo_onboard -- FIXTURE [RUNS]`
+
+use anyhow::{anyhow, Context, Result};
+use reconfig_core::leo_tour::{solve_arc, Status};
+use reconfig_host::cli::leo_tour_sequence::choose_order;
+use reconfig_host::cli::solve_leo_tour::arc_problems;
+use reconfig_host::fixture::leo_tour::load;
+use std::time::Instant;
+
+fn main() -> Result<()> {
+    let mut args = std::env::args().skip(1);
+    let path = args
+        .next()
+        .ok_or_else(|| anyhow!("usage: leo_onboard FIXTURE [RUNS]"))?;
+    let runs: usize = match args.next() {
+        Some(s) => s.parse().context("RUNS")?,
+        None => 5,
+    };
+    let f = load(std::path::Path::new(&path))?;
+    let (mut best_seq_s, mut best_arcs_s, mut best_total_s) =
+        (f64::INFINITY, f64::INFINITY, f64::INFINITY);
+    for _ in 0..runs {
+        let started = Instant::now();
+        let (tour, seq_s) = match choose_order(&f)? {
+            Some((chosen, c)) => {
+                let q = &c.sequence;
+                let order: Vec<u8> = q
+                    .order
+                    .iter()
+                    .take(usize::from(q.len))
+                    .map(|k| k + 1)
+                    .collect();
+                print!(
+                    "sequencing {:?} {:?} {:.3} m/s, {} / {} arcs, {:.4} s | ",
+                    order, q.status, q.total_dv_mps, q.arcs_planned, q.arcs_in_tree, c.time_s
+                );
+                (chosen, c.time_s)
+            }
+            None => (f.clone(), 0.0),
+        };
+        let arcs_started = Instant::now();
+        let mut dvs = Vec::new();
+        let mut total_mps = 0.0;
+        for (from, to, _, problem) in arc_problems(&tour)? {
+            let s = solve_arc(&problem, &tour.settings)
+                .map_err(|e| anyhow!("arc {} -> {}: {e}", from + 1, to + 1))?;
+            total_mps += s.total_dv_mps;
+            let flag = if s.status == Status::Solved {
+                ""
+            } else {
+                " (not Solved)"
+            };
+            dvs.push(format!("{:.3}{flag}", s.total_dv_mps));
+        }
+        let arcs_s = arcs_started.elapsed().as_secs_f64();
+        let total_s = started.elapsed().as_secs_f64();
+        println!(
+            "arcs [{}] = {total_mps:.3} m/s, {arcs_s:.4} s | {total_s:.4} s",
+            dvs.join(", ")
+        );
+        best_seq_s = best_seq_s.min(seq_s);
+        best_arcs_s = best_arcs_s.min(arcs_s);
+        best_total_s = best_total_s.min(total_s);
+    }
+    println!(
+        "fastest of {runs}: sequencing {best_seq_s:.4} s, arcs {best_arcs_s:.4} s, total {best_total_s:.4} s"
+    );
+    Ok(())
+}
