@@ -13,7 +13,7 @@
 use super::bound::{plane_of, Plane};
 use super::j2::State;
 use super::sequence::{best_order, Sequence, SequenceError, SequenceSettings, MAX_CLIENTS};
-use super::{estimate_arc_mps, propagate, ArcProblem, Settings};
+use super::{estimate_arc_mps, propagate, solve_arc, ArcProblem, ArcSolution, PlanError, Settings};
 
 /// Client states at arc starts kept: every client at every start of a tour of
 /// [`MAX_CLIENTS`] with durations by position.
@@ -117,6 +117,70 @@ pub fn choose_order(
         arcs.put(key, cost);
         cost
     })
+}
+
+/// The tour's on-board part: the order ([`choose_order`], arcs estimated with
+/// `arc_settings`) and each arc of it planned with [`solve_arc`] and `settings` (the full
+/// search), the clients flown to each arc start in the planning model of `settings`.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct OnboardPlan {
+    /// The sequencing's outcome.
+    pub sequence: Sequence,
+    /// Arc `k` of the order (`k < sequence.len - 1`): its plan, or why it has none; `None`
+    /// beyond the order's arcs.
+    pub arcs: [Option<Result<ArcSolution, PlanError>>; MAX_CLIENTS - 1],
+}
+
+/// Choose the order and plan its arcs: what a flight computer runs before the tour (and what
+/// `reconfig solve` does for a `[sequence]` fixture, without the truth-model checks).
+///
+/// Worst case: [`choose_order`]'s, then `clients.len() - 1` arcs, each two propagations of at
+/// most `settings.max_steps` RK4 steps and one [`solve_arc`] within `settings.work_budget`.
+///
+/// # Errors
+/// As [`choose_order`]. An arc that cannot be planned is in [`OnboardPlan::arcs`].
+pub fn plan_onboard(
+    clients: &[State],
+    impulses: u8,
+    sequence_settings: &SequenceSettings,
+    arc_settings: &Settings,
+    settings: &Settings,
+) -> Result<OnboardPlan, SequenceError> {
+    let sequence = choose_order(clients, impulses, sequence_settings, arc_settings)?;
+    let mut arcs = [None; MAX_CLIENTS - 1];
+    let legs = sequence
+        .order
+        .windows(2)
+        .zip(sequence.starts_s.iter().zip(sequence.durations_s.iter()))
+        .take(usize::from(sequence.len).saturating_sub(1));
+    for (slot, (pair, (&start_s, &duration_s))) in arcs.iter_mut().zip(legs) {
+        let at = |k: u8| {
+            clients
+                .get(usize::from(k))
+                .and_then(|c| propagate(settings, c, start_s))
+        };
+        let (Some(&a), Some(&b)) = (pair.first(), pair.get(1)) else {
+            continue;
+        };
+        *slot = Some(match (at(a), at(b)) {
+            (Some(from), Some(to)) => solve_arc(
+                &ArcProblem {
+                    from,
+                    to,
+                    duration_s,
+                    impulses,
+                },
+                settings,
+            ),
+            (None, _) => Err(PlanError::Propagation {
+                field: super::Field::From,
+            }),
+            (_, None) => Err(PlanError::Propagation {
+                field: super::Field::To,
+            }),
+        });
+    }
+    Ok(OnboardPlan { sequence, arcs })
 }
 
 #[cfg(test)]
