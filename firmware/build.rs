@@ -59,7 +59,7 @@ fn main() {
             | fixture_set::Planner::ImpulsiveForm
             | fixture_set::Planner::ImpulsiveFormFixedPoint => with_b,
             fixture_set::Planner::GeoTour => with_geo,
-            fixture_set::Planner::LeoArc => with_leo,
+            fixture_set::Planner::LeoArc | fixture_set::Planner::LeoOnboard => with_leo,
         };
         if !carried {
             continue;
@@ -72,6 +72,7 @@ fn main() {
             fixture_set::Planner::ImpulsiveFormFixedPoint => "Planner::ImpulsiveFormFixedPoint",
             fixture_set::Planner::GeoTour => "Planner::GeoTour",
             fixture_set::Planner::LeoArc => "Planner::LeoArc",
+            fixture_set::Planner::LeoOnboard => "Planner::LeoOnboard",
         };
         writeln!(
             code,

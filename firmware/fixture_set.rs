@@ -33,7 +33,23 @@ pub enum Planner {
     /// fixture's settings: carried only by the LEO image (`cargo firmware-leo`). Baked from the
     /// single-arc LEO fixtures (an order of two clients, no sequencing).
     LeoArc,
+    /// The LEO tour's on-board part, `reconfig_core::leo_tour::tour_order::plan_onboard`: the
+    /// order of a `[sequence]` fixture and every arc of it; carried only by the LEO image. The
+    /// bytes carry [`LeoOnboardBytes`].
+    LeoOnboard,
 }
+
+/// What a [`Planner::LeoOnboard`] fixture's bytes carry: the number of clients, their states
+/// at the tour epoch (the unused rows zero), the impulses per arc, the sequencing's settings,
+/// the arc estimates' settings and the arcs' settings.
+pub type LeoOnboardBytes = (
+    u8,
+    [reconfig_core::leo_tour::j2::State; reconfig_core::leo_tour::sequence::MAX_CLIENTS],
+    u8,
+    reconfig_core::leo_tour::sequence::SequenceSettings,
+    reconfig_core::leo_tour::Settings,
+    reconfig_core::leo_tour::Settings,
+);
 
 impl Planner {
     /// The fixture files' `planner` value.
@@ -45,7 +61,7 @@ impl Planner {
             | Self::ImpulsiveForm
             | Self::ImpulsiveFormFixedPoint => "impulsive",
             Self::GeoTour => "geo-tour",
-            Self::LeoArc => "leo-tour",
+            Self::LeoArc | Self::LeoOnboard => "leo-tour",
         }
     }
 }
@@ -105,11 +121,40 @@ pub fn encode_all(dir: &Path) -> Result<Vec<EncodedFixture>, String> {
     let mut out: Vec<EncodedFixture> = Vec::new();
     for file in fixture_files(dir)? {
         let text = std::fs::read_to_string(&file).unwrap_or_default();
-        // The LEO tour (issue 13): its single-arc fixtures run on the LEO image; a whole tour
-        // (several arcs, the truth model, the sequencing) is host-only.
+        // The LEO tour (issue 13): its single-arc fixtures and the on-board part of a
+        // `[sequence]` fixture (the order and its arcs) run on the LEO image; a tour of a given
+        // order (several arcs, the truth model) is host-only.
         if reconfig_host::fixture::leo_tour::is_leo_tour(&text) {
             let f = reconfig_host::fixture::leo_tour::load(&file).map_err(|e| format!("{e:#}"))?;
-            if f.order.len() != 2 || f.sequence.is_some() {
+            if let Some(spec) = f.sequence {
+                let mut clients = [[0.0; 6]; reconfig_core::leo_tour::sequence::MAX_CLIENTS];
+                for (slot, c) in clients.iter_mut().zip(&f.clients) {
+                    *slot = *c;
+                }
+                let count =
+                    u8::try_from(f.clients.len()).map_err(|e| format!("{}: {e}", f.name))?;
+                let bytes: LeoOnboardBytes = (
+                    count,
+                    clients,
+                    f.impulses,
+                    spec.settings,
+                    spec.arc_settings,
+                    f.settings,
+                );
+                let problem =
+                    postcard::to_stdvec(&bytes).map_err(|e| format!("{}: {e}", f.name))?;
+                push_unique(
+                    &mut out,
+                    EncodedFixture {
+                        name: f.name,
+                        file,
+                        planner: Planner::LeoOnboard,
+                        problem,
+                    },
+                )?;
+                continue;
+            }
+            if f.order.len() != 2 {
                 continue;
             }
             let (Some(&from), Some(&to), Some(&duration_s)) =

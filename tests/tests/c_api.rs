@@ -462,7 +462,7 @@ fn prepared() -> &'static Prepared {
                     expected.push(g_expected(&f.name, &p, &st));
                 }
                 // The LEO tour has no C interface yet.
-                Planner::LeoArc => {}
+                Planner::LeoArc | Planner::LeoOnboard => {}
             }
         }
         // Planner A lines first, then planner B, its other forms and the GEO tour, as the

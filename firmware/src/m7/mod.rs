@@ -55,6 +55,9 @@ pub enum Planner {
     GeoTour,
     /// One arc of the LEO tour (the LEO image); its bytes carry `(ArcProblem, Settings)`.
     LeoArc,
+    /// The LEO tour's on-board part (the LEO image): the order and its arcs; its bytes carry
+    /// `fixture_set::LeoOnboardBytes`.
+    LeoOnboard,
 }
 
 /// A fixture baked in by `build.rs`: the postcard bytes of the planner's `Problem`.
@@ -202,6 +205,8 @@ fn main() -> ! {
             }
             #[cfg(feature = "leo_tour")]
             Planner::LeoArc => run_leo_arc(&mut out, (index, marker, fixture)),
+            #[cfg(feature = "leo_tour")]
+            Planner::LeoOnboard => run_leo_onboard(&mut out, (index, marker, fixture)),
             #[cfg(feature = "geo_tour")]
             Planner::GeoTour => run_geo_tour(
                 &mut out,
@@ -385,6 +390,54 @@ fn run_leo_arc(out: &mut Out, (index, marker, fixture): (usize, u32, &Fixture)) 
         leo_tour::solve_arc(black_box(&problem), black_box(&settings))
     });
     let units = run.result.as_ref().ok().map(|s| s.work_units);
+    let figures = (run.ticks, units);
+    report(
+        out,
+        index,
+        fixture,
+        "leo-tour",
+        run.result.is_ok(),
+        run.stack_bytes,
+        figures,
+    );
+    print_result(out, index, &run.result);
+}
+
+/// The LEO tour's on-board part (the LEO image): the sequencing and every arc of the order,
+/// all on the stack. Its work units are the arcs' (the sequencing's estimates are not
+/// metered in total).
+#[cfg(feature = "leo_tour")]
+#[inline(never)]
+fn run_leo_onboard(out: &mut Out, (index, marker, fixture): (usize, u32, &Fixture)) {
+    use leo_tour::sequence::{SequenceSettings, MAX_CLIENTS};
+    repaint_stack();
+    #[allow(clippy::type_complexity)]
+    let (count, clients, impulses, sequence_settings, arc_settings, settings): (
+        u8,
+        [leo_tour::j2::State; MAX_CLIENTS],
+        u8,
+        SequenceSettings,
+        leo_tour::Settings,
+        leo_tour::Settings,
+    ) = decode(fixture);
+    let clients = clients.get(..usize::from(count)).unwrap_or(&[]);
+    let run = measured(marker, || {
+        leo_tour::tour_order::plan_onboard(
+            black_box(clients),
+            black_box(impulses),
+            black_box(&sequence_settings),
+            black_box(&arc_settings),
+            black_box(&settings),
+        )
+    });
+    let units = run.result.as_ref().ok().map(|p| {
+        p.arcs
+            .iter()
+            .flatten()
+            .flatten()
+            .map(|a| a.work_units)
+            .sum::<u64>()
+    });
     let figures = (run.ticks, units);
     report(
         out,

@@ -47,7 +47,7 @@ fn geo_results_are_bit_identical_to_the_host() {
     let Some(run) = or_skip(test, run()) else {
         return;
     };
-    assert_bit_identical(run, &fixtures_of(Planner::GeoTour), Planner::GeoTour, "GEO");
+    assert_bit_identical(run, &fixtures_of(&[Planner::GeoTour]), "GEO");
 }
 
 #[test]
@@ -95,7 +95,7 @@ fn geo_figures_are_within_budget() {
         recorded_image,
         "geo-tour",
         static_ram,
-        run.largest_stack_bytes(),
+        (run.largest_stack_bytes(), BUDGET_STACK_BYTES),
     );
     for (fixture, &count) in run.fixtures.iter().zip(instructions) {
         let recorded = recorded_fixtures.get(&fixture.name).copied();

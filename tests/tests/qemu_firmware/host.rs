@@ -11,11 +11,11 @@ use crate::fixture_set::{EncodedFixture, Planner};
 use crate::image::Run;
 
 /// The repository's fixtures of one planner, encoded as the firmware bakes them.
-pub fn fixtures_of(planner: Planner) -> Vec<EncodedFixture> {
+pub fn fixtures_of(planners: &[Planner]) -> Vec<EncodedFixture> {
     crate::fixture_set::encode_all(&crate::prerequisites::root().join("fixtures"))
         .expect("fixtures load")
         .into_iter()
-        .filter(|f| f.planner == planner)
+        .filter(|f| planners.contains(&f.planner))
         .collect()
 }
 
@@ -100,12 +100,24 @@ pub fn host_result(planner: Planner, problem: &[u8]) -> Vec<u8> {
                 postcard::from_bytes(problem).expect("the baked problem decodes");
             encode(&leo_tour::solve_arc(&p, &settings))
         }
+        // The on-board part's bytes carry `fixture_set::LeoOnboardBytes`.
+        Planner::LeoOnboard => {
+            let (count, clients, impulses, sequence_settings, arc_settings, settings): crate::fixture_set::LeoOnboardBytes =
+                postcard::from_bytes(problem).expect("the baked problem decodes");
+            encode(&leo_tour::tour_order::plan_onboard(
+                &clients[..usize::from(count)],
+                impulses,
+                &sequence_settings,
+                &arc_settings,
+                &settings,
+            ))
+        }
     }
 }
 
 /// The image `image` ran exactly `fixtures` (all of `planner`), each with the host's result
 /// byte for byte.
-pub fn assert_bit_identical(run: &Run, fixtures: &[EncodedFixture], planner: Planner, image: &str) {
+pub fn assert_bit_identical(run: &Run, fixtures: &[EncodedFixture], image: &str) {
     assert!(!fixtures.is_empty(), "no {image} fixtures to compare");
     let names: Vec<&str> = fixtures.iter().map(|f| f.name.as_str()).collect();
     let m7_names: Vec<&str> = run.fixtures.iter().map(|f| f.name.as_str()).collect();
@@ -114,8 +126,8 @@ pub fn assert_bit_identical(run: &Run, fixtures: &[EncodedFixture], planner: Pla
         "the {image} image ran a different fixture set"
     );
     for (fixture, m7) in fixtures.iter().zip(&run.fixtures) {
-        assert_eq!(m7.planner, planner.key(), "{}", fixture.name);
-        let host = hex(&host_result(planner, &fixture.problem));
+        assert_eq!(m7.planner, fixture.planner.key(), "{}", fixture.name);
+        let host = hex(&host_result(fixture.planner, &fixture.problem));
         assert!(
             host == m7.hex,
             "{}: the host and the emulated Cortex-M7 differ (host {} bytes, M7 {} bytes)",

@@ -1,6 +1,7 @@
-//! The LEO tour's per-arc image (`cargo firmware-leo`): its own build and QEMU run of the
-//! single-arc LEO fixtures (`leo_tour::solve_arc`, the on-board part of issue 13 that flies
-//! today). Its figures are their own record, `fixtures/golden/m7-figures-leo.toml`.
+//! The LEO tour's image (`cargo firmware-leo`): its own build and QEMU run of the single-arc
+//! LEO fixtures (`leo_tour::solve_arc`) and of the on-board part of the `[sequence]` fixtures
+//! (`leo_tour::tour_order::plan_onboard`: the order and its arcs). Its figures are their own
+//! record, `fixtures/golden/m7-figures-leo.toml`.
 
 use std::fmt::Write as _;
 use std::sync::OnceLock;
@@ -21,9 +22,16 @@ const BIN: &str = "reconfig-firmware-leo";
 const LEO_FIGURES_FILE: &str = "fixtures/golden/m7-figures-leo.toml";
 /// Instructions per arc: a ceiling that catches growth, **not** the on-board target. Issue 13
 /// asks 200 ms for the sequence and four arcs (about 80 M instructions at 400 MHz); one arc
-/// takes about 0.65 G today with the search model (25.6 G when it searched in the planning
+/// takes about 0.46 G today with the search model (25.6 G when it searched in the planning
 /// model; docs/leo-tour.md).
 const CEILING_INSTRUCTIONS_LEO_ARC: u64 = 1_500_000_000;
+/// Instructions of the on-board part of a `[sequence]` fixture (the sequencing and every arc
+/// of its order): a ceiling that catches growth, not the target.
+const CEILING_INSTRUCTIONS_LEO_ONBOARD: u64 = 8_000_000_000;
+/// Stack of the on-board part: the sequencing's caches (the arcs and the client states met,
+/// about 27 KB for 8 clients) sit below one arc search (about 32 KB), so it needs more than
+/// the 64 KiB each single solve is held to; the image's RAM budget (230 KiB) still holds.
+const BUDGET_STACK_BYTES_LEO_ONBOARD: u64 = 96 * 1024;
 const BINARY_FIGURES: [(&str, u64); 2] = [
     ("text_bytes", 1024 * 1024),
     ("static_ram_bytes", 256 * 1024),
@@ -41,7 +49,11 @@ fn leo_results_are_bit_identical_to_the_host() {
     let Some(run) = or_skip(test, run()) else {
         return;
     };
-    assert_bit_identical(run, &fixtures_of(Planner::LeoArc), Planner::LeoArc, "LEO");
+    assert_bit_identical(
+        run,
+        &fixtures_of(&[Planner::LeoArc, Planner::LeoOnboard]),
+        "LEO",
+    );
 }
 
 #[test]
@@ -58,7 +70,8 @@ fn leo_figures_match_the_record() {
     let file = read_record(LEO_FIGURES_FILE);
     let mut figures = Vec::new();
     let mut text = String::from(
-        "# LEO tour per-arc image (cargo firmware-leo): written by leo_figures_match_the_record\n\
+        "# LEO tour image (cargo firmware-leo: one arc, and the on-board part of a [sequence]\n\
+         # fixture): written by leo_figures_match_the_record\n\
          # (RECONFIG_UPDATE_FIGURES=1 cargo test -p reconfig-tests --test qemu_firmware leo_).\n\
          # instructions_budget is a ceiling that catches growth, not issue 13's on-board target.\n\n\
          [leo_binary]\n",
@@ -90,26 +103,44 @@ fn leo_figures_match_the_record() {
         recorded_image,
         "leo-tour",
         static_ram,
-        run.largest_stack_bytes(),
+        (run.largest_stack_bytes(), BUDGET_STACK_BYTES_LEO_ONBOARD),
     );
     let recorded_fixtures = tables_by(&file, "leo_fixture", "name");
+    let onboard: Vec<String> = fixtures_of(&[Planner::LeoOnboard])
+        .into_iter()
+        .map(|f| f.name)
+        .collect();
     for (fixture, &count) in run.fixtures.iter().zip(instructions) {
         let recorded = recorded_fixtures.get(&fixture.name).copied();
         let _ = write!(text, "\n[[leo_fixture]]\nname = {:?}\n", fixture.name);
         let units = fixture.work_units.unwrap_or(0);
-        let _ = writeln!(
-            text,
-            "work_units = {units}\ninstructions_per_work_unit = {:.1}",
-            count as f64 / units.max(1) as f64
-        );
+        let is_onboard = onboard.contains(&fixture.name);
+        let (ceiling, stack_budget) = if is_onboard {
+            // The sequencing's estimates are not metered in total: only the arcs' units.
+            let _ = writeln!(
+                text,
+                "part = \"on-board: the sequencing and every arc of its order\"\narcs_work_units = {units}"
+            );
+            (
+                CEILING_INSTRUCTIONS_LEO_ONBOARD,
+                BUDGET_STACK_BYTES_LEO_ONBOARD,
+            )
+        } else {
+            let _ = writeln!(
+                text,
+                "work_units = {units}\ninstructions_per_work_unit = {:.1}",
+                count as f64 / units.max(1) as f64
+            );
+            (CEILING_INSTRUCTIONS_LEO_ARC, BUDGET_STACK_BYTES)
+        };
         record_entries(
             &mut text,
             &mut figures,
             recorded,
             &fixture.name,
             &[
-                ("instructions", count, CEILING_INSTRUCTIONS_LEO_ARC),
-                ("stack_bytes", fixture.stack_bytes, BUDGET_STACK_BYTES),
+                ("instructions", count, ceiling),
+                ("stack_bytes", fixture.stack_bytes, stack_budget),
             ],
         );
     }

@@ -98,7 +98,7 @@ pub fn record_image_ram(
     recorded: Option<&toml::Table>,
     planner: &str,
     static_ram: u64,
-    stack: u64,
+    (stack, stack_budget): (u64, u64),
 ) {
     record_entries(
         text,
@@ -111,7 +111,7 @@ pub fn record_image_ram(
                 static_ram,
                 BUDGET_ONE_PLANNER_IMAGE_RAM_BYTES,
             ),
-            ("stack_bytes", stack, BUDGET_STACK_BYTES),
+            ("stack_bytes", stack, stack_budget),
             (
                 "ram_bytes",
                 static_ram + stack,
