@@ -273,3 +273,28 @@ fn a_warm_start_from_the_plan_of_a_nearby_arc_is_cheaper_and_as_good() {
     assert!(warm.evaluations < cold_moved.evaluations / 2);
     assert!(warm.total_dv_mps <= cold_moved.total_dv_mps * 1.005);
 }
+
+#[test]
+fn fewer_revolutions_allowed_than_the_clients_make_still_give_a_plan() {
+    // The paper's arc is 15 revolutions of the clients; with at most 8 allowed, the grid's
+    // revolution window (the clients' counts over the transfer's time, +- 2) holds no family
+    // at the early grid epochs, only at the late ones (shorter transfers): those must still
+    // give a plan. Two impulses: no plane seed, so the grid's two-impulse transfers are the
+    // only start (measured: 534.019 m/s; with the window empty everywhere, no plan).
+    let settings = Settings {
+        max_revolutions: 8,
+        ..Settings::default()
+    };
+    let problem = ArcProblem {
+        impulses: 2,
+        ..paper_arc()
+    };
+    let sol = solve_arc(&problem, &settings).unwrap();
+    assert_eq!(sol.status, Status::Solved);
+    assert!(
+        sol.last_leg_revolutions <= 8,
+        "{}",
+        sol.last_leg_revolutions
+    );
+    std::println!("max 8 revolutions: {:.3} m/s", sol.total_dv_mps);
+}
