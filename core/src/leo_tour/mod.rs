@@ -23,6 +23,7 @@
 //! See `docs/leo-tour.md`.
 
 mod arc;
+mod arc_grid;
 mod arc_hops;
 mod arc_warm;
 pub mod bound;
