@@ -35,21 +35,9 @@ pub enum Planner {
     LeoArc,
     /// The LEO tour's on-board part, `reconfig_core::leo_tour::tour_order::plan_onboard`: the
     /// order of a `[sequence]` fixture and every arc of it; carried only by the LEO image. The
-    /// bytes carry [`LeoOnboardBytes`].
+    /// bytes carry its `tour_order::OnboardProblem`.
     LeoOnboard,
 }
-
-/// What a [`Planner::LeoOnboard`] fixture's bytes carry: the number of clients, their states
-/// at the tour epoch (the unused rows zero), the impulses per arc, the sequencing's settings,
-/// the arc estimates' settings and the arcs' settings.
-pub type LeoOnboardBytes = (
-    u8,
-    [reconfig_core::leo_tour::j2::State; reconfig_core::leo_tour::sequence::MAX_CLIENTS],
-    u8,
-    reconfig_core::leo_tour::sequence::SequenceSettings,
-    reconfig_core::leo_tour::Settings,
-    reconfig_core::leo_tour::Settings,
-);
 
 impl Planner {
     /// The fixture files' `planner` value.
@@ -126,23 +114,10 @@ pub fn encode_all(dir: &Path) -> Result<Vec<EncodedFixture>, String> {
         // order (several arcs, the truth model) is host-only.
         if reconfig_host::fixture::leo_tour::is_leo_tour(&text) {
             let f = reconfig_host::fixture::leo_tour::load(&file).map_err(|e| format!("{e:#}"))?;
-            if let Some(spec) = f.sequence {
-                let mut clients = [[0.0; 6]; reconfig_core::leo_tour::sequence::MAX_CLIENTS];
-                for (slot, c) in clients.iter_mut().zip(&f.clients) {
-                    *slot = *c;
-                }
-                let count =
-                    u8::try_from(f.clients.len()).map_err(|e| format!("{}: {e}", f.name))?;
-                let bytes: LeoOnboardBytes = (
-                    count,
-                    clients,
-                    f.impulses,
-                    spec.settings,
-                    spec.arc_settings,
-                    f.settings,
-                );
-                let problem =
-                    postcard::to_stdvec(&bytes).map_err(|e| format!("{}: {e}", f.name))?;
+            if f.sequence.is_some() {
+                let problem = reconfig_host::cli::leo_tour_sequence::onboard_problem(&f)
+                    .and_then(|p| Ok(postcard::to_stdvec(&p)?))
+                    .map_err(|e| format!("{}: {e:#}", f.name))?;
                 push_unique(
                     &mut out,
                     EncodedFixture {

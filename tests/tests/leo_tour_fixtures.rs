@@ -260,19 +260,11 @@ fn the_papers_interval_rule_gives_the_digests_intervals() {
 #[test]
 fn the_on_board_part_in_the_core_is_the_hosts_sequencing_and_plans_bit_for_bit() {
     use reconfig_core::leo_tour::tour_order::plan_onboard;
-    use reconfig_host::cli::leo_tour_sequence::choose_order;
+    use reconfig_host::cli::leo_tour_sequence::{choose_order, onboard_problem};
     // The one function the firmware runs for a `[sequence]` fixture (`cargo firmware-leo`)
     // against what `reconfig solve` does: the same order and the same arcs, to the bit.
     let f = load(&fixtures_dir().join("leo-tour-example1-sequence.toml")).unwrap();
-    let spec = f.sequence.unwrap();
-    let onboard = plan_onboard(
-        &f.clients,
-        f.impulses,
-        &spec.settings,
-        &spec.arc_settings,
-        &f.settings,
-    )
-    .unwrap();
+    let onboard = plan_onboard(&onboard_problem(&f).unwrap()).unwrap();
     let (chosen, c) = choose_order(&f).unwrap().unwrap();
     assert_eq!(onboard.sequence, c.sequence);
     let host = plan(&chosen).unwrap();

@@ -119,9 +119,26 @@ pub fn choose_order(
     })
 }
 
+/// The tour's on-board part as one request: the clients at the tour epoch, the impulses per
+/// arc, the sequencing's settings, the settings of its arc estimates and those of the arcs
+/// planned in full (what the LEO firmware image carries for a `[sequence]` fixture).
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct OnboardProblem {
+    /// The clients' inertial states at the tour epoch.
+    pub clients: heapless::Vec<State, MAX_CLIENTS>,
+    /// Impulses per arc.
+    pub impulses: u8,
+    /// The sequencing's settings.
+    pub sequence: SequenceSettings,
+    /// The arc estimates' settings while sequencing.
+    pub estimates: Settings,
+    /// The settings of the chosen order's arcs.
+    pub arcs: Settings,
+}
+
 /// The tour's on-board part: the order ([`choose_order`], arcs estimated with
-/// `arc_settings`) and each arc of it planned with [`solve_arc`] and `settings` (the full
-/// search), the clients flown to each arc start in the planning model of `settings`.
+/// `problem.estimates`) and each arc of it planned with [`solve_arc`] and `problem.arcs` (the
+/// full search), the clients flown to each arc start in the planning model of `problem.arcs`.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct OnboardPlan {
     /// The sequencing's outcome.
@@ -135,18 +152,20 @@ pub struct OnboardPlan {
 /// `reconfig solve` does for a `[sequence]` fixture, without the truth-model checks).
 ///
 /// Worst case: [`choose_order`]'s, then `clients.len() - 1` arcs, each two propagations of at
-/// most `settings.max_steps` RK4 steps and one [`solve_arc`] within `settings.work_budget`.
+/// most `problem.arcs.max_steps` RK4 steps and one [`solve_arc`] within
+/// `problem.arcs.work_budget`.
 ///
 /// # Errors
 /// As [`choose_order`]. An arc that cannot be planned is in [`OnboardPlan::arcs`].
-pub fn plan_onboard(
-    clients: &[State],
-    impulses: u8,
-    sequence_settings: &SequenceSettings,
-    arc_settings: &Settings,
-    settings: &Settings,
-) -> Result<OnboardPlan, SequenceError> {
-    let sequence = choose_order(clients, impulses, sequence_settings, arc_settings)?;
+pub fn plan_onboard(problem: &OnboardProblem) -> Result<OnboardPlan, SequenceError> {
+    let clients = problem.clients.as_slice();
+    let settings = &problem.arcs;
+    let sequence = choose_order(
+        clients,
+        problem.impulses,
+        &problem.sequence,
+        &problem.estimates,
+    )?;
     let mut arcs = [None; MAX_CLIENTS - 1];
     let legs = sequence
         .order
@@ -168,7 +187,7 @@ pub fn plan_onboard(
                     from,
                     to,
                     duration_s,
-                    impulses,
+                    impulses: problem.impulses,
                 },
                 settings,
             ),

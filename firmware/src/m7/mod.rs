@@ -56,7 +56,7 @@ pub enum Planner {
     /// One arc of the LEO tour (the LEO image); its bytes carry `(ArcProblem, Settings)`.
     LeoArc,
     /// The LEO tour's on-board part (the LEO image): the order and its arcs; its bytes carry
-    /// `fixture_set::LeoOnboardBytes`.
+    /// a `leo_tour::tour_order::OnboardProblem`.
     LeoOnboard,
 }
 
@@ -379,8 +379,7 @@ fn run_geo_tour(
     print_result(out, index, &run.result.map(|()| &*solution));
 }
 
-/// One LEO arc (the LEO image): its bytes carry `(ArcProblem, Settings)`. The arc planner
-/// keeps its state on the stack (no workspace), so its stack figure is its memory.
+/// One LEO arc (the LEO image): its bytes carry `(ArcProblem, Settings)`.
 #[cfg(feature = "leo_tour")]
 #[inline(never)]
 fn run_leo_arc(out: &mut Out, (index, marker, fixture): (usize, u32, &Fixture)) {
@@ -390,45 +389,19 @@ fn run_leo_arc(out: &mut Out, (index, marker, fixture): (usize, u32, &Fixture)) 
         leo_tour::solve_arc(black_box(&problem), black_box(&settings))
     });
     let units = run.result.as_ref().ok().map(|s| s.work_units);
-    let figures = (run.ticks, units);
-    report(
-        out,
-        index,
-        fixture,
-        "leo-tour",
-        run.result.is_ok(),
-        run.stack_bytes,
-        figures,
-    );
-    print_result(out, index, &run.result);
+    report_leo(out, (index, fixture), &run, units);
 }
 
-/// The LEO tour's on-board part (the LEO image): the sequencing and every arc of the order,
-/// all on the stack. Its work units are the arcs' (the sequencing's estimates are not
-/// metered in total).
+/// The LEO tour's on-board part (the LEO image): the sequencing and every arc of the order;
+/// its bytes carry a `tour_order::OnboardProblem`. Its work units are the arcs' (the
+/// sequencing's estimates are not metered in total).
 #[cfg(feature = "leo_tour")]
 #[inline(never)]
 fn run_leo_onboard(out: &mut Out, (index, marker, fixture): (usize, u32, &Fixture)) {
-    use leo_tour::sequence::{SequenceSettings, MAX_CLIENTS};
     repaint_stack();
-    #[allow(clippy::type_complexity)]
-    let (count, clients, impulses, sequence_settings, arc_settings, settings): (
-        u8,
-        [leo_tour::j2::State; MAX_CLIENTS],
-        u8,
-        SequenceSettings,
-        leo_tour::Settings,
-        leo_tour::Settings,
-    ) = decode(fixture);
-    let clients = clients.get(..usize::from(count)).unwrap_or(&[]);
+    let problem: leo_tour::tour_order::OnboardProblem = decode(fixture);
     let run = measured(marker, || {
-        leo_tour::tour_order::plan_onboard(
-            black_box(clients),
-            black_box(impulses),
-            black_box(&sequence_settings),
-            black_box(&arc_settings),
-            black_box(&settings),
-        )
+        leo_tour::tour_order::plan_onboard(black_box(&problem))
     });
     let units = run.result.as_ref().ok().map(|p| {
         p.arcs
@@ -438,7 +411,18 @@ fn run_leo_onboard(out: &mut Out, (index, marker, fixture): (usize, u32, &Fixtur
             .map(|a| a.work_units)
             .sum::<u64>()
     });
-    let figures = (run.ticks, units);
+    report_leo(out, (index, fixture), &run, units);
+}
+
+/// Report a LEO run and print its result. The LEO planners keep their state on the stack (no
+/// workspace), so the stack figure is their memory.
+#[cfg(feature = "leo_tour")]
+fn report_leo<T: serde::Serialize, E: serde::Serialize>(
+    out: &mut Out,
+    (index, fixture): (usize, &Fixture),
+    run: &measure::Measured<Result<T, E>>,
+    units: Option<u64>,
+) {
     report(
         out,
         index,
@@ -446,7 +430,7 @@ fn run_leo_onboard(out: &mut Out, (index, marker, fixture): (usize, u32, &Fixtur
         "leo-tour",
         run.result.is_ok(),
         run.stack_bytes,
-        figures,
+        (run.ticks, units),
     );
     print_result(out, index, &run.result);
 }

@@ -6,7 +6,7 @@
 use crate::fixture::leo_tour::LeoTourFixture;
 use anyhow::{anyhow, Result};
 use reconfig_core::leo_tour::sequence::Sequence;
-use reconfig_core::leo_tour::tour_order;
+use reconfig_core::leo_tour::tour_order::{self, OnboardProblem};
 use serde_json::json;
 use std::time::Instant;
 
@@ -40,6 +40,26 @@ pub fn choose_order(f: &LeoTourFixture) -> Result<Option<(LeoTourFixture, Chosen
         with_order(f, &sequence),
         ChosenOrder { sequence, time_s },
     )))
+}
+
+/// The on-board part of a `[sequence]` fixture as one core request
+/// (`leo_tour::tour_order::plan_onboard`: the order, then every arc of it).
+///
+/// # Errors
+/// A fixture without a `[sequence]` table, or with more clients than a request carries.
+pub fn onboard_problem(f: &LeoTourFixture) -> Result<OnboardProblem> {
+    let spec = f
+        .sequence
+        .ok_or_else(|| anyhow!("{} has no [sequence] table", f.name))?;
+    let clients = heapless::Vec::from_slice(&f.clients)
+        .map_err(|_| anyhow!("{} has {} clients", f.name, f.clients.len()))?;
+    Ok(OnboardProblem {
+        clients,
+        impulses: f.impulses,
+        sequence: spec.settings,
+        estimates: spec.arc_settings,
+        arcs: f.settings,
+    })
 }
 
 /// `f` with the order and the arc durations of `sequence` (still with its `[sequence]`

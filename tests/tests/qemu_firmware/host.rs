@@ -100,17 +100,11 @@ pub fn host_result(planner: Planner, problem: &[u8]) -> Vec<u8> {
                 postcard::from_bytes(problem).expect("the baked problem decodes");
             encode(&leo_tour::solve_arc(&p, &settings))
         }
-        // The on-board part's bytes carry `fixture_set::LeoOnboardBytes`.
+        // The on-board part's bytes carry its `tour_order::OnboardProblem`.
         Planner::LeoOnboard => {
-            let (count, clients, impulses, sequence_settings, arc_settings, settings): crate::fixture_set::LeoOnboardBytes =
+            let p: leo_tour::tour_order::OnboardProblem =
                 postcard::from_bytes(problem).expect("the baked problem decodes");
-            encode(&leo_tour::tour_order::plan_onboard(
-                &clients[..usize::from(count)],
-                impulses,
-                &sequence_settings,
-                &arc_settings,
-                &settings,
-            ))
+            encode(&leo_tour::tour_order::plan_onboard(&p))
         }
     }
 }
