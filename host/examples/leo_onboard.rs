@@ -1,14 +1,14 @@
 //! The LEO tour's on-board part timed in one thread: the core's sequencing (for a fixture with
-//! a `[sequence]` table) and every arc of the order planned with `leo_tour::solve_arc`, as
+//! a `[sequence]` table) and every arc of the order planned (`solve_leo_tour::plan`), as
 //! `reconfig solve` runs them but without the truth-model checks. Prints each run and the
 //! fastest of the runs (the figure docs/leo-tour.md quotes).
 //!
 //! `cargo run --release -p reconfig-host --example leo_onboard -- FIXTURE [RUNS]`
 
 use anyhow::{anyhow, Context, Result};
-use reconfig_core::leo_tour::{solve_arc, Status};
+use reconfig_core::leo_tour::Status;
 use reconfig_host::cli::leo_tour_sequence::choose_order;
-use reconfig_host::cli::solve_leo_tour::arc_problems;
+use reconfig_host::cli::solve_leo_tour::plan;
 use reconfig_host::fixture::leo_tour::load;
 use std::time::Instant;
 
@@ -44,19 +44,19 @@ fn main() -> Result<()> {
             None => (f.clone(), 0.0),
         };
         let arcs_started = Instant::now();
-        let mut dvs = Vec::new();
-        let mut total_mps = 0.0;
-        for (from, to, _, problem) in arc_problems(&tour)? {
-            let s = solve_arc(&problem, &tour.settings)
-                .map_err(|e| anyhow!("arc {} -> {}: {e}", from + 1, to + 1))?;
-            total_mps += s.total_dv_mps;
-            let flag = if s.status == Status::Solved {
-                ""
-            } else {
-                " (not Solved)"
-            };
-            dvs.push(format!("{:.3}{flag}", s.total_dv_mps));
-        }
+        let arcs = plan(&tour)?;
+        let total_mps: f64 = arcs.iter().map(|a| a.solution.total_dv_mps).sum();
+        let dvs: Vec<String> = arcs
+            .iter()
+            .map(|a| {
+                let flag = if a.solution.status == Status::Solved {
+                    ""
+                } else {
+                    " (not Solved)"
+                };
+                format!("{:.3}{flag}", a.solution.total_dv_mps)
+            })
+            .collect();
         let arcs_s = arcs_started.elapsed().as_secs_f64();
         let total_s = started.elapsed().as_secs_f64();
         println!(
