@@ -192,16 +192,13 @@ pub fn leo_items(f: &fixture::leo_tour::LeoTourFixture) -> Result<Vec<Item>> {
 /// # Errors
 /// A fixture without a `[sequence]` table or with more clients than a request carries.
 pub fn leo_sequence_request(f: &fixture::leo_tour::LeoTourFixture) -> Result<Request> {
-    let spec = f
-        .sequence
-        .ok_or_else(|| anyhow!("{} has no [sequence] table", f.name))?;
-    let clients = heapless::Vec::from_slice(&f.clients)
-        .map_err(|_| anyhow!("{} has {} clients", f.name, f.clients.len()))?;
+    // The on-board part's request without the arcs' settings: the order alone.
+    let p = crate::cli::leo_tour_sequence::onboard_problem(f)?;
     Ok(Request::LeoSequence {
-        clients,
-        impulses: f.impulses,
-        settings: spec.settings,
-        arc_settings: spec.arc_settings,
+        clients: p.clients,
+        impulses: p.impulses,
+        settings: p.sequence,
+        arc_settings: p.estimates,
     })
 }
 
