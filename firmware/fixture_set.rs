@@ -111,9 +111,13 @@ pub fn encode_all(dir: &Path) -> Result<Vec<EncodedFixture>, String> {
         let text = std::fs::read_to_string(&file).unwrap_or_default();
         // The LEO tour (issue 13): its single-arc fixtures and the on-board part of a
         // `[sequence]` fixture (the order and its arcs) run on the LEO image; a tour of a given
-        // order (several arcs, the truth model) is host-only.
+        // order (several arcs, the truth model) and a `[schedule]` fixture are host-only.
         if reconfig_host::fixture::leo_tour::is_leo_tour(&text) {
             let f = reconfig_host::fixture::leo_tour::load(&file).map_err(|e| format!("{e:#}"))?;
+            // A chosen schedule is a host planning step, not part of the on-board request.
+            if f.schedule.is_some() {
+                continue;
+            }
             if f.sequence.is_some() {
                 let problem = reconfig_host::cli::leo_tour_sequence::onboard_problem(&f)
                     .and_then(|p| Ok(postcard::to_stdvec(&p)?))

@@ -107,6 +107,24 @@ fn leo_tour_fixtures_outside_the_service_limits_exit_2_unsolved() {
     let (code, out) = solve(&p);
     assert_eq!(code, 2, "{out}");
     assert!(out.contains("hop_rounds"), "{out}");
+    // The schedule's arc estimates are held to the same ceilings.
+    let p = variant(
+        "leo-tour-example1-schedule",
+        &[("hop_rounds = 2", "hop_rounds = 60")],
+        "schedule-hops",
+    );
+    let (code, out) = solve(&p);
+    assert_eq!(code, 2, "{out}");
+    assert!(out.contains("hop_rounds"), "{out}");
+    // A schedule grid finer than the core takes: refused by name before anything is planned.
+    let p = variant(
+        "leo-tour-example1-schedule",
+        &[("steps = 8", "steps = 9")],
+        "schedule-steps",
+    );
+    let (code, out) = solve(&p);
+    assert_eq!(code, 2, "{out}");
+    assert!(out.contains("schedule steps = 9 is outside 1..=8"), "{out}");
 }
 
 #[test]

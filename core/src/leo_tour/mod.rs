@@ -31,6 +31,7 @@ pub mod elements;
 pub mod flight;
 pub mod j2;
 pub mod mean_j2;
+pub mod schedule;
 pub mod sequence;
 pub mod shoot;
 pub mod tour_order;

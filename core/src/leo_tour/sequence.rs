@@ -183,6 +183,14 @@ impl core::fmt::Display for SequenceError {
 
 impl core::error::Error for SequenceError {}
 
+/// The paper's longest arc (eq. 9): `revolutions` periods of the tour's `first` client, s.
+pub fn dt_max_s(g: &Gravity, first: &Plane, revolutions: f64) -> f64 {
+    let period = 2.0
+        * core::f64::consts::PI
+        * libm::sqrt(first.a_km * first.a_km * first.a_km / g.mu_km3_s2);
+    revolutions * period
+}
+
 /// The paper's interval rule (eq. 9-11) for an arc from `chaser` to `target` starting at
 /// `start_s` (nodes drifted there at their secular rates): `Δt_max = revolutions` periods of
 /// the tour's `first` client; where the node gap closes (`ΔΩ ΔΩ̇ <= 0`) the time for J2 to close
@@ -196,8 +204,7 @@ pub fn paper_rule_duration_s(
     (revolutions, min_duration_s): (f64, f64),
 ) -> f64 {
     let two_pi = 2.0 * core::f64::consts::PI;
-    let period = two_pi * libm::sqrt(first.a_km * first.a_km * first.a_km / g.mu_km3_s2);
-    let dt_max = revolutions * period;
+    let dt_max = dt_max_s(g, first, revolutions);
     let raan = |p: &Plane| p.raan_rad + p.raan_rate_rad_s * start_s;
     let mut d_raan = raan(target) - raan(chaser);
     d_raan -= two_pi * libm::round(d_raan / two_pi);

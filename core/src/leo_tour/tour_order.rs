@@ -12,12 +12,18 @@
 
 use super::bound::{plane_of, Plane};
 use super::j2::State;
-use super::sequence::{best_order, Sequence, SequenceError, SequenceSettings, MAX_CLIENTS};
+use super::schedule::{best_schedule, Schedule, ScheduleError, ScheduleSettings, MAX_STEPS};
+use super::sequence::{
+    best_order, dt_max_s, Sequence, SequenceError, SequenceSettings, MAX_CLIENTS,
+};
 use super::{estimate_arc_mps, propagate, solve_arc, ArcProblem, ArcSolution, PlanError, Settings};
 
 /// Client states at arc starts kept: every client at every start of a tour of
 /// [`MAX_CLIENTS`] with durations by position.
 const STATE_CACHE: usize = MAX_CLIENTS * (MAX_CLIENTS - 1);
+
+/// Grid starts of a schedule: every unit of the longest horizon, 0 included.
+const SCHEDULE_STARTS: usize = (MAX_CLIENTS - 1) * MAX_STEPS as usize + 1;
 
 /// Arc costs kept: every (from, to) pair at every position of such a tour.
 const ARC_CACHE: usize = MAX_CLIENTS * (MAX_CLIENTS - 1) * (MAX_CLIENTS - 1);
@@ -117,6 +123,109 @@ pub fn choose_order(
         arcs.put(key, cost);
         cost
     })
+}
+
+/// The arcs' durations for the visiting `order` (0-based client indices into `clients`,
+/// inertial states at the tour epoch): [`schedule::best_schedule`] on the grid of `Δt_max /
+/// settings.steps` (`Δt_max` from the order's first client), each arc's cost the estimate of
+/// the per-arc search with `arc_settings`, the clients flown to each arc start in the planning
+/// model.
+///
+/// Each client is needed at the grid's starts of the arc that reaches it and of the arc that
+/// leaves it; both rows of states are kept (a client state is flown once per start).
+///
+/// Worst case: [`schedule::best_schedule`]'s arcs, each one estimate within
+/// `arc_settings.work_budget`, and at most `2 × (horizon units + 1)` propagations per arc of
+/// at most `arc_settings.max_steps` RK4 steps.
+///
+/// # Errors
+/// [`ScheduleError`]: an order of fewer than 2 or more than [`MAX_CLIENTS`] clients or naming
+/// a client not given (as `Arcs`), a first client without an elliptic plane (as
+/// `Revolutions`), or settings out of range.
+pub fn choose_schedule(
+    clients: &[State],
+    order: &[u8],
+    impulses: u8,
+    settings: &ScheduleSettings,
+    arc_settings: &Settings,
+) -> Result<Schedule, ScheduleError> {
+    let g = arc_settings.gravity();
+    let arcs = order.len().saturating_sub(1);
+    let named = |k: &u8| clients.get(usize::from(*k)).is_some();
+    if order.len() > MAX_CLIENTS || !order.iter().all(named) {
+        return Err(ScheduleError::Arcs { count: arcs });
+    }
+    let bad_revolutions = ScheduleError::Revolutions {
+        value: settings.revolutions,
+    };
+    let first = order
+        .first()
+        .and_then(|&k| clients.get(usize::from(k)))
+        .and_then(|s| plane_of(&g, s))
+        .ok_or(bad_revolutions)?;
+    let dt_max_s = dt_max_s(&g, &first, settings.revolutions);
+    let unit_s = dt_max_s / f64::from(settings.steps.max(1));
+    // The states of the arc's two clients at each start on the grid, for the arc in hand.
+    let mut rows = StateRows::new();
+    best_schedule(arcs, dt_max_s, settings, |k, start, d| {
+        let (&a, &b) = (order.get(k)?, order.get(k.saturating_add(1))?);
+        rows.arc(k);
+        let t0 = f64::from(start) * unit_s;
+        let at = |c: u8| {
+            clients
+                .get(usize::from(c))
+                .and_then(|s| propagate(arc_settings, s, t0))
+        };
+        let from = rows.from.get_or_fly(start, || at(a))?;
+        let to = rows.to.get_or_fly(start, || at(b))?;
+        estimate_arc_mps(
+            &ArcProblem {
+                from,
+                to,
+                duration_s: f64::from(d) * unit_s,
+                impulses,
+            },
+            arc_settings,
+        )
+        .ok()
+    })
+}
+
+/// One client's states at the grid's starts (`None`: not flown yet; `Some(None)`: could not
+/// be flown).
+struct StateRow([Option<Option<State>>; SCHEDULE_STARTS]);
+
+impl StateRow {
+    fn get_or_fly(&mut self, start: u8, fly: impl FnOnce() -> Option<State>) -> Option<State> {
+        let slot = self.0.get_mut(usize::from(start))?;
+        *slot.get_or_insert_with(fly)
+    }
+}
+
+/// The states of the arc in hand's two clients; the client an arc reaches is the one the
+/// next arc leaves, so its row moves over.
+struct StateRows {
+    arc: usize,
+    from: StateRow,
+    to: StateRow,
+}
+
+impl StateRows {
+    fn new() -> Self {
+        Self {
+            arc: 0,
+            from: StateRow([None; SCHEDULE_STARTS]),
+            to: StateRow([None; SCHEDULE_STARTS]),
+        }
+    }
+
+    /// Make the rows those of arc `k` (arcs come in increasing order).
+    fn arc(&mut self, k: usize) {
+        if k != self.arc {
+            self.from = core::mem::replace(&mut self.to, StateRow([None; SCHEDULE_STARTS]));
+            self.arc = k;
+        }
+    }
 }
 
 /// The tour's on-board part as one request: the clients at the tour epoch, the impulses per

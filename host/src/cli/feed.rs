@@ -161,8 +161,22 @@ pub fn fixture_items(paths: &[PathBuf]) -> Vec<Item> {
 }
 
 /// The feed items of a LEO tour fixture: with a `[sequence]` table one request for its
-/// order, else one request per arc of its order.
+/// order, else one request per arc of its order. With a `[schedule]` table the order (chosen
+/// here first for a `[sequence]` fixture) and its durations are chosen here, on the host, and
+/// each arc of that schedule is one request: the schedule is a planning step, not a request
+/// of the flight service.
 pub fn leo_items(f: &fixture::leo_tour::LeoTourFixture) -> Result<Vec<Item>> {
+    if f.schedule.is_some() {
+        use crate::cli::leo_tour_sequence::{choose_order, choose_schedule};
+        let ordered = choose_order(f)?.map(|(g, _)| g);
+        let ordered = ordered.as_ref().unwrap_or(f);
+        let mut scheduled = choose_schedule(ordered)?
+            .map(|(g, _)| g)
+            .ok_or_else(|| anyhow!("{}: no schedule", f.name))?;
+        scheduled.sequence = None;
+        scheduled.schedule = None;
+        return leo_items(&scheduled);
+    }
     if f.sequence.is_some() {
         return Ok(vec![Item {
             label: format!("{} order", f.name),

@@ -5,6 +5,7 @@
 
 use crate::fixture::leo_tour::LeoTourFixture;
 use anyhow::{anyhow, Result};
+use reconfig_core::leo_tour::schedule::{Schedule, ScheduleStatus};
 use reconfig_core::leo_tour::sequence::Sequence;
 use reconfig_core::leo_tour::tour_order::{self, OnboardProblem};
 use serde_json::json;
@@ -95,6 +96,85 @@ pub fn sequence_json(c: &ChosenOrder) -> serde_json::Value {
         "orders_completed": q.orders_completed,
         "orders_total": q.orders_total,
         "bound_violations": q.bound_violations,
+        "time_s": c.time_s,
+    })
+}
+
+/// The arcs' durations chosen by the core's schedule for a fixture with a `[schedule]` table.
+#[derive(Debug, Clone, Copy)]
+pub struct ChosenSchedule {
+    /// The core's outcome (durations, the estimates' total, arcs planned).
+    pub schedule: Schedule,
+    /// The horizon the schedule had, s.
+    pub horizon_s: f64,
+    /// Wall time of the schedule (every arc it estimated), s.
+    pub time_s: f64,
+}
+
+/// Choose the durations of `f`'s arcs, for its order, with the core's schedule
+/// (`leo_tour::tour_order::choose_schedule`) and return the fixture with them; `None` for a
+/// fixture without a `[schedule]` table.
+///
+/// # Errors
+/// A schedule the core refuses (settings out of range) or one with no complete schedule.
+pub fn choose_schedule(f: &LeoTourFixture) -> Result<Option<(LeoTourFixture, ChosenSchedule)>> {
+    let Some(spec) = f.schedule else {
+        return Ok(None);
+    };
+    let order: Vec<u8> = f
+        .order
+        .iter()
+        .map(|&k| u8::try_from(k))
+        .collect::<Result<_, _>>()?;
+    let started = Instant::now();
+    let schedule = tour_order::choose_schedule(
+        &f.clients,
+        &order,
+        f.impulses,
+        &spec.settings,
+        &spec.arc_settings,
+    )
+    .map_err(|e| anyhow!("schedule refused: {e}"))?;
+    let time_s = started.elapsed().as_secs_f64();
+    if !schedule.total_dv_mps.is_finite() {
+        let why = if schedule.status == ScheduleStatus::ArcLimit {
+            "max_arcs stopped it"
+        } else {
+            "every one has an arc the planner refused"
+        };
+        return Err(anyhow!(
+            "schedule: no complete schedule ({why}; {} arcs tried)",
+            schedule.arcs_planned
+        ));
+    }
+    let mut scheduled = f.clone();
+    scheduled.intervals_s = schedule
+        .durations_s
+        .iter()
+        .take(usize::from(schedule.arcs))
+        .copied()
+        .collect();
+    Ok(Some((
+        scheduled,
+        ChosenSchedule {
+            schedule,
+            horizon_s: spec.settings.horizon_s,
+            time_s,
+        },
+    )))
+}
+
+pub fn schedule_json(c: &ChosenSchedule) -> serde_json::Value {
+    let q = &c.schedule;
+    let n = usize::from(q.arcs);
+    json!({
+        "status": format!("{:?}", q.status),
+        "durations_s": q.durations_s[..n].to_vec(),
+        "duration_units": q.duration_units[..n].to_vec(),
+        "unit_s": q.unit_s,
+        "horizon_s": c.horizon_s,
+        "total_dv_mps": q.total_dv_mps,
+        "arcs_planned": q.arcs_planned,
         "time_s": c.time_s,
     })
 }

@@ -63,8 +63,8 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     }
     if fixture::leo_tour::is_leo_tour(&text) {
         let f = fixture::leo_tour::load(&args.file)?;
-        // Every arc request the tour makes (and those of its sequencing) has the fixture's
-        // impulse count and settings: the service's check on those.
+        // Every arc request the tour makes (and those of its sequencing and its schedule) has
+        // the fixture's impulse count and settings: the service's check on those.
         let leo = &limits.leo_tour;
         let check = || {
             leo.check_impulses(f.impulses)
@@ -78,6 +78,12 @@ pub fn run(args: &Args) -> Result<ExitCode> {
                             &s.arc_settings,
                         )
                     })
+                })
+                // The schedule's estimates are arc searches too.
+                .and_then(|()| {
+                    f.schedule
+                        .as_ref()
+                        .map_or(Ok(()), |s| leo.check_settings(&s.arc_settings))
                 })
         };
         if let Some(code) = refuse_if(check, &f.name, args.json) {

@@ -6,7 +6,7 @@
 //! correction after (`leo_tour_rounds`).
 
 use crate::cli::leo_tour_rounds::{print_rounds, rounds_json};
-use crate::cli::leo_tour_sequence::{choose_order, sequence_json};
+use crate::cli::leo_tour_sequence::{choose_order, choose_schedule, schedule_json, sequence_json};
 use crate::cli::solve::{report_rejection, EXIT_NOT_USABLE, EXIT_USABLE};
 use crate::fixture::leo_tour::LeoTourFixture;
 use crate::truth::ephemeris::julian_date;
@@ -402,6 +402,12 @@ pub fn run(f: &LeoTourFixture, json_output: bool) -> Result<ExitCode> {
     }
     let f = chosen.as_ref().map_or(f, |(g, _)| g);
     let seq_json = chosen.as_ref().map(|(_, c)| sequence_json(c));
+    let scheduled = match choose_schedule(f) {
+        Ok(c) => c,
+        Err(e) => return Ok(report_rejection(&f.name, &e, json_output)),
+    };
+    let f = scheduled.as_ref().map_or(f, |(g, _)| g);
+    let schedule_json = scheduled.as_ref().map(|(_, c)| schedule_json(c));
     let arcs = match plan(f) {
         Ok(a) => a,
         Err(e) => return Ok(report_rejection(&f.name, &e, json_output)),
@@ -463,6 +469,7 @@ pub fn run(f: &LeoTourFixture, json_output: bool) -> Result<ExitCode> {
                 "order": f.order.iter().map(|k| k + 1).collect::<Vec<_>>(),
                 "total_dv_mps": total,
                 "sequence": seq_json,
+                "schedule": schedule_json,
                 "arcs": arcs_json,
                 "multi_round": rounds_json(&rounds),
                 "published": {
@@ -486,6 +493,24 @@ pub fn run(f: &LeoTourFixture, json_output: bool) -> Result<ExitCode> {
                 q.orders_completed,
                 q.orders_total,
                 q.bound_violations,
+                c.time_s
+            );
+        }
+        if let Some((_, c)) = &scheduled {
+            let q = &c.schedule;
+            let n = usize::from(q.arcs);
+            let units: Vec<String> = q.duration_units[..n]
+                .iter()
+                .map(|u| u.to_string())
+                .collect();
+            println!(
+                "  schedule: {:?}, arcs of [{}] x {:.4} s (horizon {:.4} s), {:.3} m/s with the schedule's estimates; {} arcs estimated, {:.2} s",
+                q.status,
+                units.join(", "),
+                q.unit_s,
+                c.horizon_s,
+                q.total_dv_mps,
+                q.arcs_planned,
                 c.time_s
             );
         }
