@@ -7,5 +7,6 @@ pub mod harness;
 pub mod limits;
 pub mod plot;
 pub mod plot_geo;
+pub mod plot_leo;
 pub mod scenario;
 pub mod truth;

@@ -167,12 +167,7 @@ pub fn fixture_items(paths: &[PathBuf]) -> Vec<Item> {
 /// of the flight service.
 pub fn leo_items(f: &fixture::leo_tour::LeoTourFixture) -> Result<Vec<Item>> {
     if f.schedule.is_some() {
-        use crate::cli::leo_tour_sequence::{choose_order, choose_schedule};
-        let ordered = choose_order(f)?.map(|(g, _)| g);
-        let ordered = ordered.as_ref().unwrap_or(f);
-        let mut scheduled = choose_schedule(ordered)?
-            .map(|(g, _)| g)
-            .ok_or_else(|| anyhow!("{}: no schedule", f.name))?;
+        let mut scheduled = crate::cli::leo_tour_sequence::prepare(f)?.fixture;
         scheduled.sequence = None;
         scheduled.schedule = None;
         return leo_items(&scheduled);

@@ -6,7 +6,7 @@
 use crate::fixture::leo_tour::LeoTourFixture;
 use anyhow::{anyhow, Result};
 use reconfig_core::leo_tour::schedule::{Schedule, ScheduleStatus};
-use reconfig_core::leo_tour::sequence::Sequence;
+use reconfig_core::leo_tour::sequence::{Sequence, SequenceStatus};
 use reconfig_core::leo_tour::tour_order::{self, OnboardProblem};
 use serde_json::json;
 use std::time::Instant;
@@ -176,5 +176,47 @@ pub fn schedule_json(c: &ChosenSchedule) -> serde_json::Value {
         "total_dv_mps": q.total_dv_mps,
         "arcs_planned": q.arcs_planned,
         "time_s": c.time_s,
+    })
+}
+
+/// A LEO tour fixture ready to plan: its order chosen when it has a `[sequence]` table, then
+/// its arcs' durations when it has a `[schedule]` table.
+#[derive(Debug, Clone)]
+pub struct Prepared {
+    /// The fixture with its order and durations.
+    pub fixture: LeoTourFixture,
+    /// The sequencing's outcome, for a `[sequence]` fixture.
+    pub order: Option<ChosenOrder>,
+    /// The schedule's outcome, for a `[schedule]` fixture.
+    pub schedule: Option<ChosenSchedule>,
+}
+
+/// Choose `f`'s order (a `[sequence]` fixture), then its arcs' durations (a `[schedule]`
+/// fixture): what `reconfig solve`, `reconfig plot` and the feeder plan.
+///
+/// # Errors
+/// A sequencing or schedule the core refuses, or one that found no order or schedule.
+pub fn prepare(f: &LeoTourFixture) -> Result<Prepared> {
+    let chosen = choose_order(f)?;
+    if let Some((_, c)) = &chosen {
+        if c.sequence.status == SequenceStatus::NoOrder {
+            return Err(anyhow!(
+                "sequencing: no order could be planned ({} arcs tried)",
+                c.sequence.arcs_planned
+            ));
+        }
+    }
+    let (ordered, order) = match chosen {
+        Some((g, c)) => (g, Some(c)),
+        None => (f.clone(), None),
+    };
+    let (fixture, schedule) = match choose_schedule(&ordered)? {
+        Some((g, c)) => (g, Some(c)),
+        None => (ordered, None),
+    };
+    Ok(Prepared {
+        fixture,
+        order,
+        schedule,
     })
 }

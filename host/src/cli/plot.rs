@@ -50,6 +50,21 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         println!("wrote {}", args.output.display());
         return Ok(ExitCode::SUCCESS);
     }
+    if fixture::leo_tour::is_leo_tour(&text) {
+        let f = fixture::leo_tour::load(&args.file)?;
+        let drawn = crate::plot_leo::tour_svg(&f, &args.output)?;
+        for a in &drawn.arcs {
+            println!(
+                "arc {} -> {}: {:?}, {:.3} m/s",
+                a.from + 1,
+                a.to + 1,
+                a.solution.status,
+                a.solution.total_dv_mps
+            );
+        }
+        println!("wrote {}", args.output.display());
+        return Ok(ExitCode::SUCCESS);
+    }
     match fixture::load(&args.file)? {
         Fixture::Pseudospectral(f) => {
             let mut workspace = Box::new(pseudospectral::Workspace::new());

@@ -6,7 +6,7 @@
 //! correction after (`leo_tour_rounds`).
 
 use crate::cli::leo_tour_rounds::{print_rounds, rounds_json};
-use crate::cli::leo_tour_sequence::{choose_order, choose_schedule, schedule_json, sequence_json};
+use crate::cli::leo_tour_sequence::{prepare, schedule_json, sequence_json};
 use crate::cli::solve::{report_rejection, EXIT_NOT_USABLE, EXIT_USABLE};
 use crate::fixture::leo_tour::LeoTourFixture;
 use crate::truth::ephemeris::julian_date;
@@ -16,7 +16,6 @@ use crate::truth::propagate::{propagate, Burn, EciState};
 use anyhow::{anyhow, Result};
 use reconfig_core::leo_tour::flight::Model;
 use reconfig_core::leo_tour::j2::State;
-use reconfig_core::leo_tour::sequence::SequenceStatus;
 use reconfig_core::leo_tour::shoot::{corrected_lambert, shoot_continued, Family, Offset, Secant};
 use reconfig_core::leo_tour::{propagate as core_propagate, solve_arc, ArcProblem, ArcSolution};
 use reconfig_core::work::Meter;
@@ -387,27 +386,13 @@ pub fn replan_last_leg_states(
 /// # Errors
 /// A truth-model propagation error.
 pub fn run(f: &LeoTourFixture, json_output: bool) -> Result<ExitCode> {
-    let chosen = match choose_order(f) {
-        Ok(c) => c,
+    let prepared = match prepare(f) {
+        Ok(p) => p,
         Err(e) => return Ok(report_rejection(&f.name, &e, json_output)),
     };
-    if let Some((_, c)) = &chosen {
-        if c.sequence.status == SequenceStatus::NoOrder {
-            let e = anyhow!(
-                "sequencing: no order could be planned ({} arcs tried)",
-                c.sequence.arcs_planned
-            );
-            return Ok(report_rejection(&f.name, &e, json_output));
-        }
-    }
-    let f = chosen.as_ref().map_or(f, |(g, _)| g);
-    let seq_json = chosen.as_ref().map(|(_, c)| sequence_json(c));
-    let scheduled = match choose_schedule(f) {
-        Ok(c) => c,
-        Err(e) => return Ok(report_rejection(&f.name, &e, json_output)),
-    };
-    let f = scheduled.as_ref().map_or(f, |(g, _)| g);
-    let schedule_json = scheduled.as_ref().map(|(_, c)| schedule_json(c));
+    let f = &prepared.fixture;
+    let seq_json = prepared.order.as_ref().map(sequence_json);
+    let schedule_json = prepared.schedule.as_ref().map(schedule_json);
     let arcs = match plan(f) {
         Ok(a) => a,
         Err(e) => return Ok(report_rejection(&f.name, &e, json_output)),
@@ -481,7 +466,7 @@ pub fn run(f: &LeoTourFixture, json_output: bool) -> Result<ExitCode> {
     } else {
         let order: Vec<String> = f.order.iter().map(|k| (k + 1).to_string()).collect();
         println!("{}: {status}, order {}", f.name, order.join(" -> "));
-        if let Some((_, c)) = &chosen {
+        if let Some(c) = &prepared.order {
             let q = &c.sequence;
             println!(
                 "  sequencing: {:?}, {:.3} m/s with the sequencing search; planned {} of the tree's {} arcs ({:.1} %), {} of {} orders completed, {} bound violations, {:.2} s",
@@ -496,7 +481,7 @@ pub fn run(f: &LeoTourFixture, json_output: bool) -> Result<ExitCode> {
                 c.time_s
             );
         }
-        if let Some((_, c)) = &scheduled {
+        if let Some(c) = &prepared.schedule {
             let q = &c.schedule;
             let n = usize::from(q.arcs);
             let units: Vec<String> = q.duration_units[..n]
