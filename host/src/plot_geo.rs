@@ -3,6 +3,7 @@
 
 use crate::cli::solve_geo_tour::solve_fixture;
 use crate::fixture::geo_tour::{GeoTourFixture, DAY_S};
+use crate::plot::range;
 use anyhow::{anyhow, Result};
 use plotters::prelude::*;
 use reconfig_core::geo_tour::{rtn_to_inertial, Geo, MethodPolicy, Solution, SolveStatus};
@@ -65,14 +66,6 @@ pub fn track(s: &Solution, per_leg: usize) -> Vec<(f64, f64, f64)> {
     out
 }
 
-fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-        (a.min(v), b.max(v))
-    });
-    let pad = ((hi - lo) * 0.05).max(1e-3);
-    (lo - pad, hi + pad)
-}
-
 /// Longitude and radius over time of the fixture's plan.
 pub fn tour_svg(f: &GeoTourFixture, out: &Path) -> Result<()> {
     let (s, _) = solve_fixture(f, None).map_err(|e| anyhow!("{}: rejected: {e}", f.name))?;
@@ -80,9 +73,9 @@ pub fn tour_svg(f: &GeoTourFixture, out: &Path) -> Result<()> {
     let root = SVGBackend::new(out, (1400, 900)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
     let (top, bottom) = root.split_vertically(450);
-    let (t0, t1) = range(pts.iter().map(|p| p.0));
-    let (l0, l1) = range(pts.iter().map(|p| p.1));
-    let (h0, h1) = range(pts.iter().map(|p| p.2));
+    let (t0, t1) = range(pts.iter().map(|p| p.0), 0.05);
+    let (l0, l1) = range(pts.iter().map(|p| p.1), 0.05);
+    let (h0, h1) = range(pts.iter().map(|p| p.2), 0.05);
     let title = format!(
         "{}: {:?}, total dv {:.3} m/s, {:.2} d, largest burn {:.3} m/s",
         f.name,
@@ -169,8 +162,8 @@ pub fn pareto_svg(f: &GeoTourFixture, days: &[f64], out: &Path) -> Result<Vec<Pa
     }
     let root = SVGBackend::new(out, (1000, 650)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
-    let (d0, d1) = range(curve.iter().map(|c| c.0));
-    let (v0, v1) = range(curve.iter().flat_map(|c| [c.1, c.2]).flatten());
+    let (d0, d1) = range(curve.iter().map(|c| c.0), 0.05);
+    let (v0, v1) = range(curve.iter().flat_map(|c| [c.1, c.2]).flatten(), 0.05);
     let mut c = ChartBuilder::on(&root)
         .caption(
             format!(

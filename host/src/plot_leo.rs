@@ -6,6 +6,7 @@
 use crate::cli::leo_tour_sequence::prepare;
 use crate::cli::solve_leo_tour::{plan, PlannedArc};
 use crate::fixture::leo_tour::LeoTourFixture;
+use crate::plot::range;
 use anyhow::{anyhow, Result};
 use plotters::prelude::*;
 use reconfig_core::leo_tour::j2::State;
@@ -137,14 +138,6 @@ pub fn arc_geometry(
     Ok(out)
 }
 
-fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-        (a.min(v), b.max(v))
-    });
-    let pad = ((hi - lo) * 0.05).max(1e-3);
-    (lo - pad, hi + pad)
-}
-
 /// What [`tour_svg`] drew: per arc its label, Δv and the published Δv, and its geometry.
 pub struct TourPlot {
     /// The fixture as planned (order and durations chosen).
@@ -187,8 +180,8 @@ pub fn tour_svg(f: &LeoTourFixture, out: &Path) -> Result<TourPlot> {
             arc.solution.total_dv_mps,
             arc.problem.duration_s / 3600.0
         );
-        let (x0, x1) = range(pts.iter().map(|p| p.along_km));
-        let (y0, y1) = range(pts.iter().map(|p| p.radial_km));
+        let (x0, x1) = range(pts.iter().map(|p| p.along_km), 0.05);
+        let (y0, y1) = range(pts.iter().map(|p| p.radial_km), 0.05);
         let mut c = ChartBuilder::on(&left)
             .caption(
                 format!("{label}: chaser seen from client {}", arc.to + 1),
@@ -216,8 +209,8 @@ pub fn tour_svg(f: &LeoTourFixture, out: &Path) -> Result<TourPlot> {
                 .map(|p| Circle::new((p.along_km, p.radial_km), 4, RED.filled())),
         )
         .map_err(|e| anyhow!("{e}"))?;
-        let (t0, t1) = range(pts.iter().map(|p| p.t_h));
-        let (n0, n1) = range(pts.iter().map(|p| p.cross_km));
+        let (t0, t1) = range(pts.iter().map(|p| p.t_h), 0.05);
+        let (n0, n1) = range(pts.iter().map(|p| p.cross_km), 0.05);
         let mut c = ChartBuilder::on(&right)
             .caption("cross-track (burns in red)", ("sans-serif", 15))
             .margin(8)
