@@ -1,7 +1,8 @@
 //! Property tests of the LEO tour's per-arc rendezvous: no input panics, every request is
 //! answered by a plan or a named error, and nothing returned is NaN or infinite; the same for
 //! one flight in either model (the search model's closed-form J2 theory meets states no
-//! request check has seen: the chaser after any burn of the search).
+//! request check has seen: the chaser after any burn of the search); and the arcs' schedule
+//! with any settings and arc costs.
 
 use proptest::prelude::*;
 use reconfig_core::leo_tour::flight::Model;
@@ -92,6 +93,56 @@ proptest! {
             let numbers: Vec<f64> = burns.chain([sol.total_dv_mps, sol.miss_m]).collect();
             prop_assert!(numbers.iter().all(|x| x.is_finite()), "{sol:?}");
             prop_assert!((2..=4).contains(&sol.impulses));
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// The arcs' schedule (`leo_tour::schedule::best_schedule`) with any settings and any arc
+    /// costs (NaN, infinite, refused): a named error or a schedule within its grid and
+    /// horizon, never a panic; a returned total is finite exactly when a schedule was found.
+    #[test]
+    fn any_schedule_request_is_planned_within_its_grid_or_refused_by_name(
+        arcs in prop_oneof![4 => 1usize..=7, 1 => 0usize..10],
+        dt_max in prop_oneof![4 => 100.0f64..2e5, 1 => any_f64()],
+        steps in prop_oneof![4 => 1u8..=8, 1 => 0u8..12],
+        min_steps in prop_oneof![4 => 1u8..=4, 1 => 0u8..12],
+        // In Δt_max, or any value.
+        horizon in prop_oneof![4 => (0.0f64..8.0).prop_map(|h| -h), 1 => any_f64()],
+        max_arcs in 0u32..4000,
+        costs in prop::collection::vec(prop_oneof![4 => Just(1.0), 1 => any_f64()], 16),
+    ) {
+        use reconfig_core::leo_tour::schedule::{best_schedule, ScheduleSettings, ScheduleStatus};
+        // A negative draw is a multiple of Δt_max (when that is finite and positive).
+        let horizon = if horizon <= 0.0 && dt_max.is_finite() { -horizon * dt_max } else { horizon };
+        let settings = ScheduleSettings {
+            revolutions: 30.0,
+            steps,
+            min_steps,
+            horizon_s: horizon,
+            max_arcs,
+        };
+        let cost = |k: usize, start: u8, d: u8| -> Option<f64> {
+            let c = costs[(k * 7 + usize::from(start) * 3 + usize::from(d)) % costs.len()];
+            (c != 0.0).then_some(c.abs() + f64::from(d))
+        };
+        match best_schedule(arcs, dt_max, &settings, cost) {
+            Err(e) => prop_assert!(!e.to_string().is_empty()),
+            Ok(s) => {
+                prop_assert!(s.arcs_planned <= max_arcs);
+                prop_assert!(s.arcs_planned <= 7 * 57 * 8);
+                if s.total_dv_mps.is_finite() {
+                    let n = usize::from(s.arcs);
+                    let units: u32 = s.duration_units[..n].iter().map(|&u| u32::from(u)).sum();
+                    prop_assert!(s.duration_units[..n].iter().all(|&u| u >= min_steps && u <= steps));
+                    prop_assert!(f64::from(units) * s.unit_s <= horizon * (1.0 + 1e-9));
+                    prop_assert!(s.durations_s[..n].iter().all(|d| d.is_finite() && *d > 0.0));
+                } else {
+                    prop_assert!(s.status != ScheduleStatus::Optimal);
+                }
+            }
         }
     }
 }
