@@ -124,7 +124,8 @@ proptest! {
             horizon_s: horizon,
             max_arcs,
         };
-        let cost = |k: usize, start: u8, d: u8| -> Option<f64> {
+        let cost = |a: &reconfig_core::leo_tour::schedule::GridArc| -> Option<f64> {
+            let (k, start, d) = (a.arc, a.start_units, a.duration_units);
             let c = costs[(k * 7 + usize::from(start) * 3 + usize::from(d)) % costs.len()];
             (c != 0.0).then_some(c.abs() + f64::from(d))
         };

@@ -133,6 +133,23 @@ impl core::fmt::Display for ScheduleError {
 
 impl core::error::Error for ScheduleError {}
 
+/// One arc of the grid, as the programme hands it to the arc planner: its place in the order,
+/// its start and duration in grid units, and the same in seconds (the epochs the returned
+/// [`Schedule`] reports for it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GridArc {
+    /// Arc `arc` leaves the order's client `arc`.
+    pub arc: usize,
+    /// Start, grid units from the tour epoch.
+    pub start_units: u8,
+    /// Duration, grid units.
+    pub duration_units: u8,
+    /// Start from the tour epoch, s.
+    pub start_s: f64,
+    /// Duration, s.
+    pub duration_s: f64,
+}
+
 /// The best way found to reach a start epoch (in grid units) at some arc.
 #[derive(Clone, Copy)]
 struct Reach {
@@ -145,13 +162,12 @@ struct Reach {
 }
 
 /// The cheapest schedule of `arcs` arcs on the grid `dt_max_s / settings.steps`, each arc
-/// planned by `plan_arc(arc, start_units, duration_units)` (arc `k` leaves the order's client
-/// `k`; its start and duration are these counts of grid units; its Δv in m/s, or `None` when
-/// it cannot be planned). Called in order of arc, then start, then duration.
+/// planned by `plan_arc(&GridArc)` (its Δv in m/s, or `None` when it cannot be planned).
+/// Called in order of arc, then start, then duration.
 ///
 /// # Errors
 /// [`ScheduleError`] for settings or an arc count out of range.
-pub fn best_schedule<F: FnMut(usize, u8, u8) -> Option<f64>>(
+pub fn best_schedule<F: FnMut(&GridArc) -> Option<f64>>(
     arcs: usize,
     dt_max_s: f64,
     settings: &ScheduleSettings,
@@ -225,7 +241,14 @@ pub fn best_schedule<F: FnMut(usize, u8, u8) -> Option<f64>>(
                     break 'arcs;
                 }
                 arcs_planned = arcs_planned.saturating_add(1);
-                let Some(dv) = plan_arc(k, start, d).filter(|dv| dv.is_finite()) else {
+                let arc = GridArc {
+                    arc: k,
+                    start_units: start,
+                    duration_units: d,
+                    start_s: f64::from(start) * unit_s,
+                    duration_s: f64::from(d) * unit_s,
+                };
+                let Some(dv) = plan_arc(&arc).filter(|dv| dv.is_finite()) else {
                     continue;
                 };
                 let cost_mps = node.cost_mps + dv;
@@ -359,7 +382,10 @@ mod tests {
         };
         for (arcs, horizon) in [(1, 4), (3, 7), (4, 14), (4, 16), (5, 11)] {
             let s = settings(f64::from(horizon));
-            let got = best_schedule(arcs, 400.0, &s, |k, t, d| Some(cost(k, t, d))).unwrap();
+            let got = best_schedule(arcs, 400.0, &s, |a| {
+                Some(cost(a.arc, a.start_units, a.duration_units))
+            })
+            .unwrap();
             let (want, path) = brute(arcs, 4, horizon, &cost);
             assert_eq!(got.status, ScheduleStatus::Optimal);
             assert!((got.total_dv_mps - want).abs() < 1e-12, "{arcs} {horizon}");
@@ -378,16 +404,16 @@ mod tests {
     fn refused_arcs_are_avoided_and_a_schedule_with_none_is_named() {
         // Arc 1 cannot be planned at 2 units: the optimum must avoid it.
         let s = settings(8.0);
-        let got = best_schedule(2, 400.0, &s, |k, _, d| {
-            (!(k == 1 && d == 2)).then_some(f64::from(d))
+        let got = best_schedule(2, 400.0, &s, |a| {
+            (!(a.arc == 1 && a.duration_units == 2)).then_some(f64::from(a.duration_units))
         })
         .unwrap();
         assert_eq!(got.status, ScheduleStatus::Optimal);
         assert_eq!(&got.duration_units[..2], &[1, 1]);
-        let none = best_schedule(2, 400.0, &s, |_, _, _| None).unwrap();
+        let none = best_schedule(2, 400.0, &s, |_| None).unwrap();
         assert_eq!(none.status, ScheduleStatus::NoSchedule);
         assert!(none.total_dv_mps.is_infinite());
-        let nan = best_schedule(2, 400.0, &s, |_, _, _| Some(f64::NAN)).unwrap();
+        let nan = best_schedule(2, 400.0, &s, |_| Some(f64::NAN)).unwrap();
         assert_eq!(nan.status, ScheduleStatus::NoSchedule);
     }
 
@@ -398,9 +424,9 @@ mod tests {
             ..settings(16.0)
         };
         let mut calls = 0;
-        let got = best_schedule(4, 400.0, &s, |_, _, d| {
+        let got = best_schedule(4, 400.0, &s, |a| {
             calls += 1;
-            Some(f64::from(d))
+            Some(f64::from(a.duration_units))
         })
         .unwrap();
         assert_eq!(calls, 5);
@@ -408,14 +434,16 @@ mod tests {
         assert_eq!(got.status, ScheduleStatus::ArcLimit);
         assert!(got.total_dv_mps.is_infinite());
         // Stopped one arc short of the end: a complete schedule, not necessarily the best.
-        let all = best_schedule(4, 400.0, &settings(16.0), |_, _, d| Some(f64::from(d)))
-            .unwrap()
-            .arcs_planned;
+        let all = best_schedule(4, 400.0, &settings(16.0), |a| {
+            Some(f64::from(a.duration_units))
+        })
+        .unwrap()
+        .arcs_planned;
         let short = ScheduleSettings {
             max_arcs: all - 1,
             ..s
         };
-        let got = best_schedule(4, 400.0, &short, |_, _, d| Some(f64::from(d))).unwrap();
+        let got = best_schedule(4, 400.0, &short, |a| Some(f64::from(a.duration_units))).unwrap();
         assert_eq!(got.status, ScheduleStatus::ArcLimit);
         assert!((got.total_dv_mps - 4.0).abs() < 1e-12);
     }
@@ -431,7 +459,7 @@ mod tests {
             horizon_s: 0.5 * dt_max + 3.0 * dt_max,
             max_arcs: 10_000,
         };
-        let got = best_schedule(4, dt_max, &s, |_, _, d| Some(-f64::from(d))).unwrap();
+        let got = best_schedule(4, dt_max, &s, |a| Some(-f64::from(a.duration_units))).unwrap();
         // The longest arcs are cheapest here: 14 units in all.
         assert_eq!(got.duration_units[..4].iter().sum::<u8>(), 14);
         // The finest grid, every unit: at most 7 × 57 × 8 calls.
@@ -443,7 +471,7 @@ mod tests {
             ..s
         };
         let mut calls = 0_u32;
-        best_schedule(7, dt_max, &wide, |_, _, _| {
+        best_schedule(7, dt_max, &wide, |_| {
             calls += 1;
             Some(1.0)
         })
@@ -455,7 +483,7 @@ mod tests {
     fn settings_out_of_range_are_named() {
         let s = settings(8.0);
         let run = |arcs: usize, dt: f64, s: ScheduleSettings| {
-            best_schedule(arcs, dt, &s, |_, _, _| Some(1.0)).unwrap_err()
+            best_schedule(arcs, dt, &s, |_| Some(1.0)).unwrap_err()
         };
         assert_eq!(run(0, 400.0, s), ScheduleError::Arcs { count: 0 });
         assert_eq!(run(8, 400.0, s), ScheduleError::Arcs { count: 8 });

@@ -164,25 +164,24 @@ pub fn choose_schedule(
         .and_then(|s| plane_of(&g, s))
         .ok_or(bad_revolutions)?;
     let dt_max_s = dt_max_s(&g, &first, settings.revolutions);
-    let unit_s = dt_max_s / f64::from(settings.steps.max(1));
     // The states of the arc's two clients at each start on the grid, for the arc in hand.
     let mut rows = StateRows::new();
-    best_schedule(arcs, dt_max_s, settings, |k, start, d| {
+    best_schedule(arcs, dt_max_s, settings, |arc| {
+        let k = arc.arc;
         let (&a, &b) = (order.get(k)?, order.get(k.saturating_add(1))?);
         rows.arc(k);
-        let t0 = f64::from(start) * unit_s;
         let at = |c: u8| {
             clients
                 .get(usize::from(c))
-                .and_then(|s| propagate(arc_settings, s, t0))
+                .and_then(|s| propagate(arc_settings, s, arc.start_s))
         };
-        let from = rows.from.get_or_fly(start, || at(a))?;
-        let to = rows.to.get_or_fly(start, || at(b))?;
+        let from = rows.from.get_or_fly(arc.start_units, || at(a))?;
+        let to = rows.to.get_or_fly(arc.start_units, || at(b))?;
         estimate_arc_mps(
             &ArcProblem {
                 from,
                 to,
-                duration_s: f64::from(d) * unit_s,
+                duration_s: arc.duration_s,
                 impulses,
             },
             arc_settings,
