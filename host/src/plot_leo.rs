@@ -7,6 +7,7 @@ use crate::cli::leo_tour_sequence::prepare;
 use crate::cli::solve_leo_tour::{plan, PlannedArc};
 use crate::fixture::leo_tour::LeoTourFixture;
 use crate::plot::range;
+use crate::truth::propagate::EciState;
 use anyhow::{anyhow, Result};
 use plotters::prelude::*;
 use reconfig_core::leo_tour::j2::State;
@@ -31,14 +32,6 @@ pub struct Relative {
     pub before_burn: bool,
 }
 
-fn cross3(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
 fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
@@ -52,19 +45,16 @@ fn norm3(a: &[f64; 3]) -> f64 {
 /// track stays continuous where the chaser laps the client).
 pub fn relative(t_h: f64, chaser: &State, client: &State, previous: Option<&Relative>) -> Relative {
     let rc = [chaser[0], chaser[1], chaser[2]];
-    let rt = [client[0], client[1], client[2]];
-    let h = cross3(&rt, &[client[3], client[4], client[5]]);
-    let hn = norm3(&h);
-    let ih = [h[0] / hn, h[1] / hn, h[2] / hn];
+    let client = EciState {
+        pos_km: [client[0], client[1], client[2]],
+        vel_km_s: [client[3], client[4], client[5]],
+    };
+    let [ir, it, ih] = client.rtn_axes();
     let cross_km = dot3(&rc, &ih);
-    let in_plane = [
-        rc[0] - cross_km * ih[0],
-        rc[1] - cross_km * ih[1],
-        rc[2] - cross_km * ih[2],
-    ];
-    let rtn = norm3(&rt);
-    // Signed angle from the client to the projection, about the client's orbit normal.
-    let mut angle = dot3(&cross3(&rt, &in_plane), &ih).atan2(dot3(&rt, &in_plane));
+    let rtn = norm3(&client.pos_km);
+    // Signed angle from the client's radial direction to the chaser's projection on the
+    // client's plane, about the orbit normal.
+    let mut angle = dot3(&rc, &it).atan2(dot3(&rc, &ir));
     if let Some(p) = previous {
         let turns = ((p.along_km / rtn - angle) / std::f64::consts::TAU).round();
         angle += turns * std::f64::consts::TAU;
