@@ -6,11 +6,11 @@
 use super::settings::Settings;
 use super::solver::norm3;
 use super::transcription::{
-    block_dot, node_value, Coefficients, NodeDots, Transcription, MAX_BLOCKS,
+    block_dot, node_value, Coefficients, NodeDots, Transcription, MAX_BLOCKS, MAX_POINTS,
 };
 use super::verify::{Minimum, MAX_PRODUCT};
 use super::workspace::Workspace;
-use crate::capacity::MAX_NODES;
+use crate::capacity::{MAX_CHECKS_PER_PAIR, MAX_NODES};
 use crate::indexed::IndexedExt as _;
 
 /// A unit vector perpendicular to `velocity`, along the miss vector `relative` when it is not
@@ -304,7 +304,78 @@ pub(super) fn follow_minima(ws: &mut Workspace, settings: &Settings) {
         let minimum = pair_minimum(ws, pair, settings);
         let tau = 2.0 * minimum.at_s - 1.0;
         if tau > -1.0 && tau < 1.0 {
+            freeze_if_cycling(&mut ws.transcription, pair, tau, &ws.iterate, &dots);
             let _ = ws.transcription.place_moving_check(pair, tau);
+        }
+    }
+}
+
+/// A moving check whose pair's minimum moved by more than this (normalised time) jumped to
+/// another local minimum.
+const FREEZE_JUMP_TAU: f64 = 0.01;
+/// The check left behind still binds when the iterate's separation there is within this
+/// fraction of the keep-out.
+const FREEZE_BINDING_REL: f64 = 1e-3;
+
+/// Before a pair's moving check jumps back toward where it came from, keep it where it is as a
+/// fixed check when the iterate still touches the keep-out there (an exchange step for the
+/// semi-infinite constraint: keep the binding point, add the new one). With a single check
+/// that jumps, two binding minima take turns: the answer dips below d at the one the check
+/// just left, the check goes back, and the cost cycles without end (measured on the dense
+/// lattice, #168: two minima at tau = +-0.124 taking turns for 300 subproblems, J cycling by
+/// 1e-4). Only a return is frozen, not every jump: a check that moves on as the trajectory
+/// reshapes (a saddle escape, the first subproblems) would leave checks where nothing binds
+/// any more and cost subproblems (measured: the symmetric family's escapes ran out of the
+/// default budget when every binding jump was frozen). Keeps one check slot of the pair free
+/// for continuous verification.
+fn freeze_if_cycling(
+    tr: &mut Transcription,
+    pair: usize,
+    tau: f64,
+    y: &Coefficients,
+    dots: &NodeDots,
+) {
+    let Some(index) = tr.moving_check.get(pair).copied().flatten() else {
+        return;
+    };
+    let Some(check) = tr
+        .checks
+        .get(pair)
+        .and_then(|row| row.get(usize::from(index)))
+        .copied()
+    else {
+        return;
+    };
+    let jump = libm::fabs(check.tau - tau);
+    if jump <= FREEZE_JUMP_TAU {
+        return;
+    }
+    let from = tr.moving_from.get(pair).copied().flatten();
+    if let Some(slot) = tr.moving_from.get_mut(pair) {
+        *slot = Some(check.tau);
+    }
+    // A return: the new minimum is nearer where the check came from than where it is.
+    let returning = from.is_some_and(|from| libm::fabs(tau - from) < jump);
+    if !returning || check.pruned {
+        return;
+    }
+    let count = tr
+        .check_count
+        .get(pair)
+        .copied()
+        .unwrap_or(MAX_CHECKS_PER_PAIR);
+    if count.saturating_add(2) > MAX_CHECKS_PER_PAIR
+        || tr.point_count.saturating_add(2) > MAX_POINTS
+    {
+        return;
+    }
+    let separation = norm3(&tr.relative_with(pair, check.source, y, dots));
+    if separation <= tr.keep_out_for(pair) * (1.0 + FREEZE_BINDING_REL) {
+        if let Some(slot) = tr.moving_check.get_mut(pair) {
+            *slot = None;
+        }
+        if let Some(slot) = tr.moving_from.get_mut(pair) {
+            *slot = None;
         }
     }
 }

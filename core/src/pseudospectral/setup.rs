@@ -110,6 +110,7 @@ pub(super) fn setup(
     tr.pair_count = 0;
     tr.point_count = 0;
     tr.moving_check = [None; MAX_PAIRS];
+    tr.moving_from = [None; MAX_PAIRS];
     tr.margin = [0.0; MAX_PAIRS];
     tr.verify_points = [0; MAX_PAIRS];
     tr.check_count = [0; MAX_PAIRS];

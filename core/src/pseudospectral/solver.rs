@@ -269,18 +269,23 @@ fn iterate_and_verify(ws: &mut Workspace, settings: &Settings, out: &mut Solutio
                 let tau = 2.0 * minimum.at_s - 1.0;
                 let tr = &mut ws.transcription;
                 let refined_before = tr.verify_points.get(pair).copied().unwrap_or(0) > 0;
-                if refined_before {
-                    if let Some(margin) = tr.margin.get_mut(pair) {
-                        *margin += d - separation;
-                    }
-                    added = added.saturating_add(1);
-                }
-                if tr.add_check(pair, tau) {
+                let checked = tr.add_check(pair, tau);
+                if checked {
                     if let Some(count) = tr.verify_points.get_mut(pair) {
                         *count = count.saturating_add(1);
                     }
                     added = added.saturating_add(1);
                     points = points.saturating_add(1);
+                }
+                // The margin also goes at once to a pair out of check slots (moving checks
+                // frozen at other minima hold them), and in the last round to every dipping
+                // pair: that round's re-solve is not verified again.
+                let last_round = rounds.saturating_add(1) >= settings.verify_max_rounds;
+                if refined_before || !checked || last_round {
+                    if let Some(margin) = tr.margin.get_mut(pair) {
+                        *margin += d - separation;
+                    }
+                    added = added.saturating_add(1);
                 }
             }
         }

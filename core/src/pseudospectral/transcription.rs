@@ -128,6 +128,9 @@ pub(crate) struct Transcription {
     /// Index (into the pair's checks) of the pair's moving check, which follows the continuous
     /// separation minimum from one convex subproblem to the next.
     pub moving_check: [Option<u8>; MAX_PAIRS],
+    /// Where each pair's moving check was before its last jump to another minimum (tau), to
+    /// tell a check that cycles between two minima (`linearise::freeze_if_cycling`).
+    pub moving_from: [Option<f64>; MAX_PAIRS],
     /// Cost of the base cubics, `T/4 sum w U_cubic^2`.
     pub base_cost: f64,
     /// Pruning window per pair in TU: checks outside `[start, end]` are not constrained.
@@ -160,6 +163,7 @@ impl Transcription {
             margin: [0.0; MAX_PAIRS],
             verify_points: [0; MAX_PAIRS],
             moving_check: [None; MAX_PAIRS],
+            moving_from: [None; MAX_PAIRS],
             base_cost: 0.0,
             window: [(0.0, 0.0); MAX_PAIRS],
         }
