@@ -15,6 +15,7 @@ mod settings;
 mod solution;
 mod status;
 
+pub use alternative::{solve_with_alternative_starts, AlternativeStarts, StartsOutcome};
 pub use certificate::{
     ActiveConstraint, Certificate, Multiplier, COMPLEMENTARITY_TOL, CURVATURE_TOL,
     POWER_ITERATIONS, STATIONARITY_TOL,
@@ -42,7 +43,7 @@ pub fn solve(
     workspace: &mut Workspace,
     out: &mut Solution,
 ) -> Result<(), PlanError> {
-    solver::solve(problem, settings, workspace, None, out)
+    solver::solve(problem, settings, workspace, None, [0.0; 3], out)
 }
 
 /// Solve starting from a previous solution of a problem with the same spacecraft count and
@@ -58,9 +59,10 @@ pub fn solve_warm(
     previous: &Solution,
     out: &mut Solution,
 ) -> Result<(), PlanError> {
-    solver::solve(problem, settings, workspace, Some(previous), out)
+    solver::solve(problem, settings, workspace, Some(previous), [0.0; 3], out)
 }
 
+mod alternative;
 mod anderson;
 mod basis;
 mod collision;

@@ -212,11 +212,21 @@ pub(super) fn project_controls(
     }
 }
 
-/// The first linearisation point: the warm start, or the analytic Pontryagin trajectories.
-/// Also chooses each pair's fallback direction for the linearisation where the analytic
-/// trajectories pass through each other (the normal is undefined there).
-pub(super) fn initial_iterate(ws: &mut Workspace, warm: Option<&Solution>, out: &mut Solution) {
+/// The first linearisation point: the warm start, or the analytic Pontryagin trajectories,
+/// with every spacecraft's path lifted by `lift[axis] d (1 - tau^2)^2` on each axis, the sign
+/// alternating from one spacecraft to the next (`lift` = 0: no lift; an alternative start, see
+/// `solve_with_alternative_starts`). The bump keeps the boundary positions and velocities, and
+/// its control `m (2/T)^2 d (12 tau^2 - 4)` is a polynomial the basis spans, so the projection
+/// is exact. Also chooses each pair's fallback direction for the linearisation where the
+/// analytic trajectories pass through each other (the normal is undefined there).
+pub(super) fn initial_iterate(
+    ws: &mut Workspace,
+    warm: Option<&Solution>,
+    lift: [f64; 3],
+    out: &mut Solution,
+) {
     let tr = &ws.transcription;
+    let rate = 2.0 / tr.horizon_tu;
     let nodes = tr.grid.nodes();
     ws.iterate = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
     for sc in 0..tr.spacecraft {
@@ -237,6 +247,17 @@ pub(super) fn initial_iterate(ws: &mut Workspace, warm: Option<&Solution>, out: 
                         None => 0.0,
                     },
                 };
+                let amplitude = lift.get(axis).copied().unwrap_or(0.0);
+                if amplitude != 0.0 {
+                    let tau = tr.grid.at(h);
+                    let side = if sc % 2 == 0 { amplitude } else { -amplitude };
+                    *slot += tr.mass_of(sc)
+                        * rate
+                        * rate
+                        * tr.keep_out_lu
+                        * side
+                        * (12.0 * tau * tau - 4.0);
+                }
             }
             project_controls(tr, block, &controls, &mut ws.iterate);
         }

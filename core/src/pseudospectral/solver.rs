@@ -42,6 +42,7 @@ pub(crate) fn solve(
     settings: &Settings,
     ws: &mut Workspace,
     warm: Option<&Solution>,
+    lift: [f64; 3],
     out: &mut Solution,
 ) -> Result<(), PlanError> {
     validate::check(problem, settings)?;
@@ -97,7 +98,7 @@ pub(crate) fn solve(
     out.degree = problem.degree;
     out.spacecraft_count = u8_of(m);
     out.horizon_tu = problem.horizon_tu;
-    let status = run(problem, settings, ws, warm, out);
+    let status = run(problem, settings, ws, warm, lift, out);
     out.info.status = status;
     out.info.work_units = ws.work.used();
     Ok(())
@@ -109,6 +110,7 @@ fn run(
     settings: &Settings,
     ws: &mut Workspace,
     warm: Option<&Solution>,
+    lift: [f64; 3],
     out: &mut Solution,
 ) -> SolveStatus {
     ws.qp.reset();
@@ -119,7 +121,7 @@ fn run(
         return SolveStatus::NumericalFailure(stage);
     }
     ws.work.reserve(work_units::reserve(&ws.transcription, 0));
-    initial_iterate(ws, warm, out);
+    initial_iterate(ws, warm, lift, out);
     let mut end = iterate_and_verify(ws, settings, out);
     let mut status = finish(ws, settings, out, end);
     // Saddle escape: a feasible first-order point with negative reduced curvature is left
@@ -396,7 +398,7 @@ mod tests {
     fn run(problem: &Problem, settings: &Settings) -> Solution {
         let mut ws = Workspace::new();
         let mut out = Solution::new();
-        solve(problem, settings, &mut ws, None, &mut out).unwrap();
+        solve(problem, settings, &mut ws, None, [0.0; 3], &mut out).unwrap();
         out
     }
 

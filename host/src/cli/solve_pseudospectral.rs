@@ -24,6 +24,42 @@ pub fn solve_timed(problem: &pseudospectral::Problem, settings: &Settings) -> Re
     solve_or_reject(problem, settings).map_err(|e| anyhow!("the planner rejected the problem: {e}"))
 }
 
+/// [`solve_timed`] followed by `starts` alternative starts (0, 1 or 2;
+/// `pseudospectral::solve_with_alternative_starts`), the best answer kept; also returns which
+/// start it came from (0: the analytic guess). The time covers every solve.
+///
+/// # Errors
+/// The core's `PlanError`, as a message.
+pub fn solve_timed_with_starts(
+    problem: &pseudospectral::Problem,
+    settings: &Settings,
+    starts: Option<pseudospectral::AlternativeStarts>,
+) -> Result<(Timed, u8)> {
+    let Some(starts) = starts else {
+        return solve_timed(problem, settings).map(|timed| (timed, 0));
+    };
+    let mut workspace = Box::new(Workspace::new());
+    let mut solution = Box::new(Solution::new());
+    let mut spare = Box::new(Solution::new());
+    let start = Instant::now();
+    let outcome = pseudospectral::solve_with_alternative_starts(
+        problem,
+        settings,
+        starts,
+        &mut workspace,
+        &mut spare,
+        &mut solution,
+    )
+    .map_err(|e| anyhow!("the planner rejected the problem: {e}"))?;
+    Ok((
+        Timed {
+            solution,
+            solve_time_s: start.elapsed().as_secs_f64(),
+        },
+        outcome.kept,
+    ))
+}
+
 /// [`solve_timed`] with the core's error kept as such.
 fn solve_or_reject(
     problem: &pseudospectral::Problem,

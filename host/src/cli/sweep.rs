@@ -15,12 +15,14 @@
 //! gives per family the cost gap to the oracle's best, the Solved / usable rates of the problems
 //! the oracle solves and the time against IPOPT's (`sweep_oracle.rs`).
 
-use crate::cli::solve_pseudospectral::solve_timed;
+use crate::cli::solve_pseudospectral::solve_timed_with_starts;
 use crate::cli::sweep_oracle::{self, relative_gap, OracleAnswer, GAP_REPORT_REL};
 use anyhow::{Context, Result};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use reconfig_core::pseudospectral::{Problem, Settings, SolveStatus, Spacecraft};
+use reconfig_core::pseudospectral::{
+    AlternativeStarts, Problem, Settings, SolveStatus, Spacecraft,
+};
 use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::PathBuf;
@@ -55,6 +57,11 @@ pub struct Args {
     /// the planner's answers without the on-board time bound.
     #[arg(long)]
     pub work_budget: Option<u64>,
+    /// Alternative starts after the analytic guess's solve (0, 1 or 2): the guess lifted
+    /// sideways (y, then z), the best answer kept
+    /// (`pseudospectral::solve_with_alternative_starts`).
+    #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u8).range(0..=2))]
+    pub alternative_starts: u8,
 }
 
 /// One generated problem's outcome, for the oracle table.
@@ -397,11 +404,19 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     if let Some(budget) = args.work_budget {
         settings.work_budget = budget;
     }
-    println!("work budget: {} units", settings.work_budget);
+    let starts = match args.alternative_starts {
+        0 => None,
+        1 => Some(AlternativeStarts::One),
+        _ => Some(AlternativeStarts::Two),
+    };
     println!(
-        "| family | problems | Solved | Feasible | other (status: count) | rejected | largest working set | saddle escapes (helped) | J median / worst | ms median / worst |"
+        "work budget: {} units; alternative starts: {}",
+        settings.work_budget, args.alternative_starts
     );
-    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+    println!(
+        "| family | problems | Solved | Feasible | other (status: count) | rejected | largest working set | saddle escapes (helped) | answers from an alternative start | J median / worst | ms median / worst |"
+    );
+    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
     for family in FAMILIES {
         let mut solved = 0usize;
         let mut feasible = 0usize;
@@ -413,6 +428,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         let mut working = 0u16;
         let mut escapes = 0usize;
         let mut helped = 0usize;
+        let mut from_alternative = 0usize;
         for _ in 0..args.per_family {
             let p = generate(family, &mut rng);
             let this = index;
@@ -443,8 +459,13 @@ pub fn run(args: &Args) -> Result<ExitCode> {
                     serde_json::json!({ "family": family, "problem": &p })
                 )?;
             }
-            let timed = match solve_timed(&p, &settings) {
-                Ok(timed) => timed,
+            let timed = match solve_timed_with_starts(&p, &settings, starts) {
+                Ok((timed, kept)) => {
+                    if kept > 0 {
+                        from_alternative += 1;
+                    }
+                    timed
+                }
                 Err(e) => {
                     if let Some(f) = answers.as_mut() {
                         writeln!(
@@ -506,7 +527,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         let others: Vec<String> = other.iter().map(|(k, v)| format!("{k}: {v}")).collect();
         let reasons: Vec<String> = reasons.iter().map(|(k, v)| format!("{k}: {v}")).collect();
         println!(
-            "| {family} | {} | {solved} | {feasible} | {} | {rejected}{} | {working} | {escapes} ({helped}) | {:.4} / {:.4} | {:.2} / {:.2} |",
+            "| {family} | {} | {solved} | {feasible} | {} | {rejected}{} | {working} | {escapes} ({helped}) | {from_alternative} | {:.4} / {:.4} | {:.2} / {:.2} |",
             args.per_family,
             if others.is_empty() { "-".to_string() } else { others.join(", ") },
             if reasons.is_empty() { String::new() } else { format!(" ({})", reasons.join(", ")) },
