@@ -154,6 +154,24 @@ mod tests {
         }
     }
 
+    fn both_lifts(
+        problem: &Problem,
+        settings: &Settings,
+        ws: &mut Workspace,
+    ) -> (StartsOutcome, Solution) {
+        let (mut out, mut spare) = (Solution::new(), Solution::new());
+        let outcome = solve_with_alternative_starts(
+            problem,
+            settings,
+            AlternativeStarts::Two,
+            ws,
+            &mut spare,
+            &mut out,
+        )
+        .unwrap();
+        (outcome, out)
+    }
+
     #[test]
     fn the_kept_answer_is_never_worse_than_the_guess_and_the_budget_holds() {
         let problem = square_swap();
@@ -161,17 +179,7 @@ mod tests {
         let mut ws = Workspace::new();
         let mut single = Solution::new();
         solve(&problem, &settings, &mut ws, &mut single).unwrap();
-        let mut out = Solution::new();
-        let mut spare = Solution::new();
-        let outcome = solve_with_alternative_starts(
-            &problem,
-            &settings,
-            AlternativeStarts::Two,
-            &mut ws,
-            &mut spare,
-            &mut out,
-        )
-        .unwrap();
+        let (outcome, out) = both_lifts(&problem, &settings, &mut ws);
         assert_eq!(outcome.tried, 2);
         assert!(outcome.work_units <= settings.work_budget);
         assert_eq!(out.info.status, SolveStatus::Solved);
@@ -187,16 +195,7 @@ mod tests {
             assert_eq!(out.cost.to_bits(), single.cost.to_bits());
         }
         // Same input, same bits.
-        let mut again = Solution::new();
-        let repeat = solve_with_alternative_starts(
-            &problem,
-            &settings,
-            AlternativeStarts::Two,
-            &mut ws,
-            &mut spare,
-            &mut again,
-        )
-        .unwrap();
+        let (repeat, again) = both_lifts(&problem, &settings, &mut ws);
         assert_eq!(repeat, outcome);
         assert_eq!(again.cost.to_bits(), out.cost.to_bits());
     }
@@ -210,16 +209,7 @@ mod tests {
             ..Settings::default()
         };
         let mut ws = Workspace::new();
-        let (mut out, mut spare) = (Solution::new(), Solution::new());
-        let outcome = solve_with_alternative_starts(
-            &problem,
-            &settings,
-            AlternativeStarts::Two,
-            &mut ws,
-            &mut spare,
-            &mut out,
-        )
-        .unwrap();
+        let (outcome, out) = both_lifts(&problem, &settings, &mut ws);
         assert_eq!(outcome.tried, 0);
         assert_eq!(outcome.kept, 0);
         assert!(matches!(

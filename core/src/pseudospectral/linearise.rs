@@ -335,15 +335,7 @@ fn freeze_if_cycling(
     y: &Coefficients,
     dots: &NodeDots,
 ) {
-    let Some(index) = tr.moving_check.get(pair).copied().flatten() else {
-        return;
-    };
-    let Some(check) = tr
-        .checks
-        .get(pair)
-        .and_then(|row| row.get(usize::from(index)))
-        .copied()
-    else {
+    let Some(check) = tr.moving_check_of(pair) else {
         return;
     };
     let jump = libm::fabs(check.tau - tau);
@@ -393,15 +385,7 @@ const REFINE_MAX_STEP_TAU: f64 = 0.05;
 pub(super) fn refine_moving_checks(ws: &mut Workspace) {
     for pair in 0..ws.transcription.pair_count {
         let tr = &ws.transcription;
-        let Some(index) = tr.moving_check.get(pair).copied().flatten() else {
-            continue;
-        };
-        let Some(check) = tr
-            .checks
-            .get(pair)
-            .and_then(|row| row.get(usize::from(index)))
-            .copied()
-        else {
+        let Some(check) = tr.moving_check_of(pair) else {
             continue;
         };
         if check.pruned {

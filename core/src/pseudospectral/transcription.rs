@@ -263,6 +263,15 @@ impl Transcription {
         point
     }
 
+    /// The pair's moving check, when it has one.
+    pub fn moving_check_of(&self, pair: usize) -> Option<Check> {
+        let index = self.moving_check.get(pair).copied().flatten()?;
+        self.checks
+            .get(pair)
+            .and_then(|row| row.get(usize::from(index)))
+            .copied()
+    }
+
     /// Put the pair's moving check at `tau` (creating it on first use). Returns false when no
     /// check or point slot is left. A node time is nudged off the node: the moving check always
     /// owns an off-node point slot.
