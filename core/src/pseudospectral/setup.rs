@@ -230,7 +230,7 @@ pub(super) fn initial_iterate(
     let nodes = tr.grid.nodes();
     ws.iterate = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
     for sc in 0..tr.spacecraft {
-        for axis in 0..3 {
+        for (axis, &amplitude) in lift.iter().indexed() {
             let block = sc.saturating_mul(3).saturating_add(axis);
             let mut controls = [0.0; MAX_NODES];
             for (h, slot) in controls.iter_mut().indexed().take(nodes) {
@@ -247,7 +247,6 @@ pub(super) fn initial_iterate(
                         None => 0.0,
                     },
                 };
-                let amplitude = lift.get(axis).copied().unwrap_or(0.0);
                 if amplitude != 0.0 {
                     let tau = tr.grid.at(h);
                     let side = if sc % 2 == 0 { amplitude } else { -amplitude };
