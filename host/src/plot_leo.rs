@@ -138,6 +138,42 @@ pub struct TourPlot {
     pub geometry: Vec<Vec<Relative>>,
 }
 
+/// One panel of an arc: the relative track projected by `xy`, its burns marked in red.
+fn track_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    caption: &str,
+    (x_desc, y_desc): (&str, &str),
+    pts: &[Relative],
+    xy: impl Fn(&Relative) -> (f64, f64),
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let (x0, x1) = range(pts.iter().map(|p| xy(p).0), 0.05);
+    let (y0, y1) = range(pts.iter().map(|p| xy(p).1), 0.05);
+    let mut c = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", 15))
+        .margin(8)
+        .x_label_area_size(30)
+        .y_label_area_size(60)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(|e| anyhow!("{e}"))?;
+    c.configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .draw()
+        .map_err(|e| anyhow!("{e}"))?;
+    c.draw_series(LineSeries::new(pts.iter().map(&xy), BLUE.stroke_width(1)))
+        .map_err(|e| anyhow!("{e}"))?;
+    c.draw_series(
+        pts.iter()
+            .filter(|p| p.before_burn)
+            .map(|p| Circle::new(xy(p), 4, RED.filled())),
+    )
+    .map_err(|e| anyhow!("{e}"))?;
+    Ok(())
+}
+
 /// Plan the fixture (its order and durations chosen first when it asks) and draw Δv per arc
 /// and each arc's relative geometry into `out` (SVG).
 ///
@@ -170,60 +206,20 @@ pub fn tour_svg(f: &LeoTourFixture, out: &Path) -> Result<TourPlot> {
             arc.solution.total_dv_mps,
             arc.problem.duration_s / 3600.0
         );
-        let (x0, x1) = range(pts.iter().map(|p| p.along_km), 0.05);
-        let (y0, y1) = range(pts.iter().map(|p| p.radial_km), 0.05);
-        let mut c = ChartBuilder::on(&left)
-            .caption(
-                format!("{label}: chaser seen from client {}", arc.to + 1),
-                ("sans-serif", 15),
-            )
-            .margin(8)
-            .x_label_area_size(30)
-            .y_label_area_size(60)
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(|e| anyhow!("{e}"))?;
-        c.configure_mesh()
-            .x_desc("along-track [km]")
-            .y_desc("radial [km]")
-            .draw()
-            .map_err(|e| anyhow!("{e}"))?;
-        c.draw_series(LineSeries::new(
-            pts.iter().map(|p| (p.along_km, p.radial_km)),
-            BLUE.stroke_width(1),
-        ))
-        .map_err(|e| anyhow!("{e}"))?;
-        let burns: Vec<Relative> = pts.iter().filter(|p| p.before_burn).copied().collect();
-        c.draw_series(
-            burns
-                .iter()
-                .map(|p| Circle::new((p.along_km, p.radial_km), 4, RED.filled())),
-        )
-        .map_err(|e| anyhow!("{e}"))?;
-        let (t0, t1) = range(pts.iter().map(|p| p.t_h), 0.05);
-        let (n0, n1) = range(pts.iter().map(|p| p.cross_km), 0.05);
-        let mut c = ChartBuilder::on(&right)
-            .caption("cross-track (burns in red)", ("sans-serif", 15))
-            .margin(8)
-            .x_label_area_size(30)
-            .y_label_area_size(60)
-            .build_cartesian_2d(t0..t1, n0..n1)
-            .map_err(|e| anyhow!("{e}"))?;
-        c.configure_mesh()
-            .x_desc("time from the arc start [h]")
-            .y_desc("cross-track [km]")
-            .draw()
-            .map_err(|e| anyhow!("{e}"))?;
-        c.draw_series(LineSeries::new(
-            pts.iter().map(|p| (p.t_h, p.cross_km)),
-            BLUE.stroke_width(1),
-        ))
-        .map_err(|e| anyhow!("{e}"))?;
-        c.draw_series(
-            burns
-                .iter()
-                .map(|p| Circle::new((p.t_h, p.cross_km), 4, RED.filled())),
-        )
-        .map_err(|e| anyhow!("{e}"))?;
+        track_panel(
+            &left,
+            &format!("{label}: chaser seen from client {}", arc.to + 1),
+            ("along-track [km]", "radial [km]"),
+            pts,
+            |p| (p.along_km, p.radial_km),
+        )?;
+        track_panel(
+            &right,
+            "cross-track (burns in red)",
+            ("time from the arc start [h]", "cross-track [km]"),
+            pts,
+            |p| (p.t_h, p.cross_km),
+        )?;
     }
     root.present().map_err(|e| anyhow!("{e}"))?;
     Ok(TourPlot {
