@@ -1,7 +1,7 @@
 //! Where keep-out is checked: the pruning window of eq. 23 and the Gaussian test points of
 //! eq. 27, both computed on the analytic Pontryagin trajectories.
 
-use super::guess::AxisLaw;
+use super::guess::Track;
 use crate::capacity::TEST_POINTS_PER_PAIR;
 use crate::indexed::IndexedExt as _;
 
@@ -11,7 +11,7 @@ pub(crate) const TEST_POINT_OFFSETS: [f64; TEST_POINTS_PER_PAIR] =
     [-1.07, -0.64, -0.30, 0.0, 0.30, 0.64, 1.07];
 
 /// Positions of spacecraft `i` and `j` on their analytic laws at time `t`, as `r_i - r_j`.
-pub(crate) fn analytic_relative(laws_i: &[AxisLaw; 3], laws_j: &[AxisLaw; 3], t: f64) -> [f64; 3] {
+pub(crate) fn analytic_relative(laws_i: &[Track; 3], laws_j: &[Track; 3], t: f64) -> [f64; 3] {
     let mut out = [0.0; 3];
     for (slot, (a, b)) in out.iter_mut().zip(laws_i.iter().zip(laws_j.iter())) {
         *slot = a.state(t).0 - b.state(t).0;
@@ -47,8 +47,8 @@ pub(crate) fn earliest_contact(
 /// The closest approach of the analytic trajectories in `[lo, hi]` (TU): a coarse scan then a
 /// golden-section refinement, `iterations` steps in all.
 pub(crate) fn closest_approach(
-    laws_i: &[AxisLaw; 3],
-    laws_j: &[AxisLaw; 3],
+    laws_i: &[Track; 3],
+    laws_j: &[Track; 3],
     lo: f64,
     hi: f64,
     iterations: u16,
@@ -102,8 +102,8 @@ pub(crate) fn closest_approach(
 /// `2 sigma` = the time between those nodes. Points outside `(0, T)` are dropped (the boundary
 /// states are already checked); returns the times and how many there are.
 pub(crate) fn test_points(
-    laws_i: &[AxisLaw; 3],
-    laws_j: &[AxisLaw; 3],
+    laws_i: &[Track; 3],
+    laws_j: &[Track; 3],
     node_times: &[f64],
     horizon: f64,
     iterations: u16,

@@ -84,28 +84,72 @@ fn piece(a: f64, b: f64, lo: f64, hi: f64, bound: f64, m: &mut Moments) {
     }
 }
 
-/// The times in (lo, hi) where `a + b t` crosses `+-bound`, sorted, plus the ends.
-fn breakpoints(a: f64, b: f64, lo: f64, hi: f64, bound: f64) -> ([f64; 4], usize) {
+/// The times where `a + b t` crosses `+-bound`, sorted; `None` for a constant law.
+fn crossings(a: f64, b: f64, bound: f64) -> Option<[f64; 2]> {
+    if b == 0.0 {
+        return None;
+    }
+    let mut crossings = [(bound - a) / b, (-bound - a) / b];
+    if crossings[0] > crossings[1] {
+        crossings.swap(0, 1);
+    }
+    Some(crossings)
+}
+
+/// The times in (lo, hi) where the law crosses `+-bound` (`crossings`), plus the ends.
+fn breakpoints(crossings: Option<[f64; 2]>, lo: f64, hi: f64) -> ([f64; 4], usize) {
     let mut points = [lo, hi, hi, hi];
     let mut count = 1usize;
-    if b != 0.0 {
-        let mut crossings = [(bound - a) / b, (-bound - a) / b];
-        if crossings[0] > crossings[1] {
-            crossings.swap(0, 1);
-        }
-        for t in crossings {
-            if t > lo && t < hi {
-                if let Some(slot) = points.get_mut(count) {
-                    *slot = t;
-                }
-                count = count.saturating_add(1);
+    for t in crossings.into_iter().flatten() {
+        if t > lo && t < hi {
+            if let Some(slot) = points.get_mut(count) {
+                *slot = t;
             }
+            count = count.saturating_add(1);
         }
     }
     if let Some(slot) = points.get_mut(count) {
         *slot = hi;
     }
     (points, count.saturating_add(1))
+}
+
+/// An axis law made ready for many evaluations (the closest-approach searches take about a
+/// hundred per pair): its linear form and switching times computed once, the same arithmetic
+/// as computing them at every call, so the same bits.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Track {
+    a: f64,
+    b: f64,
+    bound: f64,
+    crossings: Option<[f64; 2]>,
+    p0: f64,
+    v0: f64,
+    mass: f64,
+}
+
+impl Track {
+    fn moments(&self, upto: f64) -> Moments {
+        let (points, count) = breakpoints(self.crossings, 0.0, upto);
+        let mut m = Moments::default();
+        for (&lo, &hi) in points
+            .iter()
+            .zip(points.iter().skip(1))
+            .take(count.saturating_sub(1))
+        {
+            piece(self.a, self.b, lo, hi, self.bound, &mut m);
+        }
+        m
+    }
+
+    /// Position (LU) and velocity (LU/TU) at time `t`: `x(t) = p0 + v0 t + int_0^t (t - s)
+    /// u(s) / m ds`, exact for the piecewise-linear control.
+    pub fn state(&self, t: f64) -> (f64, f64) {
+        let m = self.moments(t);
+        let velocity = self.v0 + m.u0 / self.mass;
+        let position = self.p0 + self.v0 * t + (t * m.u0 - m.u1) / self.mass;
+        (position, velocity)
+    }
 }
 
 impl AxisLaw {
@@ -115,17 +159,23 @@ impl AxisLaw {
         (self.alpha - self.beta, 2.0 * self.beta / t)
     }
 
-    fn moments(&self, upto: f64) -> Moments {
+    /// The law ready for repeated evaluation.
+    pub fn track(&self) -> Track {
         let (a, b) = self.linear();
         let bound = self.boundary.max_control;
-        let (points, count) = breakpoints(a, b, 0.0, upto, bound);
-        let mut m = Moments::default();
-        for k in 1..count {
-            let lo = points.get(k.saturating_sub(1)).copied().unwrap_or(0.0);
-            let hi = points.get(k).copied().unwrap_or(0.0);
-            piece(a, b, lo, hi, bound, &mut m);
+        Track {
+            a,
+            b,
+            bound,
+            crossings: crossings(a, b, bound),
+            p0: self.boundary.p0,
+            v0: self.boundary.v0,
+            mass: self.boundary.mass,
         }
-        m
+    }
+
+    fn moments(&self, upto: f64) -> Moments {
+        self.track().moments(upto)
     }
 
     /// The unconstrained cubic's control (no saturation) at `t`, FU.
@@ -145,16 +195,6 @@ impl AxisLaw {
     pub fn control(&self, t: f64) -> f64 {
         let (a, b) = self.linear();
         clamp(a + b * t, self.boundary.max_control)
-    }
-
-    /// Position (LU) and velocity (LU/TU) at time `t`: `x(t) = p0 + v0 t + int_0^t (t - s)
-    /// u(s) / m ds`, exact for the piecewise-linear control.
-    pub fn state(&self, t: f64) -> (f64, f64) {
-        let bd = &self.boundary;
-        let m = self.moments(t);
-        let velocity = bd.v0 + m.u0 / bd.mass;
-        let position = bd.p0 + bd.v0 * t + (t * m.u0 - m.u1) / bd.mass;
-        (position, velocity)
     }
 }
 
@@ -301,10 +341,10 @@ mod tests {
         assert!(!law.saturated);
         assert!((law.control(0.0) - 0.72).abs() < 1e-14);
         assert!((law.control(10.0) + 0.72).abs() < 1e-14);
-        let (x, v) = law.state(4.0);
+        let (x, v) = law.track().state(4.0);
         assert!((x - 12.0 * (3.0 * 0.16 - 2.0 * 0.064)).abs() < 1e-12);
         assert!((v - 12.0 * (6.0 * 0.4 - 6.0 * 0.16) / 10.0).abs() < 1e-12);
-        let (x1, v1) = law.state(10.0);
+        let (x1, v1) = law.track().state(10.0);
         assert!((x1 - 12.0).abs() < 1e-12 && v1.abs() < 1e-12);
     }
 
@@ -315,7 +355,7 @@ mod tests {
         assert!(law.saturated);
         assert!((law.control(0.0) - 1.0).abs() < 1e-12);
         assert!((law.control(10.0) + 1.0).abs() < 1e-12);
-        let (x1, v1) = law.state(10.0);
+        let (x1, v1) = law.track().state(10.0);
         assert!((x1 - 20.0).abs() < 1e-9, "{x1}");
         assert!(v1.abs() < 1e-9, "{v1}");
     }
@@ -323,7 +363,7 @@ mod tests {
     #[test]
     fn moving_boundaries_saturated() {
         let law = solve_axis(bd(1.0, 1.5, -3.0, -0.5, 0.6), 60).unwrap();
-        let (x1, v1) = law.state(10.0);
+        let (x1, v1) = law.track().state(10.0);
         assert!((x1 + 3.0).abs() < 1e-9 && (v1 + 0.5).abs() < 1e-9);
         for k in 0..=100 {
             assert!(law.control(k as f64 * 0.1).abs() <= 0.6 + 1e-15);

@@ -2,7 +2,7 @@
 //! points (eq. 23, 27), and the first linearisation point (the analytic guess or a warm start).
 
 use super::collision;
-use super::guess::{self};
+use super::guess::{self, AxisLaw, Track};
 use super::linearise::perpendicular_direction;
 use super::problem::Problem;
 use super::settings::Settings;
@@ -166,8 +166,8 @@ pub(super) fn setup(
                 continue;
             };
             let (times, count) = collision::test_points(
-                li,
-                lj,
+                &tracks(li),
+                &tracks(lj),
                 node_times.get(..nodes).unwrap_or(&[]),
                 problem.horizon_tu,
                 settings.refine_max_iter,
@@ -270,13 +270,11 @@ pub(super) fn initial_iterate(
         else {
             continue;
         };
-        let t = collision::closest_approach(li, lj, 0.0, tr.horizon_tu, 60);
-        let relative = collision::analytic_relative(li, lj, t);
+        let (ti, tj) = (tracks(li), tracks(lj));
+        let t = collision::closest_approach(&ti, &tj, 0.0, tr.horizon_tu, 60);
+        let relative = collision::analytic_relative(&ti, &tj, t);
         let mut velocity = [0.0; 3];
-        for (axis, slot) in velocity.iter_mut().indexed() {
-            let (Some(a), Some(b)) = (li.get(axis), lj.get(axis)) else {
-                continue;
-            };
+        for (slot, (a, b)) in velocity.iter_mut().zip(ti.iter().zip(tj.iter())) {
             *slot = a.state(t).1 - b.state(t).1;
         }
         let direction = perpendicular_direction(&relative, &velocity, None);
@@ -284,4 +282,9 @@ pub(super) fn initial_iterate(
             *slot = direction;
         }
     }
+}
+
+/// A spacecraft's three axis laws made ready for the closest-approach searches.
+fn tracks(laws: &[AxisLaw; 3]) -> [Track; 3] {
+    laws.map(|law| law.track())
 }
