@@ -340,6 +340,9 @@
 // LGL nodes at the highest degree (`capacity::MAX_NODES`).
 #define RECONFIG_A_MAX_NODES 25
 
+// Most constraints an `RECONFIG_A_INFEASIBLE` answer names (`pseudospectral::MAX_UNMET`).
+#define RECONFIG_A_MAX_UNMET 8
+
 // Most impulses planner B plans (`capacity::MAX_IMPULSES`).
 #define RECONFIG_B_MAX_IMPULSES 6
 
@@ -954,6 +957,29 @@ typedef struct {
   ReconfigASpacecraft spacecraft[RECONFIG_A_MAX_SPACECRAFT];
 } ReconfigAProblem;
 
+// A constraint the l1-elastic subproblem could not meet (`RECONFIG_A_INFEASIBLE`).
+typedef struct {
+  // 0: the keep-out of `pair` at `time_tu`; 1: the control bound of `spacecraft`, `axis`
+  // (0 = x), `node`, `upper` (1: `u <= Umax`, 0: `u >= -Umax`).
+  uint8_t kind;
+  // Keep-out: the spacecraft pair, `i < j`, numbered from 0.
+  uint8_t pair[2];
+  // Control: the spacecraft, numbered from 0.
+  uint8_t spacecraft;
+  // Control: the axis.
+  uint8_t axis;
+  // Control: the node.
+  uint8_t node;
+  // Control: 1 for the upper bound.
+  uint8_t upper;
+  // Keep-out: the check's time, TU (0 for a control bound).
+  double time_tu;
+  // LU inside the linearised keep-out, or FU beyond Umax.
+  double shortfall;
+  // `shortfall` relative to d or Umax.
+  double shortfall_rel;
+} ReconfigAUnmet;
+
 // A planner-A result. Only the first `spacecraft_count` spacecraft and `degree + 1` nodes are
 // meaningful; the rest are zero.
 typedef struct {
@@ -999,6 +1025,13 @@ typedef struct {
   double states_lu_lutu[RECONFIG_A_MAX_SPACECRAFT][RECONFIG_A_MAX_NODES][6];
   // Control forces `[ux, uy, uz]` per spacecraft per node, FU.
   double controls_fu[RECONFIG_A_MAX_SPACECRAFT][RECONFIG_A_MAX_NODES][3];
+  // With `RECONFIG_A_INFEASIBLE`: how many of `unmet` are named (0 otherwise).
+  uint8_t unmet_count;
+  // 1 when more constraints were unmet than `unmet` holds.
+  uint8_t unmet_truncated;
+  // The constraints that cannot be met: keep-out checks first, then control bounds, each
+  // kind by relative shortfall, largest first.
+  ReconfigAUnmet unmet[RECONFIG_A_MAX_UNMET];
 } ReconfigASolution;
 
 #ifdef __cplusplus

@@ -4,8 +4,8 @@ use crate::status::*;
 use crate::types_a::*;
 use reconfig_core::capacity::MAX_SPACECRAFT;
 use reconfig_core::pseudospectral::{
-    Boundary, Capacity, PlanError, Problem, Quantity, Settings, SettingsError, Solution,
-    SolveStatus, Spacecraft, Stage, MAX_MAGNITUDE, MIN_POSITIVE,
+    ActiveConstraint, Boundary, Capacity, PlanError, Problem, Quantity, Settings, SettingsError,
+    Solution, SolveStatus, Spacecraft, Stage, UnmetConstraint, MAX_MAGNITUDE, MIN_POSITIVE,
 };
 
 /// A C flag (0 or 1) as a bool, or the refusal naming it.
@@ -304,6 +304,41 @@ pub fn solution_to_c(s: &Solution, out: &mut ReconfigASolution) {
     out.node_times_tu = s.node_times_tu;
     out.states_lu_lutu = s.states;
     out.controls_fu = s.controls_fu;
+    out.unmet_count = s.unmet.count;
+    out.unmet_truncated = u8::from(s.unmet.truncated);
+    out.unmet = [ReconfigAUnmet::default(); RECONFIG_A_MAX_UNMET];
+    for (slot, unmet) in out.unmet.iter_mut().zip(s.unmet.named()) {
+        *slot = unmet_to_c(unmet);
+    }
+}
+
+/// One named constraint as the C struct.
+fn unmet_to_c(unmet: &UnmetConstraint) -> ReconfigAUnmet {
+    let mut c = ReconfigAUnmet {
+        shortfall: unmet.shortfall,
+        shortfall_rel: unmet.shortfall_rel,
+        ..ReconfigAUnmet::default()
+    };
+    match unmet.constraint {
+        ActiveConstraint::KeepOut { pair, time_tu } => {
+            c.kind = 0;
+            c.pair = [pair.0, pair.1];
+            c.time_tu = time_tu;
+        }
+        ActiveConstraint::Control {
+            spacecraft,
+            axis,
+            node,
+            upper,
+        } => {
+            c.kind = 1;
+            c.spacecraft = spacecraft;
+            c.axis = axis;
+            c.node = node;
+            c.upper = u8::from(upper);
+        }
+    }
+    c
 }
 
 /// Reset a C solution to "unsolved" with a refusal in it, field by field.
@@ -333,4 +368,7 @@ pub fn refusal_to_c(error: ReconfigError, out: &mut ReconfigASolution) {
     for sc in out.controls_fu.iter_mut() {
         sc.fill([0.0; 3]);
     }
+    out.unmet_count = 0;
+    out.unmet_truncated = 0;
+    out.unmet = [ReconfigAUnmet::default(); RECONFIG_A_MAX_UNMET];
 }

@@ -79,6 +79,35 @@ pub struct ReconfigASettings {
     pub verify_max_rounds: u8,
 }
 
+/// Most constraints an `RECONFIG_A_INFEASIBLE` answer names (`pseudospectral::MAX_UNMET`).
+pub const RECONFIG_A_MAX_UNMET: usize = 8;
+const _: () = assert!(RECONFIG_A_MAX_UNMET == reconfig_core::pseudospectral::MAX_UNMET);
+
+/// A constraint the l1-elastic subproblem could not meet (`RECONFIG_A_INFEASIBLE`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ReconfigAUnmet {
+    /// 0: the keep-out of `pair` at `time_tu`; 1: the control bound of `spacecraft`, `axis`
+    /// (0 = x), `node`, `upper` (1: `u <= Umax`, 0: `u >= -Umax`).
+    pub kind: u8,
+    /// Keep-out: the spacecraft pair, `i < j`, numbered from 0.
+    pub pair: [u8; 2],
+    /// Control: the spacecraft, numbered from 0.
+    pub spacecraft: u8,
+    /// Control: the axis.
+    pub axis: u8,
+    /// Control: the node.
+    pub node: u8,
+    /// Control: 1 for the upper bound.
+    pub upper: u8,
+    /// Keep-out: the check's time, TU (0 for a control bound).
+    pub time_tu: f64,
+    /// LU inside the linearised keep-out, or FU beyond Umax.
+    pub shortfall: f64,
+    /// `shortfall` relative to d or Umax.
+    pub shortfall_rel: f64,
+}
+
 /// A planner-A result. Only the first `spacecraft_count` spacecraft and `degree + 1` nodes are
 /// meaningful; the rest are zero.
 #[repr(C)]
@@ -126,4 +155,11 @@ pub struct ReconfigASolution {
     pub states_lu_lutu: [[[f64; 6]; RECONFIG_A_MAX_NODES]; RECONFIG_A_MAX_SPACECRAFT],
     /// Control forces `[ux, uy, uz]` per spacecraft per node, FU.
     pub controls_fu: [[[f64; 3]; RECONFIG_A_MAX_NODES]; RECONFIG_A_MAX_SPACECRAFT],
+    /// With `RECONFIG_A_INFEASIBLE`: how many of `unmet` are named (0 otherwise).
+    pub unmet_count: u8,
+    /// 1 when more constraints were unmet than `unmet` holds.
+    pub unmet_truncated: u8,
+    /// The constraints that cannot be met: keep-out checks first, then control bounds, each
+    /// kind by relative shortfall, largest first.
+    pub unmet: [ReconfigAUnmet; RECONFIG_A_MAX_UNMET],
 }

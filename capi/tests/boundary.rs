@@ -484,3 +484,43 @@ fn geo_tour_refusals_name_field_index_value_and_limit() {
         );
     }
 }
+
+#[test]
+fn an_infeasible_answer_names_the_pair_that_cannot_be_separated_through_c() {
+    // Two spacecraft swap places along x in T = 10 with Umax = 1 and must keep 20 LU apart:
+    // off the x axis each can reach 6.25 LU per axis and return, so the pair cannot pass
+    // (core test `an_unseparable_swap_is_infeasible_and_names_the_pair_and_the_bounds`).
+    let mut p = ReconfigAProblem {
+        horizon_tu: 10.0,
+        max_control_fu: 1.0,
+        keep_out_lu: 20.0,
+        degree: 12,
+        test_points: 1,
+        spacecraft_count: 2,
+        ..ReconfigAProblem::default()
+    };
+    for (sc, x0) in p.spacecraft.iter_mut().zip([11.0, -11.0]) {
+        sc.mass_mu = 1.0;
+        sc.initial_state_lu_lutu[0] = x0;
+        sc.final_state_lu_lutu[0] = -x0;
+    }
+    let size = reconfig_pseudospectral_workspace_size();
+    let mut mem = memory(size);
+    let ws = mem.as_mut_ptr().cast::<c_void>();
+    let mut out = Box::new(unsafe_zeroed_solution());
+    // SAFETY: valid pointers; `ws` has `size` bytes.
+    unsafe {
+        assert_eq!(reconfig_pseudospectral_init(ws, size), 0);
+        let code = reconfig_pseudospectral_solve(ws, &p, &a_settings(), &mut *out);
+        assert_eq!(code, RECONFIG_A_INFEASIBLE);
+    }
+    assert_eq!(out.usable, 0);
+    assert!(out.unmet_count > 0 && usize::from(out.unmet_count) <= RECONFIG_A_MAX_UNMET);
+    let first = out.unmet[0];
+    assert_eq!((first.kind, first.pair), (0, [0, 1]));
+    assert!(first.time_tu > 2.0 && first.time_tu < 8.0 && first.shortfall > 0.0);
+    // The slots past the count are zero.
+    assert!(out.unmet[usize::from(out.unmet_count)..]
+        .iter()
+        .all(|u| *u == ReconfigAUnmet::default()));
+}

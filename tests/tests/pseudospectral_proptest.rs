@@ -2,7 +2,7 @@
 //! the solver never panics, and returns either an error or a solution with a status.
 
 use proptest::prelude::*;
-use reconfig_core::pseudospectral::{Problem, Settings, Spacecraft};
+use reconfig_core::pseudospectral::{Problem, Settings, SolveStatus, Spacecraft};
 use reconfig_tests::solve_pseudospectral;
 
 fn number() -> impl Strategy<Value = f64> {
@@ -73,6 +73,14 @@ proptest! {
                     reconfig_core::pseudospectral::SolveStatus::NumericalFailure(_)
                 );
                 prop_assert!(solution.info.sqp_iterations >= 1 || set_up_failed);
+                // Only `Infeasible` names unmet constraints, and it always names one, each
+                // finite and missed.
+                let infeasible = solution.info.status == SolveStatus::Infeasible;
+                prop_assert_eq!(infeasible, solution.unmet.count > 0);
+                for unmet in solution.unmet.named() {
+                    prop_assert!(unmet.shortfall.is_finite() && unmet.shortfall > 0.0);
+                    prop_assert!(unmet.shortfall_rel.is_finite() && unmet.shortfall_rel > 0.0);
+                }
             }
             Err(error) => {
                 // Errors render a message.
@@ -153,8 +161,9 @@ proptest! {
                 }
             }
         } else {
-            // Anything else must not be flown.
+            // Anything else must not be flown; an infeasible answer says what it cannot meet.
             prop_assert!(!status.is_usable());
+            prop_assert_eq!(status == SolveStatus::Infeasible, solution.unmet.count > 0);
         }
     }
 }

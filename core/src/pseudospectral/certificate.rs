@@ -199,7 +199,7 @@ fn for_each_multiplier(tr: &Transcription, qp: &QpState, mut f: impl FnMut(RowId
 
 /// The public description of a row; `None` for a keep-out row the transcription does not hold
 /// (never for a row of the QP's active set: the certificate then says its list is incomplete).
-fn describe(tr: &Transcription, id: RowId) -> Option<ActiveConstraint> {
+pub(super) fn describe(tr: &Transcription, id: RowId) -> Option<ActiveConstraint> {
     match id {
         RowId::Control { block, node, upper } => Some(ActiveConstraint::Control {
             spacecraft: block / 3,

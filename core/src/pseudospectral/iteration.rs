@@ -12,15 +12,19 @@
 //! convex-concave step, which cannot raise the cost from a point feasible at its checks). One
 //! backtrack per rejected step, each one QP of the `sqp_max_iter` budget.
 
+use super::certificate;
 use super::linearise::{follow_minima, linearise, refine_moving_checks};
 use super::newton;
 use super::qp::{self, QpOutcome};
 use super::settings::Settings;
 use super::solution::Solution;
+use super::solution::{Unmet, UnmetConstraint};
+use super::solver::u8_of;
 use super::status::{SolveStatus, Stage};
-use super::transcription::Coefficients;
+use super::transcription::{row_dot, Coefficients, RowId, Transcription};
 use super::work_units;
 use super::workspace::Workspace;
+use crate::indexed::IndexedExt as _;
 
 /// How the SQP loop ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -85,21 +89,44 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
         }
         linearise(ws);
         at_answer = false;
-        let outcome = qp::solve(
-            &ws.transcription,
-            &mut ws.qp,
-            &mut ws.trial,
-            settings.qp_max_iter,
-            settings.qp_tol_feas,
-            &mut out.info.qp_iterations,
-            &mut ws.work,
-        );
+        // An infeasible subproblem linearised at the last answer (not at an extrapolated point,
+        // which the plain step below replaces) is solved again in its l1-elastic form: an
+        // answer there is taken like any other; a positive slack names the constraints and
+        // ends the solve `Infeasible` (elastic mode, issue 9 item 3). One call site for both
+        // (the QP's arrays sit once in this frame: 5 KB of M7 stack with two).
+        let mut penalty = f64::INFINITY;
+        let outcome = loop {
+            let outcome = qp::solve(
+                &ws.transcription,
+                &mut ws.qp,
+                &mut ws.trial,
+                settings.qp_max_iter,
+                settings.qp_tol_feas,
+                &mut out.info.qp_iterations,
+                &mut ws.work,
+                penalty,
+            );
+            if outcome == QpOutcome::Infeasible && !extrapolated && penalty.is_infinite() {
+                penalty = elastic_penalty(ws);
+                out.info.elastic_subproblems = out.info.elastic_subproblems.saturating_add(1);
+                continue;
+            }
+            break outcome;
+        };
+        if outcome == QpOutcome::Elastic {
+            name_unmet(
+                &ws.transcription,
+                &ws.trial,
+                settings.qp_tol_feas,
+                &mut out.unmet,
+            );
+        }
         out.info.sqp_iterations = out.info.sqp_iterations.saturating_add(1);
         let active = u16::try_from(ws.qp.peak).unwrap_or(u16::MAX);
         out.info.max_active = out.info.max_active.max(active);
         let failure = match outcome {
             QpOutcome::Optimal | QpOutcome::Approximate => None,
-            QpOutcome::Infeasible => Some(SolveStatus::Infeasible),
+            QpOutcome::Infeasible | QpOutcome::Elastic => Some(SolveStatus::Infeasible),
             QpOutcome::IterationLimit => Some(SolveStatus::QpLimit),
             QpOutcome::FactorFailure => Some(SolveStatus::NumericalFailure(Stage::QpFactor)),
         };
@@ -224,4 +251,147 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
     }
     ws.iterate = ws.accepted;
     SqpEnd::MaxIterations { at_answer }
+}
+
+/// The l1 penalty of the elastic subproblem per unit of slack (a distance in the
+/// cost-orthonormal coefficients), relative to `1 + |y|` at the last answer. An exact penalty
+/// needs it above every multiplier of the answer it should find; a normalised row's multiplier
+/// is at most about |y| (stationarity: `y = sum mu_k a_k / |a_k|`), so 100 times that leaves a
+/// slack only where no answer meets the rows.
+const ELASTIC_PENALTY_REL: f64 = 100.0;
+
+/// The elastic QP's penalty `rho` (see `qp::solve`) at the last answer.
+fn elastic_penalty(ws: &Workspace) -> f64 {
+    let tr = &ws.transcription;
+    let size = half_norm2(&ws.accepted, tr.blocks(), tr.basis.free);
+    ELASTIC_PENALTY_REL * (1.0 + libm::sqrt(2.0 * size))
+}
+
+/// Every constraint `y` misses by more than `tol` (normalised, the QP's feasibility tolerance:
+/// the test by which the elastic QP said a slack is left, so the list is never empty then), in
+/// the list's order. Not inlined: its frame is on the stack only while it runs.
+#[inline(never)]
+fn name_unmet(tr: &Transcription, y: &Coefficients, tol: f64, unmet: &mut Unmet) {
+    *unmet = Unmet::new();
+    let free = tr.basis.free;
+    let mut offer = |id: RowId, scale: f64| {
+        let view = tr.view(id);
+        let shortfall = view.rhs - row_dot(&view, y, free);
+        let shortfall_rel = shortfall / scale;
+        if view.norm > 0.0 && shortfall / view.norm > tol {
+            if let Some(constraint) = certificate::describe(tr, id) {
+                unmet.offer(UnmetConstraint {
+                    constraint,
+                    shortfall,
+                    shortfall_rel,
+                });
+            }
+        }
+    };
+    for block in 0..tr.blocks() {
+        for node in 0..tr.grid.nodes() {
+            let (block, node) = (u8_of(block), u8_of(node));
+            for upper in [true, false] {
+                offer(RowId::Control { block, node, upper }, tr.max_control_fu);
+            }
+        }
+    }
+    for (pair, (&count, checks)) in tr
+        .check_count
+        .iter()
+        .zip(tr.checks.iter())
+        .take(tr.pair_count)
+        .indexed()
+    {
+        for (c, check) in checks.iter().take(count).indexed() {
+            if !check.pruned {
+                let id = RowId::KeepOut {
+                    pair: u8_of(pair),
+                    check: u8_of(c),
+                };
+                offer(id, tr.keep_out_lu);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::indexing_slicing, clippy::unwrap_used, clippy::expect_used)]
+mod tests {
+    use super::super::certificate::ActiveConstraint;
+    use super::super::{self as pseudospectral, Problem, SolveStatus, Spacecraft};
+    use super::*;
+
+    /// Two spacecraft at rest swap places along x (from +-x0 to -+x0) in T = 10 with
+    /// Umax = 1, m = 1, keeping `keep_out` apart.
+    fn swap(x0: f64, keep_out: f64) -> Problem {
+        let mut spacecraft = heapless::Vec::new();
+        for sign in [1.0, -1.0] {
+            spacecraft
+                .push(Spacecraft {
+                    mass_mu: 1.0,
+                    initial_state: [sign * x0, 0.0, 0.0, 0.0, 0.0, 0.0],
+                    final_state: [-sign * x0, 0.0, 0.0, 0.0, 0.0, 0.0],
+                })
+                .unwrap();
+        }
+        Problem {
+            horizon_tu: 10.0,
+            max_control_fu: 1.0,
+            keep_out_lu: keep_out,
+            degree: 12,
+            test_points: true,
+            spacecraft,
+        }
+    }
+
+    fn solve(problem: &Problem) -> Solution {
+        let mut ws = Workspace::new();
+        let mut out = Solution::new();
+        pseudospectral::solve(problem, &Settings::default(), &mut ws, &mut out).unwrap();
+        out
+    }
+
+    #[test]
+    fn an_unseparable_swap_is_infeasible_and_names_the_pair_and_the_bounds() {
+        // Each spacecraft must return to y = z = 0 at rest, so with |u| <= 1 per axis it can
+        // be at most Umax (T/4)^2 = 6.25 LU off the x axis on each of y and z: the pair at most
+        // 2 sqrt(2) 6.25 = 17.7 LU apart when their x coincide. d = 20 cannot be kept (the
+        // start, 22 LU apart, can).
+        let reach = 2.0 * libm::sqrt(2.0) * 1.0 * (10.0f64 / 4.0).powi(2);
+        assert!(reach < 20.0);
+        let out = solve(&swap(11.0, 20.0));
+        assert_eq!(out.info.status, SolveStatus::Infeasible);
+        assert_eq!(out.info.elastic_subproblems, 1);
+        let named = out.unmet.named();
+        assert!(!named.is_empty());
+        assert!(named
+            .iter()
+            .all(|u| u.shortfall > 0.0 && u.shortfall_rel > 0.0));
+        // Keep-out checks first, then control bounds, each kind largest first.
+        let keep_out =
+            |u: &UnmetConstraint| matches!(u.constraint, ActiveConstraint::KeepOut { .. });
+        assert!(named.windows(2).all(|w| {
+            (keep_out(&w[0]) && !keep_out(&w[1]))
+                || (keep_out(&w[0]) == keep_out(&w[1]) && w[0].shortfall_rel >= w[1].shortfall_rel)
+        }));
+        // The keep-out of the pair, around the crossing, and the bounds a swerve would exceed.
+        assert!(named.iter().any(|u| matches!(
+            u.constraint,
+            ActiveConstraint::KeepOut { pair: (0, 1), time_tu } if time_tu > 2.0 && time_tu < 8.0
+        )));
+        assert!(named
+            .iter()
+            .any(|u| matches!(u.constraint, ActiveConstraint::Control { axis: 1 | 2, .. })));
+        assert!(!out.info.status.is_usable());
+    }
+
+    #[test]
+    fn a_separable_swap_names_nothing() {
+        // d = 6 < 17.7: the pair can pass; nothing is named, whatever path the solve took.
+        let out = solve(&swap(11.0, 6.0));
+        assert!(out.info.status.is_usable(), "{:?}", out.info.status);
+        assert_eq!(out.unmet.count, 0);
+        assert!(out.min_separation_lu >= 6.0 - 1e-6);
+    }
 }

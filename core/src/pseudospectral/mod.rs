@@ -26,7 +26,7 @@ pub use error::{
 pub use lanczos::LANCZOS_STEPS;
 pub use problem::{Problem, Spacecraft};
 pub use settings::Settings;
-pub use solution::Solution;
+pub use solution::{Solution, Unmet, UnmetConstraint, MAX_UNMET};
 pub use status::{SolveInfo, SolveStatus, Stage};
 mod workspace;
 pub use workspace::Workspace;
@@ -77,6 +77,7 @@ mod output;
 mod packed;
 mod qp;
 mod qp_dual;
+mod qp_scan;
 mod setup;
 mod solver;
 mod transcription;

@@ -7,12 +7,14 @@
 //! number of variables or of candidate constraints. It is exact (no first-order tolerance
 //! games), each step adds the most violated constraint or drops one, the dual objective rises
 //! strictly, and the work per step is bounded by the capacities. Infeasibility is detected
-//! exactly (a violated row dependent on the active rows with no multiplier to release).
+//! exactly (a violated row dependent on the active rows with no multiplier to release); the
+//! same method with bounded multipliers solves the l1-elastic form of an infeasible QP
+//! (`solve`'s `penalty`; issue 9 item 3). Which row enters next: `qp_scan.rs`.
 
 use super::packed::{self, cholesky, set, solve_lower, solve_lower_transposed};
+use super::qp_scan;
 use super::transcription::{
-    block_dot, row_axpy, row_dot, rows_dot, Coefficients, NodeDots, RowId, Transcription,
-    MAX_BLOCKS,
+    row_axpy, row_dot, rows_dot, Coefficients, RowId, Transcription, MAX_BLOCKS,
 };
 use super::work_units;
 use crate::capacity::{MAX_ACTIVE, MAX_CHECKS_PER_PAIR, MAX_FREE_PER_AXIS, MAX_NODES, MAX_PAIRS};
@@ -27,6 +29,9 @@ pub(crate) enum QpOutcome {
     /// (every row met with the fallback's margin): usable as an iterate, not as a fixed point.
     Approximate,
     Infeasible,
+    /// The l1-elastic QP (`solve` with a finite penalty) ended with a positive slack: no answer of this
+    /// linearisation keeps every check and the control bound.
+    Elastic,
     IterationLimit,
     FactorFailure,
 }
@@ -63,9 +68,27 @@ pub(crate) struct QpState {
     /// Packed lower Gram factor (factor mode) or dual table (fallback mode).
     pub store: [f64; STORE_LEN],
     direction: Coefficients,
-    control_active: [[u8; MAX_NODES]; MAX_BLOCKS],
-    keep_out_active: [[bool; MAX_CHECKS_PER_PAIR]; MAX_PAIRS],
+    /// Per control node: `UPPER_ACTIVE`, `LOWER_ACTIVE`, `UPPER_ELASTIC`, `LOWER_ELASTIC` bits.
+    pub(super) control_flags: [[u8; MAX_NODES]; MAX_BLOCKS],
+    /// Per keep-out check: `ROW_ACTIVE`, `ROW_ELASTIC` bits.
+    pub(super) keep_out_flags: [[u8; MAX_CHECKS_PER_PAIR]; MAX_PAIRS],
+    /// Rows held elastic (multiplier at the penalty's bound, not in the active set).
+    pub(super) elastic_count: usize,
 }
+
+/// A row in the active set (keep-out flags; `row_bits` maps a control row's side onto it).
+pub(super) const ROW_ACTIVE: u8 = 1;
+/// A row held elastic by the l1-elastic QP (`solve` with a finite penalty): its multiplier sits
+/// at the penalty's bound and its violation is its slack.
+pub(super) const ROW_ELASTIC: u8 = 2;
+/// A control node's upper bound is active.
+pub(super) const UPPER_ACTIVE: u8 = 1;
+/// A control node's lower bound is active.
+pub(super) const LOWER_ACTIVE: u8 = 2;
+/// A control node's upper bound is elastic.
+pub(super) const UPPER_ELASTIC: u8 = 4;
+/// A control node's lower bound is elastic.
+pub(super) const LOWER_ELASTIC: u8 = 8;
 
 const NO_ROW: RowId = RowId::Control {
     block: 0,
@@ -83,27 +106,92 @@ impl QpState {
             mode: Mode::Factor,
             store: [0.0; STORE_LEN],
             direction: [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS],
-            control_active: [[0; MAX_NODES]; MAX_BLOCKS],
-            keep_out_active: [[false; MAX_CHECKS_PER_PAIR]; MAX_PAIRS],
+            control_flags: [[0; MAX_NODES]; MAX_BLOCKS],
+            keep_out_flags: [[0; MAX_CHECKS_PER_PAIR]; MAX_PAIRS],
+            elastic_count: 0,
+        }
+    }
+
+    /// A row's `ROW_ACTIVE` / `ROW_ELASTIC` bits (a row outside the tables has none).
+    fn flags(&self, id: RowId) -> u8 {
+        match id {
+            RowId::Control { block, node, upper } => {
+                let flags = self
+                    .control_flags
+                    .get(usize::from(block))
+                    .and_then(|row| row.get(usize::from(node)))
+                    .copied()
+                    .unwrap_or(0);
+                let (active, elastic) = if upper {
+                    (UPPER_ACTIVE, UPPER_ELASTIC)
+                } else {
+                    (LOWER_ACTIVE, LOWER_ELASTIC)
+                };
+                (if flags & active != 0 { ROW_ACTIVE } else { 0 })
+                    | (if flags & elastic != 0 { ROW_ELASTIC } else { 0 })
+            }
+            RowId::KeepOut { pair, check } => self
+                .keep_out_flags
+                .get(usize::from(pair))
+                .and_then(|row| row.get(usize::from(check)))
+                .copied()
+                .unwrap_or(0),
+        }
+    }
+
+    /// Set or clear one of a row's bits (`ROW_ACTIVE` or `ROW_ELASTIC`).
+    fn set_flag(&mut self, id: RowId, bit: u8, on: bool) {
+        let (slot, bit) = match id {
+            RowId::Control { block, node, upper } => {
+                let bit = match (bit, upper) {
+                    (ROW_ACTIVE, true) => UPPER_ACTIVE,
+                    (ROW_ACTIVE, false) => LOWER_ACTIVE,
+                    (_, true) => UPPER_ELASTIC,
+                    (_, false) => LOWER_ELASTIC,
+                };
+                let slot = self
+                    .control_flags
+                    .get_mut(usize::from(block))
+                    .and_then(|row| row.get_mut(usize::from(node)));
+                (slot, bit)
+            }
+            RowId::KeepOut { pair, check } => {
+                let slot = self
+                    .keep_out_flags
+                    .get_mut(usize::from(pair))
+                    .and_then(|row| row.get_mut(usize::from(check)));
+                (slot, bit)
+            }
+        };
+        if let Some(slot) = slot {
+            *slot = if on { *slot | bit } else { *slot & !bit };
         }
     }
 
     /// Whether a row is in the active set.
-    fn is_active(&self, id: RowId) -> bool {
-        match id {
-            RowId::Control { block, node, upper } => {
-                let bit = if upper { 1u8 } else { 2u8 };
-                self.control_active
-                    .get(usize::from(block))
-                    .and_then(|row| row.get(usize::from(node)))
-                    .is_some_and(|flags| flags & bit != 0)
-            }
-            // A row outside the table was never activated.
-            RowId::KeepOut { pair, check } => self
-                .keep_out_active
-                .get(usize::from(pair))
-                .and_then(|row| row.get(usize::from(check)))
-                .is_some_and(|&active| active),
+    pub(super) fn is_active(&self, id: RowId) -> bool {
+        self.flags(id) & ROW_ACTIVE != 0
+    }
+
+    /// Whether a row is held elastic.
+    pub(super) fn is_elastic(&self, id: RowId) -> bool {
+        self.flags(id) & ROW_ELASTIC != 0
+    }
+
+    /// Release a row held elastic (its multiplier moved to the fallback's table).
+    pub(super) fn release_elastic(&mut self, id: RowId) {
+        self.mark_elastic(id, false);
+    }
+
+    /// Hold a row elastic or release it, keeping `elastic_count`.
+    fn mark_elastic(&mut self, id: RowId, on: bool) {
+        if self.is_elastic(id) != on {
+            self.set_flag(id, ROW_ELASTIC, on);
+            self.elastic_count = if on {
+                self.elastic_count.saturating_add(1)
+            } else {
+                self.elastic_count.saturating_sub(1)
+            };
         }
     }
 
@@ -114,32 +202,13 @@ impl QpState {
         self.count = 0;
         self.peak = 0;
         self.mode = Mode::Factor;
-        self.control_active = [[0; MAX_NODES]; MAX_BLOCKS];
-        self.keep_out_active = [[false; MAX_CHECKS_PER_PAIR]; MAX_PAIRS];
+        self.control_flags = [[0; MAX_NODES]; MAX_BLOCKS];
+        self.keep_out_flags = [[0; MAX_CHECKS_PER_PAIR]; MAX_PAIRS];
+        self.elastic_count = 0;
     }
 
     pub(crate) fn mark(&mut self, id: RowId, on: bool) {
-        match id {
-            RowId::Control { block, node, upper } => {
-                let bit = if upper { 1u8 } else { 2u8 };
-                if let Some(slot) = self
-                    .control_active
-                    .get_mut(usize::from(block))
-                    .and_then(|row| row.get_mut(usize::from(node)))
-                {
-                    *slot = if on { *slot | bit } else { *slot & !bit };
-                }
-            }
-            RowId::KeepOut { pair, check } => {
-                if let Some(slot) = self
-                    .keep_out_active
-                    .get_mut(usize::from(pair))
-                    .and_then(|row| row.get_mut(usize::from(check)))
-                {
-                    *slot = on;
-                }
-            }
-        }
+        self.set_flag(id, ROW_ACTIVE, on);
     }
 
     /// Refactor the Gram matrix of the active rows (as the transcription now linearises
@@ -249,139 +318,6 @@ impl QpState {
     }
 }
 
-/// The most violated inactive constraint at `y`, as (row, slack / |row|).
-fn most_violated(tr: &Transcription, state: &QpState, y: &Coefficients) -> Option<(RowId, f64)> {
-    let free = tr.basis.free;
-    let mut best: Option<(RowId, f64)> = None;
-    let mut consider = |id: RowId, value: f64| match best {
-        Some((_, v)) if v <= value => {}
-        _ => best = Some((id, value)),
-    };
-    // Blocks and nodes within the transcription's (validated) counts, walked with their flags.
-    let nodes = tr.grid.nodes();
-    for (block, flags) in state.control_active.iter().take(tr.blocks()).indexed() {
-        let node_rows = tr.basis.accel_norm.iter().zip(tr.basis.accel.iter());
-        for (node, ((&norm, row), &flag)) in node_rows.zip(flags.iter()).take(nodes).indexed() {
-            if norm <= 0.0 {
-                continue;
-            }
-            let control = super::transcription::node_value(&tr.base_control, block, node)
-                + block_dot(row, y, block, free);
-            let (b, h) = (block as u8, node as u8);
-            if flag & 1 == 0 {
-                let slack = (tr.max_control_fu - control) / norm;
-                consider(
-                    RowId::Control {
-                        block: b,
-                        node: h,
-                        upper: true,
-                    },
-                    slack,
-                );
-            }
-            if flag & 2 == 0 {
-                let slack = (control + tr.max_control_fu) / norm;
-                consider(
-                    RowId::Control {
-                        block: b,
-                        node: h,
-                        upper: false,
-                    },
-                    slack,
-                );
-            }
-        }
-    }
-    let mut dots: NodeDots = [[0.0; MAX_NODES]; MAX_BLOCKS];
-    tr.node_dots(y, &mut dots);
-    // Pairs within the transcription's count, each with its checks and their active flags.
-    let pair_rows = tr.check_count.iter().zip(tr.pairs.iter());
-    let check_rows = tr.checks.iter().zip(state.keep_out_active.iter());
-    for (pair, ((&count, &(i, j)), (checks, active_flags))) in
-        pair_rows.zip(check_rows).take(tr.pair_count).indexed()
-    {
-        let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
-        let mass_factor = libm::sqrt(1.0 / (mi * mi) + 1.0 / (mj * mj));
-        for (c, (check, &active)) in checks.iter().zip(active_flags.iter()).take(count).indexed() {
-            if check.pruned || active {
-                continue;
-            }
-            let (_, row_norm) = tr.check_row(check.source);
-            let norm = row_norm * mass_factor;
-            if norm <= 0.0 {
-                continue;
-            }
-            let relative = tr.relative_with(pair, check.source, y, &dots);
-            let mut along = 0.0;
-            for (n, r) in check.normal.iter().zip(relative.iter()) {
-                along += n * r;
-            }
-            let slack = (along - tr.keep_out_for(pair)) / norm;
-            consider(
-                RowId::KeepOut {
-                    pair: pair as u8,
-                    check: c as u8,
-                },
-                slack,
-            );
-        }
-    }
-    best
-}
-
-/// The row belongs to the current transcription.
-fn exists(tr: &Transcription, id: RowId) -> bool {
-    match id {
-        RowId::Control { block, node, .. } => {
-            usize::from(block) < tr.blocks() && usize::from(node) < tr.grid.nodes()
-        }
-        RowId::KeepOut { pair, check } => {
-            usize::from(pair) < tr.pair_count
-                && tr
-                    .check_count
-                    .get(usize::from(pair))
-                    .is_some_and(|&count| usize::from(check) < count)
-        }
-    }
-}
-
-/// The most violated inactive row among `hint` (the previous QP's active set), if any is
-/// violated by more than `tol`.
-fn most_violated_hint(
-    tr: &Transcription,
-    state: &QpState,
-    y: &Coefficients,
-    (hint, hint_count): (&[RowId; MAX_ACTIVE], usize),
-    tol: f64,
-) -> Option<(RowId, f64)> {
-    let free = tr.basis.free;
-    let mut best: Option<(RowId, f64)> = None;
-    for &id in hint.iter().take(hint_count) {
-        if state.is_active(id) || !exists(tr, id) {
-            continue;
-        }
-        if let RowId::KeepOut { pair, check } = id {
-            let pruned = tr
-                .checks
-                .get(usize::from(pair))
-                .and_then(|row| row.get(usize::from(check)))
-                .is_none_or(|c| c.pruned);
-            if pruned {
-                continue;
-            }
-        }
-        let view = tr.view(id);
-        if view.norm <= 0.0 {
-            continue;
-        }
-        let slack = (row_dot(&view, y, free) - view.rhs) / view.norm;
-        if slack < -tol && best.is_none_or(|(_, b)| slack < b) {
-            best = Some((id, slack));
-        }
-    }
-    best
-}
-
 fn dense_norm2(v: &Coefficients, blocks: usize, free: usize) -> f64 {
     let mut sum = 0.0;
     for block in v.iter().take(blocks) {
@@ -394,6 +330,18 @@ fn dense_norm2(v: &Coefficients, blocks: usize, free: usize) -> f64 {
 
 /// Solve the QP from `y = 0`. `y` holds the optimum (or the last iterate) on return;
 /// `iterations` counts active-set changes.
+///
+/// `penalty` (`rho`; `f64::INFINITY` for the QP itself) bounds every row's multiplier by
+/// `rho / |a_k|`: the dual of the l1-elastic QP `min 1/2 |y|^2 + rho sum_k s_k`,
+/// `a_k^T y / |a_k| + s_k >= b_k / |a_k|`, `s_k >= 0` (issue 9, item 3). The dual active-set
+/// method extends to it with three more limits on a step: the entering row's multiplier
+/// reaching the bound (the row is then held *elastic*: its multiplier stays there, out of the
+/// factor, and its violation is its slack), an active row's reaching it (the row leaves the
+/// factor, elastic), and an elastic row the answer meets with room to spare entering back
+/// with its multiplier falling from the bound. The dual objective still rises at every step.
+/// With a finite penalty the QP is never infeasible; `Elastic` says a held row keeps a slack.
+// The active-set method's arguments, and the elastic penalty.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn solve(
     tr: &Transcription,
     state: &mut QpState,
@@ -402,6 +350,7 @@ pub(crate) fn solve(
     tol: f64,
     iterations: &mut u32,
     work: &mut Meter,
+    penalty: f64,
 ) -> QpOutcome {
     let free = tr.basis.free;
     let blocks = tr.blocks();
@@ -421,25 +370,40 @@ pub(crate) fn solve(
         if !work.spend(work_units::qp_hint(tr, hint_count)) {
             return QpOutcome::IterationLimit;
         }
-        let hinted = most_violated_hint(tr, state, y, (&hint, hint_count), tol);
+        let hinted = qp_scan::most_violated_hint(tr, state, y, (&hint, hint_count), tol);
         let picked = match hinted {
             Some(row) => Some(row),
             None => {
                 if !work.spend(work_units::qp_scan(tr)) {
                     return QpOutcome::IterationLimit;
                 }
-                most_violated(tr, state, y)
+                qp_scan::most_violated(tr, state, y)
             }
         };
-        let Some((p, violation)) = picked else {
-            return QpOutcome::Optimal;
+        // The entering row and the sign of its multiplier's change: +1 a violated row from
+        // zero, -1 an elastic row met with room to spare, from the bound.
+        let (p, sign) = match picked {
+            Some((p, violation)) if violation < -tol => (p, 1.0),
+            _ => {
+                let met = if state.elastic_count > 0 {
+                    qp_scan::most_met_elastic(tr, state, y, tol)
+                } else {
+                    None
+                };
+                match met {
+                    Some((p, _)) => (p, -1.0),
+                    None => return elastic_end(tr, state, y, tol),
+                }
+            }
         };
-        if violation >= -tol {
-            return QpOutcome::Optimal;
-        }
         let vp = tr.view(p);
         let norm2_p = vp.norm * vp.norm;
-        let mut multiplier_p = 0.0;
+        let cap_p = if penalty.is_finite() {
+            penalty / vp.norm
+        } else {
+            f64::INFINITY
+        };
+        let mut multiplier_p = if sign > 0.0 { 0.0 } else { cap_p };
         loop {
             // The step may add a row: keep the final checks of the larger working set.
             work.raise_reserve(work_units::reserve(tr, state.count.saturating_add(1)));
@@ -470,41 +434,66 @@ pub(crate) fn solve(
             // A row whose part orthogonal to the active rows is below 1e-7 of its norm counts as
             // dependent: adding it would make the Gram factor ill-conditioned.
             let full_step = if z2 > 1e-14 * norm2_p {
-                Some(-slack / z2)
+                Some(-sign * slack / z2)
             } else {
                 None
             };
-            let mut partial: Option<(usize, f64)> = None;
-            for (j, (&rj, &multiplier_j)) in r.iter().zip(state.multiplier.iter()).take(k).indexed()
+            // An active row's multiplier changes by -sign r_j per unit step: the first to reach
+            // zero leaves the set, the first to reach its bound is held elastic.
+            let mut partial: Option<(usize, f64, bool)> = None;
+            for (j, ((&rj, &multiplier_j), &row)) in r
+                .iter()
+                .zip(state.multiplier.iter())
+                .zip(state.active.iter())
+                .take(k)
+                .indexed()
             {
-                if rj > 0.0 {
-                    let ratio = multiplier_j / rj;
-                    if partial.is_none_or(|(_, best)| ratio < best) {
-                        partial = Some((j, ratio));
+                let rate = sign * rj;
+                let limit = if rate > 0.0 {
+                    Some((multiplier_j / rate, false))
+                } else if rate < 0.0 && penalty.is_finite() {
+                    // Elastic form only: the row's bound, `penalty / |a_j|`.
+                    let cap_j = penalty / tr.view(row).norm;
+                    Some(((cap_j - multiplier_j) / -rate, true))
+                } else {
+                    None
+                };
+                if let Some((ratio, to_bound)) = limit {
+                    if partial.is_none_or(|(_, best, _)| ratio < best) {
+                        partial = Some((j, ratio, to_bound));
                     }
                 }
             }
-            let step = match (full_step, partial) {
-                (None, None) => return QpOutcome::Infeasible,
-                (Some(f), None) => f,
-                (None, Some((_, t))) => t,
-                (Some(f), Some((_, t))) => f.min(t),
+            // The entering row's own multiplier: up to the bound, or down to zero.
+            let own = if sign > 0.0 {
+                cap_p - multiplier_p
+            } else {
+                multiplier_p
             };
+            let step = match (full_step, partial) {
+                (None, None) if own.is_finite() => own,
+                (None, None) => return QpOutcome::Infeasible,
+                (Some(f), None) => f.min(own),
+                (None, Some((_, t, _))) => t.min(own),
+                (Some(f), Some((_, t, _))) => f.min(t).min(own),
+            };
+            let signed_step = sign * step;
             if full_step.is_some() {
                 for (b, values) in y.iter_mut().indexed().take(blocks) {
                     if let Some(dir) = state.direction.get(b) {
                         for (slot, d) in values.iter_mut().zip(dir.iter()).take(free) {
-                            *slot += step * d;
+                            *slot += signed_step * d;
                         }
                     }
                 }
             }
             for (m, rj) in state.multiplier.iter_mut().zip(r.iter()).take(k) {
-                *m -= step * rj;
+                *m -= signed_step * rj;
             }
-            multiplier_p += step;
+            multiplier_p += signed_step;
             let full = matches!(full_step, Some(f) if f <= step);
             if full {
+                state.mark_elastic(p, false);
                 if k >= MAX_ACTIVE {
                     // The working set needs more rows than the factor holds (up to 3 M (N - 3)
                     // can be independent, 504 at capacity: far beyond any RAM budget). Continue
@@ -513,11 +502,12 @@ pub(crate) fn solve(
                         tr,
                         state,
                         y,
-                        (p, multiplier_p),
+                        Some((p, multiplier_p)),
                         max_iter,
                         tol,
                         iterations,
                         work,
+                        penalty,
                     );
                 }
                 for (c, value) in l.iter().indexed().take(k) {
@@ -535,12 +525,37 @@ pub(crate) fn solve(
                 state.mark(p, true);
                 break;
             }
-            let Some((drop, _)) = partial else {
+            if own <= step {
+                // The entering row's multiplier reached its bound (held elastic) or zero (an
+                // elastic row released): done with this row.
+                state.mark_elastic(p, sign > 0.0);
+                break;
+            }
+            let Some((leaving, _, to_bound)) = partial else {
                 return QpOutcome::Infeasible;
             };
-            if !state.drop_row(tr, drop) {
+            let leaving_id = state.active.get(leaving).copied();
+            if !state.drop_row(tr, leaving) {
                 return QpOutcome::FactorFailure;
             }
+            if let (true, Some(id)) = (to_bound, leaving_id) {
+                state.mark_elastic(id, true);
+            }
         }
+    }
+}
+
+/// The end of a solve with no candidate row left: `Optimal` unless rows are held elastic, then
+/// `Elastic` when one of them keeps a slack beyond `tol` and `Approximate` when none does (the
+/// rows are met, but the held multipliers are not in the active set the rest of the solver
+/// reads, so the answer is no fixed point).
+fn elastic_end(tr: &Transcription, state: &QpState, y: &Coefficients, tol: f64) -> QpOutcome {
+    if state.elastic_count == 0 {
+        return QpOutcome::Optimal;
+    }
+    if qp_scan::elastic_slack_left(tr, state, y, tol) {
+        QpOutcome::Elastic
+    } else {
+        QpOutcome::Approximate
     }
 }

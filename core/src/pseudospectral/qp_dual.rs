@@ -73,19 +73,27 @@ fn control_step(control: f64, umax: f64, norm2: f64, multiplier: f64) -> f64 {
 }
 
 /// Continue a QP without a factor. `entering` is the row the active-set method was adding and
-/// its multiplier so far. On return `state.mode` is `Dual` and `state.store` holds every
-/// multiplier.
+/// its multiplier so far (none for a start from zero). On return `state.mode` is `Dual` and
+/// `state.store` holds every multiplier.
+///
+/// `penalty` (`rho`; `f64::INFINITY`: none) bounds every row's multiplier by `rho / |a_k|`
+/// (a control range row's in size), which makes this the dual of the l1-elastic QP
+/// `min 1/2 |y|^2 + rho sum_k s_k`, `a_k^T y / |a_k| + s_k >= b_k / |a_k|`, `s_k >= 0` (`s_k`
+/// a distance in `y`): a row whose multiplier reaches the bound stops pulling and keeps its
+/// violation as its slack. `QpOutcome::Elastic` says the converged answer keeps a positive
+/// slack somewhere.
 // The active-set method's arguments, carried on unchanged, plus its entering row.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn solve(
     tr: &Transcription,
     state: &mut QpState,
     y: &mut Coefficients,
-    entering: (RowId, f64),
+    entering: Option<(RowId, f64)>,
     max_sweeps: u16,
     tol: f64,
     iterations: &mut u32,
     work: &mut crate::work::Meter,
+    penalty: f64,
 ) -> QpOutcome {
     let free = tr.basis.free;
     // Load the active-set method's multipliers (it is dual feasible: `y = A^T l`).
@@ -100,8 +108,35 @@ pub(crate) fn solve(
         }
         state.mark(id, false);
     }
-    if let Some(slot) = dual_index(entering.0).and_then(|i| state.store.get_mut(i)) {
-        *slot += signed(entering.0, entering.1);
+    if let Some((id, value)) = entering {
+        if let Some(slot) = dual_index(id).and_then(|i| state.store.get_mut(i)) {
+            *slot += signed(id, value);
+        }
+    }
+    // Rows the elastic QP held at the bound keep their multiplier `penalty / |a_k|` here.
+    if state.elastic_count > 0 {
+        for pair in 0..tr.pair_count {
+            for check in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
+                let id = keep_out_id(pair, check);
+                if state.is_elastic(id) {
+                    hold_at_bound(tr, state, id, penalty);
+                }
+            }
+        }
+        for block in 0..tr.blocks() {
+            for node in 0..tr.grid.nodes() {
+                for upper in [true, false] {
+                    let id = RowId::Control {
+                        block: u8::try_from(block).unwrap_or(u8::MAX),
+                        node: u8::try_from(node).unwrap_or(u8::MAX),
+                        upper,
+                    };
+                    if state.is_elastic(id) {
+                        hold_at_bound(tr, state, id, penalty);
+                    }
+                }
+            }
+        }
     }
     state.count = 0;
     state.mode = Mode::Dual;
@@ -116,6 +151,8 @@ pub(crate) fn solve(
             return QpOutcome::IterationLimit;
         }
         let mut worst = 0.0f64;
+        // The largest violation of a row at its bound (the elastic slack).
+        let mut elastic = 0.0f64;
         let mut largest_move = 0.0f64;
         for block in 0..tr.blocks() {
             for node in 0..tr.grid.nodes() {
@@ -131,9 +168,20 @@ pub(crate) fn solve(
                 }
                 let control =
                     node_value(&tr.base_control, block, node) + block_dot(row, y, block, free);
-                worst = worst.max((libm::fabs(control) - tr.max_control_fu) / norm + TIGHTEN);
+                let violation = (libm::fabs(control) - tr.max_control_fu) / norm + TIGHTEN;
                 let multiplier = state.store.get(index).copied().unwrap_or(0.0);
-                let delta = control_step(control, tr.max_control_fu, norm * norm, multiplier);
+                let mut delta = control_step(control, tr.max_control_fu, norm * norm, multiplier);
+                let cap = penalty / norm;
+                if multiplier + delta > cap {
+                    delta = cap - multiplier;
+                } else if multiplier + delta < -cap {
+                    delta = -cap - multiplier;
+                }
+                if libm::fabs(multiplier + delta) >= cap {
+                    elastic = elastic.max(violation);
+                } else {
+                    worst = worst.max(violation);
+                }
                 if delta != 0.0 {
                     if let Some(slot) = state.store.get_mut(index) {
                         *slot = multiplier + delta;
@@ -167,9 +215,14 @@ pub(crate) fn solve(
                 }
                 let norm2 = view.norm * view.norm;
                 let slack = row_dot(&view, y, free) - view.rhs - TIGHTEN * view.norm;
-                worst = worst.max(-slack / view.norm);
                 let multiplier = state.store.get(index).copied().unwrap_or(0.0);
-                let delta = (-slack / norm2).max(-multiplier);
+                let cap = penalty / view.norm;
+                let delta = (-slack / norm2).max(-multiplier).min(cap - multiplier);
+                if multiplier + delta >= cap {
+                    elastic = elastic.max(-slack / view.norm);
+                } else {
+                    worst = worst.max(-slack / view.norm);
+                }
                 if delta != 0.0 {
                     if let Some(slot) = state.store.get_mut(index) {
                         *slot = multiplier + delta;
@@ -183,20 +236,38 @@ pub(crate) fn solve(
         *iterations = iterations.saturating_add(1);
         // Converged: every tightened row met within half the tightening (so every original row
         // holds with margin), and the last sweep moved y by no more than the QP's tolerance.
+        // An elastic row (at the bound) counts among the met rows: its violation is its slack.
         let feasible = worst <= 0.5 * TIGHTEN;
+        let slack_left = elastic > TIGHTEN;
         if feasible && largest_move <= tol.max(1e-3 * TIGHTEN) {
             state.peak = state.peak.max(positive_multipliers(state));
-            return QpOutcome::Optimal;
+            return if slack_left {
+                QpOutcome::Elastic
+            } else {
+                QpOutcome::Optimal
+            };
         }
         if sweeps >= max_sweeps {
             state.peak = state.peak.max(positive_multipliers(state));
-            return if feasible {
-                QpOutcome::Approximate
-            } else {
+            return if !feasible {
                 QpOutcome::IterationLimit
+            } else if slack_left {
+                QpOutcome::Elastic
+            } else {
+                QpOutcome::Approximate
             };
         }
     }
+}
+
+/// Move an elastic row's multiplier (at the bound `penalty / |a_k|`) into the dual table and
+/// release the row's elastic flag: from here the bound is the table's.
+fn hold_at_bound(tr: &Transcription, state: &mut QpState, id: RowId, penalty: f64) {
+    let bound = penalty / tr.view(id).norm;
+    if let Some(slot) = dual_index(id).and_then(|i| state.store.get_mut(i)) {
+        *slot += signed(id, bound);
+    }
+    state.release_elastic(id);
 }
 
 fn control_id(block: usize, node: usize) -> RowId {

@@ -1,8 +1,9 @@
 //! The planner-A result: node states and controls, cost, verified separation.
 
-use super::certificate::Certificate;
+use super::certificate::{ActiveConstraint, Certificate};
 use super::status::SolveInfo;
 use crate::capacity::{MAX_NODES, MAX_PAIRS, MAX_SPACECRAFT, TEST_POINTS_PER_PAIR};
+use crate::indexed::IndexedExt as _;
 use serde::{Deserialize, Serialize};
 
 /// A solved (or best) trajectory set, written by a solve into caller-owned memory.
@@ -41,6 +42,116 @@ pub struct Solution {
     pub info: SolveInfo,
     /// Optimality measures of the returned trajectory (`Solved` requires them met).
     pub certificate: Certificate,
+    /// With `Infeasible`: the constraints the l1-elastic subproblem could not meet, the pairs
+    /// that cannot be separated and when (empty with any other status).
+    pub unmet: Unmet,
+}
+
+/// Most constraints an `Infeasible` answer names (the largest shortfalls).
+pub const MAX_UNMET: usize = 8;
+
+/// A constraint the l1-elastic subproblem could not meet.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct UnmetConstraint {
+    /// Which: a pair's keep-out at a time, or a spacecraft's control bound at a node.
+    pub constraint: ActiveConstraint,
+    /// By how much the elastic answer misses it in the constraint's own units: LU inside the
+    /// linearised keep-out (`d` less the separation along the check's normal), FU beyond
+    /// Umax.
+    pub shortfall: f64,
+    /// `shortfall` relative to `d` (keep-out) or Umax (control): the order of the list.
+    pub shortfall_rel: f64,
+}
+
+const NO_UNMET: UnmetConstraint = UnmetConstraint {
+    constraint: ActiveConstraint::KeepOut {
+        pair: (0, 0),
+        time_tu: 0.0,
+    },
+    shortfall: 0.0,
+    shortfall_rel: 0.0,
+};
+
+/// The constraints an `Infeasible` answer names: why no plan was found.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Unmet {
+    /// Constraints named, at most `MAX_UNMET`.
+    pub count: u8,
+    /// More constraints kept a positive slack than `constraints` holds (the smallest
+    /// relative shortfalls were left out).
+    pub truncated: bool,
+    /// The constraints: keep-out checks first, then control bounds, each kind by relative
+    /// shortfall, largest first.
+    pub constraints: [UnmetConstraint; MAX_UNMET],
+}
+
+impl Default for Unmet {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Unmet {
+    /// None named.
+    pub const fn new() -> Self {
+        Self {
+            count: 0,
+            truncated: false,
+            constraints: [NO_UNMET; MAX_UNMET],
+        }
+    }
+
+    /// The named constraints.
+    pub fn named(&self) -> &[UnmetConstraint] {
+        self.constraints
+            .get(..usize::from(self.count))
+            .unwrap_or(&self.constraints)
+    }
+
+    /// Keep `entry` if it is among the first `MAX_UNMET` offered so far in the list's order:
+    /// keep-out checks before control bounds (the pairs that cannot be separated are what an
+    /// `Infeasible` answer is about), each kind by relative shortfall, largest first.
+    pub(crate) fn offer(&mut self, entry: UnmetConstraint) {
+        let count = usize::from(self.count).min(MAX_UNMET);
+        // The list is kept sorted: the entry goes before the first it comes before.
+        let mut place = count;
+        for (k, named) in self.constraints.iter().take(count).indexed() {
+            if before(&entry, named) {
+                place = k;
+                break;
+            }
+        }
+        if place >= MAX_UNMET {
+            self.truncated = true;
+            return;
+        }
+        if count == MAX_UNMET {
+            self.truncated = true;
+        } else {
+            self.count = self.count.saturating_add(1);
+        }
+        // Shift the tail down one place (the last falls off when full), then insert. (No
+        // library sort: its order-violation check is a panic path.)
+        let live = usize::from(self.count).min(MAX_UNMET);
+        if let Some(tail) = self.constraints.get_mut(place..live) {
+            if !tail.is_empty() {
+                tail.rotate_right(1);
+            }
+            if let Some(first) = tail.first_mut() {
+                *first = entry;
+            }
+        }
+    }
+}
+
+/// `a` comes before `b` in the list's order (see `Unmet::offer`).
+fn before(a: &UnmetConstraint, b: &UnmetConstraint) -> bool {
+    let keep_out = |u: &UnmetConstraint| matches!(u.constraint, ActiveConstraint::KeepOut { .. });
+    match (keep_out(a), keep_out(b)) {
+        (true, false) => true,
+        (false, true) => false,
+        _ => a.shortfall_rel > b.shortfall_rel,
+    }
 }
 
 impl Solution {
@@ -71,8 +182,10 @@ impl Solution {
                 work_units: 0,
                 max_violation: 0.0,
                 saddle_escapes: 0,
+                elastic_subproblems: 0,
             },
             certificate: Certificate::new(),
+            unmet: Unmet::new(),
         }
     }
 }
@@ -100,11 +213,61 @@ impl Solution {
         }
         self.info = SolveInfo::default();
         self.certificate = Certificate::new();
+        self.unmet = Unmet::new();
     }
 }
 
 impl Default for Solution {
     fn default() -> Self {
         Self::new()
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::indexing_slicing, clippy::unwrap_used, clippy::float_cmp)]
+mod tests {
+    use super::*;
+
+    fn keep_out(shortfall_rel: f64) -> UnmetConstraint {
+        UnmetConstraint {
+            constraint: ActiveConstraint::KeepOut {
+                pair: (0, 1),
+                time_tu: shortfall_rel,
+            },
+            shortfall: 2.0 * shortfall_rel,
+            shortfall_rel,
+        }
+    }
+
+    #[test]
+    fn unmet_keeps_the_largest_relative_shortfalls_in_order() {
+        let mut unmet = Unmet::new();
+        assert!(unmet.named().is_empty());
+        // Twelve offers in a scrambled order: the eight largest stay, largest first.
+        for k in [3, 11, 0, 7, 5, 9, 1, 10, 2, 8, 6, 4] {
+            unmet.offer(keep_out(f64::from(k)));
+        }
+        let kept: heapless::Vec<f64, MAX_UNMET> =
+            unmet.named().iter().map(|u| u.shortfall_rel).collect();
+        assert_eq!(kept.as_slice(), &[11.0, 10.0, 9.0, 8.0, 7.0, 6.0, 5.0, 4.0]);
+        assert!(unmet.truncated);
+        // A control bound, however large its shortfall, comes after the keep-out checks.
+        unmet.offer(UnmetConstraint {
+            constraint: ActiveConstraint::Control {
+                spacecraft: 0,
+                axis: 0,
+                node: 0,
+                upper: true,
+            },
+            shortfall: 100.0,
+            shortfall_rel: 100.0,
+        });
+        assert_eq!(unmet.named()[0].shortfall_rel, 11.0);
+        let mut few = Unmet::new();
+        few.offer(keep_out(1.0));
+        few.offer(keep_out(3.0));
+        assert_eq!(few.named().len(), 2);
+        assert_eq!(few.named()[0].shortfall_rel, 3.0);
+        assert!(!few.truncated);
     }
 }

@@ -100,6 +100,11 @@ pub(crate) fn solve(
     out.horizon_tu = problem.horizon_tu;
     let status = run(problem, settings, ws, warm, lift, out);
     out.info.status = status;
+    if status != SolveStatus::Infeasible {
+        // Named by an elastic subproblem of a run whose answer was not kept (a saddle escape's
+        // or a flat probe's): the list belongs to `Infeasible` alone.
+        out.unmet = super::solution::Unmet::new();
+    }
     out.info.work_units = ws.work.used();
     Ok(())
 }

@@ -31,8 +31,10 @@ pub enum SolveStatus {
     SeparationNotVerified = 2,
     /// The SQP iteration limit was reached and the last iterate is not verified feasible.
     MaxIterations = 3,
-    /// A QP subproblem was infeasible (the linearised keep-out and control bounds conflict).
-    /// Not feasible.
+    /// A subproblem's l1-elastic QP kept a positive slack: at the last answer no step within
+    /// the control bound meets the linearised keep-out of the checks `Solution::unseparated`
+    /// names (pairs, times, shortfalls). Not feasible; not a proof that no plan exists (the
+    /// linearisation is an inner approximation of the keep-out).
     Infeasible = 4,
     /// A QP hit its iteration limit (never its active-set capacity: past it the QP continues
     /// without a factor) and the last iterate is not verified feasible.
@@ -107,6 +109,8 @@ pub struct SolveInfo {
     /// Saddle escapes tried (a step along negative reduced curvature, then the iteration
     /// again); at most `MAX_SADDLE_ESCAPES` (2).
     pub saddle_escapes: u8,
+    /// Subproblems the active-set QP found infeasible and solved again in l1-elastic form.
+    pub elastic_subproblems: u8,
     /// Work units used (`Settings::work_budget`), the final checks included.
     pub work_units: u64,
 }

@@ -3,7 +3,9 @@
 use crate::cli::solve::{report_rejection, EXIT_NOT_USABLE, EXIT_USABLE};
 use crate::fixture::pseudospectral::PseudospectralFixture;
 use anyhow::{anyhow, Result};
-use reconfig_core::pseudospectral::{self, Settings, Solution, Workspace};
+use reconfig_core::pseudospectral::{
+    self, ActiveConstraint, Settings, Solution, UnmetConstraint, Workspace,
+};
 use serde_json::json;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -110,6 +112,9 @@ pub fn to_json(name: &str, timed: &Timed) -> serde_json::Value {
         "max_violation": s.info.max_violation,
         "max_dynamics_error": s.max_dynamics_error,
         "certificate": &s.certificate,
+        "unmet": s.unmet.named(),
+        "unmet_truncated": s.unmet.truncated,
+        "elastic_subproblems": s.info.elastic_subproblems,
         "solve_time_s": timed.solve_time_s,
         "node_times": &s.node_times_tu[..nodes],
         "states": states,
@@ -181,6 +186,12 @@ pub fn run(fixture: &PseudospectralFixture, json_output: bool) -> Result<ExitCod
             c.multipliers.len(),
             if c.multipliers_complete { "" } else { " (more than listed)" }
         );
+        for unmet in s.unmet.named() {
+            println!("  cannot be met        {}", describe_unmet(unmet));
+        }
+        if s.unmet.truncated {
+            println!("  cannot be met        (more, with smaller shortfalls)");
+        }
         println!("  solve time           {:.3} ms", timed.solve_time_s * 1e3);
     }
     Ok(ExitCode::from(if timed.solution.info.status.is_usable() {
@@ -188,4 +199,33 @@ pub fn run(fixture: &PseudospectralFixture, json_output: bool) -> Result<ExitCod
     } else {
         EXIT_NOT_USABLE
     }))
+}
+
+/// One constraint an `Infeasible` answer names, for a person (spacecraft numbered from 1).
+pub fn describe_unmet(unmet: &UnmetConstraint) -> String {
+    match unmet.constraint {
+        ActiveConstraint::KeepOut { pair, time_tu } => format!(
+            "keep-out of spacecraft {} and {} at t = {:.4}: {:.3e} LU inside it",
+            pair.0 + 1,
+            pair.1 + 1,
+            time_tu,
+            unmet.shortfall
+        ),
+        ActiveConstraint::Control {
+            spacecraft,
+            axis,
+            node,
+            upper,
+        } => format!(
+            "control bound of spacecraft {}, axis {}, node {} ({}): {:.3e} FU beyond Umax",
+            spacecraft + 1,
+            ["x", "y", "z"]
+                .get(usize::from(axis))
+                .copied()
+                .unwrap_or("?"),
+            node,
+            if upper { "upper" } else { "lower" },
+            unmet.shortfall
+        ),
+    }
 }

@@ -1,0 +1,230 @@
+//! The QP's row scans: which constraint enters the working set next (`qp.rs`).
+//!
+//! A row is a candidate when it is neither in the active set nor elastic (its multiplier held
+//! at the l1 penalty's bound by the elastic QP); an elastic row is a candidate to leave that
+//! bound when the answer meets it with room to spare (`most_met_elastic`).
+
+use super::qp::{QpState, LOWER_ACTIVE, LOWER_ELASTIC, ROW_ELASTIC, UPPER_ACTIVE, UPPER_ELASTIC};
+use super::transcription::{
+    block_dot, row_dot, Coefficients, NodeDots, RowId, Transcription, MAX_BLOCKS,
+};
+use crate::capacity::{MAX_ACTIVE, MAX_CHECKS_PER_PAIR, MAX_NODES};
+use crate::indexed::IndexedExt as _;
+
+/// The most violated constraint at `y` neither active nor elastic, as (row, slack / |row|).
+pub(super) fn most_violated(
+    tr: &Transcription,
+    state: &QpState,
+    y: &Coefficients,
+) -> Option<(RowId, f64)> {
+    let free = tr.basis.free;
+    let mut best: Option<(RowId, f64)> = None;
+    let mut consider = |id: RowId, value: f64| match best {
+        Some((_, v)) if v <= value => {}
+        _ => best = Some((id, value)),
+    };
+    // Blocks and nodes within the transcription's (validated) counts, walked with their flags.
+    let nodes = tr.grid.nodes();
+    for (block, flags) in state.control_flags.iter().take(tr.blocks()).indexed() {
+        let node_rows = tr.basis.accel_norm.iter().zip(tr.basis.accel.iter());
+        for (node, ((&norm, row), &flag)) in node_rows.zip(flags.iter()).take(nodes).indexed() {
+            if norm <= 0.0 {
+                continue;
+            }
+            let control = super::transcription::node_value(&tr.base_control, block, node)
+                + block_dot(row, y, block, free);
+            let (b, h) = (block as u8, node as u8);
+            if flag & (UPPER_ACTIVE | UPPER_ELASTIC) == 0 {
+                let slack = (tr.max_control_fu - control) / norm;
+                consider(
+                    RowId::Control {
+                        block: b,
+                        node: h,
+                        upper: true,
+                    },
+                    slack,
+                );
+            }
+            if flag & (LOWER_ACTIVE | LOWER_ELASTIC) == 0 {
+                let slack = (control + tr.max_control_fu) / norm;
+                consider(
+                    RowId::Control {
+                        block: b,
+                        node: h,
+                        upper: false,
+                    },
+                    slack,
+                );
+            }
+        }
+    }
+    let mut dots: NodeDots = [[0.0; MAX_NODES]; MAX_BLOCKS];
+    tr.node_dots(y, &mut dots);
+    // Pairs within the transcription's count, each with its checks and their active flags.
+    let pair_rows = tr.check_count.iter().zip(tr.pairs.iter());
+    let check_rows = tr.checks.iter().zip(state.keep_out_flags.iter());
+    for (pair, ((&count, &(i, j)), (checks, active_flags))) in
+        pair_rows.zip(check_rows).take(tr.pair_count).indexed()
+    {
+        let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
+        let mass_factor = libm::sqrt(1.0 / (mi * mi) + 1.0 / (mj * mj));
+        for (c, (check, &flags)) in checks.iter().zip(active_flags.iter()).take(count).indexed() {
+            if check.pruned || flags != 0 {
+                continue;
+            }
+            let (_, row_norm) = tr.check_row(check.source);
+            let norm = row_norm * mass_factor;
+            if norm <= 0.0 {
+                continue;
+            }
+            let relative = tr.relative_with(pair, check.source, y, &dots);
+            let mut along = 0.0;
+            for (n, r) in check.normal.iter().zip(relative.iter()) {
+                along += n * r;
+            }
+            let slack = (along - tr.keep_out_for(pair)) / norm;
+            consider(
+                RowId::KeepOut {
+                    pair: pair as u8,
+                    check: c as u8,
+                },
+                slack,
+            );
+        }
+    }
+    best
+}
+
+/// The row belongs to the current transcription.
+pub(super) fn exists(tr: &Transcription, id: RowId) -> bool {
+    match id {
+        RowId::Control { block, node, .. } => {
+            usize::from(block) < tr.blocks() && usize::from(node) < tr.grid.nodes()
+        }
+        RowId::KeepOut { pair, check } => {
+            usize::from(pair) < tr.pair_count
+                && tr
+                    .check_count
+                    .get(usize::from(pair))
+                    .is_some_and(|&count| usize::from(check) < count)
+        }
+    }
+}
+
+/// The most violated row neither active nor elastic among `hint` (the previous QP's active
+/// set), if any is violated by more than `tol`.
+pub(super) fn most_violated_hint(
+    tr: &Transcription,
+    state: &QpState,
+    y: &Coefficients,
+    (hint, hint_count): (&[RowId; MAX_ACTIVE], usize),
+    tol: f64,
+) -> Option<(RowId, f64)> {
+    let free = tr.basis.free;
+    let mut best: Option<(RowId, f64)> = None;
+    for &id in hint.iter().take(hint_count) {
+        if state.is_active(id) || state.is_elastic(id) || !exists(tr, id) {
+            continue;
+        }
+        if let RowId::KeepOut { pair, check } = id {
+            let pruned = tr
+                .checks
+                .get(usize::from(pair))
+                .and_then(|row| row.get(usize::from(check)))
+                .is_none_or(|c| c.pruned);
+            if pruned {
+                continue;
+            }
+        }
+        let view = tr.view(id);
+        if view.norm <= 0.0 {
+            continue;
+        }
+        let slack = (row_dot(&view, y, free) - view.rhs) / view.norm;
+        if slack < -tol && best.is_none_or(|(_, b)| slack < b) {
+            best = Some((id, slack));
+        }
+    }
+    best
+}
+
+/// The elastic row the answer `y` meets by the most (more than `tol`, normalised), if any: its
+/// multiplier, held at the penalty's bound, should fall (a row with slack has none).
+pub(super) fn most_met_elastic(
+    tr: &Transcription,
+    state: &QpState,
+    y: &Coefficients,
+    tol: f64,
+) -> Option<(RowId, f64)> {
+    let free = tr.basis.free;
+    let mut best: Option<(RowId, f64)> = None;
+    for_each_elastic(tr, state, |id| {
+        let view = tr.view(id);
+        if view.norm > 0.0 {
+            let slack = (row_dot(&view, y, free) - view.rhs) / view.norm;
+            if slack > tol && best.is_none_or(|(_, b)| slack > b) {
+                best = Some((id, slack));
+            }
+        }
+    });
+    best
+}
+
+/// Whether an elastic row keeps a violation beyond `tol` (normalised) at `y`: the elastic QP's
+/// answer has a positive slack.
+pub(super) fn elastic_slack_left(
+    tr: &Transcription,
+    state: &QpState,
+    y: &Coefficients,
+    tol: f64,
+) -> bool {
+    let free = tr.basis.free;
+    let mut left = false;
+    for_each_elastic(tr, state, |id| {
+        let view = tr.view(id);
+        if view.norm > 0.0 && (view.rhs - row_dot(&view, y, free)) / view.norm > tol {
+            left = true;
+        }
+    });
+    left
+}
+
+/// Every row held elastic, control rows first.
+fn for_each_elastic(tr: &Transcription, state: &QpState, mut f: impl FnMut(RowId)) {
+    let nodes = tr.grid.nodes();
+    for (block, flags) in state.control_flags.iter().take(tr.blocks()).indexed() {
+        for (node, &flag) in flags.iter().take(nodes).indexed() {
+            let (block, node) = (block as u8, node as u8);
+            if flag & UPPER_ELASTIC != 0 {
+                f(RowId::Control {
+                    block,
+                    node,
+                    upper: true,
+                });
+            }
+            if flag & LOWER_ELASTIC != 0 {
+                f(RowId::Control {
+                    block,
+                    node,
+                    upper: false,
+                });
+            }
+        }
+    }
+    for (pair, (flags, &count)) in state
+        .keep_out_flags
+        .iter()
+        .zip(tr.check_count.iter())
+        .take(tr.pair_count)
+        .indexed()
+    {
+        for (check, &flag) in flags.iter().take(count.min(MAX_CHECKS_PER_PAIR)).indexed() {
+            if flag & ROW_ELASTIC != 0 {
+                f(RowId::KeepOut {
+                    pair: pair as u8,
+                    check: check as u8,
+                });
+            }
+        }
+    }
+}
