@@ -77,6 +77,8 @@ mod output;
 mod packed;
 mod qp;
 mod qp_dual;
+#[cfg(test)]
+mod qp_elastic_tests;
 mod qp_scan;
 mod setup;
 mod solver;
