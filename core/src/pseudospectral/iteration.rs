@@ -319,30 +319,21 @@ fn name_unmet(tr: &Transcription, y: &Coefficients, tol: f64, unmet: &mut Unmet)
 #[allow(clippy::indexing_slicing, clippy::unwrap_used, clippy::expect_used)]
 mod tests {
     use super::super::certificate::ActiveConstraint;
-    use super::super::{self as pseudospectral, Problem, SolveStatus, Spacecraft};
+    use super::super::{self as pseudospectral, Problem, SolveStatus};
     use super::*;
 
     /// Two spacecraft at rest swap places along x (from +-x0 to -+x0) in T = 10 with
     /// Umax = 1, m = 1, keeping `keep_out` apart.
     fn swap(x0: f64, keep_out: f64) -> Problem {
-        let mut spacecraft = heapless::Vec::new();
-        for sign in [1.0, -1.0] {
-            spacecraft
-                .push(Spacecraft {
-                    mass_mu: 1.0,
-                    initial_state: [sign * x0, 0.0, 0.0, 0.0, 0.0, 0.0],
-                    final_state: [-sign * x0, 0.0, 0.0, 0.0, 0.0, 0.0],
-                })
-                .unwrap();
-        }
-        Problem {
-            horizon_tu: 10.0,
-            max_control_fu: 1.0,
-            keep_out_lu: keep_out,
-            degree: 12,
-            test_points: true,
-            spacecraft,
-        }
+        super::super::test_problems::rest_to_rest(
+            &[
+                ([x0, 0.0, 0.0], [-x0, 0.0, 0.0]),
+                ([-x0, 0.0, 0.0], [x0, 0.0, 0.0]),
+            ],
+            keep_out,
+            12,
+            true,
+        )
     }
 
     fn solve(problem: &Problem) -> Solution {

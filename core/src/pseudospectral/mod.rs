@@ -82,6 +82,8 @@ mod qp_elastic_tests;
 mod qp_scan;
 mod setup;
 mod solver;
+#[cfg(test)]
+mod test_problems;
 mod transcription;
 mod validate;
 mod verify;

@@ -5,29 +5,12 @@
 
 use super::qp::{self, QpOutcome};
 use super::transcription::{row_dot, Coefficients, RowId, Transcription, MAX_BLOCKS};
-use super::{Problem, Settings, Solution, Spacecraft, Workspace};
+use super::{Problem, Settings, Solution, Workspace};
 use crate::capacity::MAX_FREE_PER_AXIS;
 use crate::work::Meter;
 
 fn rest_to_rest(moves: &[([f64; 3], [f64; 3])], keep_out: f64, degree: u16) -> Problem {
-    let mut spacecraft = heapless::Vec::new();
-    for (a, b) in moves {
-        spacecraft
-            .push(Spacecraft {
-                mass_mu: 1.0,
-                initial_state: [a[0], a[1], a[2], 0.0, 0.0, 0.0],
-                final_state: [b[0], b[1], b[2], 0.0, 0.0, 0.0],
-            })
-            .unwrap();
-    }
-    Problem {
-        horizon_tu: 10.0,
-        max_control_fu: 1.0,
-        keep_out_lu: keep_out,
-        degree,
-        test_points: true,
-        spacecraft,
-    }
+    super::test_problems::rest_to_rest(moves, keep_out, degree, true)
 }
 
 /// `ws` holding the rows of a solve's last linearisation: one subproblem, no verification

@@ -364,28 +364,10 @@ fn finish(ws: &mut Workspace, settings: &Settings, out: &mut Solution, end: SqpE
 mod tests {
     use super::super::linearise::perpendicular_direction;
     use super::*;
-    use crate::pseudospectral::Spacecraft;
 
-    /// Rest-to-rest moves `(from, to)` in LU, T = 10, Umax = 1, d = 2 (the paper's settings).
+    /// Rest-to-rest moves with d = 2 (the paper's settings).
     fn rest_to_rest(moves: &[([f64; 3], [f64; 3])], degree: u16, test_points: bool) -> Problem {
-        let mut spacecraft = heapless::Vec::new();
-        for (a, b) in moves {
-            spacecraft
-                .push(Spacecraft {
-                    mass_mu: 1.0,
-                    initial_state: [a[0], a[1], a[2], 0.0, 0.0, 0.0],
-                    final_state: [b[0], b[1], b[2], 0.0, 0.0, 0.0],
-                })
-                .unwrap();
-        }
-        Problem {
-            horizon_tu: 10.0,
-            max_control_fu: 1.0,
-            keep_out_lu: 2.0,
-            degree,
-            test_points,
-            spacecraft,
-        }
+        super::super::test_problems::rest_to_rest(moves, 2.0, degree, test_points)
     }
 
     fn paper_case(degree: u16, test_points: bool) -> Problem {
