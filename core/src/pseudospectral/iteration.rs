@@ -17,6 +17,7 @@ use super::linearise::{follow_minima, linearise, refine_moving_checks};
 use super::newton;
 use super::qp::{self, QpOutcome};
 use super::settings::Settings;
+use super::setup;
 use super::solution::Solution;
 use super::solution::{Unmet, UnmetConstraint};
 use super::solver::u8_of;
@@ -80,6 +81,8 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
     let mut previous_decrease = f64::INFINITY;
     // The last QP solved was accepted: its answer is `ws.accepted` (see `SqpEnd::MaxIterations`).
     let mut at_answer = false;
+    // Turns of the unseparated pairs' fallback directions tried (elastic mode).
+    let mut turns = 0u8;
     for _ in 0..settings.sqp_max_iter {
         if !ws.work.spend(work_units::sqp_iteration(&ws.transcription)) {
             break;
@@ -122,6 +125,17 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
             );
         }
         out.info.sqp_iterations = out.info.sqp_iterations.saturating_add(1);
+        // A pair that cannot be separated may only be swerving the wrong way: turn the
+        // fallback direction of every named pair by 45 degrees and linearise again, at most
+        // `MAX_SWERVE_TURNS` times per run, before the answer is `Infeasible`.
+        if outcome == QpOutcome::Elastic
+            && turns < MAX_SWERVE_TURNS
+            && turn_unmet_pairs(ws, &out.unmet, turns.saturating_add(1))
+        {
+            turns = turns.saturating_add(1);
+            out.unmet = Unmet::new();
+            continue;
+        }
         let active = u16::try_from(ws.qp.peak).unwrap_or(u16::MAX);
         out.info.max_active = out.info.max_active.max(active);
         let failure = match outcome {
@@ -267,6 +281,34 @@ fn elastic_penalty(ws: &Workspace) -> f64 {
     ELASTIC_PENALTY_REL * (1.0 + libm::sqrt(2.0 * size))
 }
 
+/// Turns of a pair's head-on swerve direction (45 degrees each) before `Infeasible`.
+pub(super) const MAX_SWERVE_TURNS: u8 = 2;
+
+/// Turn the fallback direction of every pair `unmet` names a keep-out of, or of every pair when
+/// it names only control bounds (the elastic answer may trade a swerve's bound for the
+/// keep-out), to `eighths` of a turn from its first (`setup::turn_fallback`). A fallback
+/// direction only acts where a violated check meets head on, so turning one elsewhere changes
+/// nothing. Returns whether any pair was turned.
+fn turn_unmet_pairs(ws: &mut Workspace, unmet: &Unmet, eighths: u8) -> bool {
+    let keep_out_named = unmet
+        .named()
+        .iter()
+        .any(|u| matches!(u.constraint, certificate::ActiveConstraint::KeepOut { .. }));
+    let mut turned = false;
+    for pair in 0..ws.transcription.pair_count {
+        let Some(&spacecraft) = ws.transcription.pairs.get(pair) else {
+            continue;
+        };
+        let named = unmet.named().iter().any(|u| {
+            matches!(u.constraint, certificate::ActiveConstraint::KeepOut { pair, .. } if pair == spacecraft)
+        });
+        if (named || !keep_out_named) && setup::turn_fallback(ws, pair, eighths) {
+            turned = true;
+        }
+    }
+    turned
+}
+
 /// Every constraint `y` misses by more than `tol` (normalised, the QP's feasibility tolerance:
 /// the test by which the elastic QP said a slack is left, so the list is never empty then), in
 /// the list's order. Not inlined: its frame is on the stack only while it runs.
@@ -353,7 +395,8 @@ mod tests {
         assert!(reach < 20.0);
         let out = solve(&swap(11.0, 20.0));
         assert_eq!(out.info.status, SolveStatus::Infeasible);
-        assert_eq!(out.info.elastic_subproblems, 1);
+        // The first subproblem, then one per turn of the pair's swerve direction.
+        assert_eq!(out.info.elastic_subproblems, 1 + MAX_SWERVE_TURNS);
         let named = out.unmet.named();
         assert!(!named.is_empty());
         assert!(named
@@ -375,6 +418,23 @@ mod tests {
             .iter()
             .any(|u| matches!(u.constraint, ActiveConstraint::Control { axis: 1 | 2, .. })));
         assert!(!out.info.status.is_usable());
+    }
+
+    #[test]
+    fn a_swap_that_needs_a_diagonal_swerve_is_solved_after_a_turn() {
+        // d = 14: along one axis off x the pair gets at most 2 x 6.25 = 12.5 LU apart, along
+        // the diagonal of y and z 17.7. The head-on swerve starts along one axis, so the first
+        // subproblem is infeasible; turned by 45 degrees it is not.
+        assert!(2.0 * (10.0f64 / 4.0).powi(2) < 14.0);
+        let out = solve(&swap(11.0, 14.0));
+        assert_eq!(out.info.status, SolveStatus::Solved);
+        assert!(out.info.elastic_subproblems >= 1);
+        assert_eq!(out.unmet.count, 0);
+        assert!(out.min_separation_lu >= 14.0 - 1e-6);
+        // The pair passes off both lateral axes at the crossing.
+        let mid = usize::from(out.degree) / 2;
+        let (a, b) = (out.states[0][mid], out.states[1][mid]);
+        assert!((a[1] - b[1]).abs() > 1.0 && (a[2] - b[2]).abs() > 1.0);
     }
 
     #[test]

@@ -264,23 +264,69 @@ pub(super) fn initial_iterate(
     out.info.warm_start_used = warm.is_some();
     // Fallback directions: perpendicular to the analytic relative velocity at the closest
     // approach, toward the existing miss vector when there is one.
-    for pair in 0..tr.pair_count {
-        let (i, j) = tr.pairs.get(pair).copied().unwrap_or((0, 0));
-        let (Some(li), Some(lj)) = (ws.laws.get(usize::from(i)), ws.laws.get(usize::from(j)))
-        else {
-            continue;
-        };
-        let (ti, tj) = (tracks(li), tracks(lj));
-        let t = collision::closest_approach(&ti, &tj, 0.0, tr.horizon_tu, 60);
-        let relative = collision::analytic_relative(&ti, &tj, t);
-        let mut velocity = [0.0; 3];
-        for (slot, (a, b)) in velocity.iter_mut().zip(ti.iter().zip(tj.iter())) {
-            *slot = a.state(t).1 - b.state(t).1;
+    for pair in 0..ws.transcription.pair_count {
+        if let Some((direction, _)) = fallback_frame(ws, pair) {
+            if let Some(slot) = ws.fallback_normal.get_mut(pair) {
+                *slot = direction;
+            }
         }
-        let direction = perpendicular_direction(&relative, &velocity, None);
-        if let Some(slot) = ws.fallback_normal.get_mut(pair) {
-            *slot = direction;
+    }
+}
+
+/// A pair's fallback direction and the analytic relative velocity at the analytic
+/// trajectories' closest approach (the direction is perpendicular to it).
+fn fallback_frame(ws: &Workspace, pair: usize) -> Option<([f64; 3], [f64; 3])> {
+    let tr = &ws.transcription;
+    let (i, j) = tr.pairs.get(pair).copied()?;
+    let (li, lj) = (ws.laws.get(usize::from(i))?, ws.laws.get(usize::from(j))?);
+    let (ti, tj) = (tracks(li), tracks(lj));
+    let t = collision::closest_approach(&ti, &tj, 0.0, tr.horizon_tu, 60);
+    let relative = collision::analytic_relative(&ti, &tj, t);
+    let mut velocity = [0.0; 3];
+    for (slot, (a, b)) in velocity.iter_mut().zip(ti.iter().zip(tj.iter())) {
+        *slot = a.state(t).1 - b.state(t).1;
+    }
+    Some((
+        perpendicular_direction(&relative, &velocity, None),
+        velocity,
+    ))
+}
+
+/// Turn a pair's fallback direction by `eighths` of a turn (45 degrees each) about the analytic
+/// relative velocity, from where `setup` put it. Why: a pair that meets head on swerves along
+/// one fixed perpendicular in the first subproblems, and with the bound on each axis of the
+/// control a swerve along one axis reaches `1/sqrt(2)` of one along a diagonal (measured: two
+/// spacecraft swapping places with d = 14 LU, T = 10, Umax = 1 reach 12.5 LU along z alone
+/// and 17.7 along the diagonal, so the subproblem was infeasible and the problem is not).
+/// Returns false when the pair has no such direction.
+pub(super) fn turn_fallback(ws: &mut Workspace, pair: usize, eighths: u8) -> bool {
+    let Some((normal, velocity)) = fallback_frame(ws, pair) else {
+        return false;
+    };
+    let speed = libm::sqrt(velocity.iter().map(|v| v * v).sum::<f64>());
+    if speed.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
+        return false;
+    }
+    let v = velocity.map(|c| c / speed);
+    // v x n: the normal's quarter turn about v (n is perpendicular to v, so both are unit).
+    let side = [
+        v[1] * normal[2] - v[2] * normal[1],
+        v[2] * normal[0] - v[0] * normal[2],
+        v[0] * normal[1] - v[1] * normal[0],
+    ];
+    let angle = core::f64::consts::FRAC_PI_4 * f64::from(eighths);
+    let (sin, cos) = (libm::sin(angle), libm::cos(angle));
+    let turned = [
+        cos * normal[0] + sin * side[0],
+        cos * normal[1] + sin * side[1],
+        cos * normal[2] + sin * side[2],
+    ];
+    match ws.fallback_normal.get_mut(pair) {
+        Some(slot) => {
+            *slot = turned;
+            true
         }
+        None => false,
     }
 }
 
