@@ -125,6 +125,8 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
             );
         }
         out.info.sqp_iterations = out.info.sqp_iterations.saturating_add(1);
+        let active = u16::try_from(ws.qp.peak).unwrap_or(u16::MAX);
+        out.info.max_active = out.info.max_active.max(active);
         // A pair that cannot be separated may only be swerving the wrong way: turn the
         // fallback direction of every named pair by 45 degrees and linearise again, at most
         // `MAX_SWERVE_TURNS` times per run, before the answer is `Infeasible`.
@@ -136,8 +138,6 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
             out.unmet = Unmet::new();
             continue;
         }
-        let active = u16::try_from(ws.qp.peak).unwrap_or(u16::MAX);
-        out.info.max_active = out.info.max_active.max(active);
         let failure = match outcome {
             QpOutcome::Optimal | QpOutcome::Approximate => None,
             QpOutcome::Infeasible | QpOutcome::Elastic => Some(SolveStatus::Infeasible),
