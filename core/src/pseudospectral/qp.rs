@@ -178,9 +178,15 @@ impl QpState {
         self.flags(id) & ROW_ELASTIC != 0
     }
 
-    /// Release a row held elastic (its multiplier moved to the fallback's table).
-    pub(super) fn release_elastic(&mut self, id: RowId) {
-        self.mark_elastic(id, false);
+    /// Release every row held elastic (their multipliers moved to the fallback's table).
+    pub(super) fn clear_elastic(&mut self) {
+        for flags in self.control_flags.iter_mut().flatten() {
+            *flags &= !(UPPER_ELASTIC | LOWER_ELASTIC);
+        }
+        for flags in self.keep_out_flags.iter_mut().flatten() {
+            *flags &= !ROW_ELASTIC;
+        }
+        self.elastic_count = 0;
     }
 
     /// Hold a row elastic or release it, keeping `elastic_count`.

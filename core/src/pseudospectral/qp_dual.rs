@@ -113,30 +113,17 @@ pub(crate) fn solve(
             *slot += signed(id, value);
         }
     }
-    // Rows the elastic QP held at the bound keep their multiplier `penalty / |a_k|` here.
+    // Rows the elastic QP held at the bound keep their multiplier `penalty / |a_k|` here; from
+    // here the bound is the table's.
     if state.elastic_count > 0 {
-        for pair in 0..tr.pair_count {
-            for check in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
-                let id = keep_out_id(pair, check);
-                if state.is_elastic(id) {
-                    hold_at_bound(tr, state, id, penalty);
-                }
+        let store = &mut state.store;
+        super::qp_scan::for_each_elastic(tr, &state.control_flags, &state.keep_out_flags, |id| {
+            let bound = penalty / tr.view(id).norm;
+            if let Some(slot) = dual_index(id).and_then(|i| store.get_mut(i)) {
+                *slot += signed(id, bound);
             }
-        }
-        for block in 0..tr.blocks() {
-            for node in 0..tr.grid.nodes() {
-                for upper in [true, false] {
-                    let id = RowId::Control {
-                        block: u8::try_from(block).unwrap_or(u8::MAX),
-                        node: u8::try_from(node).unwrap_or(u8::MAX),
-                        upper,
-                    };
-                    if state.is_elastic(id) {
-                        hold_at_bound(tr, state, id, penalty);
-                    }
-                }
-            }
-        }
+        });
+        state.clear_elastic();
     }
     state.count = 0;
     state.mode = Mode::Dual;
@@ -258,16 +245,6 @@ pub(crate) fn solve(
             };
         }
     }
-}
-
-/// Move an elastic row's multiplier (at the bound `penalty / |a_k|`) into the dual table and
-/// release the row's elastic flag: from here the bound is the table's.
-fn hold_at_bound(tr: &Transcription, state: &mut QpState, id: RowId, penalty: f64) {
-    let bound = penalty / tr.view(id).norm;
-    if let Some(slot) = dual_index(id).and_then(|i| state.store.get_mut(i)) {
-        *slot += signed(id, bound);
-    }
-    state.release_elastic(id);
 }
 
 fn control_id(block: usize, node: usize) -> RowId {

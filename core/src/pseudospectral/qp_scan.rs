@@ -8,7 +8,7 @@ use super::qp::{QpState, LOWER_ACTIVE, LOWER_ELASTIC, ROW_ELASTIC, UPPER_ACTIVE,
 use super::transcription::{
     block_dot, row_dot, Coefficients, NodeDots, RowId, Transcription, MAX_BLOCKS,
 };
-use crate::capacity::{MAX_ACTIVE, MAX_CHECKS_PER_PAIR, MAX_NODES};
+use crate::capacity::{MAX_ACTIVE, MAX_CHECKS_PER_PAIR, MAX_NODES, MAX_PAIRS};
 use crate::indexed::IndexedExt as _;
 
 /// The most violated constraint at `y` neither active nor elastic, as (row, slack / |row|).
@@ -158,7 +158,7 @@ pub(super) fn most_met_elastic(
 ) -> Option<(RowId, f64)> {
     let free = tr.basis.free;
     let mut best: Option<(RowId, f64)> = None;
-    for_each_elastic(tr, state, |id| {
+    for_each_elastic(tr, &state.control_flags, &state.keep_out_flags, |id| {
         let view = tr.view(id);
         if view.norm > 0.0 {
             let slack = (row_dot(&view, y, free) - view.rhs) / view.norm;
@@ -180,7 +180,7 @@ pub(super) fn elastic_slack_left(
 ) -> bool {
     let free = tr.basis.free;
     let mut left = false;
-    for_each_elastic(tr, state, |id| {
+    for_each_elastic(tr, &state.control_flags, &state.keep_out_flags, |id| {
         let view = tr.view(id);
         if view.norm > 0.0 && (view.rhs - row_dot(&view, y, free)) / view.norm > tol {
             left = true;
@@ -189,10 +189,16 @@ pub(super) fn elastic_slack_left(
     left
 }
 
-/// Every row held elastic, control rows first.
-fn for_each_elastic(tr: &Transcription, state: &QpState, mut f: impl FnMut(RowId)) {
+/// Every row held elastic, control rows first, from the QP state's flag tables (passed apart
+/// so the caller may write the state's other fields meanwhile).
+pub(super) fn for_each_elastic(
+    tr: &Transcription,
+    control_flags: &[[u8; MAX_NODES]; MAX_BLOCKS],
+    keep_out_flags: &[[u8; MAX_CHECKS_PER_PAIR]; MAX_PAIRS],
+    mut f: impl FnMut(RowId),
+) {
     let nodes = tr.grid.nodes();
-    for (block, flags) in state.control_flags.iter().take(tr.blocks()).indexed() {
+    for (block, flags) in control_flags.iter().take(tr.blocks()).indexed() {
         for (node, &flag) in flags.iter().take(nodes).indexed() {
             let (block, node) = (block as u8, node as u8);
             if flag & UPPER_ELASTIC != 0 {
@@ -211,8 +217,7 @@ fn for_each_elastic(tr: &Transcription, state: &QpState, mut f: impl FnMut(RowId
             }
         }
     }
-    for (pair, (flags, &count)) in state
-        .keep_out_flags
+    for (pair, (flags, &count)) in keep_out_flags
         .iter()
         .zip(tr.check_count.iter())
         .take(tr.pair_count)
