@@ -44,8 +44,25 @@ pub(crate) fn earliest_contact(
     (-v + libm::sqrt(v * v + 2.0 * accel * gap)) / accel
 }
 
-/// The closest approach of the analytic trajectories in `[lo, hi]` (TU): a coarse scan then a
-/// golden-section refinement, `iterations` steps in all.
+/// `|r|^2 / 2`'s first and second time derivatives for the pair at `t`: `r . v` and
+/// `v . v + r . a`, with `r`, `v`, `a` the relative position, velocity and acceleration on the
+/// analytic laws.
+fn separation_slope(laws_i: &[Track; 3], laws_j: &[Track; 3], t: f64) -> (f64, f64) {
+    let (mut slope, mut curvature) = (0.0, 0.0);
+    for (a, b) in laws_i.iter().zip(laws_j.iter()) {
+        let ((pa, va), (pb, vb)) = (a.state(t), b.state(t));
+        let (r, v) = (pa - pb, va - vb);
+        slope += r * v;
+        curvature += v * v + r * (a.acceleration(t) - b.acceleration(t));
+    }
+    (slope, curvature)
+}
+
+/// The closest approach of the analytic trajectories in `[lo, hi]` (TU): a coarse scan, then
+/// Newton's method on `d|r|^2/dt = 0` inside the scan's bracket around its least sample
+/// (bisection where a step would leave the bracket), at most `iterations` steps. Was a
+/// golden-section search on `|r|^2`: about 55 steps to 1e-12 TU, each as costly as a Newton
+/// step, and no better than `sqrt(eps)` in time where `|r|^2` is flat.
 pub(crate) fn closest_approach(
     laws_i: &[Track; 3],
     laws_j: &[Track; 3],
@@ -66,30 +83,35 @@ pub(crate) fn closest_approach(
     }
     let step = (hi - lo) / (SCAN as f64);
     let (mut a, mut b) = ((best_t - step).max(lo), (best_t + step).min(hi));
-    let ratio = 0.5 * (libm::sqrt(5.0) - 1.0);
-    let mut c = b - ratio * (b - a);
-    let mut d = a + ratio * (b - a);
-    let mut fc = norm2(&analytic_relative(laws_i, laws_j, c));
-    let mut fd = norm2(&analytic_relative(laws_i, laws_j, d));
+    // A minimum inside the bracket has the slope negative at its left end, positive at its
+    // right; otherwise the least sample stands (a minimum at an end of [lo, hi]).
+    if !(separation_slope(laws_i, laws_j, a).0 < 0.0 && separation_slope(laws_i, laws_j, b).0 > 0.0)
+    {
+        return best_t;
+    }
+    let tol = 1e-12 * (1.0 + libm::fabs(hi));
+    let mut t = best_t;
     for _ in 0..iterations {
-        if b - a < 1e-12 * (1.0 + libm::fabs(hi)) {
+        let (slope, curvature) = separation_slope(laws_i, laws_j, t);
+        if slope < 0.0 {
+            a = t;
+        } else if slope > 0.0 {
+            b = t;
+        } else {
             break;
         }
-        if fc < fd {
-            b = d;
-            d = c;
-            fd = fc;
-            c = b - ratio * (b - a);
-            fc = norm2(&analytic_relative(laws_i, laws_j, c));
+        let newton = t - slope / curvature;
+        let next = if curvature > 0.0 && newton > a && newton < b {
+            newton
         } else {
-            a = c;
-            c = d;
-            fc = fd;
-            d = a + ratio * (b - a);
-            fd = norm2(&analytic_relative(laws_i, laws_j, d));
+            0.5 * (a + b)
+        };
+        let moved = libm::fabs(next - t);
+        t = next;
+        if moved <= tol || b - a <= tol {
+            break;
         }
     }
-    let t = 0.5 * (a + b);
     if norm2(&analytic_relative(laws_i, laws_j, t)) <= best {
         t
     } else {
@@ -140,4 +162,85 @@ pub(crate) fn test_points(
         }
     }
     (out, count)
+}
+
+#[cfg(test)]
+#[allow(
+    clippy::indexing_slicing,
+    clippy::unwrap_used,
+    clippy::arithmetic_side_effects,
+    clippy::needless_range_loop,
+    clippy::float_cmp
+)]
+mod tests {
+    use super::*;
+    use crate::pseudospectral::guess::{solve_axis, AxisBoundary};
+
+    /// Three axis tracks of one spacecraft from its boundary states (T = 10, Umax as given).
+    fn tracks(p0: [f64; 3], v0: [f64; 3], p1: [f64; 3], umax: f64) -> [Track; 3] {
+        core::array::from_fn(|axis| {
+            let boundary = AxisBoundary {
+                p0: p0[axis],
+                v0: v0[axis],
+                p1: p1[axis],
+                v1: 0.0,
+                horizon: 10.0,
+                mass: 1.0,
+                max_control: umax,
+            };
+            let law = solve_axis(boundary, 50).unwrap();
+            if law.saturated {
+                SATURATED.fetch_add(1, core::sync::atomic::Ordering::Relaxed);
+            }
+            law.track()
+        })
+    }
+
+    /// Axis laws with a saturated arc built by `tracks` (the cases must include some).
+    static SATURATED: core::sync::atomic::AtomicUsize = core::sync::atomic::AtomicUsize::new(0);
+
+    #[test]
+    fn newton_finds_the_closest_approach_of_dense_sampling() {
+        // Crossings with and without saturated arcs, minima inside and at the ends.
+        let mut cases = 0;
+        for (k, umax) in [(0, 10.0), (1, 0.62), (2, 0.55)] {
+            for offset in [-3.0, -0.7, 0.0, 0.4, 2.5] {
+                let a = tracks(
+                    [-6.0, offset, 0.1 * f64::from(k)],
+                    [0.1, 0.0, 0.0],
+                    [6.0, 1.0, 0.0],
+                    umax,
+                );
+                let b = tracks([6.0, 0.0, 0.0], [0.0, -0.2, 0.0], [-6.0, offset, 0.5], umax);
+                for (lo, hi) in [(0.0, 10.0), (2.0, 7.5), (0.0, 3.0)] {
+                    let t = closest_approach(&a, &b, lo, hi, 80);
+                    assert!((lo..=hi).contains(&t));
+                    let at = |t: f64| norm2(&analytic_relative(&a, &b, t));
+                    let sampled = (0..=20_000)
+                        .map(|s| at(lo + (hi - lo) * f64::from(s) / 20_000.0))
+                        .fold(f64::INFINITY, f64::min);
+                    // Never above the sampled least value (beyond rounding), so never a
+                    // different, higher local minimum than the samples see.
+                    assert!(
+                        at(t) <= sampled + 1e-12,
+                        "umax {umax} offset {offset}: {} > {sampled}",
+                        at(t)
+                    );
+                    cases += 1;
+                }
+            }
+        }
+        assert_eq!(cases, 45);
+        assert!(SATURATED.load(core::sync::atomic::Ordering::Relaxed) >= 10);
+    }
+
+    #[test]
+    fn newton_stops_where_the_slope_vanishes_to_rounding() {
+        let a = tracks([-6.0, 0.5, 0.0], [0.0; 3], [6.0, 0.5, 0.0], 10.0);
+        let b = tracks([6.0, 0.0, 0.0], [0.0; 3], [-6.0, 0.0, 0.0], 10.0);
+        let t = closest_approach(&a, &b, 0.0, 10.0, 80);
+        // Symmetric head-on pass: closest at mid-horizon.
+        assert!((t - 5.0).abs() < 1e-12, "{t}");
+        assert!(separation_slope(&a, &b, t).0.abs() < 1e-12);
+    }
 }

@@ -142,6 +142,11 @@ impl Track {
         m
     }
 
+    /// Acceleration (LU/TU^2) at time `t`: the saturated control over the mass.
+    pub fn acceleration(&self, t: f64) -> f64 {
+        clamp(self.a + self.b * t, self.bound) / self.mass
+    }
+
     /// Position (LU) and velocity (LU/TU) at time `t`: `x(t) = p0 + v0 t + int_0^t (t - s)
     /// u(s) / m ds`, exact for the piecewise-linear control.
     pub fn state(&self, t: f64) -> (f64, f64) {

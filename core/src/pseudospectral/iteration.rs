@@ -69,6 +69,7 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
     let mut previous_cost = f64::INFINITY;
     ws.anderson.reset();
     ws.accepted = ws.iterate;
+    ws.searched_clean = 0;
     let mut have_solution = false;
     let mut extrapolated = false;
     // Newton points rejected by the line search this round; past `MAX_NEWTON_REJECTIONS` the
@@ -88,7 +89,7 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
             break;
         }
         if settings.continuous_verification {
-            follow_minima(ws, settings);
+            let _ = follow_minima(ws, settings, true);
         }
         linearise(ws);
         at_answer = false;
@@ -215,7 +216,23 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
         if have_solution && exact && (small_change || step <= settings.sqp_tol_step_lu) {
             if off_linearisation <= FIXED_POINT_TOL_REL * ws.transcription.keep_out_lu {
                 ws.iterate = ws.accepted;
-                return SqpEnd::Converged;
+                // The moving checks sit at the linearisation point's minima, which the answer
+                // has moved off (by up to the tolerance above): moved to the answer's, a check
+                // that now shows a dip beyond the verification's tolerance means the answer is
+                // not yet the continuous problem's fixed point, so iterate on (the next
+                // subproblem uses the checks just placed).
+                if !settings.continuous_verification {
+                    return SqpEnd::Converged;
+                }
+                let (deepest, clean) = follow_minima(ws, settings, false);
+                if deepest <= 0.0 {
+                    ws.searched_clean = clean;
+                    return SqpEnd::Converged;
+                }
+                ws.anderson.reset();
+                previous_cost = cost;
+                restarted = true;
+                continue;
             }
             // Converged in cost but linearised elsewhere: take plain steps from the answer.
             ws.anderson.reset();

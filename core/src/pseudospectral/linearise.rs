@@ -10,7 +10,7 @@ use super::transcription::{
 };
 use super::verify::{Minimum, MAX_PRODUCT};
 use super::workspace::Workspace;
-use crate::capacity::{MAX_CHECKS_PER_PAIR, MAX_NODES};
+use crate::capacity::{MAX_CHECKS_PER_PAIR, MAX_NODES, MAX_PAIRS};
 use crate::indexed::IndexedExt as _;
 
 /// A unit vector perpendicular to `velocity`, along the miss vector `relative` when it is not
@@ -280,7 +280,16 @@ pub(super) fn block_positions(
 /// Move each near-contact pair's moving check to the pair's current continuous separation
 /// minimum (a local-reduction step for the semi-infinite keep-out constraint): the convex
 /// subproblems then converge to the continuous optimum, not only to the checked points'.
-pub(super) fn follow_minima(ws: &mut Workspace, settings: &Settings) {
+/// With `place` false, only searches. Returns the deepest dip below `d - verify_tol` among the
+/// pairs it searched (0 if none), and the searched pairs without one (bit `pair`): a converged
+/// iterate with a dip there has its checks lagging its minima (`iteration::sqp`), and the
+/// clean pairs need no verification search at the same iterate (`solver`). Inlined into the
+/// SQP's two call sites: its node table (4.8 KB at capacity) then shares the SQP frame's
+/// slots, idle while it runs; called, it put 5 KB more on the M7's stack.
+#[inline(always)]
+pub(super) fn follow_minima(ws: &mut Workspace, settings: &Settings, place: bool) -> (f64, u32) {
+    let mut deepest = 0.0f64;
+    let mut clean = 0u32;
     let mut dots: NodeDots = [[0.0; MAX_NODES]; MAX_BLOCKS];
     ws.transcription.node_dots(&ws.iterate, &mut dots);
     for pair in 0..ws.transcription.pair_count {
@@ -302,13 +311,30 @@ pub(super) fn follow_minima(ws: &mut Workspace, settings: &Settings) {
             continue;
         }
         let minimum = pair_minimum(ws, pair, settings);
+        let separation = libm::sqrt(minimum.value_squared.max(0.0));
+        let allowed = ws.transcription.keep_out_lu - settings.verify_tol_lu;
+        deepest = deepest.max(allowed - separation);
+        if separation >= allowed {
+            clean |= pair_bit(pair);
+        }
         let tau = 2.0 * minimum.at_s - 1.0;
-        if tau > -1.0 && tau < 1.0 {
+        if place && tau > -1.0 && tau < 1.0 {
             freeze_if_cycling(&mut ws.transcription, pair, tau, &ws.iterate, &dots);
             let _ = ws.transcription.place_moving_check(pair, tau);
         }
     }
+    (deepest, clean)
 }
+
+/// A pair's bit in a `u32` set of pairs (`MAX_PAIRS` <= 32); 0 past that.
+pub(super) fn pair_bit(pair: usize) -> u32 {
+    u32::try_from(pair)
+        .ok()
+        .and_then(|shift| 1u32.checked_shl(shift))
+        .unwrap_or(0)
+}
+
+const _: () = assert!(MAX_PAIRS <= 32);
 
 /// A moving check whose pair's minimum moved by more than this (normalised time) jumped to
 /// another local minimum.

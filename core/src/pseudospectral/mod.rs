@@ -66,6 +66,7 @@ mod alternative;
 mod anderson;
 mod basis;
 mod collision;
+mod convex_minimum;
 mod guess;
 mod iteration;
 mod lanczos;

@@ -5,7 +5,7 @@ use super::certificate;
 use super::error::{PlanError, Quantity};
 use super::guess::{self, AxisBoundary, AxisLaw, GuessError};
 use super::iteration::{sqp, SqpEnd};
-use super::linearise::{pair_minimum, unit_normals};
+use super::linearise::{pair_bit, pair_minimum, unit_normals};
 use super::output::{
     control_excess, state_scale, write_solution, CONTROL_TOL_REL, DYNAMICS_TOL_REL,
 };
@@ -264,7 +264,17 @@ fn iterate_and_verify(ws: &mut Workspace, settings: &Settings, out: &mut Solutio
         // Changes this round: points added, and margins raised.
         let mut added = 0u16;
         let mut points = 0u16;
+        // Pairs the convergence test searched at this iterate and found clean: the same search
+        // again would find the same.
+        let clean = if end == SqpEnd::Converged {
+            ws.searched_clean
+        } else {
+            0
+        };
         for pair in 0..ws.transcription.pair_count {
+            if clean & pair_bit(pair) != 0 {
+                continue;
+            }
             let minimum = pair_minimum(ws, pair, settings);
             let separation = libm::sqrt(minimum.value_squared.max(0.0));
             if separation < d - settings.verify_tol_lu {

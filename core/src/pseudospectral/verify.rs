@@ -5,8 +5,11 @@
 //! the least and the greatest of its coefficients, and subdividing (de Casteljau) tightens those
 //! bounds quadratically. A branch-and-bound over subintervals therefore finds the *global*
 //! minimum of the separation over the whole horizon to a stated tolerance, with no sample grid
-//! that a fast crossing could slip through.
+//! that a fast crossing could slip through. An interval whose coefficients form a convex
+//! polygon holds a convex piece of the polynomial, which Newton's method finishes in a few
+//! steps instead of subdividing on (`convex_minimum.rs`).
 
+use super::convex_minimum::{convex_minimum, is_convex};
 use super::lgl::LglGrid;
 use super::linalg::{get, set};
 use crate::capacity::{MAX_DEGREE, MAX_NODES};
@@ -211,6 +214,31 @@ impl Bernstein {
             if lower >= best.value_squared - tol {
                 top = index;
                 continue;
+            }
+            if spent >= budget {
+                best.certified = false;
+                top = index;
+                continue;
+            }
+            // Where the interval's control polygon is convex, so is the polynomial: Newton on
+            // its derivative finishes the interval in a few O(degree) steps, where subdivision
+            // would need a level per halving (`convex_minimum.rs`).
+            let Some(coefficients) = c.get(..=degree) else {
+                best.certified = false;
+                top = index;
+                continue;
+            };
+            if is_convex(coefficients) {
+                let convex = convex_minimum(coefficients, tol, best.value_squared);
+                spent = spent.saturating_add(convex.steps);
+                if convex.value < best.value_squared {
+                    best.value_squared = convex.value;
+                    best.at_s = lo + convex.at_u * (hi - lo);
+                }
+                if convex.certified {
+                    top = index;
+                    continue;
+                }
             }
             if spent >= budget || index.saturating_add(2) > STACK || hi - lo < 1e-12 {
                 best.certified = false;

@@ -45,6 +45,10 @@ pub struct Workspace {
     pub(crate) saved: Coefficients,
     /// The solve's work meter.
     pub(crate) work: crate::work::Meter,
+    /// Pairs (bit `pair`) whose continuous minimum at `iterate` the SQP's convergence test
+    /// searched and found at least `d - verify_tol` (`iteration::sqp`, set with
+    /// `SqpEnd::Converged`): the verification round after it need not search them again.
+    pub(crate) searched_clean: u32,
 }
 
 impl Workspace {
@@ -62,6 +66,7 @@ impl Workspace {
             fallback_normal: [[0.0; 3]; MAX_PAIRS],
             saved: [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS],
             work: crate::work::Meter::new(0),
+            searched_clean: 0,
         }
     }
 }
