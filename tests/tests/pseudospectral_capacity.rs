@@ -34,9 +34,9 @@ fn near_bang_bang() -> Problem {
 #[test]
 fn a_working_set_beyond_the_factor_capacity_is_no_failure() {
     let problem = near_bang_bang();
-    // The dual fallback's sweeps cost 42.1 M work units here, past the default budget (25 M:
-    // about 374 M M7 instructions); at the default this case ends `BudgetExhausted { verified:
-    // false }` (14.6 M units used, the rest reserved for the final checks). What is tested is the QP's capacity, so the budget is raised.
+    // The dual fallback's sweeps cost 42.1 M work units here, past the default budget (40 M:
+    // about 382 M M7 instructions; it was 25 M, when this case ended `BudgetExhausted { verified:
+    // false }` with 14.6 M units used, the rest reserved for the final checks). What is tested is the QP's capacity, so the budget is raised.
     let settings = Settings {
         work_budget: 60_000_000,
         ..Settings::default()

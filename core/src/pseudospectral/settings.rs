@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 pub const MAX_VERIFY_ROUNDS: u8 = 8;
 
 /// Default work budget, in units (`docs/firmware.md`, "Work budget").
-pub const DEFAULT_WORK_BUDGET: u64 = 25_000_000;
+pub const DEFAULT_WORK_BUDGET: u64 = 40_000_000;
 
 /// Loop bounds and tolerances. Plain `Copy` data; all fields take effect per solve.
 ///
