@@ -165,13 +165,7 @@ pub(crate) fn test_points(
 }
 
 #[cfg(test)]
-#[allow(
-    clippy::indexing_slicing,
-    clippy::unwrap_used,
-    clippy::arithmetic_side_effects,
-    clippy::needless_range_loop,
-    clippy::float_cmp
-)]
+#[allow(clippy::indexing_slicing, clippy::unwrap_used)]
 mod tests {
     use super::*;
     use crate::pseudospectral::guess::{solve_axis, AxisBoundary};

@@ -217,10 +217,11 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
             if off_linearisation <= FIXED_POINT_TOL_REL * ws.transcription.keep_out_lu {
                 ws.iterate = ws.accepted;
                 // The moving checks sit at the linearisation point's minima, which the answer
-                // has moved off (by up to the tolerance above): moved to the answer's, a check
-                // that now shows a dip beyond the verification's tolerance means the answer is
-                // not yet the continuous problem's fixed point, so iterate on (the next
-                // subproblem uses the checks just placed).
+                // has moved off (by up to the tolerance above). Search the answer's own minima
+                // without moving the checks (a returned answer's certificate must see the rows
+                // its QP had): a dip beyond the verification's tolerance means the answer is
+                // not yet the continuous problem's fixed point, so iterate on; the next
+                // subproblem's `follow_minima` moves the checks there.
                 if !settings.continuous_verification {
                     return SqpEnd::Converged;
                 }
