@@ -12,11 +12,27 @@ pub(crate) const TEST_POINT_OFFSETS: [f64; TEST_POINTS_PER_PAIR] =
 
 /// Positions of spacecraft `i` and `j` on their analytic laws at time `t`, as `r_i - r_j`.
 pub(crate) fn analytic_relative(laws_i: &[Track; 3], laws_j: &[Track; 3], t: f64) -> [f64; 3] {
-    let mut out = [0.0; 3];
-    for (slot, (a, b)) in out.iter_mut().zip(laws_i.iter().zip(laws_j.iter())) {
-        *slot = a.state(t).0 - b.state(t).0;
+    analytic_relative_motion(laws_i, laws_j, t).0
+}
+
+/// Relative position and velocity `(r_i - r_j, v_i - v_j)` on the analytic laws at `t`, each
+/// axis law evaluated once for both.
+pub(crate) fn analytic_relative_motion(
+    laws_i: &[Track; 3],
+    laws_j: &[Track; 3],
+    t: f64,
+) -> ([f64; 3], [f64; 3]) {
+    let (mut relative, mut velocity) = ([0.0; 3], [0.0; 3]);
+    for ((r, v), (a, b)) in relative
+        .iter_mut()
+        .zip(velocity.iter_mut())
+        .zip(laws_i.iter().zip(laws_j.iter()))
+    {
+        let ((pa, va), (pb, vb)) = (a.state(t), b.state(t));
+        *r = pa - pb;
+        *v = va - vb;
     }
-    out
+    (relative, velocity)
 }
 
 fn norm2(v: &[f64; 3]) -> f64 {
@@ -48,10 +64,14 @@ pub(crate) fn earliest_contact(
 /// `v . v + r . a`, with `r`, `v`, `a` the relative position, velocity and acceleration on the
 /// analytic laws.
 fn separation_slope(laws_i: &[Track; 3], laws_j: &[Track; 3], t: f64) -> (f64, f64) {
+    let (relative, velocity) = analytic_relative_motion(laws_i, laws_j, t);
     let (mut slope, mut curvature) = (0.0, 0.0);
-    for (a, b) in laws_i.iter().zip(laws_j.iter()) {
-        let ((pa, va), (pb, vb)) = (a.state(t), b.state(t));
-        let (r, v) = (pa - pb, va - vb);
+    for (((a, b), r), v) in laws_i
+        .iter()
+        .zip(laws_j.iter())
+        .zip(relative.iter())
+        .zip(velocity.iter())
+    {
         slope += r * v;
         curvature += v * v + r * (a.acceleration(t) - b.acceleration(t));
     }

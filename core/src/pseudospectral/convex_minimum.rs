@@ -9,6 +9,8 @@
 //! of the interval, about 15 levels of O(degree^2) each at the keep-out search's tolerance
 //! (measured on the paper's case at N = 10: 519 subdivisions in 30 searches).
 
+use crate::indexed::IndexedExt as _;
+
 /// Newton steps tried on one convex interval before it goes back to subdivision.
 pub(crate) const MAX_NEWTON_STEPS: u32 = 12;
 
@@ -132,15 +134,14 @@ pub(crate) fn convex_minimum(c: &[f64], tol: f64, best: f64) -> ConvexMinimum {
     let degree = c.len().saturating_sub(1) as f64;
     let spans = (degree - 1.0).max(1.0);
     let mut u = 0.5;
-    let mut previous = None;
-    for (k, b) in first_differences(c).enumerate_f64() {
-        if let Some(a) = previous {
-            if a < 0.0 && b >= 0.0 {
-                u = (k - 1.0 + a / (a - b)) / spans;
-                break;
-            }
+    for (k, w) in c.windows(3).indexed() {
+        // Consecutive derivative coefficients d_k, d_(k+1) (`first_differences`).
+        let &[c0, c1, c2] = w else { continue };
+        let (a, b) = (c1 - c0, c2 - c1);
+        if a < 0.0 && b >= 0.0 {
+            u = (k as f64 + a / (a - b)) / spans;
+            break;
         }
-        previous = Some(b);
     }
     let (mut lo, mut hi) = (0.0, 1.0);
     while found.steps < MAX_NEWTON_STEPS {
@@ -177,20 +178,6 @@ pub(crate) fn convex_minimum(c: &[f64], tol: f64, best: f64) -> ConvexMinimum {
     }
     found
 }
-
-/// `(k as f64, item)` pairs: a counter that cannot overflow (the flight library's link rejects
-/// `enumerate`'s overflow check).
-trait EnumerateF64: Iterator + Sized {
-    fn enumerate_f64(self) -> impl Iterator<Item = (f64, Self::Item)> {
-        self.scan(0.0, |k, item| {
-            let index = *k;
-            *k += 1.0;
-            Some((index, item))
-        })
-    }
-}
-
-impl<I: Iterator> EnumerateF64 for I {}
 
 #[cfg(test)]
 #[allow(

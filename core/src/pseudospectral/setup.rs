@@ -15,6 +15,7 @@ use crate::capacity::{
     MAX_FREE_PER_AXIS, MAX_NODES, MAX_PAIRS, MAX_SPACECRAFT, TEST_POINTS_PER_PAIR,
 };
 use crate::indexed::IndexedExt as _;
+use crate::vec3;
 
 /// Build the grid, basis, base cubics, pairs, pruning windows and check points. The test-point
 /// times per pair go straight into the solution's `test_times` (no workspace copy).
@@ -281,11 +282,7 @@ fn fallback_frame(ws: &Workspace, pair: usize) -> Option<([f64; 3], [f64; 3])> {
     let (li, lj) = (ws.laws.get(usize::from(i))?, ws.laws.get(usize::from(j))?);
     let (ti, tj) = (tracks(li), tracks(lj));
     let t = collision::closest_approach(&ti, &tj, 0.0, tr.horizon_tu, 60);
-    let relative = collision::analytic_relative(&ti, &tj, t);
-    let mut velocity = [0.0; 3];
-    for (slot, (a, b)) in velocity.iter_mut().zip(ti.iter().zip(tj.iter())) {
-        *slot = a.state(t).1 - b.state(t).1;
-    }
+    let (relative, velocity) = collision::analytic_relative_motion(&ti, &tj, t);
     Some((
         perpendicular_direction(&relative, &velocity, None),
         velocity,
@@ -303,24 +300,16 @@ pub(super) fn turn_fallback(ws: &mut Workspace, pair: usize, eighths: u8) -> boo
     let Some((normal, velocity)) = fallback_frame(ws, pair) else {
         return false;
     };
-    let speed = libm::sqrt(velocity.iter().map(|v| v * v).sum::<f64>());
+    let speed = vec3::norm(&velocity);
     if speed.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
         return false;
     }
     let v = velocity.map(|c| c / speed);
     // v x n: the normal's quarter turn about v (n is perpendicular to v, so both are unit).
-    let side = [
-        v[1] * normal[2] - v[2] * normal[1],
-        v[2] * normal[0] - v[0] * normal[2],
-        v[0] * normal[1] - v[1] * normal[0],
-    ];
+    let side = vec3::cross(&v, &normal);
     let angle = core::f64::consts::FRAC_PI_4 * f64::from(eighths);
     let (sin, cos) = (libm::sin(angle), libm::cos(angle));
-    let turned = [
-        cos * normal[0] + sin * side[0],
-        cos * normal[1] + sin * side[1],
-        cos * normal[2] + sin * side[2],
-    ];
+    let turned = vec3::add(&vec3::scale(&normal, cos), &vec3::scale(&side, sin));
     match ws.fallback_normal.get_mut(pair) {
         Some(slot) => {
             *slot = turned;
