@@ -8,8 +8,8 @@
 //! feasibility at the checks; the solver resets the memory if an extrapolated point gives an
 //! infeasible QP.
 
+use super::kernel::{dot, Coefficients, MAX_BLOCKS};
 use super::linalg::{cholesky_in_place, set, solve_lower, solve_lower_transposed};
-use super::transcription::{Coefficients, MAX_BLOCKS};
 use crate::capacity::MAX_FREE_PER_AXIS;
 use crate::indexed::IndexedExt as _;
 
@@ -28,16 +28,6 @@ pub(crate) struct Anderson {
     count: usize,
     next: usize,
     has_last: bool,
-}
-
-fn dot(a: &Coefficients, b: &Coefficients, blocks: usize, free: usize) -> f64 {
-    let mut sum = 0.0;
-    for (x, y) in a.iter().zip(b.iter()).take(blocks) {
-        for (p, q) in x.iter().zip(y.iter()).take(free) {
-            sum += p * q;
-        }
-    }
-    sum
 }
 
 impl Anderson {
@@ -71,15 +61,11 @@ impl Anderson {
 
     /// Forget the history and lend three of its buffers as scratch (the second-order step's
     /// CG vectors: after a Newton step the mixing history no longer describes the map).
-    pub(super) fn scratch(&mut self) -> super::newton::Scratch<'_> {
+    pub(super) fn lend(&mut self) -> [&mut Coefficients; 3] {
         self.reset();
-        let [residual] = &mut self.delta_f;
-        let [direction] = &mut self.delta_g;
-        super::newton::Scratch {
-            residual,
-            direction,
-            product: &mut self.last_f,
-        }
+        let [first] = &mut self.delta_f;
+        let [second] = &mut self.delta_g;
+        [first, second, &mut self.last_f]
     }
 
     /// Given the linearisation point `point` and the QP's solution `g`, overwrite `point` with
@@ -144,10 +130,10 @@ impl Anderson {
             let (Some(fi), Some(slot)) = (self.delta_f.get(i), rhs.get_mut(i)) else {
                 continue;
             };
-            *slot = dot(fi, &f, blocks, free);
+            *slot = dot(fi, &f, (blocks, free));
             for j in 0..=i {
                 if let Some(fj) = self.delta_f.get(j) {
-                    let value = dot(fi, fj, blocks, free);
+                    let value = dot(fi, fj, (blocks, free));
                     set(&mut normal, i, j, value);
                     set(&mut normal, j, i, value);
                     if i == j {

@@ -30,14 +30,13 @@
 //! are the constraint gradients at the iterate, so they are the Lagrange multipliers; the
 //! stationarity residual measures how far from that fixed point the iterate is.
 
-use super::lanczos::{self, Curvature, LANCZOS_STEPS};
-use super::qp::{Mode, QpState};
-use super::transcription::{
-    block_dot, node_value, row_axpy, row_dot, Check, Coefficients, RowId, Transcription, MAX_BLOCKS,
-};
-use crate::capacity::{MAX_ACTIVE, MAX_FREE_PER_AXIS, MAX_NODES};
+use super::curvature::{check_lengths, project, Curvature, Envelope, MAX_ENVELOPES};
+use super::kernel::{dot, scale, Coefficients, MAX_BLOCKS};
+use super::lanczos::{self, LANCZOS_STEPS};
+use super::qp_state::{Mode, QpState};
+use super::transcription::{row_axpy, row_dot, RowId, Transcription};
+use crate::capacity::{MAX_ACTIVE, MAX_FREE_PER_AXIS};
 use crate::indexed::IndexedExt as _;
-use crate::vec3;
 use serde::{Deserialize, Serialize};
 
 /// `Solved` needs the scaled stationarity residual at or below this. The convex-concave
@@ -57,10 +56,6 @@ pub const CURVATURE_TOL: f64 = 1e-6;
 pub const FLAT_PROBE_TOL_REL: f64 = 1e-6;
 /// Power-method steps for the reduced Hessian's smallest eigenvalue.
 pub const POWER_ITERATIONS: usize = 120;
-/// Active keep-out checks whose envelope correction the second-order test holds at once
-/// (about 400 bytes of stack each). Corrections past it are left out, which only lowers the
-/// reported eigenvalue (the correction is positive semidefinite): conservative.
-pub const MAX_ENVELOPES: usize = 16;
 
 /// An active constraint of the returned iterate.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -166,37 +161,6 @@ impl Certificate {
     }
 }
 
-/// `a . b` over the first `blocks` blocks and `free` coefficients (the rest are unused).
-pub(super) fn dot(a: &Coefficients, b: &Coefficients, (blocks, free): (usize, usize)) -> f64 {
-    let mut sum = 0.0;
-    for (x, y) in a.iter().zip(b.iter()).take(blocks) {
-        for (p, q) in x.iter().zip(y.iter()).take(free) {
-            sum += p * q;
-        }
-    }
-    sum
-}
-
-pub(super) fn scale(a: &mut Coefficients, factor: f64, (blocks, free): (usize, usize)) {
-    for row in a.iter_mut().take(blocks) {
-        for v in row.iter_mut().take(free) {
-            *v *= factor;
-        }
-    }
-}
-
-/// Every multiplier of the last QP as (row, value >= 0).
-fn for_each_multiplier(tr: &Transcription, qp: &QpState, mut f: impl FnMut(RowId, f64)) {
-    match qp.mode {
-        Mode::Factor => {
-            for (&id, &value) in qp.active.iter().zip(qp.multiplier.iter()).take(qp.count) {
-                f(id, value);
-            }
-        }
-        Mode::Dual => super::qp_dual::for_each_multiplier(qp, tr, f),
-    }
-}
-
 /// The public description of a row; `None` for a keep-out row the transcription does not hold
 /// (never for a row of the QP's active set: the certificate then says its list is incomplete).
 pub(super) fn describe(tr: &Transcription, id: RowId) -> Option<ActiveConstraint> {
@@ -219,225 +183,6 @@ pub(super) fn describe(tr: &Transcription, id: RowId) -> Option<ActiveConstraint
                 time_tu: tr.time_of(check.tau),
             })
         }
-    }
-}
-
-/// `|r_i - r_j|` at each active row's check on `y` (0 for control rows), in the QP's row order:
-/// the lengths `add_curvature` needs, computed once per point instead of once per product (a
-/// CG or power-method product otherwise recomputed six dot products per check for them).
-pub(super) fn check_lengths(
-    tr: &Transcription,
-    qp: &QpState,
-    y: &Coefficients,
-    out: &mut [f64; MAX_ACTIVE],
-) {
-    *out = [0.0; MAX_ACTIVE];
-    for (slot, &id) in out.iter_mut().zip(qp.active.iter()).take(qp.count) {
-        if let RowId::KeepOut { pair, check } = id {
-            let p = usize::from(pair);
-            if let Some(c) = tr.checks.get(p).and_then(|row| row.get(usize::from(check))) {
-                let relative = tr.relative(p, c.source, y);
-                *slot = libm::sqrt(
-                    relative[0] * relative[0]
-                        + relative[1] * relative[1]
-                        + relative[2] * relative[2],
-                );
-            }
-        }
-    }
-}
-
-/// `out += sign * S v` restricted to one active keep-out check `c` of `pair` with multiplier
-/// `l`, at a point `y` where the check's separation has length `length` (`check_lengths`) and
-/// its normal is the unit separation (`unit_normals_at(tr, y)` sets it with the same arithmetic).
-pub(super) fn add_curvature(
-    tr: &Transcription,
-    (pair, c): (usize, &Check),
-    length: f64,
-    l: f64,
-    v: &Coefficients,
-    out: &mut Coefficients,
-) {
-    let Some(&(i, j)) = tr.pairs.get(pair) else {
-        return;
-    };
-    if length <= 0.0 {
-        return;
-    }
-    let n = c.normal;
-    let (row, _) = tr.check_row(c.source);
-    let free = tr.basis.free;
-    let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
-    let block = |sc: u8, axis: usize| usize::from(sc).saturating_mul(3).saturating_add(axis);
-    let mut jv = [0.0; 3];
-    for (axis, slot) in jv.iter_mut().indexed() {
-        *slot = block_dot(row, v, block(i, axis), free) / mi
-            - block_dot(row, v, block(j, axis), free) / mj;
-    }
-    let along = n[0] * jv[0] + n[1] * jv[1] + n[2] * jv[2];
-    for (axis, (value, normal)) in jv.iter().zip(n.iter()).indexed() {
-        let t = (value - along * normal) * l / length;
-        for (sc, mass, sign) in [(i, mi, 1.0), (j, mj, -1.0)] {
-            if let Some(values) = out.get_mut(block(sc, axis)) {
-                for (slot, r) in values.iter_mut().zip(row.iter()).take(free) {
-                    *slot += sign * t * r / mass;
-                }
-            }
-        }
-    }
-}
-
-/// The time-envelope correction of an active keep-out check. The keep-out is semi-infinite:
-/// what must hold is `phi(y) = min_t |r(t, y)| >= d`, and on a trajectory verified feasible on
-/// the continuous trajectory an active check sits at a local minimum of `|r(t)|` in time. The
-/// Hessian of `phi` is `f_yy - f_yt f_yt^T / f_tt` (f = |r|, at the minimising t);
-/// `add_curvature` gives `f_yy`, this the rank-one term, so the Lagrangian gains
-/// `+l f_yt f_yt^T / f_tt`. `f_yt` is kept compactly (the basis position and velocity rows at the
-/// check time and the relative state), never as a dense vector.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Envelope {
-    pair: (u8, u8),
-    position_row: [f64; MAX_FREE_PER_AXIS],
-    velocity_row: [f64; MAX_FREE_PER_AXIS],
-    /// Per axis: the weights of the position row and of the velocity row in `f_yt`.
-    along_position: [f64; 3],
-    along_velocity: [f64; 3],
-    /// `l / f_tt`.
-    pub(super) weight: f64,
-}
-
-impl Envelope {
-    /// Build for the check of `pair` at `tau` with multiplier `l`; `None` when the check is not
-    /// a strict minimum in time (then the correction is left out, which only lowers the
-    /// reported curvature: conservative).
-    pub(super) fn new(
-        tr: &Transcription,
-        y: &Coefficients,
-        pair: usize,
-        tau: f64,
-        l: f64,
-    ) -> Option<Self> {
-        let &(i, j) = tr.pairs.get(pair)?;
-        let free = tr.basis.free;
-        let nodes = tr.grid.nodes();
-        let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
-        let rate = 2.0 / tr.horizon_tu;
-        let mut r = [0.0; 3];
-        let mut rd = [0.0; 3];
-        let mut rdd = [0.0; 3];
-        // One interpolation row at `tau` serves every value below.
-        let mut lagrange = [0.0; MAX_NODES];
-        tr.grid.lagrange_row(tau, &mut lagrange);
-        for axis in 0..3 {
-            let mut values = [0.0; MAX_NODES];
-            for (h, slot) in values.iter_mut().indexed().take(nodes) {
-                let row = tr.basis.position.get(h)?;
-                *slot = node_value(&tr.base_position, block(i, axis), h)
-                    - node_value(&tr.base_position, block(j, axis), h)
-                    + block_dot(row, y, block(i, axis), free) / mi
-                    - block_dot(row, y, block(j, axis), free) / mj;
-            }
-            let mut first = [0.0; MAX_NODES];
-            let mut second = [0.0; MAX_NODES];
-            tr.grid.differentiate(&values, &mut first);
-            tr.grid.differentiate(&first, &mut second);
-            *r.get_mut(axis)? = tr.grid.interpolate_with(&lagrange, &values);
-            *rd.get_mut(axis)? = rate * tr.grid.interpolate_with(&lagrange, &first);
-            *rdd.get_mut(axis)? = rate * rate * tr.grid.interpolate_with(&lagrange, &second);
-        }
-        let length = libm::sqrt(vec3::dot(&r, &r));
-        if length <= 0.0 {
-            return None;
-        }
-        let cube = length * length * length;
-        let radial = vec3::dot(&r, &rd);
-        let f_tt = (vec3::dot(&rd, &rd) + vec3::dot(&r, &rdd)) / length - radial * radial / cube;
-        if f_tt <= 1e-9 * (1.0 + vec3::dot(&rd, &rd) / length) {
-            return None;
-        }
-        let mut envelope = Self {
-            pair: (i, j),
-            position_row: [0.0; MAX_FREE_PER_AXIS],
-            velocity_row: [0.0; MAX_FREE_PER_AXIS],
-            along_position: [0.0; 3],
-            along_velocity: [0.0; 3],
-            weight: l / f_tt,
-        };
-        tr.basis
-            .position_row(&tr.grid, tau, &mut envelope.position_row);
-        for (f, slot) in envelope.velocity_row.iter_mut().indexed().take(free) {
-            let mut column = [0.0; MAX_NODES];
-            for (h, value) in column.iter_mut().indexed().take(nodes) {
-                *value = tr.basis.position.get(h)?.get(f).copied()?;
-            }
-            let mut derivative = [0.0; MAX_NODES];
-            tr.grid.differentiate(&column, &mut derivative);
-            *slot = rate * tr.grid.interpolate_with(&lagrange, &derivative);
-        }
-        for axis in 0..3 {
-            let (ra, rda) = (*r.get(axis)?, *rd.get(axis)?);
-            *envelope.along_position.get_mut(axis)? = rda / length - radial * ra / cube;
-            *envelope.along_velocity.get_mut(axis)? = ra / length;
-        }
-        Some(envelope)
-    }
-
-    /// `f_yt . v`.
-    pub(super) fn dot(&self, tr: &Transcription, v: &Coefficients) -> f64 {
-        let free = tr.basis.free;
-        let (i, j) = self.pair;
-        let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
-        let mut sum = 0.0;
-        let along = self.along_position.iter().zip(self.along_velocity.iter());
-        for (axis, (&a, &b)) in along.indexed() {
-            let (bi, bj) = (block(i, axis), block(j, axis));
-            let p = block_dot(&self.position_row, v, bi, free) / mi
-                - block_dot(&self.position_row, v, bj, free) / mj;
-            let q = block_dot(&self.velocity_row, v, bi, free) / mi
-                - block_dot(&self.velocity_row, v, bj, free) / mj;
-            sum += a * p + b * q;
-        }
-        sum
-    }
-
-    /// `out += alpha f_yt`.
-    pub(super) fn axpy(&self, tr: &Transcription, alpha: f64, out: &mut Coefficients) {
-        let free = tr.basis.free;
-        let (i, j) = self.pair;
-        let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
-        let along = self.along_position.iter().zip(self.along_velocity.iter());
-        for (axis, (&a, &b)) in along.indexed() {
-            for (sc, mass, sign) in [(i, mi, 1.0), (j, mj, -1.0)] {
-                if let Some(values) = out.get_mut(block(sc, axis)) {
-                    let scale = alpha * sign / mass;
-                    for ((slot, p), q) in values
-                        .iter_mut()
-                        .zip(self.position_row.iter())
-                        .zip(self.velocity_row.iter())
-                        .take(free)
-                    {
-                        *slot += scale * (a * p + b * q);
-                    }
-                }
-            }
-        }
-    }
-}
-
-fn block(sc: u8, axis: usize) -> usize {
-    usize::from(sc).saturating_mul(3).saturating_add(axis)
-}
-
-/// `x <- P x`: remove the part of `x` in the span of the active rows.
-pub(super) fn project(tr: &Transcription, qp: &QpState, x: &mut Coefficients) {
-    let free = tr.basis.free;
-    let mut b = [0.0; MAX_ACTIVE];
-    for (slot, &id) in b.iter_mut().zip(qp.active.iter()).take(qp.count) {
-        *slot = row_dot(&tr.view(id), x, free);
-    }
-    qp.gram_solve(&mut b);
-    for (value, &id) in b.iter().zip(qp.active.iter()).take(qp.count) {
-        row_axpy(&tr.view(id), -value, x, free);
     }
 }
 
@@ -464,7 +209,7 @@ pub(crate) fn evaluate(
     // Stationarity and complementarity.
     *direction = *y;
     let mut complementarity = 0.0f64;
-    for_each_multiplier(tr, qp, |id, value| {
+    qp.for_each_multiplier(tr, |id, value| {
         let view = tr.view(id);
         row_axpy(&view, -value, direction, free);
         let slack = row_dot(&view, y, free) - view.rhs;
@@ -486,7 +231,7 @@ pub(crate) fn evaluate(
     out.min_reduced_eigenvalue = 0.0;
     *direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
     let mut curved = false;
-    for_each_multiplier(tr, qp, |id, value| {
+    qp.for_each_multiplier(tr, |id, value| {
         curved |= matches!(id, RowId::KeepOut { .. }) && value > 0.0;
     });
     if !curved {
@@ -503,7 +248,7 @@ pub(crate) fn evaluate(
     // `sigma` that keeps `P (S + sigma I) P` positive semidefinite for the power method.
     let mut corrections: heapless::Vec<Envelope, MAX_ENVELOPES> = heapless::Vec::new();
     let mut sigma = 0.0;
-    for_each_multiplier(tr, qp, |id, value| {
+    qp.for_each_multiplier(tr, |id, value| {
         let RowId::KeepOut { pair, check } = id else {
             return;
         };
@@ -515,26 +260,7 @@ pub(crate) fn evaluate(
             return;
         }
         if let Some(envelope) = Envelope::new(tr, y, p, c.tau, value) {
-            let mut norm2 = 0.0;
-            let along = envelope
-                .along_position
-                .iter()
-                .zip(envelope.along_velocity.iter());
-            for (&a, &b) in along {
-                for (pv, qv) in envelope
-                    .position_row
-                    .iter()
-                    .zip(envelope.velocity_row.iter())
-                {
-                    let e = a * pv + b * qv;
-                    norm2 += e * e;
-                }
-            }
-            let (mi, mj) = (
-                tr.mass_of(usize::from(envelope.pair.0)),
-                tr.mass_of(usize::from(envelope.pair.1)),
-            );
-            sigma += envelope.weight * norm2 * (1.0 / (mi * mi) + 1.0 / (mj * mj));
+            sigma += envelope.power_shift(tr);
             // Past the capacity a correction is left out: that only lowers the estimate.
             let _ = corrections.push(envelope);
         }

@@ -203,6 +203,11 @@ impl AxisLaw {
     }
 }
 
+/// A spacecraft's three axis laws made ready for the closest-approach searches.
+pub(crate) fn tracks(laws: &[AxisLaw; 3]) -> [Track; 3] {
+    laws.map(|law| law.track())
+}
+
 /// The reachable position change with `|u| <= Umax` given the velocity change; returns
 /// `(min, max)` of `p1 - p0 - v0 T`, or `None` if the velocity change itself is out of reach.
 fn reachable(bd: &AxisBoundary) -> Option<(f64, f64)> {

@@ -13,16 +13,17 @@
 //! backtrack per rejected step, each one QP of the `sqp_max_iter` budget.
 
 use super::certificate;
+use super::kernel::{dot, u8_of, Coefficients, Live};
 use super::linearise::{follow_minima, linearise, refine_moving_checks};
 use super::newton;
-use super::qp::{self, QpOutcome};
+use super::qp;
+use super::qp_state::QpOutcome;
 use super::settings::Settings;
-use super::setup;
 use super::solution::Solution;
 use super::solution::{Unmet, UnmetConstraint};
-use super::solver::u8_of;
 use super::status::{SolveStatus, Stage};
-use super::transcription::{row_dot, Coefficients, RowId, Transcription};
+use super::swerve::turn_fallback;
+use super::transcription::{row_dot, RowId, Transcription};
 use super::work_units;
 use super::workspace::Workspace;
 use crate::indexed::IndexedExt as _;
@@ -50,14 +51,9 @@ pub(super) const FIXED_POINT_TOL_REL: f64 = 1e-4;
 /// Anderson extrapolation.
 pub(super) const MAX_NEWTON_REJECTIONS: u8 = 6;
 
-pub(super) fn half_norm2(y: &Coefficients, blocks: usize, free: usize) -> f64 {
-    let mut sum = 0.0;
-    for block in y.iter().take(blocks) {
-        for v in block.iter().take(free) {
-            sum += v * v;
-        }
-    }
-    0.5 * sum
+/// `|y|^2 / 2` over the live part: the cost above the base cubics' (the QP's objective).
+fn half_norm2(y: &Coefficients, live: Live) -> f64 {
+    0.5 * dot(y, y, live)
 }
 
 /// The convex-concave sequence of QPs from the current iterate, Anderson-accelerated.
@@ -157,7 +153,7 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
             ws.iterate = ws.accepted;
             return SqpEnd::Failed(status);
         }
-        let cost = ws.transcription.base_cost + half_norm2(&ws.trial, blocks, free);
+        let cost = ws.transcription.base_cost + half_norm2(&ws.trial, (blocks, free));
         if extrapolated
             && have_solution
             && cost > previous_cost + settings.sqp_tol_cost * (1.0 + cost)
@@ -269,7 +265,7 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
                 &mut ws.qp,
                 &ws.accepted,
                 &mut ws.iterate,
-                ws.anderson.scratch(),
+                newton::Scratch::from_buffers(ws.anderson.lend()),
                 &mut ws.work,
             ) {
                 ws.iterate = ws.accepted;
@@ -295,7 +291,7 @@ const ELASTIC_PENALTY_REL: f64 = 100.0;
 /// The elastic QP's penalty `rho` (see `qp::solve`) at the last answer.
 fn elastic_penalty(ws: &Workspace) -> f64 {
     let tr = &ws.transcription;
-    let size = half_norm2(&ws.accepted, tr.blocks(), tr.basis.free);
+    let size = half_norm2(&ws.accepted, (tr.blocks(), tr.basis.free));
     ELASTIC_PENALTY_REL * (1.0 + libm::sqrt(2.0 * size))
 }
 
@@ -304,7 +300,7 @@ pub(super) const MAX_SWERVE_TURNS: u8 = 2;
 
 /// Turn the fallback direction of every pair `unmet` names a keep-out of, or of every pair when
 /// it names only control bounds (the elastic answer may trade a swerve's bound for the
-/// keep-out), to `eighths` of a turn from its first (`setup::turn_fallback`). A fallback
+/// keep-out), to `eighths` of a turn from its first (`swerve::turn_fallback`). A fallback
 /// direction only acts where a violated check meets head on, so turning one elsewhere changes
 /// nothing. Returns whether any pair was turned.
 fn turn_unmet_pairs(ws: &mut Workspace, unmet: &Unmet, eighths: u8) -> bool {
@@ -320,7 +316,7 @@ fn turn_unmet_pairs(ws: &mut Workspace, unmet: &Unmet, eighths: u8) -> bool {
         let named = unmet.named().iter().any(|u| {
             matches!(u.constraint, certificate::ActiveConstraint::KeepOut { pair, .. } if pair == spacecraft)
         });
-        if (named || !keep_out_named) && setup::turn_fallback(ws, pair, eighths) {
+        if (named || !keep_out_named) && turn_fallback(ws, pair, eighths) {
             turned = true;
         }
     }

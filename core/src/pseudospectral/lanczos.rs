@@ -15,10 +15,8 @@
 //! Deterministic: a fixed start, a fixed step bound (`LANCZOS_STEPS`), a fixed Laguerre bound
 //! (`LAGUERRE_STEPS`).
 
-use super::certificate::{add_curvature, dot, project, scale, Envelope};
-use super::qp::QpState;
-use super::transcription::{Coefficients, RowId, Transcription};
-use crate::capacity::MAX_ACTIVE;
+use super::curvature::{project, Curvature};
+use super::kernel::{dot, scale, Coefficients};
 use crate::indexed::IndexedExt as _;
 
 /// Most Lanczos steps (each one product with `P S P`). Stops earlier when the Krylov space is
@@ -45,42 +43,6 @@ const STEP_REL: f64 = 1e-14;
 /// Sturm sweep; the reach grows 16-fold per try, so 8 tries span 2e9 times the first).
 const START_TRIES: usize = 8;
 
-/// `S` less the envelope terms (the curvature of the active keep-out checks at the iterate), for
-/// the projected products.
-pub(super) struct Curvature<'a> {
-    pub tr: &'a Transcription,
-    pub qp: &'a QpState,
-    /// `|r|` at each active row's check (`certificate::check_lengths`).
-    pub lengths: &'a [f64; MAX_ACTIVE],
-    pub corrections: &'a [Envelope],
-}
-
-impl Curvature<'_> {
-    /// `out += S v - sum_e w_e (f_e . v) f_e`: every active keep-out check's curvature in the
-    /// QP's row order, then the envelope corrections (the order the power method always used).
-    pub(super) fn accumulate(&self, v: &Coefficients, out: &mut Coefficients) {
-        let (tr, qp) = (self.tr, self.qp);
-        for ((&id, &value), &length) in qp
-            .active
-            .iter()
-            .zip(qp.multiplier.iter())
-            .zip(self.lengths.iter())
-            .take(qp.count)
-        {
-            if let RowId::KeepOut { pair, check } = id {
-                let p = usize::from(pair);
-                if let Some(c) = tr.checks.get(p).and_then(|row| row.get(usize::from(check))) {
-                    add_curvature(tr, (p, c), length, value, v, out);
-                }
-            }
-        }
-        for envelope in self.corrections {
-            let along = envelope.weight * envelope.dot(tr, v);
-            envelope.axpy(tr, -along, out);
-        }
-    }
-}
-
 /// The largest eigenvalue of `P S P` on the null space, from `start` (projected, not
 /// normalised; overwritten) with `other` as the second Lanczos vector's buffer. Returns the
 /// estimate (not above the true value, up to rounding) and the steps taken, or `None` when a
@@ -97,7 +59,7 @@ pub(super) fn largest(
         return Some((0.0, 0));
     }
     scale(start, 1.0 / norm, size);
-    *other = [[0.0; crate::capacity::MAX_FREE_PER_AXIS]; super::transcription::MAX_BLOCKS];
+    *other = [[0.0; crate::capacity::MAX_FREE_PER_AXIS]; super::kernel::MAX_BLOCKS];
     let (mut v, mut u) = (start, other);
     let mut alpha = [0.0; LANCZOS_STEPS];
     let mut beta = [0.0; LANCZOS_STEPS];

@@ -3,89 +3,15 @@
 //! linearisation of every keep-out check (the unit separation, or a swerved normal where the
 //! iterate violates the check).
 
+use super::kernel::{Coefficients, MAX_BLOCKS};
 use super::settings::Settings;
-use super::solver::norm3;
-use super::transcription::{
-    block_dot, node_value, Coefficients, NodeDots, Transcription, MAX_BLOCKS, MAX_POINTS,
-};
+use super::swerve::perpendicular_direction;
+use super::transcription::{block_dot, node_value, NodeDots, Transcription, MAX_POINTS};
 use super::verify::{Minimum, MAX_PRODUCT};
 use super::workspace::Workspace;
 use crate::capacity::{MAX_CHECKS_PER_PAIR, MAX_NODES, MAX_PAIRS};
 use crate::indexed::IndexedExt as _;
-
-/// A unit vector perpendicular to `velocity`, along the miss vector `relative` when it is not
-/// negligible, else a fixed choice (the coordinate axis least aligned with the velocity, made
-/// perpendicular), deterministic per pair.
-pub(super) fn perpendicular_direction(
-    relative: &[f64; 3],
-    velocity: &[f64; 3],
-    fallback: Option<[f64; 3]>,
-) -> [f64; 3] {
-    let speed = norm3(velocity);
-    let unit_v = if speed > 0.0 {
-        [
-            velocity[0] / speed,
-            velocity[1] / speed,
-            velocity[2] / speed,
-        ]
-    } else {
-        [0.0, 0.0, 0.0]
-    };
-    let reject = |v: [f64; 3]| {
-        let along = v[0] * unit_v[0] + v[1] * unit_v[1] + v[2] * unit_v[2];
-        [
-            v[0] - along * unit_v[0],
-            v[1] - along * unit_v[1],
-            v[2] - along * unit_v[2],
-        ]
-    };
-    let miss = reject(*relative);
-    let miss_norm = norm3(&miss);
-    if miss_norm > 1e-9 * (1.0 + norm3(relative)) {
-        return [
-            miss[0] / miss_norm,
-            miss[1] / miss_norm,
-            miss[2] / miss_norm,
-        ];
-    }
-    if let Some(direction) = fallback {
-        let candidate = reject(direction);
-        let c_norm = norm3(&candidate);
-        if c_norm > 0.5 {
-            return [
-                candidate[0] / c_norm,
-                candidate[1] / c_norm,
-                candidate[2] / c_norm,
-            ];
-        }
-    }
-    // Head on: pass to the right of the relative velocity, `v x e` with `e` the coordinate axis
-    // least aligned with it. For crossings in a plane this is a consistent roundabout: every
-    // pair turns the same way, so no pair's choice fights another's.
-    let mut axis = 0usize;
-    let mut least = f64::INFINITY;
-    for (k, component) in unit_v.iter().indexed() {
-        if libm::fabs(*component) < least {
-            least = libm::fabs(*component);
-            axis = k;
-        }
-    }
-    let mut e = [0.0; 3];
-    if let Some(slot) = e.get_mut(axis) {
-        *slot = 1.0;
-    }
-    let right = [
-        unit_v[1] * e[2] - unit_v[2] * e[1],
-        unit_v[2] * e[0] - unit_v[0] * e[2],
-        unit_v[0] * e[1] - unit_v[1] * e[0],
-    ];
-    let r_norm = norm3(&right);
-    if r_norm > 0.0 {
-        [right[0] / r_norm, right[1] / r_norm, right[2] / r_norm]
-    } else {
-        [1.0, 0.0, 0.0]
-    }
-}
+use crate::vec3;
 
 /// Node values of `r_i - r_j` on one axis for the coefficients `y`.
 pub(super) fn relative_nodes(
@@ -169,7 +95,7 @@ pub(super) fn linearise(ws: &mut Workspace) {
             let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)).copied() else {
                 continue;
             };
-            let length = norm3(&tr.relative_with(pair, check.source, &ws.iterate, &dots));
+            let length = vec3::norm(&tr.relative_with(pair, check.source, &ws.iterate, &dots));
             if length < violated_below && closest.is_none_or(|(_, best)| length < best) {
                 closest = Some((check.tau, length));
             }
@@ -182,7 +108,7 @@ pub(super) fn linearise(ws: &mut Workspace) {
                 .copied()
                 .unwrap_or([1.0, 0.0, 0.0]);
             let direction = perpendicular_direction(&relative, &velocity, Some(fallback));
-            let speed = norm3(&velocity);
+            let speed = vec3::norm(&velocity);
             let width = if speed > 0.0 {
                 keep_out / speed
             } else {
@@ -196,7 +122,7 @@ pub(super) fn linearise(ws: &mut Workspace) {
                 continue;
             };
             let mut relative = tr.relative_with(pair, check.source, &ws.iterate, &dots);
-            let length = norm3(&relative);
+            let length = vec3::norm(&relative);
             if length < violated_below {
                 if let Some((t_star, direction, width)) = swerve {
                     let x = (tr.time_of(check.tau) - t_star) / width;
@@ -210,7 +136,7 @@ pub(super) fn linearise(ws: &mut Workspace) {
                     }
                 }
             }
-            let length = norm3(&relative);
+            let length = vec3::norm(&relative);
             let normal = if length > 0.0 {
                 [
                     relative[0] / length,
@@ -244,7 +170,7 @@ pub(super) fn unit_normals_at(tr: &mut Transcription, y: &Coefficients) {
                 continue;
             };
             let relative = tr.relative(pair, check.source, y);
-            let length = norm3(&relative);
+            let length = vec3::norm(&relative);
             if length > 0.0 {
                 if let Some(slot) = tr.checks.get_mut(pair).and_then(|row| row.get_mut(c)) {
                     slot.normal = [
@@ -299,7 +225,7 @@ pub(super) fn follow_minima(ws: &mut Workspace, settings: &Settings, place: bool
         let mut least = f64::INFINITY;
         for c in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
             if let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)) {
-                least = least.min(norm3(&tr.relative_with(
+                least = least.min(vec3::norm(&tr.relative_with(
                     pair,
                     check.source,
                     &ws.iterate,
@@ -387,7 +313,7 @@ fn freeze_if_cycling(
     {
         return;
     }
-    let separation = norm3(&tr.relative_with(pair, check.source, y, dots));
+    let separation = vec3::norm(&tr.relative_with(pair, check.source, y, dots));
     if separation <= tr.keep_out_for(pair) * (1.0 + FREEZE_BINDING_REL) {
         if let Some(slot) = tr.moving_check.get_mut(pair) {
             *slot = None;

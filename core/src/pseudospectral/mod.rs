@@ -67,8 +67,10 @@ mod anderson;
 mod basis;
 mod collision;
 mod convex_minimum;
+mod curvature;
 mod guess;
 mod iteration;
+mod kernel;
 mod lanczos;
 mod lgl;
 mod linalg;
@@ -81,8 +83,10 @@ mod qp_dual;
 #[cfg(test)]
 mod qp_elastic_tests;
 mod qp_scan;
+mod qp_state;
 mod setup;
 mod solver;
+mod swerve;
 #[cfg(test)]
 mod test_problems;
 mod transcription;

@@ -32,10 +32,11 @@
 //! the cost. Near a nondegenerate local optimum the linearisation point and the QP's answer
 //! converge superlinearly together.
 
-use super::certificate::{add_curvature, check_lengths, project, Envelope, MAX_ENVELOPES};
+use super::curvature::{add_curvature, check_lengths, project, Envelope, MAX_ENVELOPES};
+use super::kernel::{axpy, dot, scale, Coefficients, MAX_BLOCKS};
 use super::linearise::unit_normals_at;
-use super::qp::{Mode, QpState};
-use super::transcription::{row_axpy, row_dot, Coefficients, RowId, Transcription, MAX_BLOCKS};
+use super::qp_state::{Mode, QpState};
+use super::transcription::{row_axpy, row_dot, RowId, Transcription};
 use super::work_units;
 use crate::capacity::{MAX_ACTIVE, MAX_FREE_PER_AXIS};
 use crate::work::Meter;
@@ -45,28 +46,20 @@ pub(crate) const NEWTON_CURVATURE_FLOOR: f64 = 1e-2;
 /// Relative residual at which CG stops.
 const CG_TOL_REL: f64 = 1e-10;
 
-/// Three idle dense buffers for CG (the Anderson memory's, see `Anderson::scratch`).
+/// Three idle dense buffers for CG (the Anderson memory's, see `Anderson::lend`).
 pub(super) struct Scratch<'a> {
     pub residual: &'a mut Coefficients,
     pub direction: &'a mut Coefficients,
     pub product: &'a mut Coefficients,
 }
 
-fn dot(a: &Coefficients, b: &Coefficients, (blocks, free): (usize, usize)) -> f64 {
-    let mut sum = 0.0;
-    for (x, y) in a.iter().zip(b.iter()).take(blocks) {
-        for (p, q) in x.iter().zip(y.iter()).take(free) {
-            sum += p * q;
-        }
-    }
-    sum
-}
-
-/// `a += alpha b`.
-fn axpy(a: &mut Coefficients, alpha: f64, b: &Coefficients, (blocks, free): (usize, usize)) {
-    for (x, y) in a.iter_mut().zip(b.iter()).take(blocks) {
-        for (p, q) in x.iter_mut().zip(y.iter()).take(free) {
-            *p += alpha * q;
+impl<'a> Scratch<'a> {
+    /// The CG vectors in three lent buffers.
+    pub(super) fn from_buffers([residual, direction, product]: [&'a mut Coefficients; 3]) -> Self {
+        Self {
+            residual,
+            direction,
+            product,
         }
     }
 }
@@ -239,12 +232,7 @@ pub(super) fn step(
         return false;
     }
     if length > limit {
-        let factor = limit / length;
-        for row in next.iter_mut().take(size.0) {
-            for v in row.iter_mut().take(free) {
-                *v *= factor;
-            }
-        }
+        scale(next, limit / length, size);
     }
     axpy(next, 1.0, y, size);
     true

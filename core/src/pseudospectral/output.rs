@@ -1,14 +1,15 @@
 //! Writing the returned trajectory and checking it: states, controls, cost, the verified
 //! continuous separation, the largest violations and the dynamics check (eq. 29).
 
+use super::kernel::per_axis;
 use super::linearise::{block_positions, pair_minimum};
 use super::settings::Settings;
 use super::solution::Solution;
-use super::solver::{norm3, per_axis};
 use super::transcription::{block_dot, node_value, Transcription};
 use super::workspace::Workspace;
 use crate::capacity::{MAX_NODES, MAX_SPACECRAFT};
 use crate::indexed::IndexedExt as _;
+use crate::vec3;
 
 /// A node control may exceed Umax by this fraction of Umax and still count as within the bound
 /// (the QP's own tolerance is 1e-12 of a row norm).
@@ -126,7 +127,7 @@ pub(super) fn write_solution(ws: &mut Workspace, settings: &Settings, out: &mut 
                 continue;
             }
             let relative = tr.relative(pair, check.source, &ws.iterate);
-            violation = violation.max(tr.keep_out_lu - norm3(&relative));
+            violation = violation.max(tr.keep_out_lu - vec3::norm(&relative));
         }
     }
     for sc in out.controls_fu.iter().take(tr.spacecraft) {

@@ -19,41 +19,18 @@
 //! Cost: one sweep touches every candidate row once, `O(rows x 6 (N - 3))` flops; at most
 //! `max_sweeps` sweeps (the QP's iteration setting).
 
-use super::qp::{Mode, QpOutcome, QpState};
-use super::transcription::{
-    block_dot, node_value, row_axpy, row_dot, Coefficients, RowId, Transcription, MAX_BLOCKS,
+use super::kernel::{Coefficients, MAX_BLOCKS};
+use super::qp_scan::for_each_elastic;
+use super::qp_state::{
+    control_id, dual_index, for_each_stored, keep_out_id, signed, Mode, QpOutcome, QpState,
+    DUAL_LEN,
 };
-use crate::capacity::{MAX_CHECKS_PER_PAIR, MAX_FREE_PER_AXIS, MAX_NODES, MAX_PAIRS};
-
-/// Multipliers of the control range rows, one per block per node.
-const CONTROL_DUALS: usize = MAX_BLOCKS * MAX_NODES;
-/// The dual table: control range rows, then keep-out checks per pair.
-pub(crate) const DUAL_LEN: usize = CONTROL_DUALS + MAX_PAIRS * MAX_CHECKS_PER_PAIR;
+use super::transcription::{block_dot, node_value, row_axpy, row_dot, RowId, Transcription};
+use super::work_units;
+use crate::capacity::MAX_FREE_PER_AXIS;
 
 /// Tightening of every row, as a distance in `y` (row normalised).
 const TIGHTEN: f64 = 1e-9;
-
-/// Where a row's multiplier lives in the dual table. A control row's two bounds share one slot.
-pub(crate) fn dual_index(id: RowId) -> Option<usize> {
-    let index = match id {
-        RowId::Control { block, node, .. } => usize::from(block)
-            .checked_mul(MAX_NODES)?
-            .checked_add(usize::from(node))?,
-        RowId::KeepOut { pair, check } => usize::from(pair)
-            .checked_mul(MAX_CHECKS_PER_PAIR)?
-            .checked_add(usize::from(check))?
-            .checked_add(CONTROL_DUALS)?,
-    };
-    (index < DUAL_LEN).then_some(index)
-}
-
-/// The signed dual-table value of a row's multiplier (control: lower positive, upper negative).
-fn signed(id: RowId, multiplier: f64) -> f64 {
-    match id {
-        RowId::Control { upper: true, .. } => -multiplier,
-        _ => multiplier,
-    }
-}
 
 /// One exact coordinate step on a control range row; returns the change of `y` along the row
 /// (in units of the row vector) and the row's normalised violation of the original bounds.
@@ -117,7 +94,7 @@ pub(crate) fn solve(
     // here the bound is the table's.
     if state.elastic_count > 0 {
         let store = &mut state.store;
-        super::qp_scan::for_each_elastic(tr, &state.control_flags, &state.keep_out_flags, |id| {
+        for_each_elastic(tr, &state.control_flags, &state.keep_out_flags, |id| {
             let bound = penalty / tr.view(id).norm;
             if let Some(slot) = dual_index(id).and_then(|i| store.get_mut(i)) {
                 *slot += signed(id, bound);
@@ -134,7 +111,7 @@ pub(crate) fn solve(
     });
     let mut sweeps: u16 = 0;
     loop {
-        if !work.spend(super::work_units::dual_sweep(tr)) {
+        if !work.spend(work_units::dual_sweep(tr)) {
             return QpOutcome::IterationLimit;
         }
         let mut worst = 0.0f64;
@@ -247,21 +224,6 @@ pub(crate) fn solve(
     }
 }
 
-fn control_id(block: usize, node: usize) -> RowId {
-    RowId::Control {
-        block: u8::try_from(block).unwrap_or(u8::MAX),
-        node: u8::try_from(node).unwrap_or(u8::MAX),
-        upper: false,
-    }
-}
-
-fn keep_out_id(pair: usize, check: usize) -> RowId {
-    RowId::KeepOut {
-        pair: u8::try_from(pair).unwrap_or(u8::MAX),
-        check: u8::try_from(check).unwrap_or(u8::MAX),
-    }
-}
-
 fn positive_multipliers(state: &QpState) -> usize {
     state
         .store
@@ -270,49 +232,4 @@ fn positive_multipliers(state: &QpState) -> usize {
         .filter(|v| **v != 0.0)
         // Counted with `fold`, not `count()`, whose overflow check is a panic path.
         .fold(0_usize, |n, _| n.wrapping_add(1))
-}
-
-/// Every nonzero value of the dual table with its row, in table order (control rows, then
-/// keep-out checks per pair): control values are signed (lower bound positive, upper negative).
-/// A row without a slot in the table has no multiplier, hence the zero.
-fn for_each_stored(state: &QpState, tr: &Transcription, mut f: impl FnMut(RowId, f64)) {
-    let mut visit = |id: RowId| {
-        let value = dual_index(id)
-            .and_then(|i| state.store.get(i))
-            .copied()
-            .unwrap_or(0.0);
-        if value != 0.0 {
-            f(id, value);
-        }
-    };
-    for block in 0..tr.blocks() {
-        for node in 0..tr.grid.nodes() {
-            visit(control_id(block, node));
-        }
-    }
-    for pair in 0..tr.pair_count {
-        for check in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
-            visit(keep_out_id(pair, check));
-        }
-    }
-}
-
-/// Every nonzero multiplier of the fallback's table as (row, multiplier >= 0), in table order.
-pub(crate) fn for_each_multiplier(
-    state: &QpState,
-    tr: &Transcription,
-    mut f: impl FnMut(RowId, f64),
-) {
-    for_each_stored(state, tr, |id, value| match id {
-        RowId::Control { block, node, .. } if value < 0.0 => f(
-            RowId::Control {
-                block,
-                node,
-                upper: true,
-            },
-            -value,
-        ),
-        _ if value > 0.0 => f(id, value),
-        _ => {}
-    });
 }

@@ -3,8 +3,10 @@
 //! must swap places keeping 20 LU apart (infeasible, see `iteration.rs`' tests).
 #![allow(clippy::indexing_slicing, clippy::unwrap_used, clippy::expect_used)]
 
-use super::qp::{self, QpOutcome};
-use super::transcription::{row_dot, Coefficients, RowId, Transcription, MAX_BLOCKS};
+use super::kernel::{Coefficients, MAX_BLOCKS};
+use super::qp;
+use super::qp_state::QpOutcome;
+use super::transcription::{row_dot, RowId, Transcription};
 use super::{Problem, Settings, Solution, Workspace};
 use crate::capacity::MAX_FREE_PER_AXIS;
 use crate::work::Meter;

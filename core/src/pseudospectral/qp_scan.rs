@@ -4,10 +4,11 @@
 //! at the l1 penalty's bound by the elastic QP); an elastic row is a candidate to leave that
 //! bound when the answer meets it with room to spare (`most_met_elastic`).
 
-use super::qp::{QpState, LOWER_ACTIVE, LOWER_ELASTIC, ROW_ELASTIC, UPPER_ACTIVE, UPPER_ELASTIC};
-use super::transcription::{
-    block_dot, row_dot, Coefficients, NodeDots, RowId, Transcription, MAX_BLOCKS,
+use super::kernel::{Coefficients, MAX_BLOCKS};
+use super::qp_state::{
+    QpState, LOWER_ACTIVE, LOWER_ELASTIC, ROW_ELASTIC, UPPER_ACTIVE, UPPER_ELASTIC,
 };
+use super::transcription::{block_dot, row_dot, NodeDots, RowId, Transcription};
 use crate::capacity::{MAX_ACTIVE, MAX_CHECKS_PER_PAIR, MAX_NODES, MAX_PAIRS};
 use crate::indexed::IndexedExt as _;
 

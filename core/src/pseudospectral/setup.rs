@@ -2,20 +2,19 @@
 //! points (eq. 23, 27), and the first linearisation point (the analytic guess or a warm start).
 
 use super::collision;
-use super::guess::{self, AxisLaw, Track};
-use super::linearise::perpendicular_direction;
+use super::guess::{self, tracks};
+use super::kernel::{per_axis, u8_of, Coefficients, MAX_BLOCKS};
 use super::problem::Problem;
 use super::settings::Settings;
 use super::solution::Solution;
-use super::solver::{per_axis, u8_of};
 use super::status::Stage;
-use super::transcription::{node_value, Coefficients, Transcription, MAX_BLOCKS};
+use super::swerve;
+use super::transcription::{node_value, Transcription};
 use super::workspace::Workspace;
 use crate::capacity::{
     MAX_FREE_PER_AXIS, MAX_NODES, MAX_PAIRS, MAX_SPACECRAFT, TEST_POINTS_PER_PAIR,
 };
 use crate::indexed::IndexedExt as _;
-use crate::vec3;
 
 /// Build the grid, basis, base cubics, pairs, pruning windows and check points. The test-point
 /// times per pair go straight into the solution's `test_times` (no workspace copy).
@@ -263,63 +262,5 @@ pub(super) fn initial_iterate(
         }
     }
     out.info.warm_start_used = warm.is_some();
-    // Fallback directions: perpendicular to the analytic relative velocity at the closest
-    // approach, toward the existing miss vector when there is one.
-    for pair in 0..ws.transcription.pair_count {
-        if let Some((direction, _)) = fallback_frame(ws, pair) {
-            if let Some(slot) = ws.fallback_normal.get_mut(pair) {
-                *slot = direction;
-            }
-        }
-    }
-}
-
-/// A pair's fallback direction and the analytic relative velocity at the analytic
-/// trajectories' closest approach (the direction is perpendicular to it).
-fn fallback_frame(ws: &Workspace, pair: usize) -> Option<([f64; 3], [f64; 3])> {
-    let tr = &ws.transcription;
-    let (i, j) = tr.pairs.get(pair).copied()?;
-    let (li, lj) = (ws.laws.get(usize::from(i))?, ws.laws.get(usize::from(j))?);
-    let (ti, tj) = (tracks(li), tracks(lj));
-    let t = collision::closest_approach(&ti, &tj, 0.0, tr.horizon_tu, 60);
-    let (relative, velocity) = collision::analytic_relative_motion(&ti, &tj, t);
-    Some((
-        perpendicular_direction(&relative, &velocity, None),
-        velocity,
-    ))
-}
-
-/// Turn a pair's fallback direction by `eighths` of a turn (45 degrees each) about the analytic
-/// relative velocity, from where `setup` put it. Why: a pair that meets head on swerves along
-/// one fixed perpendicular in the first subproblems, and with the bound on each axis of the
-/// control a swerve along one axis reaches `1/sqrt(2)` of one along a diagonal (measured: two
-/// spacecraft swapping places with d = 14 LU, T = 10, Umax = 1 reach 12.5 LU along z alone
-/// and 17.7 along the diagonal, so the subproblem was infeasible and the problem is not).
-/// Returns false when the pair has no such direction.
-pub(super) fn turn_fallback(ws: &mut Workspace, pair: usize, eighths: u8) -> bool {
-    let Some((normal, velocity)) = fallback_frame(ws, pair) else {
-        return false;
-    };
-    let speed = vec3::norm(&velocity);
-    if speed.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
-        return false;
-    }
-    let v = velocity.map(|c| c / speed);
-    // v x n: the normal's quarter turn about v (n is perpendicular to v, so both are unit).
-    let side = vec3::cross(&v, &normal);
-    let angle = core::f64::consts::FRAC_PI_4 * f64::from(eighths);
-    let (sin, cos) = (libm::sin(angle), libm::cos(angle));
-    let turned = vec3::add(&vec3::scale(&normal, cos), &vec3::scale(&side, sin));
-    match ws.fallback_normal.get_mut(pair) {
-        Some(slot) => {
-            *slot = turned;
-            true
-        }
-        None => false,
-    }
-}
-
-/// A spacecraft's three axis laws made ready for the closest-approach searches.
-fn tracks(laws: &[AxisLaw; 3]) -> [Track; 3] {
-    laws.map(|law| law.track())
+    swerve::choose_fallback_directions(ws);
 }

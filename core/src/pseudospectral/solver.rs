@@ -5,6 +5,7 @@ use super::certificate;
 use super::error::{PlanError, Quantity};
 use super::guess::{self, AxisBoundary, AxisLaw, GuessError};
 use super::iteration::{sqp, SqpEnd};
+use super::kernel::{per_axis, u8_of};
 use super::linearise::{pair_bit, pair_minimum, unit_normals};
 use super::output::{
     control_excess, state_scale, write_solution, CONTROL_TOL_REL, DYNAMICS_TOL_REL,
@@ -20,21 +21,6 @@ use super::workspace::Workspace;
 use crate::capacity::MAX_SPACECRAFT;
 use crate::indexed::IndexedExt as _;
 use crate::work::Meter;
-
-pub(super) fn u8_of(value: usize) -> u8 {
-    u8::try_from(value).unwrap_or(u8::MAX)
-}
-
-/// Position and velocity per axis of a state `[x, y, z, vx, vy, vz]`: valid by construction, no
-/// index that could miss.
-pub(super) fn per_axis(state: &[f64; 6]) -> [(f64, f64); 3] {
-    let [x, y, z, vx, vy, vz] = *state;
-    [(x, vx), (y, vy), (z, vz)]
-}
-
-pub(super) fn norm3(v: &[f64; 3]) -> f64 {
-    libm::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
-}
 
 /// Entry point behind `solve` and `solve_warm`.
 pub(crate) fn solve(
@@ -372,7 +358,7 @@ fn finish(ws: &mut Workspace, settings: &Settings, out: &mut Solution, end: SqpE
 #[cfg(test)]
 #[allow(clippy::unwrap_used, clippy::indexing_slicing)]
 mod tests {
-    use super::super::linearise::perpendicular_direction;
+    use super::super::swerve::perpendicular_direction;
     use super::*;
 
     /// Rest-to-rest moves with d = 2 (the paper's settings).

@@ -6,6 +6,7 @@
 //! coefficient vector up to a scalar, so rows are stored as descriptors, never as dense vectors.
 
 use super::basis::Basis;
+use super::kernel::{Coefficients, MAX_BLOCKS};
 use super::lgl::LglGrid;
 use crate::capacity::{
     MAX_CHECKS_PER_PAIR, MAX_FREE_PER_AXIS, MAX_NODES, MAX_PAIRS, MAX_SPACECRAFT,
@@ -13,8 +14,6 @@ use crate::capacity::{
 };
 use crate::indexed::IndexedExt as _;
 
-/// Blocks of variables: one per spacecraft per axis.
-pub(crate) const MAX_BLOCKS: usize = MAX_SPACECRAFT * 3;
 /// Off-node check points (test and verification points) at capacity.
 pub(crate) const MAX_POINTS: usize =
     MAX_PAIRS * (TEST_POINTS_PER_PAIR + MAX_VERIFY_POINTS_PER_PAIR);
@@ -22,9 +21,6 @@ pub(crate) const MAX_POINTS: usize =
 /// Two checks of one pair closer than this in normalised time (tau in [-1, 1]) are one
 /// constraint for the second-order measures (see `QpState::merge_close_checks`).
 pub(crate) const CLOSE_CHECKS_TAU: f64 = 1e-4;
-
-/// A dense vector of all free coefficients.
-pub(crate) type Coefficients = [[f64; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
 
 /// Per block and node, the position row's dot product with a coefficient vector
 /// (`Transcription::node_dots`).

@@ -1,14 +1,11 @@
 //! Input checks done before any iteration; each bad input has its own [`PlanError`].
 
 use super::error::{Boundary, Capacity, PlanError, Quantity, MAX_MAGNITUDE, MIN_POSITIVE};
+use super::kernel::u8_of as index;
 use super::problem::Problem;
 use super::settings::Settings;
 use crate::capacity::{MAX_DEGREE, MAX_SPACECRAFT, MIN_DEGREE};
 use crate::indexed::IndexedExt as _;
-
-fn index(i: usize) -> u8 {
-    u8::try_from(i).unwrap_or(u8::MAX)
-}
 
 fn finite_positive(value: f64, what: Quantity, spacecraft: u8) -> Result<(), PlanError> {
     if !value.is_finite() {

@@ -5,9 +5,10 @@
 //! Sizes: `blocks` = 3 M coefficient blocks of `free` variables, `nodes` = N + 1, `pairs`,
 //! `checks` = keep-out rows over all pairs, `k` = rows in the QP's working set.
 
-use super::certificate::{MAX_ENVELOPES, POWER_ITERATIONS};
+use super::certificate::POWER_ITERATIONS;
+use super::curvature::MAX_ENVELOPES;
+use super::kernel::MAX_BLOCKS;
 use super::transcription::Transcription;
-use super::transcription::MAX_BLOCKS;
 use crate::capacity::{MAX_ACTIVE, MAX_FREE_PER_AXIS};
 use crate::work::units;
 

@@ -2,8 +2,9 @@
 
 use super::anderson::Anderson;
 use super::guess::AxisLaw;
-use super::qp::QpState;
-use super::transcription::{Coefficients, Transcription, MAX_BLOCKS};
+use super::kernel::{Coefficients, MAX_BLOCKS};
+use super::qp_state::QpState;
+use super::transcription::Transcription;
 use super::verify::Bernstein;
 use crate::capacity::{MAX_FREE_PER_AXIS, MAX_PAIRS, MAX_SPACECRAFT};
 

@@ -1,0 +1,292 @@
+//! The curvature of the keep-out constraints in the Hessian of the Lagrangian, `S` (see
+//! `certificate`): each active keep-out check's term `l J^T (I - n n^T) J / |r|`, the time-envelope
+//! correction of a semi-infinite check at its minimum in time (`Envelope`), the projection on
+//! the active rows' null space, and the operator `P S P` as the certificate's eigenvalue
+//! methods apply it (`Curvature`). The second-order step (`newton.rs`) and the certificate
+//! (`certificate.rs`, `lanczos.rs`) both use these, so neither takes them from the other.
+
+use super::kernel::Coefficients;
+use super::qp_state::QpState;
+use super::transcription::{block_dot, node_value, row_axpy, row_dot, Check, RowId, Transcription};
+use crate::capacity::{MAX_ACTIVE, MAX_FREE_PER_AXIS, MAX_NODES};
+use crate::indexed::IndexedExt as _;
+use crate::vec3;
+
+/// Active keep-out checks whose envelope correction the second-order test holds at once
+/// (about 400 bytes of stack each). Corrections past it are left out, which only lowers the
+/// reported eigenvalue (the correction is positive semidefinite): conservative.
+pub const MAX_ENVELOPES: usize = 16;
+
+/// `|r_i - r_j|` at each active row's check on `y` (0 for control rows), in the QP's row order:
+/// the lengths `add_curvature` needs, computed once per point instead of once per product (a
+/// CG or power-method product otherwise recomputed six dot products per check for them).
+pub(super) fn check_lengths(
+    tr: &Transcription,
+    qp: &QpState,
+    y: &Coefficients,
+    out: &mut [f64; MAX_ACTIVE],
+) {
+    *out = [0.0; MAX_ACTIVE];
+    for (slot, &id) in out.iter_mut().zip(qp.active.iter()).take(qp.count) {
+        if let RowId::KeepOut { pair, check } = id {
+            let p = usize::from(pair);
+            if let Some(c) = tr.checks.get(p).and_then(|row| row.get(usize::from(check))) {
+                let relative = tr.relative(p, c.source, y);
+                *slot = libm::sqrt(
+                    relative[0] * relative[0]
+                        + relative[1] * relative[1]
+                        + relative[2] * relative[2],
+                );
+            }
+        }
+    }
+}
+
+/// `out += sign * S v` restricted to one active keep-out check `c` of `pair` with multiplier
+/// `l`, at a point `y` where the check's separation has length `length` (`check_lengths`) and
+/// its normal is the unit separation (`unit_normals_at(tr, y)` sets it with the same arithmetic).
+pub(super) fn add_curvature(
+    tr: &Transcription,
+    (pair, c): (usize, &Check),
+    length: f64,
+    l: f64,
+    v: &Coefficients,
+    out: &mut Coefficients,
+) {
+    let Some(&(i, j)) = tr.pairs.get(pair) else {
+        return;
+    };
+    if length <= 0.0 {
+        return;
+    }
+    let n = c.normal;
+    let (row, _) = tr.check_row(c.source);
+    let free = tr.basis.free;
+    let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
+    let block = |sc: u8, axis: usize| usize::from(sc).saturating_mul(3).saturating_add(axis);
+    let mut jv = [0.0; 3];
+    for (axis, slot) in jv.iter_mut().indexed() {
+        *slot = block_dot(row, v, block(i, axis), free) / mi
+            - block_dot(row, v, block(j, axis), free) / mj;
+    }
+    let along = n[0] * jv[0] + n[1] * jv[1] + n[2] * jv[2];
+    for (axis, (value, normal)) in jv.iter().zip(n.iter()).indexed() {
+        let t = (value - along * normal) * l / length;
+        for (sc, mass, sign) in [(i, mi, 1.0), (j, mj, -1.0)] {
+            if let Some(values) = out.get_mut(block(sc, axis)) {
+                for (slot, r) in values.iter_mut().zip(row.iter()).take(free) {
+                    *slot += sign * t * r / mass;
+                }
+            }
+        }
+    }
+}
+
+/// The time-envelope correction of an active keep-out check. The keep-out is semi-infinite:
+/// what must hold is `phi(y) = min_t |r(t, y)| >= d`, and on a trajectory verified feasible on
+/// the continuous trajectory an active check sits at a local minimum of `|r(t)|` in time. The
+/// Hessian of `phi` is `f_yy - f_yt f_yt^T / f_tt` (f = |r|, at the minimising t);
+/// `add_curvature` gives `f_yy`, this the rank-one term, so the Lagrangian gains
+/// `+l f_yt f_yt^T / f_tt`. `f_yt` is kept compactly (the basis position and velocity rows at the
+/// check time and the relative state), never as a dense vector.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Envelope {
+    pair: (u8, u8),
+    position_row: [f64; MAX_FREE_PER_AXIS],
+    velocity_row: [f64; MAX_FREE_PER_AXIS],
+    /// Per axis: the weights of the position row and of the velocity row in `f_yt`.
+    along_position: [f64; 3],
+    along_velocity: [f64; 3],
+    /// `l / f_tt`.
+    pub(super) weight: f64,
+}
+
+impl Envelope {
+    /// Build for the check of `pair` at `tau` with multiplier `l`; `None` when the check is not
+    /// a strict minimum in time (then the correction is left out, which only lowers the
+    /// reported curvature: conservative).
+    pub(super) fn new(
+        tr: &Transcription,
+        y: &Coefficients,
+        pair: usize,
+        tau: f64,
+        l: f64,
+    ) -> Option<Self> {
+        let &(i, j) = tr.pairs.get(pair)?;
+        let free = tr.basis.free;
+        let nodes = tr.grid.nodes();
+        let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
+        let rate = 2.0 / tr.horizon_tu;
+        let mut r = [0.0; 3];
+        let mut rd = [0.0; 3];
+        let mut rdd = [0.0; 3];
+        // One interpolation row at `tau` serves every value below.
+        let mut lagrange = [0.0; MAX_NODES];
+        tr.grid.lagrange_row(tau, &mut lagrange);
+        for axis in 0..3 {
+            let mut values = [0.0; MAX_NODES];
+            for (h, slot) in values.iter_mut().indexed().take(nodes) {
+                let row = tr.basis.position.get(h)?;
+                *slot = node_value(&tr.base_position, block(i, axis), h)
+                    - node_value(&tr.base_position, block(j, axis), h)
+                    + block_dot(row, y, block(i, axis), free) / mi
+                    - block_dot(row, y, block(j, axis), free) / mj;
+            }
+            let mut first = [0.0; MAX_NODES];
+            let mut second = [0.0; MAX_NODES];
+            tr.grid.differentiate(&values, &mut first);
+            tr.grid.differentiate(&first, &mut second);
+            *r.get_mut(axis)? = tr.grid.interpolate_with(&lagrange, &values);
+            *rd.get_mut(axis)? = rate * tr.grid.interpolate_with(&lagrange, &first);
+            *rdd.get_mut(axis)? = rate * rate * tr.grid.interpolate_with(&lagrange, &second);
+        }
+        let length = libm::sqrt(vec3::dot(&r, &r));
+        if length <= 0.0 {
+            return None;
+        }
+        let cube = length * length * length;
+        let radial = vec3::dot(&r, &rd);
+        let f_tt = (vec3::dot(&rd, &rd) + vec3::dot(&r, &rdd)) / length - radial * radial / cube;
+        if f_tt <= 1e-9 * (1.0 + vec3::dot(&rd, &rd) / length) {
+            return None;
+        }
+        let mut envelope = Self {
+            pair: (i, j),
+            position_row: [0.0; MAX_FREE_PER_AXIS],
+            velocity_row: [0.0; MAX_FREE_PER_AXIS],
+            along_position: [0.0; 3],
+            along_velocity: [0.0; 3],
+            weight: l / f_tt,
+        };
+        tr.basis
+            .position_row(&tr.grid, tau, &mut envelope.position_row);
+        for (f, slot) in envelope.velocity_row.iter_mut().indexed().take(free) {
+            let mut column = [0.0; MAX_NODES];
+            for (h, value) in column.iter_mut().indexed().take(nodes) {
+                *value = tr.basis.position.get(h)?.get(f).copied()?;
+            }
+            let mut derivative = [0.0; MAX_NODES];
+            tr.grid.differentiate(&column, &mut derivative);
+            *slot = rate * tr.grid.interpolate_with(&lagrange, &derivative);
+        }
+        for axis in 0..3 {
+            let (ra, rda) = (*r.get(axis)?, *rd.get(axis)?);
+            *envelope.along_position.get_mut(axis)? = rda / length - radial * ra / cube;
+            *envelope.along_velocity.get_mut(axis)? = ra / length;
+        }
+        Some(envelope)
+    }
+
+    /// This correction's part of the shift `sigma` that keeps `P (S + sigma I) P` positive
+    /// semidefinite for the certificate's power method: `w |f_yt|^2` with the rows' entries
+    /// squared per spacecraft mass (a bound on the correction's largest eigenvalue).
+    pub(super) fn power_shift(&self, tr: &Transcription) -> f64 {
+        let mut norm2 = 0.0;
+        let along = self.along_position.iter().zip(self.along_velocity.iter());
+        for (&a, &b) in along {
+            for (pv, qv) in self.position_row.iter().zip(self.velocity_row.iter()) {
+                let e = a * pv + b * qv;
+                norm2 += e * e;
+            }
+        }
+        let (mi, mj) = (
+            tr.mass_of(usize::from(self.pair.0)),
+            tr.mass_of(usize::from(self.pair.1)),
+        );
+        self.weight * norm2 * (1.0 / (mi * mi) + 1.0 / (mj * mj))
+    }
+
+    /// `f_yt . v`.
+    pub(super) fn dot(&self, tr: &Transcription, v: &Coefficients) -> f64 {
+        let free = tr.basis.free;
+        let (i, j) = self.pair;
+        let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
+        let mut sum = 0.0;
+        let along = self.along_position.iter().zip(self.along_velocity.iter());
+        for (axis, (&a, &b)) in along.indexed() {
+            let (bi, bj) = (block(i, axis), block(j, axis));
+            let p = block_dot(&self.position_row, v, bi, free) / mi
+                - block_dot(&self.position_row, v, bj, free) / mj;
+            let q = block_dot(&self.velocity_row, v, bi, free) / mi
+                - block_dot(&self.velocity_row, v, bj, free) / mj;
+            sum += a * p + b * q;
+        }
+        sum
+    }
+
+    /// `out += alpha f_yt`.
+    pub(super) fn axpy(&self, tr: &Transcription, alpha: f64, out: &mut Coefficients) {
+        let free = tr.basis.free;
+        let (i, j) = self.pair;
+        let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
+        let along = self.along_position.iter().zip(self.along_velocity.iter());
+        for (axis, (&a, &b)) in along.indexed() {
+            for (sc, mass, sign) in [(i, mi, 1.0), (j, mj, -1.0)] {
+                if let Some(values) = out.get_mut(block(sc, axis)) {
+                    let scale = alpha * sign / mass;
+                    for ((slot, p), q) in values
+                        .iter_mut()
+                        .zip(self.position_row.iter())
+                        .zip(self.velocity_row.iter())
+                        .take(free)
+                    {
+                        *slot += scale * (a * p + b * q);
+                    }
+                }
+            }
+        }
+    }
+}
+
+fn block(sc: u8, axis: usize) -> usize {
+    usize::from(sc).saturating_mul(3).saturating_add(axis)
+}
+
+/// `x <- P x`: remove the part of `x` in the span of the active rows.
+pub(super) fn project(tr: &Transcription, qp: &QpState, x: &mut Coefficients) {
+    let free = tr.basis.free;
+    let mut b = [0.0; MAX_ACTIVE];
+    for (slot, &id) in b.iter_mut().zip(qp.active.iter()).take(qp.count) {
+        *slot = row_dot(&tr.view(id), x, free);
+    }
+    qp.gram_solve(&mut b);
+    for (value, &id) in b.iter().zip(qp.active.iter()).take(qp.count) {
+        row_axpy(&tr.view(id), -value, x, free);
+    }
+}
+
+/// `S` less the envelope terms (the curvature of the active keep-out checks at the iterate), for
+/// the projected products.
+pub(super) struct Curvature<'a> {
+    pub tr: &'a Transcription,
+    pub qp: &'a QpState,
+    /// `|r|` at each active row's check (`certificate::check_lengths`).
+    pub lengths: &'a [f64; MAX_ACTIVE],
+    pub corrections: &'a [Envelope],
+}
+
+impl Curvature<'_> {
+    /// `out += S v - sum_e w_e (f_e . v) f_e`: every active keep-out check's curvature in the
+    /// QP's row order, then the envelope corrections (the order the power method always used).
+    pub(super) fn accumulate(&self, v: &Coefficients, out: &mut Coefficients) {
+        let (tr, qp) = (self.tr, self.qp);
+        for ((&id, &value), &length) in qp
+            .active
+            .iter()
+            .zip(qp.multiplier.iter())
+            .zip(self.lengths.iter())
+            .take(qp.count)
+        {
+            if let RowId::KeepOut { pair, check } = id {
+                let p = usize::from(pair);
+                if let Some(c) = tr.checks.get(p).and_then(|row| row.get(usize::from(check))) {
+                    add_curvature(tr, (p, c), length, value, v, out);
+                }
+            }
+        }
+        for envelope in self.corrections {
+            let along = envelope.weight * envelope.dot(tr, v);
+            envelope.axpy(tr, -along, out);
+        }
+    }
+}

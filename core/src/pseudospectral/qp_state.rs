@@ -1,0 +1,418 @@
+//! The QP's state between and after solves: the working set with its packed Gram factor (the
+//! dual active-set method, `qp.rs`) or the dual table of the capacity-free fallback
+//! (`qp_dual.rs`), the rows' active and elastic flags, and how a solve ended. The solvers
+//! change it; the second-order step (`newton.rs`), the curvature products (`curvature.rs`) and
+//! the certificate read it, so it is its own file: none of them depends on a solver.
+
+use super::kernel::{u8_of, Coefficients, MAX_BLOCKS};
+use super::packed::{self, cholesky, solve_lower, solve_lower_transposed};
+use super::transcription::{rows_dot, RowId, Transcription};
+use crate::capacity::{MAX_ACTIVE, MAX_CHECKS_PER_PAIR, MAX_FREE_PER_AXIS, MAX_NODES, MAX_PAIRS};
+use crate::indexed::IndexedExt as _;
+
+/// How a QP ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum QpOutcome {
+    Optimal,
+    /// The capacity-free fallback ran out of sweeps with a feasible but not yet optimal point
+    /// (every row met with the fallback's margin): usable as an iterate, not as a fixed point.
+    Approximate,
+    Infeasible,
+    /// The l1-elastic QP (`solve` with a finite penalty) ended with a positive slack: no answer of this
+    /// linearisation keeps every check and the control bound.
+    Elastic,
+    IterationLimit,
+    FactorFailure,
+}
+
+/// Which representation the last QP's multipliers are in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Mode {
+    /// Goldfarb–Idnani: `active[..count]`, `multiplier`, and the packed Gram factor in `store`.
+    Factor,
+    /// The dual coordinate-ascent fallback: one multiplier per candidate row in `store`
+    /// (see [`dual_index`]); no factor.
+    Dual,
+}
+
+/// Numbers of the packed Gram factor at capacity.
+const FACTOR_LEN: usize = packed::packed_len(MAX_ACTIVE);
+/// The shared buffer: the Gram factor or the fallback's dual table, whichever is larger.
+pub(crate) const STORE_LEN: usize = if FACTOR_LEN > DUAL_LEN {
+    FACTOR_LEN
+} else {
+    DUAL_LEN
+};
+
+/// The active set and its factorisation.
+#[derive(Clone, Debug)]
+pub(crate) struct QpState {
+    pub active: [RowId; MAX_ACTIVE],
+    pub count: usize,
+    /// Largest working set of the last solve: `count` in factor mode, or the rows with a
+    /// positive multiplier in the fallback (which may exceed `MAX_ACTIVE`).
+    pub peak: usize,
+    pub multiplier: [f64; MAX_ACTIVE],
+    pub mode: Mode,
+    /// Packed lower Gram factor (factor mode) or dual table (fallback mode).
+    pub store: [f64; STORE_LEN],
+    /// The active-set method's primal direction (scratch of `qp::solve`).
+    pub(super) direction: Coefficients,
+    /// Per control node: `UPPER_ACTIVE`, `LOWER_ACTIVE`, `UPPER_ELASTIC`, `LOWER_ELASTIC` bits.
+    pub(super) control_flags: [[u8; MAX_NODES]; MAX_BLOCKS],
+    /// Per keep-out check: `ROW_ACTIVE`, `ROW_ELASTIC` bits.
+    pub(super) keep_out_flags: [[u8; MAX_CHECKS_PER_PAIR]; MAX_PAIRS],
+    /// Rows held elastic (multiplier at the penalty's bound, not in the active set).
+    pub(super) elastic_count: usize,
+}
+
+/// A row in the active set (keep-out flags; `row_bits` maps a control row's side onto it).
+pub(super) const ROW_ACTIVE: u8 = 1;
+/// A row held elastic by the l1-elastic QP (`solve` with a finite penalty): its multiplier sits
+/// at the penalty's bound and its violation is its slack.
+pub(super) const ROW_ELASTIC: u8 = 2;
+/// A control node's upper bound is active.
+pub(super) const UPPER_ACTIVE: u8 = 1;
+/// A control node's lower bound is active.
+pub(super) const LOWER_ACTIVE: u8 = 2;
+/// A control node's upper bound is elastic.
+pub(super) const UPPER_ELASTIC: u8 = 4;
+/// A control node's lower bound is elastic.
+pub(super) const LOWER_ELASTIC: u8 = 8;
+
+const NO_ROW: RowId = RowId::Control {
+    block: 0,
+    node: 0,
+    upper: false,
+};
+
+impl QpState {
+    pub const fn new() -> Self {
+        Self {
+            active: [NO_ROW; MAX_ACTIVE],
+            count: 0,
+            peak: 0,
+            multiplier: [0.0; MAX_ACTIVE],
+            mode: Mode::Factor,
+            store: [0.0; STORE_LEN],
+            direction: [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS],
+            control_flags: [[0; MAX_NODES]; MAX_BLOCKS],
+            keep_out_flags: [[0; MAX_CHECKS_PER_PAIR]; MAX_PAIRS],
+            elastic_count: 0,
+        }
+    }
+
+    /// A row's `ROW_ACTIVE` / `ROW_ELASTIC` bits (a row outside the tables has none).
+    fn flags(&self, id: RowId) -> u8 {
+        match id {
+            RowId::Control { block, node, upper } => {
+                let flags = self
+                    .control_flags
+                    .get(usize::from(block))
+                    .and_then(|row| row.get(usize::from(node)))
+                    .copied()
+                    .unwrap_or(0);
+                let (active, elastic) = if upper {
+                    (UPPER_ACTIVE, UPPER_ELASTIC)
+                } else {
+                    (LOWER_ACTIVE, LOWER_ELASTIC)
+                };
+                (if flags & active != 0 { ROW_ACTIVE } else { 0 })
+                    | (if flags & elastic != 0 { ROW_ELASTIC } else { 0 })
+            }
+            RowId::KeepOut { pair, check } => self
+                .keep_out_flags
+                .get(usize::from(pair))
+                .and_then(|row| row.get(usize::from(check)))
+                .copied()
+                .unwrap_or(0),
+        }
+    }
+
+    /// Set or clear one of a row's bits (`ROW_ACTIVE` or `ROW_ELASTIC`).
+    fn set_flag(&mut self, id: RowId, bit: u8, on: bool) {
+        let (slot, bit) = match id {
+            RowId::Control { block, node, upper } => {
+                let bit = match (bit, upper) {
+                    (ROW_ACTIVE, true) => UPPER_ACTIVE,
+                    (ROW_ACTIVE, false) => LOWER_ACTIVE,
+                    (_, true) => UPPER_ELASTIC,
+                    (_, false) => LOWER_ELASTIC,
+                };
+                let slot = self
+                    .control_flags
+                    .get_mut(usize::from(block))
+                    .and_then(|row| row.get_mut(usize::from(node)));
+                (slot, bit)
+            }
+            RowId::KeepOut { pair, check } => {
+                let slot = self
+                    .keep_out_flags
+                    .get_mut(usize::from(pair))
+                    .and_then(|row| row.get_mut(usize::from(check)));
+                (slot, bit)
+            }
+        };
+        if let Some(slot) = slot {
+            *slot = if on { *slot | bit } else { *slot & !bit };
+        }
+    }
+
+    /// Whether a row is in the active set.
+    pub(super) fn is_active(&self, id: RowId) -> bool {
+        self.flags(id) & ROW_ACTIVE != 0
+    }
+
+    /// Whether a row is held elastic.
+    pub(super) fn is_elastic(&self, id: RowId) -> bool {
+        self.flags(id) & ROW_ELASTIC != 0
+    }
+
+    /// Release every row held elastic (their multipliers moved to the fallback's table).
+    pub(super) fn clear_elastic(&mut self) {
+        for flags in self.control_flags.iter_mut().flatten() {
+            *flags &= !(UPPER_ELASTIC | LOWER_ELASTIC);
+        }
+        for flags in self.keep_out_flags.iter_mut().flatten() {
+            *flags &= !ROW_ELASTIC;
+        }
+        self.elastic_count = 0;
+    }
+
+    /// Hold a row elastic or release it, keeping `elastic_count`.
+    pub(super) fn mark_elastic(&mut self, id: RowId, on: bool) {
+        if self.is_elastic(id) != on {
+            self.set_flag(id, ROW_ELASTIC, on);
+            self.elastic_count = if on {
+                self.elastic_count.saturating_add(1)
+            } else {
+                self.elastic_count.saturating_sub(1)
+            };
+        }
+    }
+
+    /// Empty the active set, so the next QP starts without hints. Called at the start of every
+    /// solve: a solve's result must depend on its input only, never on what the workspace
+    /// solved before.
+    pub fn reset(&mut self) {
+        self.count = 0;
+        self.peak = 0;
+        self.mode = Mode::Factor;
+        self.control_flags = [[0; MAX_NODES]; MAX_BLOCKS];
+        self.keep_out_flags = [[0; MAX_CHECKS_PER_PAIR]; MAX_PAIRS];
+        self.elastic_count = 0;
+    }
+
+    pub(crate) fn mark(&mut self, id: RowId, on: bool) {
+        self.set_flag(id, ROW_ACTIVE, on);
+    }
+
+    /// Refactor the Gram matrix of the active rows (as the transcription now linearises
+    /// them). Returns false on a non-positive pivot, or in fallback mode (no active set).
+    pub(crate) fn refactor(&mut self, tr: &Transcription) -> bool {
+        if self.mode != Mode::Factor {
+            return false;
+        }
+        let free = tr.basis.free;
+        for (a, &ida) in self.active.iter().indexed().take(self.count) {
+            let va = tr.view(ida);
+            for (b, &idb) in self.active.iter().indexed().take(a.saturating_add(1)) {
+                let vb = tr.view(idb);
+                packed::set(&mut self.store, a, b, rows_dot(&va, &vb, free));
+            }
+        }
+        cholesky(&mut self.store, self.count).is_none()
+    }
+
+    /// Merge active keep-out checks of one pair closer than `CLOSE_CHECKS_TAU` into the first
+    /// of them (its multiplier takes the other's), then refactor. Why: the moving check can
+    /// sit a few 1e-5 off a node check at the same minimum (measured on the square swap: t = 5
+    /// and t = 5 - 8e-5, both active); their rows are then parallel to 1e-5, the Gram matrix
+    /// is near singular, and the null-space projector of the second-order step and of the
+    /// certificate loses the reduced Hessian. As one constraint they are what they describe:
+    /// the keep-out at that minimum. Returns false when the refactorisation fails (or in
+    /// fallback mode).
+    pub(crate) fn merge_close_checks(&mut self, tr: &Transcription) -> bool {
+        if self.mode != Mode::Factor {
+            return false;
+        }
+        let tau_of = |id: RowId| match id {
+            RowId::KeepOut { pair, check } => tr
+                .checks
+                .get(usize::from(pair))
+                .and_then(|row| row.get(usize::from(check)))
+                .map(|c| (pair, c.tau)),
+            RowId::Control { .. } => None,
+        };
+        let mut k = 0usize;
+        while k < self.count {
+            let current = self.active.get(k).copied().and_then(tau_of);
+            let mut merged_into = None;
+            if let Some((pair, tau)) = current {
+                for (e, &earlier) in self.active.iter().indexed().take(k) {
+                    if let Some((other_pair, other_tau)) = tau_of(earlier) {
+                        if other_pair == pair
+                            && libm::fabs(other_tau - tau) < super::transcription::CLOSE_CHECKS_TAU
+                        {
+                            merged_into = Some(e);
+                            break;
+                        }
+                    }
+                }
+            }
+            match merged_into {
+                Some(e) => {
+                    // `k` and `e < k` are live rows (`k < count`), so both multipliers exist.
+                    if let (Some(&value), true) = (self.multiplier.get(k), e < k) {
+                        if let Some(slot) = self.multiplier.get_mut(e) {
+                            *slot += value;
+                        }
+                    }
+                    self.remove_active(k);
+                }
+                None => k = k.saturating_add(1),
+            }
+        }
+        self.refactor(tr)
+    }
+
+    /// Every multiplier of the last QP as (row, value >= 0): the working set's in factor mode,
+    /// the dual table's nonzero ones in table order in the fallback's.
+    pub(super) fn for_each_multiplier(&self, tr: &Transcription, mut f: impl FnMut(RowId, f64)) {
+        match self.mode {
+            Mode::Factor => {
+                for (&id, &value) in self
+                    .active
+                    .iter()
+                    .zip(self.multiplier.iter())
+                    .take(self.count)
+                {
+                    f(id, value);
+                }
+            }
+            Mode::Dual => for_each_dual_multiplier(self, tr, f),
+        }
+    }
+
+    /// Solve `G x = b` with the current Gram factor (factor mode).
+    pub(crate) fn gram_solve(&self, b: &mut [f64; MAX_ACTIVE]) {
+        solve_lower(&self.store, self.count, b);
+        solve_lower_transposed(&self.store, self.count, b);
+    }
+
+    /// Remove active row `index`, keeping the others' order and multipliers.
+    pub(super) fn drop_row(&mut self, tr: &Transcription, index: usize) -> bool {
+        if index >= self.count {
+            return true;
+        }
+        self.remove_active(index);
+        self.refactor(tr)
+    }
+
+    /// Remove live row `index` from the active set: its flag goes off, the rows after it (and
+    /// their multipliers) move down one place in order. Nothing for an index not live.
+    fn remove_active(&mut self, index: usize) {
+        let live = self.count.min(MAX_ACTIVE);
+        let Some(&id) = self.active.get(..live).and_then(|rows| rows.get(index)) else {
+            return;
+        };
+        self.mark(id, false);
+        // Non-empty: `index < live`. The last live slot keeps its old value (outside the set).
+        if let Some(rows) = self.active.get_mut(index..live) {
+            if !rows.is_empty() {
+                rows.copy_within(1.., 0);
+            }
+        }
+        if let Some(multipliers) = self.multiplier.get_mut(index..live) {
+            if !multipliers.is_empty() {
+                multipliers.copy_within(1.., 0);
+            }
+        }
+        self.count = self.count.saturating_sub(1);
+    }
+}
+
+/// Multipliers of the control range rows in the dual table, one per block per node.
+const CONTROL_DUALS: usize = MAX_BLOCKS * MAX_NODES;
+/// The dual table: control range rows, then keep-out checks per pair.
+pub(crate) const DUAL_LEN: usize = CONTROL_DUALS + MAX_PAIRS * MAX_CHECKS_PER_PAIR;
+
+/// Where a row's multiplier lives in the dual table. A control row's two bounds share one slot.
+pub(crate) fn dual_index(id: RowId) -> Option<usize> {
+    let index = match id {
+        RowId::Control { block, node, .. } => usize::from(block)
+            .checked_mul(MAX_NODES)?
+            .checked_add(usize::from(node))?,
+        RowId::KeepOut { pair, check } => usize::from(pair)
+            .checked_mul(MAX_CHECKS_PER_PAIR)?
+            .checked_add(usize::from(check))?
+            .checked_add(CONTROL_DUALS)?,
+    };
+    (index < DUAL_LEN).then_some(index)
+}
+
+/// The signed dual-table value of a row's multiplier (control: lower positive, upper negative).
+pub(super) fn signed(id: RowId, multiplier: f64) -> f64 {
+    match id {
+        RowId::Control { upper: true, .. } => -multiplier,
+        _ => multiplier,
+    }
+}
+
+/// The control range row of `block` at `node` (its lower side: the table's slot for both).
+pub(super) fn control_id(block: usize, node: usize) -> RowId {
+    RowId::Control {
+        block: u8_of(block),
+        node: u8_of(node),
+        upper: false,
+    }
+}
+
+/// The keep-out row of `pair`'s check `check`.
+pub(super) fn keep_out_id(pair: usize, check: usize) -> RowId {
+    RowId::KeepOut {
+        pair: u8_of(pair),
+        check: u8_of(check),
+    }
+}
+
+/// Every nonzero value of the dual table with its row, in table order (control rows, then
+/// keep-out checks per pair): control values are signed (lower bound positive, upper negative).
+/// A row without a slot in the table has no multiplier, hence the zero.
+pub(super) fn for_each_stored(state: &QpState, tr: &Transcription, mut f: impl FnMut(RowId, f64)) {
+    let mut visit = |id: RowId| {
+        let value = dual_index(id)
+            .and_then(|i| state.store.get(i))
+            .copied()
+            .unwrap_or(0.0);
+        if value != 0.0 {
+            f(id, value);
+        }
+    };
+    for block in 0..tr.blocks() {
+        for node in 0..tr.grid.nodes() {
+            visit(control_id(block, node));
+        }
+    }
+    for pair in 0..tr.pair_count {
+        for check in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
+            visit(keep_out_id(pair, check));
+        }
+    }
+}
+
+/// Every nonzero multiplier of the fallback's table as (row, multiplier >= 0), in table order.
+fn for_each_dual_multiplier(state: &QpState, tr: &Transcription, mut f: impl FnMut(RowId, f64)) {
+    for_each_stored(state, tr, |id, value| match id {
+        RowId::Control { block, node, .. } if value < 0.0 => f(
+            RowId::Control {
+                block,
+                node,
+                upper: true,
+            },
+            -value,
+        ),
+        _ if value > 0.0 => f(id, value),
+        _ => {}
+    });
+}
