@@ -57,15 +57,15 @@ fn half_norm2(y: &Coefficients, live: Live) -> f64 {
 }
 
 /// The convex-concave sequence of QPs from the current iterate, Anderson-accelerated.
-/// On return `ws.iterate` holds the last QP solution (feasible at every check).
+/// On return `ws.iterates.iterate` holds the last QP solution (feasible at every check).
 pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -> SqpEnd {
-    let blocks = ws.transcription.blocks();
-    let free = ws.transcription.basis.free;
+    let blocks = ws.setup.transcription.blocks();
+    let free = ws.setup.transcription.basis.free;
     let memory = usize::from(settings.acceleration_memory);
     let mut previous_cost = f64::INFINITY;
-    ws.anderson.reset();
-    ws.accepted = ws.iterate;
-    ws.searched_clean = 0;
+    ws.iterates.anderson.reset();
+    ws.iterates.accepted = ws.iterates.iterate;
+    ws.verification.searched_clean = 0;
     let mut have_solution = false;
     let mut extrapolated = false;
     // Newton points rejected by the line search this round; past `MAX_NEWTON_REJECTIONS` the
@@ -76,12 +76,15 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
     let mut newton_used = false;
     let mut restarted = false;
     let mut previous_decrease = f64::INFINITY;
-    // The last QP solved was accepted: its answer is `ws.accepted` (see `SqpEnd::MaxIterations`).
+    // The last QP solved was accepted: its answer is `ws.iterates.accepted` (see `SqpEnd::MaxIterations`).
     let mut at_answer = false;
     // Turns of the unseparated pairs' fallback directions tried (elastic mode).
     let mut turns = 0u8;
     for _ in 0..settings.sqp_max_iter {
-        if !ws.work.spend(work_units::sqp_iteration(&ws.transcription)) {
+        if !ws
+            .work
+            .spend(work_units::sqp_iteration(&ws.setup.transcription))
+        {
             break;
         }
         if settings.continuous_verification {
@@ -97,9 +100,9 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
         let mut penalty = f64::INFINITY;
         let outcome = loop {
             let outcome = qp::solve(
-                &ws.transcription,
-                &mut ws.qp,
-                &mut ws.trial,
+                &ws.setup.transcription,
+                &mut ws.iterates.qp,
+                &mut ws.iterates.trial,
                 settings.qp_max_iter,
                 settings.qp_tol_feas,
                 &mut out.info.qp_iterations,
@@ -115,14 +118,14 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
         };
         if outcome == QpOutcome::Elastic {
             name_unmet(
-                &ws.transcription,
-                &ws.trial,
+                &ws.setup.transcription,
+                &ws.iterates.trial,
                 settings.qp_tol_feas,
                 &mut out.unmet,
             );
         }
         out.info.sqp_iterations = out.info.sqp_iterations.saturating_add(1);
-        let active = u16::try_from(ws.qp.peak).unwrap_or(u16::MAX);
+        let active = u16::try_from(ws.iterates.qp.peak).unwrap_or(u16::MAX);
         out.info.max_active = out.info.max_active.max(active);
         // A pair that cannot be separated may only be swerving the wrong way: turn the
         // fallback direction of every named pair by 45 degrees and linearise again, at most
@@ -145,24 +148,25 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
             if extrapolated {
                 // The extrapolated point was a poor linearisation: fall back to plain iteration
                 // from the last solution.
-                ws.anderson.reset();
+                ws.iterates.anderson.reset();
                 extrapolated = false;
-                ws.iterate = ws.accepted;
+                ws.iterates.iterate = ws.iterates.accepted;
                 continue;
             }
-            ws.iterate = ws.accepted;
+            ws.iterates.iterate = ws.iterates.accepted;
             return SqpEnd::Failed(status);
         }
-        let cost = ws.transcription.base_cost + half_norm2(&ws.trial, (blocks, free));
+        let cost =
+            ws.setup.transcription.base_cost + half_norm2(&ws.iterates.trial, (blocks, free));
         if extrapolated
             && have_solution
             && cost > previous_cost + settings.sqp_tol_cost * (1.0 + cost)
         {
             // Backtrack (alpha = 0): the extrapolated point gave a costlier answer; reject it
             // and linearise at the last accepted answer.
-            ws.anderson.reset();
+            ws.iterates.anderson.reset();
             extrapolated = false;
-            ws.iterate = ws.accepted;
+            ws.iterates.iterate = ws.iterates.accepted;
             restarted = true;
             if newton_used {
                 rejections = rejections.saturating_add(1);
@@ -176,17 +180,19 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
         // same QP answer).
         let mut off_linearisation = 0.0f64;
         for b in 0..blocks {
-            let mass = ws.transcription.mass_of(b / 3);
-            if let (Some(new), Some(old), Some(at)) =
-                (ws.trial.get(b), ws.accepted.get(b), ws.iterate.get(b))
-            {
+            let mass = ws.setup.transcription.mass_of(b / 3);
+            if let (Some(new), Some(old), Some(at)) = (
+                ws.iterates.trial.get(b),
+                ws.iterates.accepted.get(b),
+                ws.iterates.iterate.get(b),
+            ) {
                 for ((x, y), z) in new.iter().zip(old.iter()).zip(at.iter()).take(free) {
                     step = step.max(libm::fabs(x - y) / mass);
                     off_linearisation = off_linearisation.max(libm::fabs(x - z) / mass);
                 }
             }
         }
-        ws.accepted = ws.trial;
+        ws.iterates.accepted = ws.iterates.trial;
         at_answer = true;
         // Convergence: the cost decrease and the remaining gap it predicts are both small. The
         // convex-concave tail is linear; with rate rho = dJ_k / dJ_(k-1) the remaining gap is
@@ -210,8 +216,8 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
         // A QP that stopped short of its optimum is no fixed point, however small the step.
         let exact = outcome == QpOutcome::Optimal;
         if have_solution && exact && (small_change || step <= settings.sqp_tol_step_lu) {
-            if off_linearisation <= FIXED_POINT_TOL_REL * ws.transcription.keep_out_lu {
-                ws.iterate = ws.accepted;
+            if off_linearisation <= FIXED_POINT_TOL_REL * ws.setup.transcription.keep_out_lu {
+                ws.iterates.iterate = ws.iterates.accepted;
                 // The moving checks sit at the linearisation point's minima, which the answer
                 // has moved off (by up to the tolerance above). Search the answer's own minima
                 // without moving the checks (a returned answer's certificate must see the rows
@@ -223,17 +229,17 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
                 }
                 let (deepest, clean) = follow_minima(ws, settings, false);
                 if deepest <= 0.0 {
-                    ws.searched_clean = clean;
+                    ws.verification.searched_clean = clean;
                     return SqpEnd::Converged;
                 }
-                ws.anderson.reset();
+                ws.iterates.anderson.reset();
                 previous_cost = cost;
                 restarted = true;
                 continue;
             }
             // Converged in cost but linearised elsewhere: take plain steps from the answer.
-            ws.anderson.reset();
-            ws.iterate = ws.accepted;
+            ws.iterates.anderson.reset();
+            ws.iterates.iterate = ws.iterates.accepted;
             previous_cost = cost;
             restarted = true;
             continue;
@@ -243,41 +249,48 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
         // point).
         restarted = false;
         if have_solution && cost > previous_cost + settings.sqp_tol_cost * (1.0 + cost) {
-            ws.anderson.reset();
-            ws.iterate = ws.accepted;
+            ws.iterates.anderson.reset();
+            ws.iterates.iterate = ws.iterates.accepted;
             restarted = true;
         }
         have_solution = true;
         previous_cost = cost;
-        newton_used = rejections < MAX_NEWTON_REJECTIONS && newton::applies(&ws.qp);
+        newton_used = rejections < MAX_NEWTON_REJECTIONS && newton::applies(&ws.iterates.qp);
         if newton_used {
             // The Newton step is taken at the answer, with the gradients there: the moving
             // checks go to the answer's local separation minima first (the envelope theorem
             // makes that the semi-infinite constraint's gradient).
-            ws.iterate = ws.accepted;
-            ws.work
-                .charge(work_units::newton_step(&ws.transcription, ws.qp.count));
+            ws.iterates.iterate = ws.iterates.accepted;
+            ws.work.charge(work_units::newton_step(
+                &ws.setup.transcription,
+                ws.iterates.qp.count,
+            ));
             if settings.continuous_verification {
                 refine_moving_checks(ws);
             }
             if !newton::step(
-                &mut ws.transcription,
-                &mut ws.qp,
-                &ws.accepted,
-                &mut ws.iterate,
-                newton::Scratch::from_buffers(ws.anderson.lend()),
+                &mut ws.setup.transcription,
+                &mut ws.iterates.qp,
+                &ws.iterates.accepted,
+                &mut ws.iterates.iterate,
+                newton::Scratch::from_buffers(ws.iterates.anderson.lend()),
                 &mut ws.work,
             ) {
-                ws.iterate = ws.accepted;
+                ws.iterates.iterate = ws.iterates.accepted;
             }
             extrapolated = true;
         } else {
-            ws.anderson
-                .step(&mut ws.iterate, &ws.trial, memory, blocks, free);
+            ws.iterates.anderson.step(
+                &mut ws.iterates.iterate,
+                &ws.iterates.trial,
+                memory,
+                blocks,
+                free,
+            );
             extrapolated = memory > 0;
         }
     }
-    ws.iterate = ws.accepted;
+    ws.iterates.iterate = ws.iterates.accepted;
     SqpEnd::MaxIterations { at_answer }
 }
 
@@ -290,8 +303,8 @@ const ELASTIC_PENALTY_REL: f64 = 100.0;
 
 /// The elastic QP's penalty `rho` (see `qp::solve`) at the last answer.
 fn elastic_penalty(ws: &Workspace) -> f64 {
-    let tr = &ws.transcription;
-    let size = half_norm2(&ws.accepted, (tr.blocks(), tr.basis.free));
+    let tr = &ws.setup.transcription;
+    let size = half_norm2(&ws.iterates.accepted, (tr.blocks(), tr.basis.free));
     ELASTIC_PENALTY_REL * (1.0 + libm::sqrt(2.0 * size))
 }
 
@@ -309,8 +322,8 @@ fn turn_unmet_pairs(ws: &mut Workspace, unmet: &Unmet, eighths: u8) -> bool {
         .iter()
         .any(|u| matches!(u.constraint, certificate::ActiveConstraint::KeepOut { .. }));
     let mut turned = false;
-    for pair in 0..ws.transcription.pair_count {
-        let Some(&spacecraft) = ws.transcription.pairs.get(pair) else {
+    for pair in 0..ws.setup.transcription.pair_count {
+        let Some(&spacecraft) = ws.setup.transcription.pairs.get(pair) else {
             continue;
         };
         let named = unmet.named().iter().any(|u| {

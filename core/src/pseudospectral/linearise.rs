@@ -43,14 +43,14 @@ pub(super) fn relative_nodes(
 
 /// Relative position and velocity of a pair at `tau` on the current iterate.
 pub(super) fn relative_state(ws: &Workspace, pair: usize, tau: f64) -> ([f64; 3], [f64; 3]) {
-    let tr = &ws.transcription;
+    let tr = &ws.setup.transcription;
     let (i, j) = tr.pairs.get(pair).copied().unwrap_or((0, 0));
     let mut position = [0.0; 3];
     let mut velocity = [0.0; 3];
     let mut lagrange = [0.0; MAX_NODES];
     tr.grid.lagrange_row(tau, &mut lagrange);
     for axis in 0..3 {
-        let relative = relative_nodes(tr, &ws.iterate, (i, j), axis);
+        let relative = relative_nodes(tr, &ws.iterates.iterate, (i, j), axis);
         let mut derivative = [0.0; MAX_NODES];
         tr.grid.differentiate(&relative, &mut derivative);
         if let Some(slot) = position.get_mut(axis) {
@@ -81,9 +81,11 @@ pub(super) const LINEARISE_TOL_REL: f64 = 1e-9;
 /// inner approximation, so this only chooses which side the pair passes on.
 pub(super) fn linearise(ws: &mut Workspace) {
     let mut dots: NodeDots = [[0.0; MAX_NODES]; MAX_BLOCKS];
-    ws.transcription.node_dots(&ws.iterate, &mut dots);
-    for pair in 0..ws.transcription.pair_count {
-        let tr = &ws.transcription;
+    ws.setup
+        .transcription
+        .node_dots(&ws.iterates.iterate, &mut dots);
+    for pair in 0..ws.setup.transcription.pair_count {
+        let tr = &ws.setup.transcription;
         let keep_out = tr.keep_out_for(pair);
         // A check the QP met to its tolerance is feasible, not violated: swerving its normal
         // there would make a fixed point of the iteration that is not a KKT point (the normal
@@ -95,7 +97,8 @@ pub(super) fn linearise(ws: &mut Workspace) {
             let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)).copied() else {
                 continue;
             };
-            let length = vec3::norm(&tr.relative_with(pair, check.source, &ws.iterate, &dots));
+            let length =
+                vec3::norm(&tr.relative_with(pair, check.source, &ws.iterates.iterate, &dots));
             if length < violated_below && closest.is_none_or(|(_, best)| length < best) {
                 closest = Some((check.tau, length));
             }
@@ -103,6 +106,7 @@ pub(super) fn linearise(ws: &mut Workspace) {
         let swerve = closest.map(|(tau, _)| {
             let (relative, velocity) = relative_state(ws, pair, tau);
             let fallback = ws
+                .iterates
                 .fallback_normal
                 .get(pair)
                 .copied()
@@ -114,14 +118,14 @@ pub(super) fn linearise(ws: &mut Workspace) {
             } else {
                 f64::INFINITY
             };
-            (ws.transcription.time_of(tau), direction, width)
+            (ws.setup.transcription.time_of(tau), direction, width)
         });
-        let tr = &mut ws.transcription;
+        let tr = &mut ws.setup.transcription;
         for c in 0..count {
             let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)).copied() else {
                 continue;
             };
-            let mut relative = tr.relative_with(pair, check.source, &ws.iterate, &dots);
+            let mut relative = tr.relative_with(pair, check.source, &ws.iterates.iterate, &dots);
             let length = vec3::norm(&relative);
             if length < violated_below {
                 if let Some((t_star, direction, width)) = swerve {
@@ -144,7 +148,8 @@ pub(super) fn linearise(ws: &mut Workspace) {
                     relative[2] / length,
                 ]
             } else {
-                ws.fallback_normal
+                ws.iterates
+                    .fallback_normal
                     .get(pair)
                     .copied()
                     .unwrap_or([1.0, 0.0, 0.0])
@@ -159,7 +164,7 @@ pub(super) fn linearise(ws: &mut Workspace) {
 /// Set every check's normal to the unit separation at the iterate: the constraint gradients
 /// the certificate needs (`linearise` swerves where a check is violated, even by rounding).
 pub(super) fn unit_normals(ws: &mut Workspace) {
-    unit_normals_at(&mut ws.transcription, &ws.iterate);
+    unit_normals_at(&mut ws.setup.transcription, &ws.iterates.iterate);
 }
 
 /// Set every check's normal to the unit separation at `y`.
@@ -217,18 +222,20 @@ pub(super) fn follow_minima(ws: &mut Workspace, settings: &Settings, place: bool
     let mut deepest = 0.0f64;
     let mut clean = 0u32;
     let mut dots: NodeDots = [[0.0; MAX_NODES]; MAX_BLOCKS];
-    ws.transcription.node_dots(&ws.iterate, &mut dots);
-    for pair in 0..ws.transcription.pair_count {
-        let keep_out = ws.transcription.keep_out_for(pair);
+    ws.setup
+        .transcription
+        .node_dots(&ws.iterates.iterate, &mut dots);
+    for pair in 0..ws.setup.transcription.pair_count {
+        let keep_out = ws.setup.transcription.keep_out_for(pair);
         // Only pairs near contact: the least separation over the fixed checks within 10 % of d.
-        let tr = &ws.transcription;
+        let tr = &ws.setup.transcription;
         let mut least = f64::INFINITY;
         for c in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
             if let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)) {
                 least = least.min(vec3::norm(&tr.relative_with(
                     pair,
                     check.source,
-                    &ws.iterate,
+                    &ws.iterates.iterate,
                     &dots,
                 )));
             }
@@ -238,15 +245,21 @@ pub(super) fn follow_minima(ws: &mut Workspace, settings: &Settings, place: bool
         }
         let minimum = pair_minimum(ws, pair, settings);
         let separation = libm::sqrt(minimum.value_squared.max(0.0));
-        let allowed = ws.transcription.keep_out_lu - settings.verify_tol_lu;
+        let allowed = ws.setup.transcription.keep_out_lu - settings.verify_tol_lu;
         deepest = deepest.max(allowed - separation);
         if separation >= allowed {
             clean |= pair_bit(pair);
         }
         let tau = 2.0 * minimum.at_s - 1.0;
         if place && tau > -1.0 && tau < 1.0 {
-            freeze_if_cycling(&mut ws.transcription, pair, tau, &ws.iterate, &dots);
-            let _ = ws.transcription.place_moving_check(pair, tau);
+            freeze_if_cycling(
+                &mut ws.setup.transcription,
+                pair,
+                tau,
+                &ws.iterates.iterate,
+                &dots,
+            );
+            let _ = ws.setup.transcription.place_moving_check(pair, tau);
         }
     }
     (deepest, clean)
@@ -335,8 +348,8 @@ const REFINE_MAX_STEP_TAU: f64 = 0.05;
 /// again (measured on the M7: the paper's case at N = 20 from 39.4 M to 42.1 M instructions
 /// with the global search). A check whose separation is not convex in time there stays put.
 pub(super) fn refine_moving_checks(ws: &mut Workspace) {
-    for pair in 0..ws.transcription.pair_count {
-        let tr = &ws.transcription;
+    for pair in 0..ws.setup.transcription.pair_count {
+        let tr = &ws.setup.transcription;
         let Some(check) = tr.moving_check_of(pair) else {
             continue;
         };
@@ -348,7 +361,7 @@ pub(super) fn refine_moving_checks(ws: &mut Workspace) {
         let mut lagrange = [0.0; MAX_NODES];
         tr.grid.lagrange_row(check.tau, &mut lagrange);
         for axis in 0..3 {
-            let values = relative_nodes(tr, &ws.iterate, (i, j), axis);
+            let values = relative_nodes(tr, &ws.iterates.iterate, (i, j), axis);
             let mut first = [0.0; MAX_NODES];
             let mut second = [0.0; MAX_NODES];
             tr.grid.differentiate(&values, &mut first);
@@ -366,25 +379,26 @@ pub(super) fn refine_moving_checks(ws: &mut Workspace) {
         let step = (-along / curvature).clamp(-REFINE_MAX_STEP_TAU, REFINE_MAX_STEP_TAU);
         let tau = check.tau + step;
         if tau > -1.0 && tau < 1.0 {
-            let _ = ws.transcription.place_moving_check(pair, tau);
+            let _ = ws.setup.transcription.place_moving_check(pair, tau);
         }
     }
 }
 
 /// The global minimum of the squared separation of one pair over the whole horizon.
 pub(super) fn pair_minimum(ws: &mut Workspace, pair: usize, settings: &Settings) -> Minimum {
-    let tr = &ws.transcription;
+    let tr = &ws.setup.transcription;
     let (i, j) = tr.pairs.get(pair).copied().unwrap_or((0, 0));
     let mut axes = [[0.0; MAX_NODES]; 3];
     for (axis, coeffs) in axes.iter_mut().indexed() {
-        let relative = relative_nodes(tr, &ws.iterate, (i, j), axis);
-        ws.bernstein.coefficients(&relative, coeffs);
+        let relative = relative_nodes(tr, &ws.iterates.iterate, (i, j), axis);
+        ws.setup.bernstein.coefficients(&relative, coeffs);
     }
     let mut product = [0.0; MAX_PRODUCT];
-    ws.bernstein.squared_norm(&axes, &mut product);
+    ws.setup.bernstein.squared_norm(&axes, &mut product);
     // Tolerance on the squared separation equivalent to verify_tol / 100 on the separation.
     let tol = 0.02 * tr.keep_out_lu * settings.verify_tol_lu;
-    ws.bernstein.minimum(
+    ws.setup.bernstein.minimum(
+        &mut ws.verification.search,
         &product,
         tol,
         u32::from(settings.refine_max_iter).saturating_mul(50),

@@ -53,11 +53,16 @@ pub(super) fn state_scale(out: &Solution) -> f64 {
 pub(super) fn write_solution(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -> bool {
     let mut verified = true;
     let mut least = f64::INFINITY;
-    let pairs = ws.transcription.pairs;
-    for (pair, &pair_ids) in pairs.iter().take(ws.transcription.pair_count).indexed() {
+    let pairs = ws.setup.transcription.pairs;
+    for (pair, &pair_ids) in pairs
+        .iter()
+        .take(ws.setup.transcription.pair_count)
+        .indexed()
+    {
         let minimum = pair_minimum(ws, pair, settings);
         let separation = libm::sqrt(minimum.value_squared.max(0.0));
-        if !minimum.certified || separation < ws.transcription.keep_out_lu - settings.verify_tol_lu
+        if !minimum.certified
+            || separation < ws.setup.transcription.keep_out_lu - settings.verify_tol_lu
         {
             verified = false;
         }
@@ -65,13 +70,13 @@ pub(super) fn write_solution(ws: &mut Workspace, settings: &Settings, out: &mut 
             least = separation;
             out.min_separation_lu = separation;
             out.min_separation_pair = pair_ids;
-            out.min_separation_time_tu = minimum.at_s * ws.transcription.horizon_tu;
+            out.min_separation_time_tu = minimum.at_s * ws.setup.transcription.horizon_tu;
         }
     }
-    if ws.transcription.pair_count == 0 {
+    if ws.setup.transcription.pair_count == 0 {
         out.min_separation_lu = f64::INFINITY;
     }
-    let tr = &ws.transcription;
+    let tr = &ws.setup.transcription;
     let nodes = tr.grid.nodes();
     let scale = 2.0 / tr.horizon_tu;
     for (h, slot) in out.node_times_tu.iter_mut().indexed().take(nodes) {
@@ -82,7 +87,7 @@ pub(super) fn write_solution(ws: &mut Workspace, settings: &Settings, out: &mut 
         for axis in 0..3 {
             let block = sc.saturating_mul(3).saturating_add(axis);
             let mut positions = [0.0; MAX_NODES];
-            block_positions(tr, &ws.iterate, block, &mut positions);
+            block_positions(tr, &ws.iterates.iterate, block, &mut positions);
             let mut velocities = [0.0; MAX_NODES];
             tr.grid.differentiate(&positions, &mut velocities);
             // Every node's row, weight, position and velocity together (`nodes` <= MAX_NODES).
@@ -92,7 +97,7 @@ pub(super) fn write_solution(ws: &mut Workspace, settings: &Settings, out: &mut 
                 node_values.zip(node_states).take(nodes).indexed()
             {
                 let control = node_value(&tr.base_control, block, h)
-                    + block_dot(row, &ws.iterate, block, tr.basis.free);
+                    + block_dot(row, &ws.iterates.iterate, block, tr.basis.free);
                 cost += 0.25 * tr.horizon_tu * w * control * control;
                 if let Some(state) = out.states.get_mut(sc).and_then(|row| row.get_mut(h)) {
                     if let Some(p) = state.get_mut(axis) {
@@ -126,7 +131,7 @@ pub(super) fn write_solution(ws: &mut Workspace, settings: &Settings, out: &mut 
             if check.pruned {
                 continue;
             }
-            let relative = tr.relative(pair, check.source, &ws.iterate);
+            let relative = tr.relative(pair, check.source, &ws.iterates.iterate);
             violation = violation.max(tr.keep_out_lu - vec3::norm(&relative));
         }
     }

@@ -31,10 +31,10 @@ fn solve(ws: &mut Workspace, penalty: f64) -> (QpOutcome, Coefficients) {
     let mut y = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
     let mut iterations = 0u32;
     let mut meter = Meter::new(u64::MAX);
-    ws.qp.reset();
+    ws.iterates.qp.reset();
     let outcome = qp::solve(
-        &ws.transcription,
-        &mut ws.qp,
+        &ws.setup.transcription,
+        &mut ws.iterates.qp,
         &mut y,
         400,
         1e-12,
@@ -117,7 +117,7 @@ fn a_large_penalty_changes_nothing_on_a_feasible_subproblem() {
     let rho = 1e-3;
     let (small, y_small) = solve(&mut ws, rho);
     assert_eq!(small, QpOutcome::Elastic);
-    let tr = &ws.transcription;
+    let tr = &ws.setup.transcription;
     assert!(elastic_objective(tr, &y_small, rho) <= elastic_objective(tr, &y_exact, rho) + 1e-12);
 }
 
@@ -138,7 +138,7 @@ fn the_elastic_answer_of_an_infeasible_subproblem_is_a_minimum_of_its_objective(
     let rho = 10.0;
     let (outcome, y) = solve(&mut ws, rho);
     assert_eq!(outcome, QpOutcome::Elastic);
-    let tr = &ws.transcription;
+    let tr = &ws.setup.transcription;
     let mut violated = 0;
     slacks(tr, &y, |_, s| {
         if s < -1e-6 {

@@ -26,18 +26,18 @@ pub(super) fn setup(
 ) -> Result<(), Stage> {
     let n = usize::from(problem.degree);
     let m = problem.spacecraft.len();
-    let tr = &mut ws.transcription;
+    let tr = &mut ws.setup.transcription;
     if !tr.grid.build(n, settings.newton_max_iter) {
         return Err(Stage::Transcription);
     }
     // The basis's square work array is the (idle) Anderson memory: no buffer of its own.
-    let Some(scratch) = ws.anderson.setup_scratch() else {
+    let Some(scratch) = ws.iterates.anderson.setup_scratch() else {
         return Err(Stage::Basis);
     };
     if !tr.basis.build(&tr.grid, problem.horizon_tu, scratch) {
         return Err(Stage::Basis);
     }
-    if !ws.bernstein.build(&tr.grid) {
+    if !ws.setup.bernstein.build(&tr.grid) {
         return Err(Stage::Transcription);
     }
     tr.horizon_tu = problem.horizon_tu;
@@ -54,7 +54,7 @@ pub(super) fn setup(
     tr.base_control = [[0.0; MAX_NODES]; MAX_BLOCKS];
     for sc in 0..m {
         for axis in 0..3 {
-            let Some(law) = ws.laws.get(sc).and_then(|row| row.get(axis)) else {
+            let Some(law) = ws.setup.laws.get(sc).and_then(|row| row.get(axis)) else {
                 continue;
             };
             let cubic = guess::unconstrained(law.boundary);
@@ -112,7 +112,7 @@ pub(super) fn setup(
     tr.moving_check = [None; MAX_PAIRS];
     tr.moving_from = [None; MAX_PAIRS];
     tr.margin = [0.0; MAX_PAIRS];
-    tr.verify_points = [0; MAX_PAIRS];
+    ws.verification.verify_points = [0; MAX_PAIRS];
     tr.check_count = [0; MAX_PAIRS];
     for i in 0..m {
         for j in (i.saturating_add(1))..m {
@@ -161,8 +161,10 @@ pub(super) fn setup(
         }
         for pair in 0..tr.pair_count {
             let (i, j) = tr.pairs.get(pair).copied().unwrap_or((0, 0));
-            let (Some(li), Some(lj)) = (ws.laws.get(usize::from(i)), ws.laws.get(usize::from(j)))
-            else {
+            let (Some(li), Some(lj)) = (
+                ws.setup.laws.get(usize::from(i)),
+                ws.setup.laws.get(usize::from(j)),
+            ) else {
                 continue;
             };
             let (times, count) = collision::test_points(
@@ -225,10 +227,10 @@ pub(super) fn initial_iterate(
     lift: [f64; 3],
     out: &mut Solution,
 ) {
-    let tr = &ws.transcription;
+    let tr = &ws.setup.transcription;
     let rate = 2.0 / tr.horizon_tu;
     let nodes = tr.grid.nodes();
-    ws.iterate = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
+    ws.iterates.iterate = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
     for sc in 0..tr.spacecraft {
         for (axis, &amplitude) in lift.iter().indexed() {
             let block = sc.saturating_mul(3).saturating_add(axis);
@@ -242,7 +244,7 @@ pub(super) fn initial_iterate(
                         .and_then(|u| u.get(axis))
                         .copied()
                         .unwrap_or(0.0),
-                    None => match ws.laws.get(sc).and_then(|row| row.get(axis)) {
+                    None => match ws.setup.laws.get(sc).and_then(|row| row.get(axis)) {
                         Some(law) => law.control(tr.time_of(tr.grid.at(h))),
                         None => 0.0,
                     },
@@ -258,7 +260,7 @@ pub(super) fn initial_iterate(
                         * (12.0 * tau * tau - 4.0);
                 }
             }
-            project_controls(tr, block, &controls, &mut ws.iterate);
+            project_controls(tr, block, &controls, &mut ws.iterates.iterate);
         }
     }
     out.info.warm_start_used = warm.is_some();

@@ -79,7 +79,7 @@ pub(crate) fn solve(
             };
         }
     }
-    ws.laws = laws;
+    ws.setup.laws = laws;
     out.reset();
     out.degree = problem.degree;
     out.spacecraft_count = u8_of(m);
@@ -104,14 +104,15 @@ fn run(
     lift: [f64; 3],
     out: &mut Solution,
 ) -> SolveStatus {
-    ws.qp.reset();
+    ws.iterates.qp.reset();
     ws.work = Meter::new(settings.work_budget);
     let setup_result = setup(problem, settings, ws, &mut out.test_point_times_tu);
-    ws.work.charge(work_units::setup(&ws.transcription));
+    ws.work.charge(work_units::setup(&ws.setup.transcription));
     if let Err(stage) = setup_result {
         return SolveStatus::NumericalFailure(stage);
     }
-    ws.work.reserve(work_units::reserve(&ws.transcription, 0));
+    ws.work
+        .reserve(work_units::reserve(&ws.setup.transcription, 0));
     initial_iterate(ws, warm, lift, out);
     let mut end = iterate_and_verify(ws, settings, out);
     let mut status = finish(ws, settings, out, end);
@@ -123,13 +124,13 @@ fn run(
         escapes = escapes.saturating_add(1);
         out.info.saddle_escapes = escapes;
         let saddle_cost = out.cost;
-        ws.saved = ws.iterate;
+        ws.iterates.saved = ws.iterates.iterate;
         step_along(ws, 1.0);
         end = iterate_and_verify(ws, settings, out);
         status = finish(ws, settings, out, end);
         if !status.is_usable() || out.cost >= saddle_cost {
             // No better: return to the saddle's answer (a fixed point: it re-converges at once).
-            ws.iterate = ws.saved;
+            ws.iterates.iterate = ws.iterates.saved;
             end = iterate_and_verify(ws, settings, out);
             status = finish(ws, settings, out, end);
             break;
@@ -152,7 +153,7 @@ fn run(
                 flat = false;
                 break;
             }
-            ws.saved = ws.iterate;
+            ws.iterates.saved = ws.iterates.iterate;
             step_along(ws, sign);
             end = iterate_and_verify(ws, settings, out);
             status = finish(ws, settings, out, end);
@@ -164,7 +165,7 @@ fn run(
             let probe_usable = status.is_usable();
             // Back to the flat point (a fixed point: it re-converges at once, and the
             // certificate's direction is again the flat one for the other sign).
-            ws.iterate = ws.saved;
+            ws.iterates.iterate = ws.iterates.saved;
             end = iterate_and_verify(ws, settings, out);
             status = finish(ws, settings, out, end);
             let back = status == SolveStatus::Feasible
@@ -209,10 +210,10 @@ fn is_saddle(status: SolveStatus, end: SqpEnd, out: &Solution) -> bool {
 /// least 0.1): large enough to leave the saddle's neighbourhood, small enough to stay in its
 /// basin.
 fn step_along(ws: &mut Workspace, side: f64) {
-    let direction = &ws.trial;
+    let direction = &ws.iterates.trial;
     let mut largest = 0.0f64;
     let mut norm2 = 0.0;
-    for (row, values) in direction.iter().zip(ws.iterate.iter()) {
+    for (row, values) in direction.iter().zip(ws.iterates.iterate.iter()) {
         for (d, y) in row.iter().zip(values.iter()) {
             if libm::fabs(*d) > libm::fabs(largest) {
                 largest = *d;
@@ -222,16 +223,16 @@ fn step_along(ws: &mut Workspace, side: f64) {
     }
     let sign = if largest < 0.0 { -side } else { side };
     let alpha = sign * (0.25 * libm::sqrt(norm2)).max(0.1);
-    for (row, values) in direction.iter().zip(ws.iterate.iter_mut()) {
+    for (row, values) in direction.iter().zip(ws.iterates.iterate.iter_mut()) {
         for (d, y) in row.iter().zip(values.iter_mut()) {
             *y += alpha * d;
         }
     }
 }
 
-/// The convex-concave iteration from `ws.iterate`, with the continuous verification rounds.
+/// The convex-concave iteration from `ws.iterates.iterate`, with the continuous verification rounds.
 fn iterate_and_verify(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -> SqpEnd {
-    let tr = &ws.transcription;
+    let tr = &ws.setup.transcription;
     let d = tr.keep_out_lu;
     let mut end;
     let mut rounds: u8 = 0;
@@ -243,7 +244,10 @@ fn iterate_and_verify(ws: &mut Workspace, settings: &Settings, out: &mut Solutio
         if rounds >= settings.verify_max_rounds || !settings.continuous_verification {
             break;
         }
-        if !ws.work.spend(work_units::verify_round(&ws.transcription)) {
+        if !ws
+            .work
+            .spend(work_units::verify_round(&ws.setup.transcription))
+        {
             break;
         }
         // Continuous verification: add a check where a pair dips below d, then re-solve.
@@ -253,11 +257,11 @@ fn iterate_and_verify(ws: &mut Workspace, settings: &Settings, out: &mut Solutio
         // Pairs the convergence test searched at this iterate and found clean: the same search
         // again would find the same.
         let clean = if end == SqpEnd::Converged {
-            ws.searched_clean
+            ws.verification.searched_clean
         } else {
             0
         };
-        for pair in 0..ws.transcription.pair_count {
+        for pair in 0..ws.setup.transcription.pair_count {
             if clean & pair_bit(pair) != 0 {
                 continue;
             }
@@ -270,11 +274,12 @@ fn iterate_and_verify(ws: &mut Workspace, settings: &Settings, out: &mut Solutio
                 // continuous minimum by about as much (the dips are then ~1e-4 d or less, so the
                 // cost moves by parts per million).
                 let tau = 2.0 * minimum.at_s - 1.0;
-                let tr = &mut ws.transcription;
-                let refined_before = tr.verify_points.get(pair).copied().unwrap_or(0) > 0;
+                let tr = &mut ws.setup.transcription;
+                let verify_points = &mut ws.verification.verify_points;
+                let refined_before = verify_points.get(pair).copied().unwrap_or(0) > 0;
                 let checked = tr.add_check(pair, tau);
                 if checked {
-                    if let Some(count) = tr.verify_points.get_mut(pair) {
+                    if let Some(count) = verify_points.get_mut(pair) {
                         *count = count.saturating_add(1);
                     }
                     added = added.saturating_add(1);
@@ -303,35 +308,37 @@ fn iterate_and_verify(ws: &mut Workspace, settings: &Settings, out: &mut Solutio
 }
 
 /// Write the solution, check its feasibility, evaluate its certificate, and return its status.
-/// `ws.trial` receives the certificate's negative-curvature direction (`ws.accepted` is its
+/// `ws.iterates.trial` receives the certificate's negative-curvature direction (`ws.iterates.accepted` is its
 /// scratch): workspace buffers idle at this point, so the certificate adds nothing to the stack.
 fn finish(ws: &mut Workspace, settings: &Settings, out: &mut Solution, end: SqpEnd) -> SolveStatus {
-    ws.work
-        .charge(work_units::finish(&ws.transcription, ws.qp.count));
+    ws.work.charge(work_units::finish(
+        &ws.setup.transcription,
+        ws.iterates.qp.count,
+    ));
     let verified = write_solution(ws, settings, out);
     // Feasibility is checked on the returned trajectory itself, whatever the iteration says.
-    let control_excess = control_excess(out, ws.transcription.max_control_fu);
-    let separation_deficit = ws.transcription.keep_out_lu - out.min_separation_lu;
+    let control_excess = control_excess(out, ws.setup.transcription.max_control_fu);
+    let separation_deficit = ws.setup.transcription.keep_out_lu - out.min_separation_lu;
     out.certificate.max_violation = control_excess.max(separation_deficit).max(0.0);
     let feasible = verified
-        && control_excess <= CONTROL_TOL_REL * ws.transcription.max_control_fu
+        && control_excess <= CONTROL_TOL_REL * ws.setup.transcription.max_control_fu
         && out.max_dynamics_error <= DYNAMICS_TOL_REL * (1.0 + state_scale(out));
     out.certificate.first_order_evaluated = false;
     out.certificate.second_order_evaluated = false;
     if !matches!(end, SqpEnd::Failed(_)) {
         unit_normals(ws);
         let extra = certificate::evaluate(
-            &ws.transcription,
-            &mut ws.qp,
-            &ws.iterate,
+            &ws.setup.transcription,
+            &mut ws.iterates.qp,
+            &ws.iterates.iterate,
             out.cost,
-            &mut ws.trial,
-            &mut ws.accepted,
+            &mut ws.iterates.trial,
+            &mut ws.iterates.accepted,
             &mut out.certificate,
         );
         ws.work.charge(work_units::extra_products(
-            &ws.transcription,
-            ws.qp.count,
+            &ws.setup.transcription,
+            ws.iterates.qp.count,
             extra,
         ));
     }

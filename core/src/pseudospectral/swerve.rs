@@ -87,9 +87,9 @@ pub(super) fn perpendicular_direction(
 /// Each pair's fallback direction: perpendicular to the analytic relative velocity at the
 /// closest approach, toward the existing miss vector when there is one.
 pub(super) fn choose_fallback_directions(ws: &mut Workspace) {
-    for pair in 0..ws.transcription.pair_count {
+    for pair in 0..ws.setup.transcription.pair_count {
         if let Some((direction, _)) = fallback_frame(ws, pair) {
-            if let Some(slot) = ws.fallback_normal.get_mut(pair) {
+            if let Some(slot) = ws.iterates.fallback_normal.get_mut(pair) {
                 *slot = direction;
             }
         }
@@ -99,9 +99,12 @@ pub(super) fn choose_fallback_directions(ws: &mut Workspace) {
 /// A pair's fallback direction and the analytic relative velocity at the analytic
 /// trajectories' closest approach (the direction is perpendicular to it).
 fn fallback_frame(ws: &Workspace, pair: usize) -> Option<([f64; 3], [f64; 3])> {
-    let tr = &ws.transcription;
+    let tr = &ws.setup.transcription;
     let (i, j) = tr.pairs.get(pair).copied()?;
-    let (li, lj) = (ws.laws.get(usize::from(i))?, ws.laws.get(usize::from(j))?);
+    let (li, lj) = (
+        ws.setup.laws.get(usize::from(i))?,
+        ws.setup.laws.get(usize::from(j))?,
+    );
     let (ti, tj) = (tracks(li), tracks(lj));
     let t = collision::closest_approach(&ti, &tj, 0.0, tr.horizon_tu, 60);
     let (relative, velocity) = collision::analytic_relative_motion(&ti, &tj, t);
@@ -132,7 +135,7 @@ pub(super) fn turn_fallback(ws: &mut Workspace, pair: usize, eighths: u8) -> boo
     let angle = core::f64::consts::FRAC_PI_4 * f64::from(eighths);
     let (sin, cos) = (libm::sin(angle), libm::cos(angle));
     let turned = vec3::add(&vec3::scale(&normal, cos), &vec3::scale(&side, sin));
-    match ws.fallback_normal.get_mut(pair) {
+    match ws.iterates.fallback_normal.get_mut(pair) {
         Some(slot) => {
             *slot = turned;
             true

@@ -119,8 +119,6 @@ pub(crate) struct Transcription {
     /// Extra keep-out per pair (LU), raised by verification where a dip below d persists after
     /// the pair already received a verification point.
     pub margin: [f64; MAX_PAIRS],
-    /// Verification points each pair received.
-    pub verify_points: [u8; MAX_PAIRS],
     /// Index (into the pair's checks) of the pair's moving check, which follows the continuous
     /// separation minimum from one convex subproblem to the next.
     pub moving_check: [Option<u8>; MAX_PAIRS],
@@ -157,7 +155,6 @@ impl Transcription {
             points: [Point::EMPTY; MAX_POINTS],
             point_count: 0,
             margin: [0.0; MAX_PAIRS],
-            verify_points: [0; MAX_PAIRS],
             moving_check: [None; MAX_PAIRS],
             moving_from: [None; MAX_PAIRS],
             base_cost: 0.0,

@@ -24,7 +24,8 @@ pub(crate) const MAX_PRODUCT: usize = 2 * MAX_DEGREE + 1;
 /// wrong. Was 32: the six levels cost 2,448 bytes of planner A's M7 RAM budget.
 const STACK: usize = 26;
 
-/// Converts nodal values to Bernstein coefficients on s = (tau + 1) / 2 in [0, 1].
+/// Converts nodal values to Bernstein coefficients on s = (tau + 1) / 2 in [0, 1]. Built at
+/// set-up for the degree N; read by every search.
 #[derive(Clone, Debug)]
 pub(crate) struct Bernstein {
     degree: usize,
@@ -32,7 +33,21 @@ pub(crate) struct Bernstein {
     /// `C(N, i) C(N, j) / C(2N, i + j)` factors via binomials.
     binomial_n: [f64; MAX_NODES],
     binomial_2n: [f64; MAX_PRODUCT],
-    stack: [(f64, f64, [f64; MAX_PRODUCT]); STACK],
+}
+
+/// The branch-and-bound search's intervals (`Bernstein::minimum`): each interval's ends and its
+/// coefficients, depth first. Scratch of one search; its contents mean nothing between searches.
+#[derive(Clone, Debug)]
+pub(crate) struct SearchStack {
+    intervals: [(f64, f64, [f64; MAX_PRODUCT]); STACK],
+}
+
+impl SearchStack {
+    pub const fn new() -> Self {
+        Self {
+            intervals: [(0.0, 0.0, [0.0; MAX_PRODUCT]); STACK],
+        }
+    }
 }
 
 fn binomials<const C: usize>(n: usize, out: &mut [f64; C]) {
@@ -64,7 +79,6 @@ impl Bernstein {
             to_bernstein: [[0.0; MAX_NODES]; MAX_NODES],
             binomial_n: [0.0; MAX_NODES],
             binomial_2n: [0.0; MAX_PRODUCT],
-            stack: [(0.0, 0.0, [0.0; MAX_PRODUCT]); STACK],
         }
     }
 
@@ -177,8 +191,15 @@ impl Bernstein {
     }
 
     /// Global minimum over s in [0, 1] of the degree-2N polynomial with Bernstein coefficients
-    /// `coeffs`, to absolute tolerance `tol`, with at most `budget` subdivisions.
-    pub fn minimum(&mut self, coeffs: &[f64; MAX_PRODUCT], tol: f64, budget: u32) -> Minimum {
+    /// `coeffs`, to absolute tolerance `tol`, with at most `budget` subdivisions, its intervals
+    /// kept on `stack`.
+    pub fn minimum(
+        &self,
+        stack: &mut SearchStack,
+        coeffs: &[f64; MAX_PRODUCT],
+        tol: f64,
+        budget: u32,
+    ) -> Minimum {
         let degree = self.degree.saturating_mul(2);
         let &[first, ..] = coeffs;
         let last = coeffs.get(degree).copied().unwrap_or(0.0);
@@ -196,14 +217,14 @@ impl Bernstein {
             }
         };
         let mut top = 0usize;
-        if let Some(slot) = self.stack.get_mut(0) {
+        if let Some(slot) = stack.intervals.get_mut(0) {
             *slot = (0.0, 1.0, *coeffs);
             top = 1;
         }
         let mut spent = 0u32;
         while top > 0 {
             let index = top.saturating_sub(1);
-            let Some((lo, hi, c)) = self.stack.get_mut(index) else {
+            let Some((lo, hi, c)) = stack.intervals.get_mut(index) else {
                 break;
             };
             let (lo, hi) = (*lo, *hi);
@@ -277,10 +298,10 @@ impl Bernstein {
                 best.at_s = mid;
             }
             // Depth first, left half on top (the right half already sits in this slot).
-            if let Some(slot) = self.stack.get_mut(index) {
+            if let Some(slot) = stack.intervals.get_mut(index) {
                 slot.0 = mid;
             }
-            if let Some(slot) = self.stack.get_mut(index.saturating_add(1)) {
+            if let Some(slot) = stack.intervals.get_mut(index.saturating_add(1)) {
                 *slot = (lo, mid, left);
             }
             top = index.saturating_add(2);
@@ -317,7 +338,7 @@ mod tests {
         }
         let mut f = [0.0; MAX_PRODUCT];
         b.squared_norm(&axes, &mut f);
-        let m = b.minimum(&f, 1e-16, 10_000);
+        let m = b.minimum(&mut SearchStack::new(), &f, 1e-16, 10_000);
         assert!(m.certified);
         assert!(
             (m.value_squared.sqrt() - 0.001).abs() < 1e-7,
