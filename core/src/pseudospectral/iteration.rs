@@ -14,7 +14,7 @@
 
 use super::certificate;
 use super::kernel::{dot, u8_of, Coefficients, Live};
-use super::linearise::{follow_minima, linearise, refine_moving_checks};
+use super::linearise::{self, follow_minima, refine_moving_checks};
 use super::newton;
 use super::qp;
 use super::qp_state::QpOutcome;
@@ -56,42 +56,131 @@ fn half_norm2(y: &Coefficients, live: Live) -> f64 {
     0.5 * dot(y, y, live)
 }
 
-/// The convex-concave sequence of QPs from the current iterate, Anderson-accelerated.
-/// On return `ws.iterates.iterate` holds the last QP solution (feasible at every check).
+/// The SQP's steps, in the order one subproblem walks them; each step names the next
+/// (`sqp` walks them).
+#[derive(Clone, Copy, Debug)]
+enum Step {
+    /// Take one of the `sqp_max_iter` subproblems (and its work), move the moving checks to the
+    /// iterate's separation minima, and linearise every check at the iterate.
+    Linearise,
+    /// Solve the QP linearised at the iterate: in its l1-elastic form where it is infeasible
+    /// linearised at the last answer, and after a turn of the named pairs' swerve where that
+    /// keeps a slack.
+    SolveQp,
+    /// Accept the QP's answer, or reject it where it raises the cost from an extrapolated
+    /// point (`exact`: the QP reached its optimum).
+    LineSearch { exact: bool },
+    /// The fixed-point test on the accepted answer.
+    CheckConvergence(Answer),
+    /// The next linearisation point from the accepted answer of cost `cost`: the second-order
+    /// (Newton) step, or Anderson extrapolation.
+    Extrapolate { cost: f64 },
+    /// The iteration ends.
+    Done(SqpEnd),
+}
+
+/// An accepted QP answer, as the fixed-point test needs it.
+#[derive(Clone, Copy, Debug)]
+struct Answer {
+    cost: f64,
+    /// The QP reached its optimum: an answer that stopped short is no fixed point.
+    exact: bool,
+    /// The largest move of a coefficient from the last answer (LU: over the mass).
+    step: f64,
+    /// How far the answer is from the point it was linearised at (LU): a fixed point needs both
+    /// equal, or the rows are not the constraint gradients at the answer and it is not a KKT
+    /// point (two extrapolated points can give the same QP answer).
+    off_linearisation: f64,
+}
+
+/// What the SQP's steps remember from one subproblem to the next.
+struct Sqp {
+    /// Subproblems linearised so far (at most `sqp_max_iter`).
+    subproblems: u16,
+    /// The cost of the last accepted answer.
+    previous_cost: f64,
+    /// Its decrease from the one before (the convergence test's rate).
+    previous_decrease: f64,
+    /// An answer has been accepted.
+    have_solution: bool,
+    /// The iterate is an extrapolated point (Newton or Anderson), not the last answer.
+    extrapolated: bool,
+    /// The last extrapolated point was a Newton point.
+    newton_used: bool,
+    /// Newton points rejected by the line search this round; past `MAX_NEWTON_REJECTIONS` the
+    /// round continues with Anderson extrapolation (the active set is not settled enough for the
+    /// second-order model: measured on the dense lattice, where the Newton point's QP kept
+    /// changing the active set and cost more than the plain step, every other subproblem).
+    rejections: u8,
+    /// The last step restarted the iteration from the last answer (a backtrack, a cost that
+    /// rose, a converged cost linearised elsewhere): a small change right after it is no
+    /// convergence.
+    restarted: bool,
+    /// The last QP solved was accepted: its answer is `ws.iterates.accepted` (see
+    /// `SqpEnd::MaxIterations`).
+    at_answer: bool,
+    /// Turns of the unseparated pairs' fallback directions tried (elastic mode).
+    turns: u8,
+}
+
+/// The convex-concave sequence of QPs from the current iterate, accelerated by the Newton step
+/// or Anderson extrapolation. On return `ws.iterates.iterate` holds the last QP solution
+/// (feasible at every check).
 pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -> SqpEnd {
-    let blocks = ws.setup.transcription.blocks();
-    let free = ws.setup.transcription.basis.free;
-    let memory = usize::from(settings.acceleration_memory);
-    let mut previous_cost = f64::INFINITY;
     ws.iterates.anderson.reset();
     ws.iterates.accepted = ws.iterates.iterate;
     ws.verification.searched_clean = 0;
-    let mut have_solution = false;
-    let mut extrapolated = false;
-    // Newton points rejected by the line search this round; past `MAX_NEWTON_REJECTIONS` the
-    // round continues with Anderson extrapolation (the active set is not settled enough for the
-    // second-order model: measured on the dense lattice, where the Newton point's QP kept
-    // changing the active set and cost more than the plain step, every other subproblem).
-    let mut rejections = 0u8;
-    let mut newton_used = false;
-    let mut restarted = false;
-    let mut previous_decrease = f64::INFINITY;
-    // The last QP solved was accepted: its answer is `ws.iterates.accepted` (see `SqpEnd::MaxIterations`).
-    let mut at_answer = false;
-    // Turns of the unseparated pairs' fallback directions tried (elastic mode).
-    let mut turns = 0u8;
-    for _ in 0..settings.sqp_max_iter {
-        if !ws
-            .work
-            .spend(work_units::sqp_iteration(&ws.setup.transcription))
+    let mut sqp = Sqp {
+        subproblems: 0,
+        previous_cost: f64::INFINITY,
+        previous_decrease: f64::INFINITY,
+        have_solution: false,
+        extrapolated: false,
+        newton_used: false,
+        rejections: 0,
+        restarted: false,
+        at_answer: false,
+        turns: 0,
+    };
+    // Bounded by `sqp_max_iter`: every step leads on to `Linearise` or `Done`, never back to an
+    // earlier step of the same subproblem, and each `Linearise` takes one subproblem.
+    let mut step = Step::Linearise;
+    loop {
+        step = match step {
+            Step::Linearise => sqp.linearise(ws, settings),
+            Step::SolveQp => sqp.solve_qp(ws, settings, out),
+            Step::LineSearch { exact } => sqp.line_search(ws, settings, exact),
+            Step::CheckConvergence(answer) => sqp.check_convergence(ws, settings, answer),
+            Step::Extrapolate { cost } => sqp.extrapolate(ws, settings, cost),
+            Step::Done(end) => return end,
+        };
+    }
+}
+
+impl Sqp {
+    /// `Step::Linearise`.
+    fn linearise(&mut self, ws: &mut Workspace, settings: &Settings) -> Step {
+        if self.subproblems >= settings.sqp_max_iter
+            || !ws
+                .work
+                .spend(work_units::sqp_iteration(&ws.setup.transcription))
         {
-            break;
+            ws.iterates.iterate = ws.iterates.accepted;
+            return Step::Done(SqpEnd::MaxIterations {
+                at_answer: self.at_answer,
+            });
         }
+        self.subproblems = self.subproblems.saturating_add(1);
         if settings.continuous_verification {
             let _ = follow_minima(ws, settings, true);
         }
-        linearise(ws);
-        at_answer = false;
+        linearise::linearise(ws);
+        self.at_answer = false;
+        Step::SolveQp
+    }
+
+    /// `Step::SolveQp`.
+    fn solve_qp(&mut self, ws: &mut Workspace, settings: &Settings, out: &mut Solution) -> Step {
         // An infeasible subproblem linearised at the last answer (not at an extrapolated point,
         // which the plain step below replaces) is solved again in its l1-elastic form: an
         // answer there is taken like any other; a positive slack names the constraints and
@@ -109,7 +198,7 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
                 &mut ws.work,
                 penalty,
             );
-            if outcome == QpOutcome::Infeasible && !extrapolated && penalty.is_infinite() {
+            if outcome == QpOutcome::Infeasible && !self.extrapolated && penalty.is_infinite() {
                 penalty = elastic_penalty(ws);
                 out.info.elastic_subproblems = out.info.elastic_subproblems.saturating_add(1);
                 continue;
@@ -131,12 +220,12 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
         // fallback direction of every named pair by 45 degrees and linearise again, at most
         // `MAX_SWERVE_TURNS` times per run, before the answer is `Infeasible`.
         if outcome == QpOutcome::Elastic
-            && turns < MAX_SWERVE_TURNS
-            && turn_unmet_pairs(ws, &out.unmet, turns.saturating_add(1))
+            && self.turns < MAX_SWERVE_TURNS
+            && turn_unmet_pairs(ws, &out.unmet, self.turns.saturating_add(1))
         {
-            turns = turns.saturating_add(1);
+            self.turns = self.turns.saturating_add(1);
             out.unmet = Unmet::new();
-            continue;
+            return Step::Linearise;
         }
         let failure = match outcome {
             QpOutcome::Optimal | QpOutcome::Approximate => None,
@@ -145,42 +234,46 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
             QpOutcome::FactorFailure => Some(SolveStatus::NumericalFailure(Stage::QpFactor)),
         };
         if let Some(status) = failure {
-            if extrapolated {
+            if self.extrapolated {
                 // The extrapolated point was a poor linearisation: fall back to plain iteration
                 // from the last solution.
                 ws.iterates.anderson.reset();
-                extrapolated = false;
+                self.extrapolated = false;
                 ws.iterates.iterate = ws.iterates.accepted;
-                continue;
+                return Step::Linearise;
             }
             ws.iterates.iterate = ws.iterates.accepted;
-            return SqpEnd::Failed(status);
+            return Step::Done(SqpEnd::Failed(status));
         }
-        let cost =
-            ws.setup.transcription.base_cost + half_norm2(&ws.iterates.trial, (blocks, free));
-        if extrapolated
-            && have_solution
-            && cost > previous_cost + settings.sqp_tol_cost * (1.0 + cost)
+        Step::LineSearch {
+            exact: outcome == QpOutcome::Optimal,
+        }
+    }
+
+    /// `Step::LineSearch`.
+    fn line_search(&mut self, ws: &mut Workspace, settings: &Settings, exact: bool) -> Step {
+        let tr = &ws.setup.transcription;
+        let (blocks, free) = (tr.blocks(), tr.basis.free);
+        let cost = tr.base_cost + half_norm2(&ws.iterates.trial, (blocks, free));
+        if self.extrapolated
+            && self.have_solution
+            && cost > self.previous_cost + settings.sqp_tol_cost * (1.0 + cost)
         {
             // Backtrack (alpha = 0): the extrapolated point gave a costlier answer; reject it
             // and linearise at the last accepted answer.
             ws.iterates.anderson.reset();
-            extrapolated = false;
+            self.extrapolated = false;
             ws.iterates.iterate = ws.iterates.accepted;
-            restarted = true;
-            if newton_used {
-                rejections = rejections.saturating_add(1);
+            self.restarted = true;
+            if self.newton_used {
+                self.rejections = self.rejections.saturating_add(1);
             }
-            continue;
+            return Step::Linearise;
         }
         let mut step = 0.0f64;
-        // How far the QP's answer is from the point it was linearised at (the Anderson
-        // extrapolation): a fixed point needs both equal, or the rows are not the constraint
-        // gradients at the answer and it is not a KKT point (two extrapolated points can give the
-        // same QP answer).
         let mut off_linearisation = 0.0f64;
         for b in 0..blocks {
-            let mass = ws.setup.transcription.mass_of(b / 3);
+            let mass = tr.mass_of(b / 3);
             if let (Some(new), Some(old), Some(at)) = (
                 ws.iterates.trial.get(b),
                 ws.iterates.accepted.get(b),
@@ -193,15 +286,36 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
             }
         }
         ws.iterates.accepted = ws.iterates.trial;
-        at_answer = true;
+        self.at_answer = true;
+        Step::CheckConvergence(Answer {
+            cost,
+            exact,
+            step,
+            off_linearisation,
+        })
+    }
+
+    /// `Step::CheckConvergence`.
+    fn check_convergence(
+        &mut self,
+        ws: &mut Workspace,
+        settings: &Settings,
+        answer: Answer,
+    ) -> Step {
+        let Answer {
+            cost,
+            exact,
+            step,
+            off_linearisation,
+        } = answer;
         // Convergence: the cost decrease and the remaining gap it predicts are both small. The
         // convex-concave tail is linear; with rate rho = dJ_k / dJ_(k-1) the remaining gap is
         // about dJ_k rho / (1 - rho), which stays large while the iterate slides slowly along
         // the keep-out surface even though each step changes little.
-        let decrease = previous_cost - cost;
+        let decrease = self.previous_cost - cost;
         let tolerance = settings.sqp_tol_cost * (1.0 + cost);
-        let rate = if previous_decrease > 0.0 && decrease >= 0.0 {
-            (decrease / previous_decrease).min(0.999)
+        let rate = if self.previous_decrease > 0.0 && decrease >= 0.0 {
+            (decrease / self.previous_decrease).min(0.999)
         } else {
             0.999
         };
@@ -211,52 +325,56 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
         // +-3e-11 in J with steps of 5e-6 LU that never met a sign-sensitive test).
         let small_change = libm::fabs(decrease) <= tolerance
             && (decrease <= 0.0 || gap <= tolerance)
-            && !restarted;
-        previous_decrease = decrease;
-        // A QP that stopped short of its optimum is no fixed point, however small the step.
-        let exact = outcome == QpOutcome::Optimal;
-        if have_solution && exact && (small_change || step <= settings.sqp_tol_step_lu) {
-            if off_linearisation <= FIXED_POINT_TOL_REL * ws.setup.transcription.keep_out_lu {
-                ws.iterates.iterate = ws.iterates.accepted;
-                // The moving checks sit at the linearisation point's minima, which the answer
-                // has moved off (by up to the tolerance above). Search the answer's own minima
-                // without moving the checks (a returned answer's certificate must see the rows
-                // its QP had): a dip beyond the verification's tolerance means the answer is
-                // not yet the continuous problem's fixed point, so iterate on; the next
-                // subproblem's `follow_minima` moves the checks there.
-                if !settings.continuous_verification {
-                    return SqpEnd::Converged;
-                }
-                let (deepest, clean) = follow_minima(ws, settings, false);
-                if deepest <= 0.0 {
-                    ws.verification.searched_clean = clean;
-                    return SqpEnd::Converged;
-                }
-                ws.iterates.anderson.reset();
-                previous_cost = cost;
-                restarted = true;
-                continue;
-            }
-            // Converged in cost but linearised elsewhere: take plain steps from the answer.
-            ws.iterates.anderson.reset();
-            ws.iterates.iterate = ws.iterates.accepted;
-            previous_cost = cost;
-            restarted = true;
-            continue;
+            && !self.restarted;
+        self.previous_decrease = decrease;
+        if !(self.have_solution && exact && (small_change || step <= settings.sqp_tol_step_lu)) {
+            return Step::Extrapolate { cost };
         }
+        if off_linearisation <= FIXED_POINT_TOL_REL * ws.setup.transcription.keep_out_lu {
+            ws.iterates.iterate = ws.iterates.accepted;
+            // The moving checks sit at the linearisation point's minima, which the answer has
+            // moved off (by up to the tolerance above). Search the answer's own minima without
+            // moving the checks (a returned answer's certificate must see the rows its QP had):
+            // a dip beyond the verification's tolerance means the answer is not yet the
+            // continuous problem's fixed point, so iterate on; the next subproblem's
+            // `follow_minima` moves the checks there.
+            if !settings.continuous_verification {
+                return Step::Done(SqpEnd::Converged);
+            }
+            let (deepest, clean) = follow_minima(ws, settings, false);
+            if deepest <= 0.0 {
+                ws.verification.searched_clean = clean;
+                return Step::Done(SqpEnd::Converged);
+            }
+            ws.iterates.anderson.reset();
+            self.previous_cost = cost;
+            self.restarted = true;
+            return Step::Linearise;
+        }
+        // Converged in cost but linearised elsewhere: take plain steps from the answer.
+        ws.iterates.anderson.reset();
+        ws.iterates.iterate = ws.iterates.accepted;
+        self.previous_cost = cost;
+        self.restarted = true;
+        Step::Linearise
+    }
+
+    /// `Step::Extrapolate`.
+    fn extrapolate(&mut self, ws: &mut Workspace, settings: &Settings, cost: f64) -> Step {
         // Safeguard: an extrapolation that raised the cost restarts the memory, so the next
         // step is a plain convex-concave step (which never raises the cost from a feasible
         // point).
-        restarted = false;
-        if have_solution && cost > previous_cost + settings.sqp_tol_cost * (1.0 + cost) {
+        self.restarted = false;
+        if self.have_solution && cost > self.previous_cost + settings.sqp_tol_cost * (1.0 + cost) {
             ws.iterates.anderson.reset();
             ws.iterates.iterate = ws.iterates.accepted;
-            restarted = true;
+            self.restarted = true;
         }
-        have_solution = true;
-        previous_cost = cost;
-        newton_used = rejections < MAX_NEWTON_REJECTIONS && newton::applies(&ws.iterates.qp);
-        if newton_used {
+        self.have_solution = true;
+        self.previous_cost = cost;
+        self.newton_used =
+            self.rejections < MAX_NEWTON_REJECTIONS && newton::applies(&ws.iterates.qp);
+        if self.newton_used {
             // The Newton step is taken at the answer, with the gradients there: the moving
             // checks go to the answer's local separation minima first (the envelope theorem
             // makes that the semi-infinite constraint's gradient).
@@ -278,20 +396,21 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
             ) {
                 ws.iterates.iterate = ws.iterates.accepted;
             }
-            extrapolated = true;
+            self.extrapolated = true;
         } else {
+            let memory = usize::from(settings.acceleration_memory);
+            let tr = &ws.setup.transcription;
             ws.iterates.anderson.step(
                 &mut ws.iterates.iterate,
                 &ws.iterates.trial,
                 memory,
-                blocks,
-                free,
+                tr.blocks(),
+                tr.basis.free,
             );
-            extrapolated = memory > 0;
+            self.extrapolated = memory > 0;
         }
+        Step::Linearise
     }
-    ws.iterates.iterate = ws.iterates.accepted;
-    SqpEnd::MaxIterations { at_answer }
 }
 
 /// The l1 penalty of the elastic subproblem per unit of slack (a distance in the

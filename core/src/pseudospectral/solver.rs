@@ -114,96 +114,183 @@ fn run(
     ws.work
         .reserve(work_units::reserve(&ws.setup.transcription, 0));
     initial_iterate(ws, warm, lift, out);
-    let mut end = iterate_and_verify(ws, settings, out);
-    let mut status = finish(ws, settings, out, end);
-    // Saddle escape: a feasible first-order point with negative reduced curvature is left
-    // along the curvature direction (deterministic: a fixed power-method start and sign), and
-    // the iteration resumes; the better verified answer is kept.
-    let mut escapes = 0u8;
-    while escapes < MAX_SADDLE_ESCAPES && is_saddle(status, end, out) && ws.work.has_room() {
-        escapes = escapes.saturating_add(1);
-        out.info.saddle_escapes = escapes;
-        let saddle_cost = out.cost;
-        ws.iterates.saved = ws.iterates.iterate;
-        step_along(ws, 1.0);
-        end = iterate_and_verify(ws, settings, out);
-        status = finish(ws, settings, out, end);
-        if !status.is_usable() || out.cost >= saddle_cost {
-            // No better: return to the saddle's answer (a fixed point: it re-converges at once).
-            ws.iterates.iterate = ws.iterates.saved;
-            end = iterate_and_verify(ws, settings, out);
-            status = finish(ws, settings, out, end);
-            break;
-        }
-    }
-    // Flat direction: a feasible first-order point whose reduced Hessian is singular within
-    // the tolerance (measured on the symmetric family: eigenvalue ~1e-9 where two or three
-    // spacecraft swap through the centre, whose passing side is a continuous symmetry) is
-    // neither a certified minimum nor a saddle. Probe it: step along the flat direction both
-    // ways (as the saddle escape does) and iterate again; a lower answer is kept, and when
-    // neither side is lower the point is certified on the second-order necessary condition
-    // (`Certificate::flat_direction_probed`). At most 2 probes and 2 returns, each one run of
-    // the iteration, charged by it.
-    if status == SolveStatus::Feasible && end == SqpEnd::Converged && out.certificate.is_flat() {
-        let flat_cost = out.cost;
-        let tolerance = certificate::FLAT_PROBE_TOL_REL * (1.0 + flat_cost);
-        let mut flat = true;
-        for sign in [1.0, -1.0] {
-            if !ws.work.has_room() {
-                flat = false;
-                break;
+    let mut answer = iterate_and_check(ws, settings, out);
+    // Bounded: the saddle escapes by `MAX_SADDLE_ESCAPES` (`escapes` rises at each), the flat
+    // probes by their two sides; every other step leads on, never back.
+    let mut step = Step::LookForSaddle { escapes: 0 };
+    loop {
+        step = match step {
+            Step::LookForSaddle { escapes } => {
+                if escapes < MAX_SADDLE_ESCAPES && answer.is_saddle(out) && ws.work.has_room() {
+                    Step::EscapeSaddle { escapes }
+                } else {
+                    Step::LookForFlat
+                }
             }
-            ws.iterates.saved = ws.iterates.iterate;
-            step_along(ws, sign);
-            end = iterate_and_verify(ws, settings, out);
-            status = finish(ws, settings, out, end);
-            if status.is_usable() && out.cost < flat_cost - tolerance {
-                // Not flat after all: the lower answer is kept (with its own status).
-                flat = false;
-                break;
+            Step::EscapeSaddle { escapes } => {
+                let escapes = escapes.saturating_add(1);
+                out.info.saddle_escapes = escapes;
+                let saddle_cost = out.cost;
+                ws.iterates.saved = ws.iterates.iterate;
+                step_along(ws, 1.0);
+                answer = iterate_and_check(ws, settings, out);
+                if !answer.status.is_usable() || out.cost >= saddle_cost {
+                    Step::ReturnToSaddle
+                } else {
+                    Step::LookForSaddle { escapes }
+                }
             }
-            let probe_usable = status.is_usable();
-            // Back to the flat point (a fixed point: it re-converges at once, and the
-            // certificate's direction is again the flat one for the other sign).
-            ws.iterates.iterate = ws.iterates.saved;
-            end = iterate_and_verify(ws, settings, out);
-            status = finish(ws, settings, out, end);
-            let back = status == SolveStatus::Feasible
-                && end == SqpEnd::Converged
-                && out.certificate.is_flat();
-            if !probe_usable || !back {
-                flat = false;
-                break;
+            Step::ReturnToSaddle => {
+                // No better: return to the saddle's answer (a fixed point: it re-converges at
+                // once).
+                ws.iterates.iterate = ws.iterates.saved;
+                answer = iterate_and_check(ws, settings, out);
+                Step::LookForFlat
             }
-        }
-        if flat {
-            out.certificate.flat_direction_probed = true;
-            if out.certificate.certifies_local_optimum() {
-                status = SolveStatus::Solved;
+            Step::LookForFlat => {
+                if answer.is_flat(out) {
+                    Step::ProbeFlat {
+                        side: 1.0,
+                        flat_cost: out.cost,
+                    }
+                } else {
+                    Step::Done
+                }
             }
-        }
+            Step::ProbeFlat { side, flat_cost } => {
+                if ws.work.has_room() {
+                    ws.iterates.saved = ws.iterates.iterate;
+                    step_along(ws, side);
+                    answer = iterate_and_check(ws, settings, out);
+                    let tolerance = certificate::FLAT_PROBE_TOL_REL * (1.0 + flat_cost);
+                    if answer.status.is_usable() && out.cost < flat_cost - tolerance {
+                        // Not flat after all: the lower answer is kept (with its own status).
+                        Step::Done
+                    } else {
+                        Step::ReturnToFlat {
+                            side,
+                            flat_cost,
+                            probe_usable: answer.status.is_usable(),
+                        }
+                    }
+                } else {
+                    Step::Done
+                }
+            }
+            Step::ReturnToFlat {
+                side,
+                flat_cost,
+                probe_usable,
+            } => {
+                // Back to the flat point (a fixed point: it re-converges at once, and the
+                // certificate's direction is again the flat one for the other side).
+                ws.iterates.iterate = ws.iterates.saved;
+                answer = iterate_and_check(ws, settings, out);
+                if !probe_usable || !answer.is_flat(out) {
+                    Step::Done
+                } else if side > 0.0 {
+                    Step::ProbeFlat {
+                        side: -1.0,
+                        flat_cost,
+                    }
+                } else {
+                    Step::CertifyFlat
+                }
+            }
+            Step::CertifyFlat => {
+                out.certificate.flat_direction_probed = true;
+                if out.certificate.certifies_local_optimum() {
+                    answer.status = SolveStatus::Solved;
+                }
+                Step::Done
+            }
+            Step::Done => break,
+        };
     }
     // Stopped by the budget: the status says so, and whether the answer passed the checks.
     if ws.work.exhausted() {
-        status = SolveStatus::BudgetExhausted {
-            verified: status.is_usable(),
+        return SolveStatus::BudgetExhausted {
+            verified: answer.status.is_usable(),
         };
     }
-    status
+    answer.status
+}
+
+/// What the solve does after the first answer (`run` walks these; each step names the next).
+///
+/// Saddle escape: a feasible first-order point with negative reduced curvature is left along
+/// the curvature direction (deterministic: a fixed power-method start and sign), and the
+/// iteration resumes; the better verified answer is kept.
+///
+/// Flat direction: a feasible first-order point whose reduced Hessian is singular within the
+/// tolerance (measured on the symmetric family: eigenvalue ~1e-9 where two or three spacecraft
+/// swap through the centre, whose passing side is a continuous symmetry) is neither a certified
+/// minimum nor a saddle. Probe it: step along the flat direction both ways (as the saddle escape
+/// does) and iterate again; a lower answer is kept, and when neither side is lower the point is
+/// certified on the second-order necessary condition (`Certificate::flat_direction_probed`). At
+/// most 2 probes and 2 returns, each one run of the iteration, charged by it.
+#[derive(Clone, Copy, Debug)]
+enum Step {
+    /// Is the answer a saddle to escape from (`escapes` tried so far)?
+    LookForSaddle { escapes: u8 },
+    /// Step along the negative curvature and iterate again (escape number `escapes + 1`).
+    EscapeSaddle { escapes: u8 },
+    /// The escape found nothing better: back to the saddle's answer.
+    ReturnToSaddle,
+    /// Is the answer flat (a singular reduced Hessian) and so to be probed?
+    LookForFlat,
+    /// Step along the flat direction to `side` and iterate again; `flat_cost` is the flat
+    /// answer's cost.
+    ProbeFlat { side: f64, flat_cost: f64 },
+    /// Back to the flat point from the probe to `side` (`probe_usable`: its answer was usable).
+    ReturnToFlat {
+        side: f64,
+        flat_cost: f64,
+        probe_usable: bool,
+    },
+    /// Neither side is lower and the point is flat again: certify it on the second-order
+    /// necessary condition.
+    CertifyFlat,
+    /// The answer in `out` is final.
+    Done,
+}
+
+/// How one run of the iteration ended and what its answer is.
+#[derive(Clone, Copy, Debug)]
+struct Answer {
+    end: SqpEnd,
+    status: SolveStatus,
+}
+
+impl Answer {
+    /// A feasible, stationary point whose reduced Hessian has a negative eigenvalue.
+    fn is_saddle(&self, out: &Solution) -> bool {
+        let c = &out.certificate;
+        self.status == SolveStatus::Feasible
+            && self.end == SqpEnd::Converged
+            && c.second_order_evaluated
+            && c.stationarity <= certificate::STATIONARITY_TOL
+            && c.min_reduced_eigenvalue < -certificate::CURVATURE_TOL
+    }
+
+    /// A feasible, converged point whose reduced Hessian is singular within the tolerance.
+    fn is_flat(&self, out: &Solution) -> bool {
+        self.status == SolveStatus::Feasible
+            && self.end == SqpEnd::Converged
+            && out.certificate.is_flat()
+    }
+}
+
+/// The iteration and its verification rounds from `ws.iterates.iterate`, then the answer's
+/// checks (`finish`).
+fn iterate_and_check(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -> Answer {
+    let end = iterate_and_verify(ws, settings, out);
+    let status = finish(ws, settings, out, end);
+    Answer { end, status }
 }
 
 /// Most saddle escapes per solve (each one more run of the iteration and verification rounds).
 pub(crate) const MAX_SADDLE_ESCAPES: u8 = 2;
-
-/// A feasible, stationary point whose reduced Hessian has a negative eigenvalue.
-fn is_saddle(status: SolveStatus, end: SqpEnd, out: &Solution) -> bool {
-    let c = &out.certificate;
-    status == SolveStatus::Feasible
-        && end == SqpEnd::Converged
-        && c.second_order_evaluated
-        && c.stationarity <= certificate::STATIONARITY_TOL
-        && c.min_reduced_eigenvalue < -certificate::CURVATURE_TOL
-}
 
 /// `y <- y + alpha v` with `v` the unit negative-curvature direction, signed so that its
 /// largest component has the sign of `side` (deterministic), and `alpha` a quarter of `|y|` (at
@@ -230,86 +317,100 @@ fn step_along(ws: &mut Workspace, side: f64) {
     }
 }
 
-/// The convex-concave iteration from `ws.iterates.iterate`, with the continuous verification rounds.
+/// The convex-concave iteration from `ws.iterates.iterate`, with the continuous verification
+/// rounds: after each run of the iteration a round checks every pair's continuous separation,
+/// and where it added a check or a margin the iteration runs again (at most
+/// `verify_max_rounds` rounds, each charged to the work budget).
 fn iterate_and_verify(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -> SqpEnd {
-    let tr = &ws.setup.transcription;
-    let d = tr.keep_out_lu;
-    let mut end;
     let mut rounds: u8 = 0;
     loop {
-        end = sqp(ws, settings, out);
-        if let SqpEnd::Failed(_) = end {
-            break;
-        }
-        if rounds >= settings.verify_max_rounds || !settings.continuous_verification {
-            break;
-        }
-        if !ws
-            .work
-            .spend(work_units::verify_round(&ws.setup.transcription))
-        {
-            break;
-        }
-        // Continuous verification: add a check where a pair dips below d, then re-solve.
-        // Changes this round: points added, and margins raised.
-        let mut added = 0u16;
-        let mut points = 0u16;
-        // Pairs the convergence test searched at this iterate and found clean: the same search
-        // again would find the same.
-        let clean = if end == SqpEnd::Converged {
-            ws.verification.searched_clean
-        } else {
-            0
-        };
-        for pair in 0..ws.setup.transcription.pair_count {
-            if clean & pair_bit(pair) != 0 {
-                continue;
-            }
-            let minimum = pair_minimum(ws, pair, settings);
-            let separation = libm::sqrt(minimum.value_squared.max(0.0));
-            if separation < d - settings.verify_tol_lu {
-                // A dip the moving check did not catch (a second local minimum): check it too.
-                // Where the pair already had one and still dips, the dip sits between closely
-                // spaced checks: raise the pair's keep-out by its depth, which lifts the
-                // continuous minimum by about as much (the dips are then ~1e-4 d or less, so the
-                // cost moves by parts per million).
-                let tau = 2.0 * minimum.at_s - 1.0;
-                let tr = &mut ws.setup.transcription;
-                let verify_points = &mut ws.verification.verify_points;
-                let refined_before = verify_points.get(pair).copied().unwrap_or(0) > 0;
-                let checked = tr.add_check(pair, tau);
-                if checked {
-                    if let Some(count) = verify_points.get_mut(pair) {
-                        *count = count.saturating_add(1);
-                    }
-                    added = added.saturating_add(1);
-                    points = points.saturating_add(1);
-                }
-                // The margin also goes at once to a pair out of check slots (moving checks
-                // frozen at other minima hold them), and in the last round to every dipping
-                // pair: that round's re-solve is not verified again.
-                let last_round = rounds.saturating_add(1) >= settings.verify_max_rounds;
-                if refined_before || !checked || last_round {
-                    if let Some(margin) = tr.margin.get_mut(pair) {
-                        *margin += d - separation;
-                    }
-                    added = added.saturating_add(1);
-                }
-            }
-        }
-        if added == 0 {
-            break;
+        let end = sqp(ws, settings, out);
+        let verify = !matches!(end, SqpEnd::Failed(_))
+            && rounds < settings.verify_max_rounds
+            && settings.continuous_verification
+            && ws
+                .work
+                .spend(work_units::verify_round(&ws.setup.transcription));
+        if !verify || !verification_round(ws, settings, out, end, rounds) {
+            return end;
         }
         rounds = rounds.saturating_add(1);
         out.info.verify_rounds = rounds;
-        out.info.verify_points_added = out.info.verify_points_added.saturating_add(points);
     }
-    end
+}
+
+/// One continuous-verification round after a run of the iteration that ended with `end`, the
+/// `rounds + 1`-th: add a check where a pair dips below d, or raise its margin. Returns whether
+/// it changed the transcription (then the iteration runs again).
+fn verification_round(
+    ws: &mut Workspace,
+    settings: &Settings,
+    out: &mut Solution,
+    end: SqpEnd,
+    rounds: u8,
+) -> bool {
+    let d = ws.setup.transcription.keep_out_lu;
+    // Changes this round: points added, and margins raised.
+    let mut added = 0u16;
+    let mut points = 0u16;
+    // Pairs the convergence test searched at this iterate and found clean: the same search
+    // again would find the same.
+    let clean = if end == SqpEnd::Converged {
+        ws.verification.searched_clean
+    } else {
+        0
+    };
+    for pair in 0..ws.setup.transcription.pair_count {
+        if clean & pair_bit(pair) != 0 {
+            continue;
+        }
+        let minimum = pair_minimum(ws, pair, settings);
+        let separation = libm::sqrt(minimum.value_squared.max(0.0));
+        if separation < d - settings.verify_tol_lu {
+            // A dip the moving check did not catch (a second local minimum): check it too.
+            // Where the pair already had one and still dips, the dip sits between closely
+            // spaced checks: raise the pair's keep-out by its depth, which lifts the
+            // continuous minimum by about as much (the dips are then ~1e-4 d or less, so the
+            // cost moves by parts per million).
+            let tau = 2.0 * minimum.at_s - 1.0;
+            let tr = &mut ws.setup.transcription;
+            let verify_points = &mut ws.verification.verify_points;
+            let refined_before = verify_points.get(pair).copied().unwrap_or(0) > 0;
+            let checked = tr.add_check(pair, tau);
+            if checked {
+                if let Some(count) = verify_points.get_mut(pair) {
+                    *count = count.saturating_add(1);
+                }
+                added = added.saturating_add(1);
+                points = points.saturating_add(1);
+            }
+            // The margin also goes at once to a pair out of check slots (moving checks
+            // frozen at other minima hold them), and in the last round to every dipping
+            // pair: that round's re-solve is not verified again.
+            let last_round = rounds.saturating_add(1) >= settings.verify_max_rounds;
+            if refined_before || !checked || last_round {
+                if let Some(margin) = tr.margin.get_mut(pair) {
+                    *margin += d - separation;
+                }
+                added = added.saturating_add(1);
+            }
+        }
+    }
+    if added == 0 {
+        return false;
+    }
+    out.info.verify_points_added = out.info.verify_points_added.saturating_add(points);
+    true
 }
 
 /// Write the solution, check its feasibility, evaluate its certificate, and return its status.
-/// `ws.iterates.trial` receives the certificate's negative-curvature direction (`ws.iterates.accepted` is its
-/// scratch): workspace buffers idle at this point, so the certificate adds nothing to the stack.
+/// `ws.iterates.trial` receives the certificate's negative-curvature direction
+/// (`ws.iterates.accepted` is its scratch): workspace buffers idle at this point, so the
+/// certificate adds nothing to the stack. Never inlined: its frame (the certificate's envelope
+/// corrections, 6.4 KB at capacity) must not sit under the iteration's, which
+/// `iterate_and_check` calls beside it (inlined there, it added 8.2 KB to the M7's stack
+/// high-water).
+#[inline(never)]
 fn finish(ws: &mut Workspace, settings: &Settings, out: &mut Solution, end: SqpEnd) -> SolveStatus {
     ws.work.charge(work_units::finish(
         &ws.setup.transcription,
