@@ -9,7 +9,7 @@
 //! infeasible QP.
 
 use super::kernel::{dot, Coefficients, MAX_BLOCKS};
-use super::linalg::{cholesky_in_place, set, solve_lower, solve_lower_transposed};
+use super::linalg::{cholesky_in_place, solve_lower, solve_lower_transposed};
 use crate::capacity::MAX_FREE_PER_AXIS;
 use crate::indexed::IndexedExt as _;
 
@@ -82,11 +82,9 @@ impl Anderson {
     ) {
         let memory = memory.min(MAX_MEMORY);
         let mut f = ZERO;
-        for b in 0..blocks {
-            if let (Some(fb), Some(gb), Some(xb)) = (f.get_mut(b), g.get(b), point.get(b)) {
-                for ((slot, gv), xv) in fb.iter_mut().zip(gb.iter()).zip(xb.iter()).take(free) {
-                    *slot = gv - xv;
-                }
+        for ((fb, gb), xb) in f.iter_mut().zip(g.iter()).zip(point.iter()).take(blocks) {
+            for ((slot, gv), xv) in fb.iter_mut().zip(gb.iter()).zip(xb.iter()).take(free) {
+                *slot = gv - xv;
             }
         }
         if memory == 0 {
@@ -122,45 +120,46 @@ impl Anderson {
         if k == 0 {
             return;
         }
-        // gamma = argmin |f - dF gamma|: normal equations with a small Tikhonov term.
+        // gamma = argmin |f - dF gamma|: normal equations with a small Tikhonov term (their
+        // lower triangle: the factorisation and the solves read no other).
+        let live = (blocks, free);
         let mut normal = [[0.0; MAX_MEMORY]; MAX_MEMORY];
         let mut rhs = [0.0; MAX_MEMORY];
         let mut trace = 0.0;
-        for i in 0..k {
-            let (Some(fi), Some(slot)) = (self.delta_f.get(i), rhs.get_mut(i)) else {
-                continue;
-            };
-            *slot = dot(fi, &f, (blocks, free));
-            for j in 0..=i {
-                if let Some(fj) = self.delta_f.get(j) {
-                    let value = dot(fi, fj, (blocks, free));
-                    set(&mut normal, i, j, value);
-                    set(&mut normal, j, i, value);
-                    if i == j {
-                        trace += value;
-                    }
+        let rows = self
+            .delta_f
+            .iter()
+            .zip(rhs.iter_mut())
+            .zip(normal.iter_mut());
+        for (i, ((fi, slot), normal_row)) in rows.take(k).indexed() {
+            *slot = dot(fi, &f, live);
+            let entries = self.delta_f.iter().zip(normal_row.iter_mut());
+            for (j, (fj, entry)) in entries.take(i.saturating_add(1)).indexed() {
+                let value = dot(fi, fj, live);
+                *entry = value;
+                if i == j {
+                    trace += value;
                 }
             }
         }
         if trace <= 0.0 {
             return;
         }
-        for i in 0..k {
-            let value = super::linalg::get(&normal, i, i) + 1e-10 * trace;
-            set(&mut normal, i, i, value);
+        // The diagonal: every (MAX_MEMORY + 1)-th entry of the rows laid end to end.
+        for diagonal in normal.iter_mut().flatten().step_by(MAX_MEMORY + 1).take(k) {
+            *diagonal += 1e-10 * trace;
         }
-        if cholesky_in_place(&mut normal, k).is_some() {
+        if cholesky_in_place(&mut normal, k).is_some()
+            || !solve_lower(&normal, k, &mut rhs)
+            || !solve_lower_transposed(&normal, k, &mut rhs)
+        {
             self.reset();
             return;
         }
-        solve_lower(&normal, k, &mut rhs);
-        solve_lower_transposed(&normal, k, &mut rhs);
-        for (i, gamma) in rhs.iter().indexed().take(k) {
-            if let Some(dg) = self.delta_g.get(i) {
-                for (nb, db) in point.iter_mut().zip(dg.iter()).take(blocks) {
-                    for (slot, d) in nb.iter_mut().zip(db.iter()).take(free) {
-                        *slot -= gamma * d;
-                    }
+        for (gamma, dg) in rhs.iter().zip(self.delta_g.iter()).take(k) {
+            for (nb, db) in point.iter_mut().zip(dg.iter()).take(blocks) {
+                for (slot, d) in nb.iter_mut().zip(db.iter()).take(free) {
+                    *slot -= gamma * d;
                 }
             }
         }

@@ -10,7 +10,7 @@
 //! `J_axis = m^2 J_cubic + 1/2 |y|^2` with `y = m z`: the QP Hessian is the identity.
 
 use super::lgl::LglGrid;
-use super::linalg::{cholesky_in_place, get, set, solve_lower};
+use super::linalg::{cholesky_in_place, solve_lower};
 use crate::capacity::{MAX_FREE_PER_AXIS, MAX_NODES};
 use crate::indexed::IndexedExt as _;
 
@@ -62,76 +62,73 @@ impl Basis {
         self.free = free;
         // Raw basis: (1 - tau^2)^2 P_c(tau), Legendre P_c keeps the Gram matrix well scaled.
         let mut raw = [[0.0; MAX_FREE_PER_AXIS]; MAX_NODES];
-        for h in 0..nodes {
-            let tau = grid.at(h);
+        for (row, tau) in raw.iter_mut().zip(grid.taus()) {
             let bubble = (1.0 - tau * tau) * (1.0 - tau * tau);
             // Legendre P_c(tau) by the three-term recurrence.
             let (mut previous, mut current) = (0.0, 1.0);
-            for c in 0..free {
-                set(&mut raw, h, c, bubble * current);
+            for (c, slot) in row.iter_mut().take(free).indexed() {
+                *slot = bubble * current;
                 let k = c as f64;
                 let next = ((2.0 * k + 1.0) * tau * current - k * previous) / (k + 1.0);
                 previous = current;
                 current = next;
             }
         }
-        // Accelerations per unit raw coefficient: (2/T)^2 D (D raw).
+        // Accelerations per unit raw coefficient: (2/T)^2 D (D raw), each node's row of D
+        // applied to every column at once (per entry the same sum, in the same node order, as
+        // differentiating one column at a time). `self.accel` holds D raw meanwhile (it is
+        // written last, below).
         let scale = 4.0 / (horizon_tu * horizon_tu);
         let mut raw_accel = [[0.0; MAX_FREE_PER_AXIS]; MAX_NODES];
-        for c in 0..free {
-            let mut column = [0.0; MAX_NODES];
-            for (h, slot) in column.iter_mut().indexed().take(nodes) {
-                *slot = get(&raw, h, c);
-            }
-            let mut first = [0.0; MAX_NODES];
-            grid.differentiate(&column, &mut first);
-            let mut second = [0.0; MAX_NODES];
-            grid.differentiate(&first, &mut second);
-            for (h, value) in second.iter().indexed().take(nodes) {
-                set(&mut raw_accel, h, c, scale * value);
+        apply_rows(grid, &raw, &mut self.accel, free);
+        apply_rows(grid, &self.accel, &mut raw_accel, free);
+        for row in raw_accel.iter_mut().take(nodes) {
+            for value in row.iter_mut().take(free) {
+                *value *= scale;
             }
         }
-        // Cost metric: J = T/4 sum_h w_h a_h^2 = 1/2 z^T M z with M = T/2 A^T W A.
-        for a in 0..free {
-            for b in 0..=a {
-                let mut sum = 0.0;
-                for h in 0..nodes {
-                    let w = grid.weight.get(h).copied().unwrap_or(0.0);
-                    sum += w * get(&raw_accel, h, a) * get(&raw_accel, h, b);
+        // Cost metric: J = T/4 sum_h w_h a_h^2 = 1/2 z^T M z with M = T/2 A^T W A (its lower
+        // triangle: the factorisation reads no other).
+        *scratch = [[0.0; MAX_FREE_PER_AXIS]; MAX_FREE_PER_AXIS];
+        for ((_, w), row) in grid.nodes_and_weights().zip(raw_accel.iter()) {
+            for (a, (metric_row, &ra)) in scratch.iter_mut().zip(row.iter()).take(free).indexed() {
+                for (slot, &rb) in metric_row
+                    .iter_mut()
+                    .zip(row.iter())
+                    .take(a.saturating_add(1))
+                {
+                    *slot += w * ra * rb;
                 }
-                let value = 0.5 * horizon_tu * sum;
-                set(scratch, a, b, value);
-                set(scratch, b, a, value);
+            }
+        }
+        for (a, metric_row) in scratch.iter_mut().take(free).indexed() {
+            for slot in metric_row.iter_mut().take(a.saturating_add(1)) {
+                *slot *= 0.5 * horizon_tu;
             }
         }
         if cholesky_in_place(scratch, free).is_some() {
             return false;
         }
         // Orthonormalise: Zt = Z L^{-T}, i.e. each row r of Z gives row L^{-1} r^T.
-        for h in 0..nodes {
-            let mut row = [0.0; MAX_FREE_PER_AXIS];
-            for (c, slot) in row.iter_mut().indexed().take(free) {
-                *slot = get(&raw, h, c);
+        let rows = raw.iter().zip(raw_accel.iter());
+        let outputs = self.position.iter_mut().zip(self.accel.iter_mut());
+        for ((raw_row, raw_accel_row), ((position, accel), accel_norm)) in rows
+            .zip(outputs.zip(self.accel_norm.iter_mut()))
+            .take(nodes)
+        {
+            let mut row = *raw_row;
+            let mut accel_row = *raw_accel_row;
+            if !solve_lower(scratch, free, &mut row) || !solve_lower(scratch, free, &mut accel_row)
+            {
+                return false;
             }
-            solve_lower(scratch, free, &mut row);
-            if let Some(dest) = self.position.get_mut(h) {
-                *dest = row;
-            }
-            let mut accel_row = [0.0; MAX_FREE_PER_AXIS];
-            for (c, slot) in accel_row.iter_mut().indexed().take(free) {
-                *slot = get(&raw_accel, h, c);
-            }
-            solve_lower(scratch, free, &mut accel_row);
             let mut norm2 = 0.0;
             for v in accel_row.iter().take(free) {
                 norm2 += v * v;
             }
-            if let Some(dest) = self.accel.get_mut(h) {
-                *dest = accel_row;
-            }
-            if let Some(dest) = self.accel_norm.get_mut(h) {
-                *dest = libm::sqrt(norm2);
-            }
+            *position = row;
+            *accel = accel_row;
+            *accel_norm = libm::sqrt(norm2);
         }
         true
     }
@@ -141,11 +138,27 @@ impl Basis {
         let mut lagrange = [0.0; MAX_NODES];
         grid.lagrange_row(tau, &mut lagrange);
         *out = [0.0; MAX_FREE_PER_AXIS];
-        for (h, weight) in lagrange.iter().indexed().take(grid.nodes()) {
-            if let Some(row) = self.position.get(h) {
-                for (slot, value) in out.iter_mut().zip(row.iter()).take(self.free) {
-                    *slot += weight * value;
-                }
+        for (weight, row) in lagrange.iter().zip(self.position.iter()).take(grid.nodes()) {
+            for (slot, value) in out.iter_mut().zip(row.iter()).take(self.free) {
+                *slot += weight * value;
+            }
+        }
+    }
+}
+
+/// `out = D values` on the first `free` columns, `D` the grid's differentiation matrix: per
+/// entry `sum_k D[h][k] values[k][c]` over the nodes in order (`out` starts at zero).
+fn apply_rows(
+    grid: &LglGrid,
+    values: &[[f64; MAX_FREE_PER_AXIS]; MAX_NODES],
+    out: &mut [[f64; MAX_FREE_PER_AXIS]; MAX_NODES],
+    free: usize,
+) {
+    let nodes = grid.nodes();
+    for (out_row, d_row) in out.iter_mut().zip(grid.diff.iter()).take(nodes) {
+        for (&d, row) in d_row.iter().zip(values.iter()).take(nodes) {
+            for (slot, &v) in out_row.iter_mut().zip(row.iter()).take(free) {
+                *slot += d * v;
             }
         }
     }

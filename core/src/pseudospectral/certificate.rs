@@ -173,13 +173,9 @@ pub(super) fn describe(tr: &Transcription, id: RowId) -> Option<ActiveConstraint
         }),
         RowId::KeepOut { pair, check } => {
             let p = usize::from(pair);
-            let check = tr
-                .checks
-                .get(p)
-                .and_then(|row| row.get(usize::from(check)))?;
-            let &pair = tr.pairs.get(p)?;
+            let check = tr.check(p, usize::from(check))?;
             Some(ActiveConstraint::KeepOut {
-                pair,
+                pair: tr.pair(p)?.spacecraft,
                 time_tu: tr.time_of(check.tau),
             })
         }
@@ -210,7 +206,13 @@ pub(crate) fn evaluate(
     *direction = *y;
     let mut complementarity = 0.0f64;
     qp.for_each_multiplier(tr, |id, value| {
-        let view = tr.view(id);
+        // A row the transcription does not hold (never: rows enter from its own scans) leaves
+        // the first-order measures untaken.
+        let Some(view) = tr.view(id) else {
+            out.first_order_evaluated = false;
+            out.multipliers_complete = false;
+            return;
+        };
         row_axpy(&view, -value, direction, free);
         let slack = row_dot(&view, y, free) - view.rhs;
         complementarity = complementarity.max(value * libm::fabs(slack));
@@ -253,21 +255,23 @@ pub(crate) fn evaluate(
             return;
         };
         let p = usize::from(pair);
-        let Some(c) = tr.checks.get(p).and_then(|row| row.get(usize::from(check))) else {
+        let (Some(c), Some(pair)) = (tr.check(p, usize::from(check)), tr.pair(p)) else {
             return;
         };
         if value <= 0.0 {
             return;
         }
-        if let Some(envelope) = Envelope::new(tr, y, p, c.tau, value) {
-            sigma += envelope.power_shift(tr);
+        if let Some(envelope) = Envelope::new(tr, y, &pair, c.tau, value) {
+            sigma += envelope.power_shift(&pair);
             // Past the capacity a correction is left out: that only lowers the estimate.
             let _ = corrections.push(envelope);
         }
     });
     // Factor mode (checked above): the multipliers are the active rows' own.
     let mut lengths = [0.0; MAX_ACTIVE];
-    check_lengths(tr, qp, y, &mut lengths);
+    if !check_lengths(tr, qp, y, &mut lengths) {
+        return 0;
+    }
     let op = Curvature {
         tr,
         qp,
@@ -278,7 +282,12 @@ pub(crate) fn evaluate(
     // definite answer is final; the direction is then unused (no saddle to leave, nothing flat
     // to probe) and left zero. Otherwise the power method below finds the eigenvector the
     // saddle escape and the flat-direction probe step along, from the same start as always.
-    start_vector(tr, qp, direction);
+    // A Gram factor that cannot be solved with (never: see `QpState::gram_solve`) leaves the
+    // second-order measure untaken.
+    if !start_vector(tr, qp, direction) {
+        *direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
+        return 0;
+    }
     let lanczos = lanczos::largest(&op, direction, w, size);
     if let Some((largest, _)) = lanczos {
         if 1.0 - largest >= CURVATURE_TOL {
@@ -289,7 +298,10 @@ pub(crate) fn evaluate(
         }
     }
     let extra = lanczos.map_or(LANCZOS_STEPS, |(_, steps)| steps);
-    start_vector(tr, qp, direction);
+    if !start_vector(tr, qp, direction) {
+        *direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
+        return extra;
+    }
     let mut largest = 0.0f64;
     for _ in 0..POWER_ITERATIONS {
         let norm = libm::sqrt(dot(direction, direction, size));
@@ -305,7 +317,10 @@ pub(crate) fn evaluate(
                 *a += sigma * b;
             }
         }
-        project(tr, qp, w);
+        if !project(tr, qp, w) {
+            *direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
+            return extra;
+        }
         let previous = largest;
         largest = dot(direction, w, size) - sigma;
         *direction = *w;
@@ -327,8 +342,10 @@ pub(crate) fn evaluate(
 }
 
 /// The fixed start of both eigenvalue methods, projected on the null space: every sign
-/// pattern present (deterministic, bit-identical host / M7).
-fn start_vector(tr: &Transcription, qp: &QpState, direction: &mut Coefficients) {
+/// pattern present (deterministic, bit-identical host / M7). False when the projection cannot
+/// be taken (`project`).
+#[must_use]
+fn start_vector(tr: &Transcription, qp: &QpState, direction: &mut Coefficients) -> bool {
     let free = tr.basis.free;
     *direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
     for (b, row) in direction.iter_mut().indexed().take(tr.blocks()) {
@@ -337,5 +354,5 @@ fn start_vector(tr: &Transcription, qp: &QpState, direction: &mut Coefficients) 
             *slot = libm::sin(0.7 * (k as f64) + 0.3);
         }
     }
-    project(tr, qp, direction);
+    project(tr, qp, direction)
 }

@@ -159,15 +159,15 @@ pub(crate) fn test_points(
             best_node = h;
         }
     }
+    // The nodes on either side of the closest one (the whole horizon where there are no nodes).
     let last = node_times.len().saturating_sub(1);
-    let lo = node_times
-        .get(best_node.saturating_sub(1))
-        .copied()
-        .unwrap_or(0.0);
-    let hi = node_times
-        .get(best_node.saturating_add(1).min(last))
-        .copied()
-        .unwrap_or(horizon);
+    let (lo, hi) = match (
+        node_times.get(best_node.saturating_sub(1)),
+        node_times.get(best_node.saturating_add(1).min(last)),
+    ) {
+        (Some(&lo), Some(&hi)) => (lo, hi),
+        _ => (0.0, horizon),
+    };
     let mu = closest_approach(laws_i, laws_j, lo, hi, iterations);
     let sigma = 0.5 * (hi - lo);
     let mut out = [0.0; TEST_POINTS_PER_PAIR];

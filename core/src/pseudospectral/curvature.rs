@@ -7,7 +7,9 @@
 
 use super::kernel::Coefficients;
 use super::qp_state::QpState;
-use super::transcription::{block_dot, node_value, row_axpy, row_dot, Check, RowId, Transcription};
+use super::transcription::{
+    block_dot, row_axpy, row_dot, spacecraft_blocks, Check, Pair, RowId, Transcription,
+};
 use crate::capacity::{MAX_ACTIVE, MAX_FREE_PER_AXIS, MAX_NODES};
 use crate::indexed::IndexedExt as _;
 use crate::vec3;
@@ -20,26 +22,46 @@ pub const MAX_ENVELOPES: usize = 16;
 /// `|r_i - r_j|` at each active row's check on `y` (0 for control rows), in the QP's row order:
 /// the lengths `add_curvature` needs, computed once per point instead of once per product (a
 /// CG or power-method product otherwise recomputed six dot products per check for them).
+/// Returns false when an active row is not the transcription's (never: rows enter the working
+/// set from its own scans); the caller then takes no curvature products (`project`,
+/// `Curvature::accumulate` and `newton::curvature` pass over such a row).
+#[must_use]
 pub(super) fn check_lengths(
     tr: &Transcription,
     qp: &QpState,
     y: &Coefficients,
     out: &mut [f64; MAX_ACTIVE],
-) {
+) -> bool {
     *out = [0.0; MAX_ACTIVE];
     for (slot, &id) in out.iter_mut().zip(qp.active.iter()).take(qp.count) {
+        if tr.view(id).is_none() {
+            return false;
+        }
         if let RowId::KeepOut { pair, check } = id {
             let p = usize::from(pair);
-            if let Some(c) = tr.checks.get(p).and_then(|row| row.get(usize::from(check))) {
-                let relative = tr.relative(p, c.source, y);
-                *slot = libm::sqrt(
-                    relative[0] * relative[0]
-                        + relative[1] * relative[1]
-                        + relative[2] * relative[2],
-                );
-            }
+            let Some(relative) = tr
+                .check(p, usize::from(check))
+                .zip(tr.pair(p))
+                .and_then(|(c, pair)| tr.relative(&pair, c.source, y))
+            else {
+                return false;
+            };
+            *slot = libm::sqrt(
+                relative[0] * relative[0] + relative[1] * relative[1] + relative[2] * relative[2],
+            );
         }
     }
+    true
+}
+
+/// An active keep-out row's check and pair (`None` for a control row, or a row that names no
+/// check of the transcription: `check_lengths` has refused those).
+pub(super) fn keep_out_term(tr: &Transcription, id: RowId) -> Option<(Pair, Check)> {
+    let RowId::KeepOut { pair, check } = id else {
+        return None;
+    };
+    let p = usize::from(pair);
+    Some((tr.pair(p)?, tr.check(p, usize::from(check))?))
 }
 
 /// `out += sign * S v` restricted to one active keep-out check `c` of `pair` with multiplier
@@ -47,27 +69,29 @@ pub(super) fn check_lengths(
 /// its normal is the unit separation (`unit_normals_at(tr, y)` sets it with the same arithmetic).
 pub(super) fn add_curvature(
     tr: &Transcription,
-    (pair, c): (usize, &Check),
+    (pair, c): (&Pair, &Check),
     length: f64,
     l: f64,
     v: &Coefficients,
     out: &mut Coefficients,
 ) {
-    let Some(&(i, j)) = tr.pairs.get(pair) else {
-        return;
-    };
     if length <= 0.0 {
         return;
     }
+    let (i, j) = pair.spacecraft;
+    let (mi, mj) = pair.masses;
+    let (Some((row, _)), Some(vi), Some(vj)) = (
+        tr.check_row(c.source),
+        spacecraft_blocks(v, i),
+        spacecraft_blocks(v, j),
+    ) else {
+        return;
+    };
     let n = c.normal;
-    let (row, _) = tr.check_row(c.source);
     let free = tr.basis.free;
-    let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
-    let block = |sc: u8, axis: usize| usize::from(sc).saturating_mul(3).saturating_add(axis);
     let mut jv = [0.0; 3];
-    for (axis, slot) in jv.iter_mut().indexed() {
-        *slot = block_dot(row, v, block(i, axis), free) / mi
-            - block_dot(row, v, block(j, axis), free) / mj;
+    for (slot, (bi, bj)) in jv.iter_mut().zip(vi.iter().zip(vj.iter())) {
+        *slot = block_dot(row, bi, free) / mi - block_dot(row, bj, free) / mj;
     }
     let along = n[0] * jv[0] + n[1] * jv[1] + n[2] * jv[2];
     for (axis, (value, normal)) in jv.iter().zip(n.iter()).indexed() {
@@ -91,7 +115,8 @@ pub(super) fn add_curvature(
 /// check time and the relative state), never as a dense vector.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Envelope {
-    pair: (u8, u8),
+    /// The pair's index (`Transcription::pair`).
+    pair: u8,
     position_row: [f64; MAX_FREE_PER_AXIS],
     velocity_row: [f64; MAX_FREE_PER_AXIS],
     /// Per axis: the weights of the position row and of the velocity row in `f_yt`.
@@ -108,14 +133,14 @@ impl Envelope {
     pub(super) fn new(
         tr: &Transcription,
         y: &Coefficients,
-        pair: usize,
+        pair: &Pair,
         tau: f64,
         l: f64,
     ) -> Option<Self> {
-        let &(i, j) = tr.pairs.get(pair)?;
+        let (i, j) = pair.spacecraft;
+        let (mi, mj) = pair.masses;
         let free = tr.basis.free;
         let nodes = tr.grid.nodes();
-        let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
         let rate = 2.0 / tr.horizon_tu;
         let mut r = [0.0; 3];
         let mut rd = [0.0; 3];
@@ -123,22 +148,31 @@ impl Envelope {
         // One interpolation row at `tau` serves every value below.
         let mut lagrange = [0.0; MAX_NODES];
         tr.grid.lagrange_row(tau, &mut lagrange);
-        for axis in 0..3 {
+        let base = spacecraft_blocks(&tr.base_position, i)?
+            .iter()
+            .zip(spacecraft_blocks(&tr.base_position, j)?);
+        let blocks = spacecraft_blocks(y, i)?
+            .iter()
+            .zip(spacecraft_blocks(y, j)?);
+        let states = r.iter_mut().zip(rd.iter_mut()).zip(rdd.iter_mut());
+        for (((r_axis, rd_axis), rdd_axis), ((base_i, base_j), (yi, yj))) in
+            states.zip(base.zip(blocks))
+        {
             let mut values = [0.0; MAX_NODES];
-            for (h, slot) in values.iter_mut().indexed().take(nodes) {
-                let row = tr.basis.position.get(h)?;
-                *slot = node_value(&tr.base_position, block(i, axis), h)
-                    - node_value(&tr.base_position, block(j, axis), h)
-                    + block_dot(row, y, block(i, axis), free) / mi
-                    - block_dot(row, y, block(j, axis), free) / mj;
+            let nodal = base_i
+                .iter()
+                .zip(base_j.iter())
+                .zip(tr.basis.position.iter());
+            for (slot, ((&pi, &pj), row)) in values.iter_mut().zip(nodal).take(nodes) {
+                *slot = pi - pj + block_dot(row, yi, free) / mi - block_dot(row, yj, free) / mj;
             }
             let mut first = [0.0; MAX_NODES];
             let mut second = [0.0; MAX_NODES];
             tr.grid.differentiate(&values, &mut first);
             tr.grid.differentiate(&first, &mut second);
-            *r.get_mut(axis)? = tr.grid.interpolate_with(&lagrange, &values);
-            *rd.get_mut(axis)? = rate * tr.grid.interpolate_with(&lagrange, &first);
-            *rdd.get_mut(axis)? = rate * rate * tr.grid.interpolate_with(&lagrange, &second);
+            *r_axis = tr.grid.interpolate_with(&lagrange, &values);
+            *rd_axis = rate * tr.grid.interpolate_with(&lagrange, &first);
+            *rdd_axis = rate * rate * tr.grid.interpolate_with(&lagrange, &second);
         }
         let length = libm::sqrt(vec3::dot(&r, &r));
         if length <= 0.0 {
@@ -151,7 +185,7 @@ impl Envelope {
             return None;
         }
         let mut envelope = Self {
-            pair: (i, j),
+            pair: u8::try_from(pair.index).ok()?,
             position_row: [0.0; MAX_FREE_PER_AXIS],
             velocity_row: [0.0; MAX_FREE_PER_AXIS],
             along_position: [0.0; 3],
@@ -162,25 +196,35 @@ impl Envelope {
             .position_row(&tr.grid, tau, &mut envelope.position_row);
         for (f, slot) in envelope.velocity_row.iter_mut().indexed().take(free) {
             let mut column = [0.0; MAX_NODES];
-            for (h, value) in column.iter_mut().indexed().take(nodes) {
-                *value = tr.basis.position.get(h)?.get(f).copied()?;
+            for (value, row) in column.iter_mut().zip(tr.basis.position.iter()).take(nodes) {
+                *value = *row.get(f)?;
             }
             let mut derivative = [0.0; MAX_NODES];
             tr.grid.differentiate(&column, &mut derivative);
             *slot = rate * tr.grid.interpolate_with(&lagrange, &derivative);
         }
-        for axis in 0..3 {
-            let (ra, rda) = (*r.get(axis)?, *rd.get(axis)?);
-            *envelope.along_position.get_mut(axis)? = rda / length - radial * ra / cube;
-            *envelope.along_velocity.get_mut(axis)? = ra / length;
+        let weights = envelope
+            .along_position
+            .iter_mut()
+            .zip(envelope.along_velocity.iter_mut());
+        for ((position_weight, velocity_weight), (&ra, &rda)) in
+            weights.zip(r.iter().zip(rd.iter()))
+        {
+            *position_weight = rda / length - radial * ra / cube;
+            *velocity_weight = ra / length;
         }
         Some(envelope)
+    }
+
+    /// The pair this correction belongs to (its index: `Transcription::pair`).
+    pub(super) fn pair(&self) -> usize {
+        usize::from(self.pair)
     }
 
     /// This correction's part of the shift `sigma` that keeps `P (S + sigma I) P` positive
     /// semidefinite for the certificate's power method: `w |f_yt|^2` with the rows' entries
     /// squared per spacecraft mass (a bound on the correction's largest eigenvalue).
-    pub(super) fn power_shift(&self, tr: &Transcription) -> f64 {
+    pub(super) fn power_shift(&self, pair: &Pair) -> f64 {
         let mut norm2 = 0.0;
         let along = self.along_position.iter().zip(self.along_velocity.iter());
         for (&a, &b) in along {
@@ -189,36 +233,35 @@ impl Envelope {
                 norm2 += e * e;
             }
         }
-        let (mi, mj) = (
-            tr.mass_of(usize::from(self.pair.0)),
-            tr.mass_of(usize::from(self.pair.1)),
-        );
+        let (mi, mj) = pair.masses;
         self.weight * norm2 * (1.0 / (mi * mi) + 1.0 / (mj * mj))
     }
 
-    /// `f_yt . v`.
-    pub(super) fn dot(&self, tr: &Transcription, v: &Coefficients) -> f64 {
+    /// `f_yt . v`, `pair` the correction's pair (`Envelope::pair`).
+    pub(super) fn dot(&self, tr: &Transcription, pair: &Pair, v: &Coefficients) -> f64 {
         let free = tr.basis.free;
-        let (i, j) = self.pair;
-        let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
+        let (i, j) = pair.spacecraft;
+        let (mi, mj) = pair.masses;
+        let (Some(vi), Some(vj)) = (spacecraft_blocks(v, i), spacecraft_blocks(v, j)) else {
+            return 0.0;
+        };
         let mut sum = 0.0;
         let along = self.along_position.iter().zip(self.along_velocity.iter());
-        for (axis, (&a, &b)) in along.indexed() {
-            let (bi, bj) = (block(i, axis), block(j, axis));
-            let p = block_dot(&self.position_row, v, bi, free) / mi
-                - block_dot(&self.position_row, v, bj, free) / mj;
-            let q = block_dot(&self.velocity_row, v, bi, free) / mi
-                - block_dot(&self.velocity_row, v, bj, free) / mj;
+        for ((&a, &b), (bi, bj)) in along.zip(vi.iter().zip(vj.iter())) {
+            let p = block_dot(&self.position_row, bi, free) / mi
+                - block_dot(&self.position_row, bj, free) / mj;
+            let q = block_dot(&self.velocity_row, bi, free) / mi
+                - block_dot(&self.velocity_row, bj, free) / mj;
             sum += a * p + b * q;
         }
         sum
     }
 
-    /// `out += alpha f_yt`.
-    pub(super) fn axpy(&self, tr: &Transcription, alpha: f64, out: &mut Coefficients) {
+    /// `out += alpha f_yt`, `pair` the correction's pair (`Envelope::pair`).
+    pub(super) fn axpy(&self, tr: &Transcription, pair: &Pair, alpha: f64, out: &mut Coefficients) {
         let free = tr.basis.free;
-        let (i, j) = self.pair;
-        let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
+        let (i, j) = pair.spacecraft;
+        let (mi, mj) = pair.masses;
         let along = self.along_position.iter().zip(self.along_velocity.iter());
         for (axis, (&a, &b)) in along.indexed() {
             for (sc, mass, sign) in [(i, mi, 1.0), (j, mj, -1.0)] {
@@ -242,17 +285,27 @@ fn block(sc: u8, axis: usize) -> usize {
     usize::from(sc).saturating_mul(3).saturating_add(axis)
 }
 
-/// `x <- P x`: remove the part of `x` in the span of the active rows.
-pub(super) fn project(tr: &Transcription, qp: &QpState, x: &mut Coefficients) {
+/// `x <- P x`: remove the part of `x` in the span of the active rows (rows the transcription
+/// does not hold have no part: `check_lengths` refuses a working set with one). Returns false,
+/// with `x` not projected, when the Gram factor cannot be solved with (`QpState::gram_solve`).
+#[must_use]
+pub(super) fn project(tr: &Transcription, qp: &QpState, x: &mut Coefficients) -> bool {
     let free = tr.basis.free;
     let mut b = [0.0; MAX_ACTIVE];
     for (slot, &id) in b.iter_mut().zip(qp.active.iter()).take(qp.count) {
-        *slot = row_dot(&tr.view(id), x, free);
+        if let Some(view) = tr.view(id) {
+            *slot = row_dot(&view, x, free);
+        }
     }
-    qp.gram_solve(&mut b);
+    if !qp.gram_solve(&mut b) {
+        return false;
+    }
     for (value, &id) in b.iter().zip(qp.active.iter()).take(qp.count) {
-        row_axpy(&tr.view(id), -value, x, free);
+        if let Some(view) = tr.view(id) {
+            row_axpy(&view, -value, x, free);
+        }
     }
+    true
 }
 
 /// `S` less the envelope terms (the curvature of the active keep-out checks at the iterate), for
@@ -277,16 +330,17 @@ impl Curvature<'_> {
             .zip(self.lengths.iter())
             .take(qp.count)
         {
-            if let RowId::KeepOut { pair, check } = id {
-                let p = usize::from(pair);
-                if let Some(c) = tr.checks.get(p).and_then(|row| row.get(usize::from(check))) {
-                    add_curvature(tr, (p, c), length, value, v, out);
-                }
+            if let Some((pair, c)) = keep_out_term(tr, id) {
+                add_curvature(tr, (&pair, &c), length, value, v, out);
             }
         }
         for envelope in self.corrections {
-            let along = envelope.weight * envelope.dot(tr, v);
-            envelope.axpy(tr, -along, out);
+            // Built for a pair of this transcription, so found; a correction left out would
+            // only lower the estimate.
+            if let Some(pair) = tr.pair(envelope.pair()) {
+                let along = envelope.weight * envelope.dot(tr, &pair, v);
+                envelope.axpy(tr, &pair, -along, out);
+            }
         }
     }
 }

@@ -272,13 +272,18 @@ impl Sqp {
         }
         let mut step = 0.0f64;
         let mut off_linearisation = 0.0f64;
-        for b in 0..blocks {
-            let mass = tr.mass_of(b / 3);
-            if let (Some(new), Some(old), Some(at)) = (
-                ws.iterates.trial.get(b),
-                ws.iterates.accepted.get(b),
-                ws.iterates.iterate.get(b),
-            ) {
+        // Each spacecraft's three blocks with its mass.
+        let iterates = &ws.iterates;
+        let spacecraft_blocks = iterates.trial.chunks_exact(3).zip(
+            iterates
+                .accepted
+                .chunks_exact(3)
+                .zip(iterates.iterate.chunks_exact(3)),
+        );
+        for ((new3, (old3, at3)), &mass) in
+            spacecraft_blocks.zip(tr.mass.iter()).take(tr.spacecraft)
+        {
+            for (new, (old, at)) in new3.iter().zip(old3.iter().zip(at3.iter())) {
                 for ((x, y), z) in new.iter().zip(old.iter()).zip(at.iter()).take(free) {
                     step = step.max(libm::fabs(x - y) / mass);
                     off_linearisation = off_linearisation.max(libm::fabs(x - z) / mass);
@@ -442,7 +447,7 @@ fn turn_unmet_pairs(ws: &mut Workspace, unmet: &Unmet, eighths: u8) -> bool {
         .any(|u| matches!(u.constraint, certificate::ActiveConstraint::KeepOut { .. }));
     let mut turned = false;
     for pair in 0..ws.setup.transcription.pair_count {
-        let Some(&spacecraft) = ws.setup.transcription.pairs.get(pair) else {
+        let Some(spacecraft) = ws.setup.transcription.pair(pair).map(|p| p.spacecraft) else {
             continue;
         };
         let named = unmet.named().iter().any(|u| {
@@ -463,7 +468,10 @@ fn name_unmet(tr: &Transcription, y: &Coefficients, tol: f64, unmet: &mut Unmet)
     *unmet = Unmet::new();
     let free = tr.basis.free;
     let mut offer = |id: RowId, scale: f64| {
-        let view = tr.view(id);
+        // Every row offered is one of the transcription's (walked from its counts below).
+        let Some(view) = tr.view(id) else {
+            return;
+        };
         let shortfall = view.rhs - row_dot(&view, y, free);
         let shortfall_rel = shortfall / scale;
         if view.norm > 0.0 && shortfall / view.norm > tol {

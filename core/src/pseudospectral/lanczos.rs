@@ -17,7 +17,6 @@
 
 use super::curvature::{project, Curvature};
 use super::kernel::{dot, scale, Coefficients};
-use crate::indexed::IndexedExt as _;
 
 /// Most Lanczos steps (each one product with `P S P`). Stops earlier when the Krylov space is
 /// exhausted or the largest Ritz value has settled (`SETTLED_REL`).
@@ -73,7 +72,9 @@ pub(super) fn largest(
         // u <- P S v - beta_{k-1} q_{k-1} (u held q_{k-1}, which lies in the null space).
         scale(u, -previous_beta, size);
         op.accumulate(v, u);
-        project(op.tr, op.qp, u);
+        if !project(op.tr, op.qp, u) {
+            return None;
+        }
         let a = dot(v, u, size);
         for (ur, vr) in u.iter_mut().zip(v.iter()).take(size.0) {
             for (x, y) in ur.iter_mut().zip(vr.iter()).take(size.1) {
@@ -125,18 +126,14 @@ pub(super) fn largest(
 /// cluster of Ritz values Laguerre only crawls (measured on the paper case: 13 to 16 sweeps per
 /// call from the Gershgorin bound, 45 halvings per call for the bisection this replaced).
 fn tridiagonal_largest(alpha: &[f64], beta: &[f64], m: usize, known_below: f64, rise: f64) -> f64 {
-    let off = |i: usize| -> f64 {
-        if i.saturating_add(1) < m {
-            beta.get(i).copied().map_or(0.0, libm::fabs)
-        } else {
-            0.0
-        }
-    };
     let resolution = |x: f64| STEP_REL * (1.0 + libm::fabs(x));
+    // Each row's diagonal with the off-diagonal magnitudes before and after it (none past
+    // the block's edges).
+    let before = core::iter::once(0.0).chain(off_diagonal(beta, m));
+    let after = off_diagonal(beta, m).chain(core::iter::once(0.0));
     let mut hi = f64::NEG_INFINITY;
-    for (i, &a) in alpha.iter().indexed().take(m) {
-        let before = if i > 0 { off(i.saturating_sub(1)) } else { 0.0 };
-        hi = hi.max(a + before + off(i));
+    for ((&a, b), c) in alpha.iter().take(m).zip(before).zip(after) {
+        hi = hi.max(a + b + c);
     }
     if !hi.is_finite() {
         return f64::NAN;
@@ -153,7 +150,7 @@ fn tridiagonal_largest(alpha: &[f64], beta: &[f64], m: usize, known_below: f64, 
             if x.partial_cmp(&upper) != Some(core::cmp::Ordering::Less) {
                 break;
             }
-            at = log_derivatives(alpha, &off, m, x);
+            at = log_derivatives(alpha, beta, m, x);
             if at.is_some() {
                 upper = x;
                 break;
@@ -162,7 +159,7 @@ fn tridiagonal_largest(alpha: &[f64], beta: &[f64], m: usize, known_below: f64, 
         }
     }
     if at.is_none() {
-        at = log_derivatives(alpha, &off, m, upper);
+        at = log_derivatives(alpha, beta, m, upper);
     }
     let n = m as f64;
     for _ in 0..LAGUERRE_STEPS {
@@ -179,12 +176,12 @@ fn tridiagonal_largest(alpha: &[f64], beta: &[f64], m: usize, known_below: f64, 
             break;
         }
         let next = upper - step;
-        at = log_derivatives(alpha, &off, m, next);
+        at = log_derivatives(alpha, beta, m, next);
         if at.is_none() {
             // Onto the eigenvalue, and past it by rounding (cubic convergence lands there):
             // one resolution above it is the answer when checked, else the last checked point.
             let nudged = next + resolution(next);
-            if nudged < upper && log_derivatives(alpha, &off, m, nudged).is_some() {
+            if nudged < upper && log_derivatives(alpha, beta, m, nudged).is_some() {
                 upper = nudged;
             }
             break;
@@ -197,26 +194,25 @@ fn tridiagonal_largest(alpha: &[f64], beta: &[f64], m: usize, known_below: f64, 
     upper
 }
 
+/// `|beta_0|, ..., |beta_(m-2)|`: the off-diagonal magnitudes of the leading `m x m` block.
+fn off_diagonal(beta: &[f64], m: usize) -> impl Iterator<Item = f64> + '_ {
+    beta.iter()
+        .take(m.saturating_sub(1))
+        .map(|b| libm::fabs(*b))
+}
+
 /// At `x`, the first two logarithmic derivatives of `det(T - x I)` as `(sum 1 / (x - mu),
 /// sum 1 / (x - mu)^2)` over the eigenvalues `mu`, from the pivots of `T - x I = L D L^T` and
 /// their derivatives in `x`; `None` unless every pivot is negative, i.e. unless `x` is right of
 /// every eigenvalue (Sturm).
-fn log_derivatives(
-    alpha: &[f64],
-    off: &impl Fn(usize) -> f64,
-    m: usize,
-    x: f64,
-) -> Option<(f64, f64)> {
+fn log_derivatives(alpha: &[f64], beta: &[f64], m: usize, x: f64) -> Option<(f64, f64)> {
     // The previous pivot's reciprocal and its first and second derivatives.
     let (mut recip, mut d1, mut d2) = (0.0f64, 0.0f64, 0.0f64);
     let (mut g, mut h) = (0.0f64, 0.0f64);
-    for (i, &a) in alpha.iter().indexed().take(m) {
-        let c = if i > 0 {
-            let b = off(i.saturating_sub(1));
-            b * b
-        } else {
-            0.0
-        };
+    // Each row's diagonal with the off-diagonal magnitude before it (none before the first).
+    let before = core::iter::once(0.0).chain(off_diagonal(beta, m));
+    for (&a, b) in alpha.iter().take(m).zip(before) {
+        let c = b * b;
         // d_i = a_i - x - c / d_{i-1}, and its derivatives in x.
         let d = a - x - c * recip;
         let r2 = recip * recip;

@@ -78,8 +78,9 @@ impl LglGrid {
         self.bary.fill(0.0);
         self.degree = n;
         let nf = n as f64;
+        let nodes = n.saturating_add(1);
         let mut converged = true;
-        for h in 0..=n {
+        for (h, slot) in self.tau.iter_mut().indexed().take(nodes) {
             let mut x = -libm::cos(core::f64::consts::PI * (h as f64) / nf);
             if h > 0 && h < n {
                 let mut done = false;
@@ -98,40 +99,43 @@ impl LglGrid {
             } else {
                 x = 1.0;
             }
-            if let Some(slot) = self.tau.get_mut(h) {
-                *slot = x;
-            }
+            *slot = x;
         }
-        // Symmetrise: tau_{N-h} = -tau_h exactly (the middle node of even N is exactly 0).
-        for h in 0..=n / 2 {
-            let mirror = n.saturating_sub(h);
-            let (a, b) = (self.at(h), self.at(mirror));
-            let symmetric = 0.5 * (a - b);
-            if let Some(slot) = self.tau.get_mut(h) {
-                *slot = symmetric;
-            }
-            if let Some(slot) = self.tau.get_mut(mirror) {
-                *slot = -symmetric;
-            }
+        // Symmetrise: tau_{N-h} = -tau_h exactly, walking the nodes from both ends at once (the
+        // middle node of even N, left between them, is exactly 0).
+        let Some((front, back)) = self.tau.split_at_mut_checked(nodes / 2) else {
+            return false;
+        };
+        let live_back = nodes.saturating_sub(nodes / 2);
+        for (low, high) in front.iter_mut().zip(back.iter_mut().take(live_back).rev()) {
+            let symmetric = 0.5 * (*low - *high);
+            *low = symmetric;
+            *high = -symmetric;
         }
         if n % 2 == 0 {
-            if let Some(slot) = self.tau.get_mut(n / 2) {
-                *slot = 0.0;
+            if let Some(middle) = back.first_mut() {
+                *middle = 0.0;
             }
         }
         let scale = 2.0 / (nf * (nf + 1.0));
-        for h in 0..=n {
-            let (_, l) = legendre_pair(n, self.at(h));
-            if let Some(slot) = self.legendre_at_node.get_mut(h) {
-                *slot = l;
-            }
-            if let Some(slot) = self.weight.get_mut(h) {
-                *slot = scale / (l * l);
-            }
+        let node_values = self.legendre_at_node.iter_mut().zip(self.weight.iter_mut());
+        for (&tau, (legendre, weight)) in self.tau.iter().zip(node_values).take(nodes) {
+            let (_, l) = legendre_pair(n, tau);
+            *legendre = l;
+            *weight = scale / (l * l);
         }
-        for h in 0..=n {
-            for k in 0..=n {
-                let value = if h == k {
+        let at_nodes = self.tau.iter().zip(self.legendre_at_node.iter());
+        for (h, (row, (&tau_h, &lh))) in self
+            .diff
+            .iter_mut()
+            .zip(at_nodes.clone())
+            .take(nodes)
+            .indexed()
+        {
+            for (k, (slot, (&tau_k, &lk))) in
+                row.iter_mut().zip(at_nodes.clone()).take(nodes).indexed()
+            {
+                *slot = if h == k {
                     if h == 0 {
                         -nf * (nf + 1.0) / 4.0
                     } else if h == n {
@@ -140,42 +144,48 @@ impl LglGrid {
                         0.0
                     }
                 } else {
-                    let lh = self.legendre_at_node.get(h).copied().unwrap_or(1.0);
-                    let lk = self.legendre_at_node.get(k).copied().unwrap_or(1.0);
-                    lh / (lk * (self.at(h) - self.at(k)))
+                    lh / (lk * (tau_h - tau_k))
                 };
-                if let Some(slot) = self.diff.get_mut(h).and_then(|row| row.get_mut(k)) {
-                    *slot = value;
-                }
             }
         }
         let mut largest = 0.0f64;
-        for k in 0..=n {
+        for (k, (slot, &tau_k)) in self
+            .bary
+            .iter_mut()
+            .zip(self.tau.iter())
+            .take(nodes)
+            .indexed()
+        {
             let mut product = 1.0;
-            for j in 0..=n {
+            for (j, &tau_j) in self.tau.iter().take(nodes).indexed() {
                 if j != k {
-                    product *= self.at(k) - self.at(j);
+                    product *= tau_k - tau_j;
                 }
             }
             let value = 1.0 / product;
             largest = largest.max(libm::fabs(value));
-            if let Some(slot) = self.bary.get_mut(k) {
-                *slot = value;
-            }
+            *slot = value;
         }
         if largest > 0.0 {
-            for k in 0..=n {
-                if let Some(slot) = self.bary.get_mut(k) {
-                    *slot /= largest;
-                }
+            for slot in self.bary.iter_mut().take(nodes) {
+                *slot /= largest;
             }
         }
         converged
     }
 
-    /// Node `h` (0 outside the grid).
-    pub fn at(&self, h: usize) -> f64 {
-        self.tau.get(h).copied().unwrap_or(0.0)
+    /// The nodes `tau_0 < ... < tau_N`, in order.
+    pub fn taus(&self) -> impl Iterator<Item = f64> + Clone + '_ {
+        self.tau.iter().take(self.nodes()).copied()
+    }
+
+    /// The nodes with their quadrature weights, `(tau_h, w_h)` in node order.
+    pub fn nodes_and_weights(&self) -> impl Iterator<Item = (f64, f64)> + Clone + '_ {
+        self.tau
+            .iter()
+            .zip(self.weight.iter())
+            .take(self.nodes())
+            .map(|(&tau, &weight)| (tau, weight))
     }
 
     /// Lagrange basis values `l_k(tau)` for k = 0..=N, by the barycentric formula.
@@ -183,11 +193,13 @@ impl LglGrid {
     pub fn lagrange_row(&self, tau: f64, out: &mut [f64; MAX_NODES]) {
         *out = [0.0; MAX_NODES];
         let n = self.degree;
-        for k in 0..=n {
-            if tau - self.at(k) == 0.0 {
-                if let Some(slot) = out.get_mut(k) {
-                    *slot = 1.0;
-                }
+        for (slot, &node) in out
+            .iter_mut()
+            .zip(self.tau.iter())
+            .take(n.saturating_add(1))
+        {
+            if tau - node == 0.0 {
+                *slot = 1.0;
                 return;
             }
         }
@@ -199,10 +211,8 @@ impl LglGrid {
             *slot = term;
             denominator += term;
         }
-        for k in 0..=n {
-            if let Some(slot) = out.get_mut(k) {
-                *slot /= denominator;
-            }
+        for slot in out.iter_mut().take(n.saturating_add(1)) {
+            *slot /= denominator;
         }
     }
 
@@ -226,10 +236,8 @@ impl LglGrid {
     pub fn differentiate(&self, values: &[f64; MAX_NODES], out: &mut [f64; MAX_NODES]) {
         *out = [0.0; MAX_NODES];
         let count = self.nodes();
-        for (h, slot) in out.iter_mut().indexed().take(count) {
-            if let Some(row) = self.diff.get(h) {
-                *slot = dot(row, values, count);
-            }
+        for (slot, row) in out.iter_mut().zip(self.diff.iter()).take(count) {
+            *slot = dot(row, values, count);
         }
     }
 }

@@ -1,78 +1,125 @@
 //! The few dense kernels planner A needs, on fixed-size square arrays: Cholesky factorisation
 //! and triangular solves on the leading `n x n` block. No allocation, no panics.
+//!
+//! Only the lower triangle is read. Rows are walked as slices split at the diagonal and columns
+//! as strided walks over the rows (`column`), so no entry is read through an index that could
+//! miss; a row that a split cannot reach (`n` beyond the array) ends the kernel with a failure
+//! its caller acts on, never with a made-up entry.
+
+use crate::indexed::IndexedExt as _;
+
+/// Column `j` of `a` from row `from` down: `a[from][j], a[from + 1][j], ...`.
+fn column<const C: usize>(
+    a: &[[f64; C]; C],
+    j: usize,
+    from: usize,
+) -> impl Iterator<Item = f64> + '_ {
+    a.iter()
+        .flatten()
+        .skip(j)
+        .step_by(C.max(1))
+        .skip(from)
+        .copied()
+}
 
 /// Cholesky-factor the leading `n x n` block of `a` in place (lower triangle holds L, the
 /// strict upper triangle is left untouched). Returns the index of the first pivot that is not
-/// positive (the matrix is not numerically positive definite there), or `None` on success.
+/// positive (the matrix is not numerically positive definite there, or `n` exceeds the array),
+/// or `None` on success.
 pub(crate) fn cholesky_in_place<const C: usize>(a: &mut [[f64; C]; C], n: usize) -> Option<usize> {
-    for j in 0..n.min(C) {
-        let mut diag = get(a, j, j);
-        for k in 0..j {
-            let l = get(a, j, k);
+    for j in 0..n {
+        let Some((head, below)) = a.split_at_mut_checked(j.saturating_add(1)) else {
+            return Some(j);
+        };
+        let Some((left, diagonal)) = head.last_mut().and_then(|row| split_at_diagonal(row, j))
+        else {
+            return Some(j);
+        };
+        let mut diag = *diagonal;
+        for l in left.iter() {
             diag -= l * l;
         }
         if diag.is_nan() || diag <= 0.0 {
             return Some(j);
         }
         let pivot = libm::sqrt(diag);
-        set(a, j, j, pivot);
-        for i in (j.saturating_add(1))..n.min(C) {
-            let mut value = get(a, i, j);
-            for k in 0..j {
-                value -= get(a, i, k) * get(a, j, k);
+        *diagonal = pivot;
+        for row in below.iter_mut().take(n.saturating_sub(j.saturating_add(1))) {
+            let Some((row_left, entry)) = split_at_diagonal(row, j) else {
+                return Some(j);
+            };
+            let mut value = *entry;
+            for (x, y) in row_left.iter().zip(left.iter()) {
+                value -= x * y;
             }
-            set(a, i, j, value / pivot);
+            *entry = value / pivot;
         }
     }
     None
 }
 
+/// Row `row` split at entry `i`: the entries left of it, and the entry.
+fn split_at_diagonal<const C: usize>(
+    row: &mut [f64; C],
+    i: usize,
+) -> Option<(&mut [f64], &mut f64)> {
+    let (left, right) = row.split_at_mut_checked(i)?;
+    Some((left, right.first_mut()?))
+}
+
 /// Solve `L x = b` in place (forward substitution) with L in the lower triangle of `l`.
-pub(crate) fn solve_lower<const C: usize>(l: &[[f64; C]; C], n: usize, b: &mut [f64; C]) {
-    for i in 0..n.min(C) {
-        let mut value = b.get(i).copied().unwrap_or(0.0);
-        for k in 0..i {
-            value -= get(l, i, k) * b.get(k).copied().unwrap_or(0.0);
+/// Returns false (with `b` partly solved) when `n` exceeds the arrays.
+#[must_use]
+pub(crate) fn solve_lower<const C: usize>(l: &[[f64; C]; C], n: usize, b: &mut [f64; C]) -> bool {
+    for (i, row) in l.iter().take(n).indexed() {
+        let (Some((left, right)), Some((solved, rest))) =
+            (row.split_at_checked(i), b.split_at_mut_checked(i))
+        else {
+            return false;
+        };
+        let (Some(&diagonal), Some(slot)) = (right.first(), rest.first_mut()) else {
+            return false;
+        };
+        let mut value = *slot;
+        for (lk, bk) in left.iter().zip(solved.iter()) {
+            value -= lk * bk;
         }
-        if let Some(slot) = b.get_mut(i) {
-            *slot = value / get(l, i, i);
-        }
+        *slot = value / diagonal;
     }
+    true
 }
 
 /// Solve `L^T x = b` in place (back substitution) with L in the lower triangle of `l`.
+/// Returns false (with `b` partly solved) when `n` exceeds the arrays.
+#[must_use]
 pub(crate) fn solve_lower_transposed<const C: usize>(
     l: &[[f64; C]; C],
     n: usize,
     b: &mut [f64; C],
-) {
+) -> bool {
     let n = n.min(C);
     for i in (0..n).rev() {
-        let mut value = b.get(i).copied().unwrap_or(0.0);
-        for k in (i.saturating_add(1))..n {
-            value -= get(l, k, i) * b.get(k).copied().unwrap_or(0.0);
+        let Some((slot, later)) = b
+            .split_at_mut_checked(i)
+            .and_then(|(_, rest)| rest.split_first_mut())
+        else {
+            return false;
+        };
+        // Column i from the diagonal down: L[i][i], then L[k][i] for k > i.
+        let mut below = column(l, i, i);
+        let Some(diagonal) = below.next() else {
+            return false;
+        };
+        let mut value = *slot;
+        for (lki, bk) in below
+            .zip(later.iter())
+            .take(n.saturating_sub(i.saturating_add(1)))
+        {
+            value -= lki * bk;
         }
-        if let Some(slot) = b.get_mut(i) {
-            *slot = value / get(l, i, i);
-        }
+        *slot = value / diagonal;
     }
-}
-
-/// `a[i][j]`, 0 outside.
-pub(crate) fn get<const R: usize, const C: usize>(a: &[[f64; C]; R], i: usize, j: usize) -> f64 {
-    a.get(i).and_then(|row| row.get(j)).copied().unwrap_or(0.0)
-}
-
-/// `a[i][j] = value`, ignored outside.
-pub(crate) fn set<const R: usize, const C: usize>(
-    a: &mut [[f64; C]; R],
-    i: usize,
-    j: usize,
-    value: f64,
-) {
-    if let Some(slot) = a.get_mut(i).and_then(|row| row.get_mut(j)) {
-        *slot = value;
-    }
+    true
 }
 
 #[cfg(test)]
@@ -86,8 +133,8 @@ mod tests {
         let original = a;
         assert_eq!(cholesky_in_place(&mut a, 3), None);
         let mut x = [1.0, 2.0, 3.0];
-        solve_lower(&a, 3, &mut x);
-        solve_lower_transposed(&a, 3, &mut x);
+        assert!(solve_lower(&a, 3, &mut x));
+        assert!(solve_lower_transposed(&a, 3, &mut x));
         for i in 0..3 {
             let row: f64 = (0..3).map(|j| original[i][j] * x[j]).sum();
             assert!((row - [1.0, 2.0, 3.0][i]).abs() < 1e-14);
@@ -98,5 +145,11 @@ mod tests {
     fn cholesky_reports_failing_pivot() {
         let mut a = [[1.0, 2.0], [2.0, 1.0]];
         assert_eq!(cholesky_in_place(&mut a, 2), Some(1));
+    }
+
+    #[test]
+    fn an_order_beyond_the_array_is_a_failure() {
+        let mut a = [[4.0, 0.0], [0.0, 4.0]];
+        assert_eq!(cholesky_in_place(&mut a, 3), Some(2));
     }
 }

@@ -6,61 +6,67 @@
 use super::kernel::{Coefficients, MAX_BLOCKS};
 use super::settings::Settings;
 use super::swerve::perpendicular_direction;
-use super::transcription::{block_dot, node_value, NodeDots, Transcription, MAX_POINTS};
+use super::transcription::{
+    block_dot, spacecraft_blocks, NodeDots, Pair, Transcription, MAX_POINTS,
+};
 use super::verify::{Minimum, MAX_PRODUCT};
 use super::workspace::Workspace;
-use crate::capacity::{MAX_CHECKS_PER_PAIR, MAX_NODES, MAX_PAIRS};
+use crate::capacity::{MAX_CHECKS_PER_PAIR, MAX_FREE_PER_AXIS, MAX_NODES, MAX_PAIRS};
 use crate::indexed::IndexedExt as _;
 use crate::vec3;
 
-/// Node values of `r_i - r_j` on one axis for the coefficients `y`.
+/// Node values of `r_i - r_j` on one axis for the coefficients `y` (`None` for an axis or a
+/// spacecraft the arrays do not hold).
 pub(super) fn relative_nodes(
     tr: &Transcription,
     y: &Coefficients,
-    (i, j): (u8, u8),
+    pair: &Pair,
     axis: usize,
-) -> [f64; MAX_NODES] {
+) -> Option<[f64; MAX_NODES]> {
+    let (i, j) = pair.spacecraft;
+    let (mi, mj) = pair.masses;
     let mut pi = [0.0; MAX_NODES];
     let mut pj = [0.0; MAX_NODES];
     block_positions(
         tr,
-        y,
-        usize::from(i).saturating_mul(3).saturating_add(axis),
+        spacecraft_blocks(y, i)?.get(axis)?,
+        spacecraft_blocks(&tr.base_position, i)?.get(axis)?,
+        mi,
         &mut pi,
     );
     block_positions(
         tr,
-        y,
-        usize::from(j).saturating_mul(3).saturating_add(axis),
+        spacecraft_blocks(y, j)?.get(axis)?,
+        spacecraft_blocks(&tr.base_position, j)?.get(axis)?,
+        mj,
         &mut pj,
     );
     let mut relative = [0.0; MAX_NODES];
     for ((slot, a), b) in relative.iter_mut().zip(pi.iter()).zip(pj.iter()) {
         *slot = a - b;
     }
-    relative
+    Some(relative)
 }
 
 /// Relative position and velocity of a pair at `tau` on the current iterate.
-pub(super) fn relative_state(ws: &Workspace, pair: usize, tau: f64) -> ([f64; 3], [f64; 3]) {
+pub(super) fn relative_state(
+    ws: &Workspace,
+    pair: &Pair,
+    tau: f64,
+) -> Option<([f64; 3], [f64; 3])> {
     let tr = &ws.setup.transcription;
-    let (i, j) = tr.pairs.get(pair).copied().unwrap_or((0, 0));
     let mut position = [0.0; 3];
     let mut velocity = [0.0; 3];
     let mut lagrange = [0.0; MAX_NODES];
     tr.grid.lagrange_row(tau, &mut lagrange);
-    for axis in 0..3 {
-        let relative = relative_nodes(tr, &ws.iterates.iterate, (i, j), axis);
+    for (axis, (p, v)) in position.iter_mut().zip(velocity.iter_mut()).indexed() {
+        let relative = relative_nodes(tr, &ws.iterates.iterate, pair, axis)?;
         let mut derivative = [0.0; MAX_NODES];
         tr.grid.differentiate(&relative, &mut derivative);
-        if let Some(slot) = position.get_mut(axis) {
-            *slot = tr.grid.interpolate_with(&lagrange, &relative);
-        }
-        if let Some(slot) = velocity.get_mut(axis) {
-            *slot = 2.0 / tr.horizon_tu * tr.grid.interpolate_with(&lagrange, &derivative);
-        }
+        *p = tr.grid.interpolate_with(&lagrange, &relative);
+        *v = 2.0 / tr.horizon_tu * tr.grid.interpolate_with(&lagrange, &derivative);
     }
-    (position, velocity)
+    Some((position, velocity))
 }
 
 /// Relative depth below the keep-out that counts as violated when linearising.
@@ -84,33 +90,35 @@ pub(super) fn linearise(ws: &mut Workspace) {
     ws.setup
         .transcription
         .node_dots(&ws.iterates.iterate, &mut dots);
-    for pair in 0..ws.setup.transcription.pair_count {
+    let pair_count = ws.setup.transcription.pair_count;
+    let fallbacks = ws.iterates.fallback_normal.iter().take(pair_count);
+    for (pair, &fallback) in fallbacks.indexed() {
         let tr = &ws.setup.transcription;
-        let keep_out = tr.keep_out_for(pair);
+        // Every index below `pair_count` is a pair, every check of it has a relative position.
+        let (Some(geometry), Some(&count)) = (tr.pair(pair), tr.check_count.get(pair)) else {
+            continue;
+        };
+        let keep_out = geometry.keep_out;
         // A check the QP met to its tolerance is feasible, not violated: swerving its normal
         // there would make a fixed point of the iteration that is not a KKT point (the normal
         // must be the unit separation, the constraint's gradient, at a converged iterate).
         let violated_below = keep_out * (1.0 - LINEARISE_TOL_REL);
-        let count = tr.check_count.get(pair).copied().unwrap_or(0);
         let mut closest: Option<(f64, f64)> = None;
-        for c in 0..count {
-            let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)).copied() else {
+        for (_, check) in tr.checks_of(pair) {
+            let Some(relative) =
+                tr.relative_with(&geometry, check.source, &ws.iterates.iterate, &dots)
+            else {
                 continue;
             };
-            let length =
-                vec3::norm(&tr.relative_with(pair, check.source, &ws.iterates.iterate, &dots));
+            let length = vec3::norm(&relative);
             if length < violated_below && closest.is_none_or(|(_, best)| length < best) {
                 closest = Some((check.tau, length));
             }
         }
-        let swerve = closest.map(|(tau, _)| {
-            let (relative, velocity) = relative_state(ws, pair, tau);
-            let fallback = ws
-                .iterates
-                .fallback_normal
-                .get(pair)
-                .copied()
-                .unwrap_or([1.0, 0.0, 0.0]);
+        // The swerve's side from the relative state at the closest check (none where that
+        // state cannot be had: the checks keep their unit separations).
+        let swerve = closest.and_then(|(tau, _)| {
+            let (relative, velocity) = relative_state(ws, &geometry, tau)?;
             let direction = perpendicular_direction(&relative, &velocity, Some(fallback));
             let speed = vec3::norm(&velocity);
             let width = if speed > 0.0 {
@@ -118,14 +126,18 @@ pub(super) fn linearise(ws: &mut Workspace) {
             } else {
                 f64::INFINITY
             };
-            (ws.setup.transcription.time_of(tau), direction, width)
+            Some((ws.setup.transcription.time_of(tau), direction, width))
         });
         let tr = &mut ws.setup.transcription;
         for c in 0..count {
-            let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)).copied() else {
+            let Some(check) = tr.check(pair, c) else {
                 continue;
             };
-            let mut relative = tr.relative_with(pair, check.source, &ws.iterates.iterate, &dots);
+            let Some(mut relative) =
+                tr.relative_with(&geometry, check.source, &ws.iterates.iterate, &dots)
+            else {
+                continue;
+            };
             let length = vec3::norm(&relative);
             if length < violated_below {
                 if let Some((t_star, direction, width)) = swerve {
@@ -148,11 +160,7 @@ pub(super) fn linearise(ws: &mut Workspace) {
                     relative[2] / length,
                 ]
             } else {
-                ws.iterates
-                    .fallback_normal
-                    .get(pair)
-                    .copied()
-                    .unwrap_or([1.0, 0.0, 0.0])
+                fallback
             };
             if let Some(slot) = tr.checks.get_mut(pair).and_then(|row| row.get_mut(c)) {
                 slot.normal = normal;
@@ -170,11 +178,16 @@ pub(super) fn unit_normals(ws: &mut Workspace) {
 /// Set every check's normal to the unit separation at `y`.
 pub(super) fn unit_normals_at(tr: &mut Transcription, y: &Coefficients) {
     for pair in 0..tr.pair_count {
-        for c in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
-            let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)).copied() else {
+        let (Some(geometry), Some(&count)) = (tr.pair(pair), tr.check_count.get(pair)) else {
+            continue;
+        };
+        for c in 0..count {
+            let Some(relative) = tr
+                .check(pair, c)
+                .and_then(|check| tr.relative(&geometry, check.source, y))
+            else {
                 continue;
             };
-            let relative = tr.relative(pair, check.source, y);
             let length = vec3::norm(&relative);
             if length > 0.0 {
                 if let Some(slot) = tr.checks.get_mut(pair).and_then(|row| row.get_mut(c)) {
@@ -189,22 +202,19 @@ pub(super) fn unit_normals_at(tr: &mut Transcription, y: &Coefficients) {
     }
 }
 
-/// Node positions of a block at the current iterate.
+/// Node positions of one block (a spacecraft's axis): its base cubic's node values `base`
+/// plus the basis rows' offset by its coefficients `values` over its `mass`.
 pub(super) fn block_positions(
     tr: &Transcription,
-    y: &Coefficients,
-    block: usize,
+    values: &[f64; MAX_FREE_PER_AXIS],
+    base: &[f64; MAX_NODES],
+    mass: f64,
     out: &mut [f64; MAX_NODES],
 ) {
-    let mass = tr.mass_of(block / 3);
     *out = [0.0; MAX_NODES];
-    for (h, slot) in out.iter_mut().indexed().take(tr.grid.nodes()) {
-        let row = tr.basis.position.get(h);
-        let offset = match row {
-            Some(row) => block_dot(row, y, block, tr.basis.free) / mass,
-            None => 0.0,
-        };
-        *slot = node_value(&tr.base_position, block, h) + offset;
+    let rows = tr.basis.position.iter().zip(base.iter());
+    for (slot, (row, &base_position)) in out.iter_mut().zip(rows).take(tr.grid.nodes()) {
+        *slot = base_position + block_dot(row, values, tr.basis.free) / mass;
     }
 }
 
@@ -226,29 +236,35 @@ pub(super) fn follow_minima(ws: &mut Workspace, settings: &Settings, place: bool
         .transcription
         .node_dots(&ws.iterates.iterate, &mut dots);
     for pair in 0..ws.setup.transcription.pair_count {
-        let keep_out = ws.setup.transcription.keep_out_for(pair);
-        // Only pairs near contact: the least separation over the fixed checks within 10 % of d.
         let tr = &ws.setup.transcription;
+        let Some(geometry) = tr.pair(pair) else {
+            continue;
+        };
+        // Only pairs near contact: the least separation over the fixed checks within 10 % of d.
         let mut least = f64::INFINITY;
-        for c in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
-            if let Some(check) = tr.checks.get(pair).and_then(|row| row.get(c)) {
-                least = least.min(vec3::norm(&tr.relative_with(
-                    pair,
-                    check.source,
-                    &ws.iterates.iterate,
-                    &dots,
-                )));
+        for (_, check) in tr.checks_of(pair) {
+            if let Some(relative) =
+                tr.relative_with(&geometry, check.source, &ws.iterates.iterate, &dots)
+            {
+                least = least.min(vec3::norm(&relative));
             }
         }
-        if least > 1.1 * keep_out && tr.moving_check.get(pair).copied().flatten().is_none() {
+        if least > 1.1 * geometry.keep_out && tr.moving_check.get(pair).copied().flatten().is_none()
+        {
             continue;
         }
-        let minimum = pair_minimum(ws, pair, settings);
+        // A pair whose minimum cannot be searched is not clean (and the returned answer's own
+        // search, `output::write_solution`, leaves it unverified).
+        let Some(minimum) = pair_minimum(ws, pair, settings) else {
+            continue;
+        };
         let separation = libm::sqrt(minimum.value_squared.max(0.0));
         let allowed = ws.setup.transcription.keep_out_lu - settings.verify_tol_lu;
         deepest = deepest.max(allowed - separation);
         if separation >= allowed {
-            clean |= pair_bit(pair);
+            if let Some(bit) = pair_bit(pair) {
+                clean |= bit;
+            }
         }
         let tau = 2.0 * minimum.at_s - 1.0;
         if place && tau > -1.0 && tau < 1.0 {
@@ -265,12 +281,10 @@ pub(super) fn follow_minima(ws: &mut Workspace, settings: &Settings, place: bool
     (deepest, clean)
 }
 
-/// A pair's bit in a `u32` set of pairs (`MAX_PAIRS` <= 32); 0 past that.
-pub(super) fn pair_bit(pair: usize) -> u32 {
-    u32::try_from(pair)
-        .ok()
-        .and_then(|shift| 1u32.checked_shl(shift))
-        .unwrap_or(0)
+/// A pair's bit in a `u32` set of pairs (`MAX_PAIRS` <= 32, so every pair has one; `None` past
+/// that: such a pair is never in a set).
+pub(super) fn pair_bit(pair: usize) -> Option<u32> {
+    1u32.checked_shl(u32::try_from(pair).ok()?)
 }
 
 const _: () = assert!(MAX_PAIRS <= 32);
@@ -316,18 +330,19 @@ fn freeze_if_cycling(
     if !returning || check.pruned {
         return;
     }
-    let count = tr
-        .check_count
-        .get(pair)
-        .copied()
-        .unwrap_or(MAX_CHECKS_PER_PAIR);
+    let (Some(&count), Some(geometry)) = (tr.check_count.get(pair), tr.pair(pair)) else {
+        return;
+    };
     if count.saturating_add(2) > MAX_CHECKS_PER_PAIR
         || tr.point_count.saturating_add(2) > MAX_POINTS
     {
         return;
     }
-    let separation = vec3::norm(&tr.relative_with(pair, check.source, y, dots));
-    if separation <= tr.keep_out_for(pair) * (1.0 + FREEZE_BINDING_REL) {
+    let Some(relative) = tr.relative_with(&geometry, check.source, y, dots) else {
+        return;
+    };
+    let separation = vec3::norm(&relative);
+    if separation <= geometry.keep_out * (1.0 + FREEZE_BINDING_REL) {
         if let Some(slot) = tr.moving_check.get_mut(pair) {
             *slot = None;
         }
@@ -348,7 +363,7 @@ const REFINE_MAX_STEP_TAU: f64 = 0.05;
 /// again (measured on the M7: the paper's case at N = 20 from 39.4 M to 42.1 M instructions
 /// with the global search). A check whose separation is not convex in time there stays put.
 pub(super) fn refine_moving_checks(ws: &mut Workspace) {
-    for pair in 0..ws.setup.transcription.pair_count {
+    'pairs: for pair in 0..ws.setup.transcription.pair_count {
         let tr = &ws.setup.transcription;
         let Some(check) = tr.moving_check_of(pair) else {
             continue;
@@ -356,12 +371,17 @@ pub(super) fn refine_moving_checks(ws: &mut Workspace) {
         if check.pruned {
             continue;
         }
-        let (i, j) = tr.pairs.get(pair).copied().unwrap_or((0, 0));
+        let Some(geometry) = tr.pair(pair) else {
+            continue;
+        };
         let (mut along, mut curvature) = (0.0, 0.0);
         let mut lagrange = [0.0; MAX_NODES];
         tr.grid.lagrange_row(check.tau, &mut lagrange);
         for axis in 0..3 {
-            let values = relative_nodes(tr, &ws.iterates.iterate, (i, j), axis);
+            // A pair whose relative nodes cannot be had keeps its check where it is.
+            let Some(values) = relative_nodes(tr, &ws.iterates.iterate, &geometry, axis) else {
+                continue 'pairs;
+            };
             let mut first = [0.0; MAX_NODES];
             let mut second = [0.0; MAX_NODES];
             tr.grid.differentiate(&values, &mut first);
@@ -384,23 +404,28 @@ pub(super) fn refine_moving_checks(ws: &mut Workspace) {
     }
 }
 
-/// The global minimum of the squared separation of one pair over the whole horizon.
-pub(super) fn pair_minimum(ws: &mut Workspace, pair: usize, settings: &Settings) -> Minimum {
+/// The global minimum of the squared separation of one pair over the whole horizon (`None`
+/// for an index that names no pair, or whose relative nodes cannot be had: nothing searched).
+pub(super) fn pair_minimum(
+    ws: &mut Workspace,
+    pair: usize,
+    settings: &Settings,
+) -> Option<Minimum> {
     let tr = &ws.setup.transcription;
-    let (i, j) = tr.pairs.get(pair).copied().unwrap_or((0, 0));
+    let geometry = tr.pair(pair)?;
     let mut axes = [[0.0; MAX_NODES]; 3];
     for (axis, coeffs) in axes.iter_mut().indexed() {
-        let relative = relative_nodes(tr, &ws.iterates.iterate, (i, j), axis);
+        let relative = relative_nodes(tr, &ws.iterates.iterate, &geometry, axis)?;
         ws.setup.bernstein.coefficients(&relative, coeffs);
     }
     let mut product = [0.0; MAX_PRODUCT];
     ws.setup.bernstein.squared_norm(&axes, &mut product);
     // Tolerance on the squared separation equivalent to verify_tol / 100 on the separation.
     let tol = 0.02 * tr.keep_out_lu * settings.verify_tol_lu;
-    ws.setup.bernstein.minimum(
+    Some(ws.setup.bernstein.minimum(
         &mut ws.verification.search,
         &product,
         tol,
         u32::from(settings.refine_max_iter).saturating_mul(50),
-    )
+    ))
 }

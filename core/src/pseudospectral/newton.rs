@@ -32,7 +32,9 @@
 //! the cost. Near a nondegenerate local optimum the linearisation point and the QP's answer
 //! converge superlinearly together.
 
-use super::curvature::{add_curvature, check_lengths, project, Envelope, MAX_ENVELOPES};
+use super::curvature::{
+    add_curvature, check_lengths, keep_out_term, project, Envelope, MAX_ENVELOPES,
+};
 use super::kernel::{axpy, dot, scale, Coefficients, MAX_BLOCKS};
 use super::linearise::unit_normals_at;
 use super::qp_state::{Mode, QpState};
@@ -78,8 +80,11 @@ fn curvature(
 ) {
     *out = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
     for envelope in envelopes.iter() {
-        let along = envelope.weight * envelope.dot(tr, v);
-        envelope.axpy(tr, -along, out);
+        // Built for a pair of this transcription, so found (left out, the step is shorter).
+        if let Some(pair) = tr.pair(envelope.pair()) {
+            let along = envelope.weight * envelope.dot(tr, &pair, v);
+            envelope.axpy(tr, &pair, -along, out);
+        }
     }
     for ((&id, &value), &length) in qp
         .active
@@ -88,13 +93,9 @@ fn curvature(
         .zip(lengths.iter())
         .take(qp.count)
     {
-        if let RowId::KeepOut { pair, check } = id {
-            let p = usize::from(pair);
-            if value <= 0.0 {
-                continue;
-            }
-            if let Some(c) = tr.checks.get(p).and_then(|row| row.get(usize::from(check))) {
-                add_curvature(tr, (p, c), length, value, v, out);
+        if value > 0.0 {
+            if let Some((pair, c)) = keep_out_term(tr, id) {
+                add_curvature(tr, (&pair, &c), length, value, v, out);
             }
         }
     }
@@ -156,33 +157,45 @@ pub(super) fn step(
             continue;
         };
         let p = usize::from(pair);
-        let Some(c) = tr.checks.get(p).and_then(|row| row.get(usize::from(check))) else {
+        let (Some(c), Some(pair)) = (tr.check(p, usize::from(check)), tr.pair(p)) else {
             continue;
         };
         if value > 0.0 {
-            if let Some(envelope) = Envelope::new(tr, y, p, c.tau, value) {
+            if let Some(envelope) = Envelope::new(tr, y, &pair, c.tau, value) {
                 // Past the capacity a correction is left out (the step is then shorter).
                 let _ = envelopes.push(envelope);
             }
         }
     }
+    // Every active row held by the transcription (else no step).
     let mut lengths = [0.0; MAX_ACTIVE];
-    check_lengths(tr, qp, y, &mut lengths);
+    if !check_lengths(tr, qp, y, &mut lengths) {
+        return false;
+    }
     // Range step p_R = -A^T G^-1 c, accumulated in `next`.
     let mut b = [0.0; MAX_ACTIVE];
     for (slot, &id) in b.iter_mut().zip(qp.active.iter()).take(qp.count) {
-        let view = tr.view(id);
+        let Some(view) = tr.view(id) else {
+            return false;
+        };
         *slot = view.rhs - row_dot(&view, y, free);
     }
-    qp.gram_solve(&mut b);
+    if !qp.gram_solve(&mut b) {
+        return false;
+    }
     *next = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
     for (value, &id) in b.iter().zip(qp.active.iter()).take(qp.count) {
-        row_axpy(&tr.view(id), *value, next, free);
+        let Some(view) = tr.view(id) else {
+            return false;
+        };
+        row_axpy(&view, *value, next, free);
     }
     // Reduced gradient h = P (S p_R - y).
     curvature(tr, qp, &lengths, &envelopes, next, residual);
     axpy(residual, -1.0, y, size);
-    project(tr, qp, residual);
+    if !project(tr, qp, residual) {
+        return false;
+    }
     let start = dot(residual, residual, size);
     let tolerance = CG_TOL_REL * CG_TOL_REL * start.max(f64::MIN_POSITIVE);
     *direction = *residual;
@@ -196,7 +209,9 @@ pub(super) fn step(
         // charged by the caller); the iteration count is bounded above.
         work.charge(work_units::newton_iteration(tr, qp.count));
         curvature(tr, qp, &lengths, &envelopes, direction, product);
-        project(tr, qp, product);
+        if !project(tr, qp, product) {
+            return false;
+        }
         for (x, v) in product.iter_mut().zip(direction.iter()).take(size.0) {
             for (p, q) in x.iter_mut().zip(v.iter()).take(free) {
                 *p = q - *p;

@@ -5,7 +5,7 @@ use super::kernel::per_axis;
 use super::linearise::{block_positions, pair_minimum};
 use super::settings::Settings;
 use super::solution::Solution;
-use super::transcription::{block_dot, node_value, Transcription};
+use super::transcription::{block_dot, Transcription};
 use super::workspace::Workspace;
 use crate::capacity::{MAX_NODES, MAX_SPACECRAFT};
 use crate::indexed::IndexedExt as _;
@@ -59,7 +59,11 @@ pub(super) fn write_solution(ws: &mut Workspace, settings: &Settings, out: &mut 
         .take(ws.setup.transcription.pair_count)
         .indexed()
     {
-        let minimum = pair_minimum(ws, pair, settings);
+        // A pair whose minimum cannot be searched (never: the index is a pair's) is unverified.
+        let Some(minimum) = pair_minimum(ws, pair, settings) else {
+            verified = false;
+            continue;
+        };
         let separation = libm::sqrt(minimum.value_squared.max(0.0));
         if !minimum.certified
             || separation < ws.setup.transcription.keep_out_lu - settings.verify_tol_lu
@@ -79,25 +83,37 @@ pub(super) fn write_solution(ws: &mut Workspace, settings: &Settings, out: &mut 
     let tr = &ws.setup.transcription;
     let nodes = tr.grid.nodes();
     let scale = 2.0 / tr.horizon_tu;
-    for (h, slot) in out.node_times_tu.iter_mut().indexed().take(nodes) {
-        *slot = tr.time_of(tr.grid.at(h));
+    for (slot, tau) in out.node_times_tu.iter_mut().zip(tr.grid.taus()) {
+        *slot = tr.time_of(tau);
     }
     let mut cost = 0.0;
-    for sc in 0..tr.spacecraft {
-        for axis in 0..3 {
-            let block = sc.saturating_mul(3).saturating_add(axis);
+    // Each spacecraft's three blocks (coefficients, base positions and controls) and its mass.
+    let spacecraft = ws
+        .iterates
+        .iterate
+        .chunks_exact(3)
+        .zip(tr.base_position.chunks_exact(3))
+        .zip(tr.base_control.chunks_exact(3))
+        .zip(tr.mass.iter())
+        .take(tr.spacecraft);
+    for (sc, (((y3, base3), control3), &mass)) in spacecraft.indexed() {
+        let axes = y3.iter().zip(base3.iter()).zip(control3.iter());
+        for (axis, ((values, base), base_controls)) in axes.indexed() {
             let mut positions = [0.0; MAX_NODES];
-            block_positions(tr, &ws.iterates.iterate, block, &mut positions);
+            block_positions(tr, values, base, mass, &mut positions);
             let mut velocities = [0.0; MAX_NODES];
             tr.grid.differentiate(&positions, &mut velocities);
-            // Every node's row, weight, position and velocity together (`nodes` <= MAX_NODES).
+            // Every node's row, weight, base control, position and velocity together (`nodes`
+            // <= MAX_NODES).
             let node_values = tr.basis.accel.iter().zip(tr.grid.weight.iter());
             let node_states = positions.iter().zip(velocities.iter());
-            for (h, ((row, &w), (&position, &velocity))) in
-                node_values.zip(node_states).take(nodes).indexed()
+            for (h, (((row, &w), &base_control), (&position, &velocity))) in node_values
+                .zip(base_controls.iter())
+                .zip(node_states)
+                .take(nodes)
+                .indexed()
             {
-                let control = node_value(&tr.base_control, block, h)
-                    + block_dot(row, &ws.iterates.iterate, block, tr.basis.free);
+                let control = base_control + block_dot(row, values, tr.basis.free);
                 cost += 0.25 * tr.horizon_tu * w * control * control;
                 if let Some(state) = out.states.get_mut(sc).and_then(|row| row.get_mut(h)) {
                     if let Some(p) = state.get_mut(axis) {
@@ -127,12 +143,16 @@ pub(super) fn write_solution(ws: &mut Workspace, settings: &Settings, out: &mut 
         .zip(tr.check_count.iter())
         .take(tr.pair_count);
     for (pair, (checks, &count)) in pair_checks.clone().indexed() {
+        let Some(geometry) = tr.pair(pair) else {
+            continue;
+        };
         for check in checks.iter().take(count) {
             if check.pruned {
                 continue;
             }
-            let relative = tr.relative(pair, check.source, &ws.iterates.iterate);
-            violation = violation.max(tr.keep_out_lu - vec3::norm(&relative));
+            if let Some(relative) = tr.relative(&geometry, check.source, &ws.iterates.iterate) {
+                violation = violation.max(tr.keep_out_lu - vec3::norm(&relative));
+            }
         }
     }
     for sc in out.controls_fu.iter().take(tr.spacecraft) {
@@ -167,31 +187,26 @@ pub(super) fn dynamics_error(tr: &Transcription, out: &Solution) -> f64 {
     let grid = &tr.grid;
     let nodes = grid.nodes();
     let spacecraft = tr.spacecraft.min(MAX_SPACECRAFT);
-    // `sum_h row[h] values[h][component]` over the grid's nodes.
-    let apply = |row: &[f64; MAX_NODES], values: &[[f64; 6]; MAX_NODES], component: usize| {
-        let mut sum = 0.0;
-        for (l, value) in row.iter().zip(values.iter()).take(nodes) {
-            sum += l * value.get(component).copied().unwrap_or(0.0);
-        }
-        sum
-    };
     let mut worst = 0.0f64;
     let mut row = [0.0; MAX_NODES];
-    let samples = nodes.saturating_mul(2).saturating_sub(1);
-    for k in 0..samples {
-        let tau = if k % 2 == 0 {
-            grid.at(k / 2)
-        } else {
-            0.5 * (grid.at(k / 2) + grid.at((k / 2).saturating_add(1)))
-        };
+    // Every node and every midpoint between neighbours, in time order.
+    let taus = grid.taus();
+    let midpoints = taus
+        .clone()
+        .zip(taus.clone().skip(1))
+        .map(|(a, b)| 0.5 * (a + b));
+    let samples = taus
+        .zip(midpoints.map(Some).chain(core::iter::once(None)))
+        .flat_map(|(node, midpoint)| core::iter::once(node).chain(midpoint));
+    for tau in samples {
         let t = tr.time_of(tau);
         // int_0^t u(s) ds and int_0^t (t - s) u(s) ds by LGL quadrature on [0, t], per
         // spacecraft and axis.
         let mut first = [[0.0; 3]; MAX_SPACECRAFT];
         let mut second = [[0.0; 3]; MAX_SPACECRAFT];
-        for q in 0..nodes {
-            let s = 0.5 * t * (grid.at(q) + 1.0);
-            let w = 0.5 * t * grid.weight.get(q).copied().unwrap_or(0.0);
+        for (tau_q, weight_q) in grid.nodes_and_weights() {
+            let s = 0.5 * t * (tau_q + 1.0);
+            let w = 0.5 * t * weight_q;
             grid.lagrange_row(tr.tau_of(s), &mut row);
             for ((f, g), controls) in first
                 .iter_mut()
@@ -199,33 +214,41 @@ pub(super) fn dynamics_error(tr: &Transcription, out: &Solution) -> f64 {
                 .zip(out.controls_fu.iter())
                 .take(spacecraft)
             {
-                for (axis, (fa, ga)) in f.iter_mut().zip(g.iter_mut()).indexed() {
-                    let mut u = 0.0;
-                    for (l, node) in row.iter().zip(controls.iter()).take(nodes) {
-                        u += l * node.get(axis).copied().unwrap_or(0.0);
+                // The interpolated control on each axis: `sum_h row[h] u_h`.
+                let mut u = [0.0; 3];
+                for (l, node) in row.iter().zip(controls.iter()).take(nodes) {
+                    for (ua, c) in u.iter_mut().zip(node.iter()) {
+                        *ua += l * c;
                     }
-                    *fa += w * u;
-                    *ga += w * (t - s) * u;
+                }
+                for ((fa, ga), ua) in f.iter_mut().zip(g.iter_mut()).zip(u) {
+                    *fa += w * ua;
+                    *ga += w * (t - s) * ua;
                 }
             }
         }
         grid.lagrange_row(tau, &mut row);
-        for (sc, ((f, g), states)) in first
+        for (((f, g), states), &mass) in first
             .iter()
             .zip(second.iter())
             .zip(out.states.iter())
-            .indexed()
+            .zip(tr.mass.iter())
             .take(spacecraft)
         {
-            let mass = tr.mass_of(sc);
-            let start = states.first().copied().unwrap_or([0.0; 6]);
-            for (axis, ((fa, ga), (x0, v0))) in
-                f.iter().zip(g.iter()).zip(per_axis(&start)).indexed()
+            // The interpolated state: `sum_h row[h] state_h`, every component.
+            let mut interpolated = [0.0; 6];
+            for (l, state) in row.iter().zip(states.iter()).take(nodes) {
+                for (sum, v) in interpolated.iter_mut().zip(state.iter()) {
+                    *sum += l * v;
+                }
+            }
+            let [start, ..] = states;
+            let axes = per_axis(start).into_iter().zip(per_axis(&interpolated));
+            for ((fa, ga), ((x0, v0), (interpolated_x, interpolated_v))) in
+                f.iter().zip(g.iter()).zip(axes)
             {
                 let propagated_v = v0 + fa / mass;
                 let propagated_x = x0 + v0 * t + ga / mass;
-                let interpolated_x = apply(&row, states, axis);
-                let interpolated_v = apply(&row, states, axis.saturating_add(3));
                 worst = worst
                     .max(libm::fabs(propagated_x - interpolated_x))
                     .max(libm::fabs(propagated_v - interpolated_v));

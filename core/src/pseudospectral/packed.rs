@@ -17,11 +17,6 @@ fn at(i: usize, j: usize) -> usize {
     (i.saturating_mul(i.saturating_add(1)) / 2).saturating_add(j)
 }
 
-/// `L[i][j]`, 0 outside the buffer.
-pub(crate) fn get<const S: usize>(l: &[f64; S], i: usize, j: usize) -> f64 {
-    l.get(at(i, j)).copied().unwrap_or(0.0)
-}
-
 /// `L[i][j] = value`, ignored outside the buffer.
 pub(crate) fn set<const S: usize>(l: &mut [f64; S], i: usize, j: usize, value: f64) {
     if let Some(slot) = l.get_mut(at(i, j)) {
@@ -34,109 +29,130 @@ pub(crate) const fn fits<const S: usize>(n: usize) -> bool {
     packed_len(n) <= S
 }
 
+/// Row `i` of the triangle in `rest`, which starts at row `i`: `L[i][..i]` and `L[i][i]`, and
+/// the rows after it (`None` when the buffer ends first).
+fn split_row(rest: &mut [f64], i: usize) -> Option<(&mut [f64], &mut f64, &mut [f64])> {
+    let (row, after) = rest.split_at_mut_checked(i.checked_add(1)?)?;
+    let (diagonal, left) = row.split_last_mut()?;
+    Some((left, diagonal, after))
+}
+
 /// Cholesky-factor the packed symmetric matrix (lower triangle given) of order `n` in place.
 /// Returns the index of the first pivot that is not positive, or `None` on success.
 pub(crate) fn cholesky<const S: usize>(a: &mut [f64; S], n: usize) -> Option<usize> {
     if !fits::<S>(n) {
         return Some(0);
     }
+    // Row j, then the rows below it in order, each split off the buffer (so row j is read
+    // beside the rows it updates, the same products in the same order as indexing both).
+    let mut rest: &mut [f64] = a;
     for j in 0..n {
-        let mut diag = get(a, j, j);
-        for k in 0..j {
-            let l = get(a, j, k);
+        let Some((left, diagonal, below)) = split_row(rest, j) else {
+            return Some(j);
+        };
+        let mut diag = *diagonal;
+        for l in left.iter() {
             diag -= l * l;
         }
         if diag.is_nan() || diag <= 0.0 {
             return Some(j);
         }
         let pivot = libm::sqrt(diag);
-        set(a, j, j, pivot);
-        // Row j's first j entries, copied out so rows i > j can be updated beside them (the
-        // same products in the same order as indexing both rows).
-        let mut row_j = [0.0; crate::capacity::MAX_ACTIVE];
-        let start_j = at(j, 0);
-        if let (Some(dst), Some(src)) = (
-            row_j.get_mut(..j),
-            a.get(start_j..start_j.saturating_add(j)),
-        ) {
-            // Element by element: `copy_from_slice` panics on a length mismatch the compiler
-            // cannot rule out here (both are `j` long).
-            for (d, s) in dst.iter_mut().zip(src) {
-                *d = *s;
-            }
-        } else {
-            for (k, slot) in row_j.iter_mut().indexed().take(j) {
-                *slot = get(a, j, k);
-            }
-        }
+        *diagonal = pivot;
+        let mut lower: &mut [f64] = &mut *below;
         for i in (j.saturating_add(1))..n {
-            let mut value = get(a, i, j);
-            let start_i = at(i, 0);
-            match a.get(start_i..start_i.saturating_add(j)) {
-                Some(row_i) if j <= row_j.len() => {
-                    for (x, y) in row_i.iter().zip(row_j.iter()) {
-                        value -= x * y;
-                    }
-                }
-                _ => {
-                    for k in 0..j {
-                        value -= get(a, i, k) * get(a, j, k);
-                    }
-                }
+            // Row i: its first j entries beside row j's, then entry j.
+            let Some((row_i, _, after)) = split_row(lower, i) else {
+                return Some(j);
+            };
+            let Some((head, tail)) = row_i.split_at_mut_checked(j) else {
+                return Some(j);
+            };
+            let Some(entry) = tail.first_mut() else {
+                return Some(j);
+            };
+            let mut value = *entry;
+            for (x, y) in head.iter().zip(left.iter()) {
+                value -= x * y;
             }
-            set(a, i, j, value / pivot);
+            *entry = value / pivot;
+            lower = after;
         }
+        rest = below;
     }
     None
 }
 
-/// Solve `L x = b` in place (forward substitution).
+/// Solve `L x = b` in place (forward substitution). Returns false (with `b` partly solved) when
+/// the buffer does not hold a triangle of order `min(n, C)`.
+#[must_use]
 pub(crate) fn solve_lower<const S: usize, const C: usize>(
     l: &[f64; S],
     n: usize,
     b: &mut [f64; C],
-) {
+) -> bool {
+    let mut rows: &[f64] = l;
     for i in 0..n.min(C) {
-        let mut value = b.get(i).copied().unwrap_or(0.0);
         // Row i of L is contiguous: walk it beside b (the same products, in order).
-        let start = at(i, 0);
-        match l.get(start..start.saturating_add(i)) {
-            Some(row) => {
-                for (lk, bk) in row.iter().zip(b.iter()) {
-                    value -= lk * bk;
-                }
-            }
-            None => {
-                for (k, bk) in b.iter().indexed().take(i) {
-                    value -= get(l, i, k) * bk;
-                }
-            }
+        let Some((row, after)) = rows.split_at_checked(i.saturating_add(1)) else {
+            return false;
+        };
+        let (Some((&diagonal, left)), Some((solved, unsolved))) =
+            (row.split_last(), b.split_at_mut_checked(i))
+        else {
+            return false;
+        };
+        let Some(slot) = unsolved.first_mut() else {
+            return false;
+        };
+        let mut value = *slot;
+        for (lk, bk) in left.iter().zip(solved.iter()) {
+            value -= lk * bk;
         }
-        if let Some(slot) = b.get_mut(i) {
-            *slot = value / get(l, i, i);
-        }
+        *slot = value / diagonal;
+        rows = after;
     }
+    true
 }
 
-/// Solve `L^T x = b` in place (back substitution).
+/// Solve `L^T x = b` in place (back substitution). Returns false (with `b` partly solved) when
+/// the buffer does not hold a triangle of order `min(n, C)`.
+#[must_use]
 pub(crate) fn solve_lower_transposed<const S: usize, const C: usize>(
     l: &[f64; S],
     n: usize,
     b: &mut [f64; C],
-) {
+) -> bool {
     let n = n.min(C);
     for i in (0..n).rev() {
-        let mut value = b.get(i).copied().unwrap_or(0.0);
+        let Some((slot, later)) = b
+            .split_at_mut_checked(i)
+            .and_then(|(_, rest)| rest.split_first_mut())
+        else {
+            return false;
+        };
+        let Some(&diagonal) = l.get(at(i, i)) else {
+            return false;
+        };
+        let mut value = *slot;
         // Column i below the diagonal: L[k][i] sits k + 1 numbers after L[k - 1][i].
         let mut index = at(i.saturating_add(1), i);
-        for (k, bk) in b.iter().indexed().take(n).skip(i.saturating_add(1)) {
-            value -= l.get(index).copied().unwrap_or(0.0) * bk;
-            index = index.saturating_add(k).saturating_add(1);
+        for (k, bk) in later
+            .iter()
+            .take(n.saturating_sub(i.saturating_add(1)))
+            .indexed()
+        {
+            let Some(&lki) = l.get(index) else {
+                return false;
+            };
+            value -= lki * bk;
+            index = index
+                .saturating_add(i.saturating_add(1).saturating_add(k))
+                .saturating_add(1);
         }
-        if let Some(slot) = b.get_mut(i) {
-            *slot = value / get(l, i, i);
-        }
+        *slot = value / diagonal;
     }
+    true
 }
 
 #[cfg(test)]
@@ -155,8 +171,8 @@ mod tests {
         }
         assert_eq!(cholesky(&mut a, 3), None);
         let mut x = [1.0, 2.0, 3.0];
-        solve_lower(&a, 3, &mut x);
-        solve_lower_transposed(&a, 3, &mut x);
+        assert!(solve_lower(&a, 3, &mut x));
+        assert!(solve_lower_transposed(&a, 3, &mut x));
         for i in 0..3 {
             let row: f64 = (0..3).map(|j| dense[i][j] * x[j]).sum();
             assert!((row - [1.0, 2.0, 3.0][i]).abs() < 1e-14);

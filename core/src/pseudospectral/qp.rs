@@ -89,7 +89,11 @@ pub(crate) fn solve(
                 }
             }
         };
-        let vp = tr.view(p);
+        // A row the transcription does not hold (never: rows come from its own scans) cannot
+        // enter: the factor fails.
+        let Some(vp) = tr.view(p) else {
+            return QpOutcome::FactorFailure;
+        };
         let norm2_p = vp.norm * vp.norm;
         let cap_p = if penalty.is_finite() {
             penalty / vp.norm
@@ -107,19 +111,27 @@ pub(crate) fn solve(
             *iterations = iterations.saturating_add(1);
             let k = state.count;
             for (slot, &row) in g.iter_mut().zip(state.active.iter()).take(k) {
-                let vj = tr.view(row);
+                let Some(vj) = tr.view(row) else {
+                    return QpOutcome::FactorFailure;
+                };
                 *slot = rows_dot(&vj, &vp, free);
             }
             // r = G^{-1} g; keep l = L^{-1} g for appending p to the factor.
             let mut l = g;
-            solve_lower(&state.store, k, &mut l);
+            if !solve_lower(&state.store, k, &mut l) {
+                return QpOutcome::FactorFailure;
+            }
             r.copy_from_slice(&l);
-            solve_lower_transposed(&state.store, k, &mut r);
+            if !solve_lower_transposed(&state.store, k, &mut r) {
+                return QpOutcome::FactorFailure;
+            }
             // Primal direction z = a_p - A^T r: the part of a_p orthogonal to the active rows.
             state.direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
             row_axpy(&vp, 1.0, &mut state.direction, free);
             for (rj, &row) in r.iter().zip(state.active.iter()).take(k) {
-                let vj = tr.view(row);
+                let Some(vj) = tr.view(row) else {
+                    return QpOutcome::FactorFailure;
+                };
                 row_axpy(&vj, -rj, &mut state.direction, free);
             }
             let z2 = kernel::dot(&state.direction, &state.direction, (blocks, free));
@@ -146,7 +158,10 @@ pub(crate) fn solve(
                     Some((multiplier_j / rate, false))
                 } else if rate < 0.0 && penalty.is_finite() {
                     // Elastic form only: the row's bound, `penalty / |a_j|`.
-                    let cap_j = penalty / tr.view(row).norm;
+                    let Some(view) = tr.view(row) else {
+                        return QpOutcome::FactorFailure;
+                    };
+                    let cap_j = penalty / view.norm;
                     Some(((cap_j - multiplier_j) / -rate, true))
                 } else {
                     None
@@ -172,13 +187,7 @@ pub(crate) fn solve(
             };
             let signed_step = sign * step;
             if full_step.is_some() {
-                for (b, values) in y.iter_mut().indexed().take(blocks) {
-                    if let Some(dir) = state.direction.get(b) {
-                        for (slot, d) in values.iter_mut().zip(dir.iter()).take(free) {
-                            *slot += signed_step * d;
-                        }
-                    }
-                }
+                kernel::axpy(y, signed_step, &state.direction, (blocks, free));
             }
             for (m, rj) in state.multiplier.iter_mut().zip(r.iter()).take(k) {
                 *m -= signed_step * rj;

@@ -25,9 +25,10 @@ use super::qp_state::{
     control_id, dual_index, for_each_stored, keep_out_id, signed, Mode, QpOutcome, QpState,
     DUAL_LEN,
 };
-use super::transcription::{block_dot, node_value, row_axpy, row_dot, RowId, Transcription};
+use super::transcription::{block_dot, row_axpy, row_dot, RowId, Transcription};
 use super::work_units;
 use crate::capacity::MAX_FREE_PER_AXIS;
+use crate::indexed::IndexedExt as _;
 
 /// Tightening of every row, as a distance in `y` (row normalised).
 const TIGHTEN: f64 = 1e-9;
@@ -95,10 +96,14 @@ pub(crate) fn solve(
     if state.elastic_count > 0 {
         let store = &mut state.store;
         for_each_elastic(tr, &state.control_flags, &state.keep_out_flags, |id| {
-            let bound = penalty / tr.view(id).norm;
-            if let Some(slot) = dual_index(id).and_then(|i| store.get_mut(i)) {
-                *slot += signed(id, bound);
-            }
+            // Held rows are the transcription's (they entered from its scans).
+            let (Some(view), Some(slot)) =
+                (tr.view(id), dual_index(id).and_then(|i| store.get_mut(i)))
+            else {
+                return;
+            };
+            let bound = penalty / view.norm;
+            *slot += signed(id, bound);
         });
         state.clear_elastic();
     }
@@ -107,7 +112,9 @@ pub(crate) fn solve(
     // Rebuild y = A^T l from the table so the two agree to rounding.
     *y = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
     for_each_stored(state, tr, |id, value| {
-        row_axpy(&tr.view(id), value, y, free)
+        if let Some(view) = tr.view(id) {
+            row_axpy(&view, value, y, free);
+        }
     });
     let mut sweeps: u16 = 0;
     loop {
@@ -118,22 +125,23 @@ pub(crate) fn solve(
         // The largest violation of a row at its bound (the elastic slack).
         let mut elastic = 0.0f64;
         let mut largest_move = 0.0f64;
-        for block in 0..tr.blocks() {
-            for node in 0..tr.grid.nodes() {
-                let norm = tr.basis.accel_norm.get(node).copied().unwrap_or(0.0);
-                let (Some(row), Some(index)) = (
-                    tr.basis.accel.get(node),
-                    dual_index(control_id(block, node)),
-                ) else {
+        let control_blocks = y.iter_mut().zip(tr.base_control.iter());
+        for (block, (values, base)) in control_blocks.take(tr.blocks()).indexed() {
+            let node_rows = tr.basis.accel_norm.iter().zip(tr.basis.accel.iter());
+            for (node, ((&norm, row), &base_control)) in
+                node_rows.zip(base.iter()).take(tr.grid.nodes()).indexed()
+            {
+                // Every control row has its slot in the table (`dual_index`, `DUAL_LEN`).
+                let Some((index, &multiplier)) = dual_index(control_id(block, node))
+                    .and_then(|index| Some((index, state.store.get(index)?)))
+                else {
                     continue;
                 };
                 if norm <= 0.0 {
                     continue;
                 }
-                let control =
-                    node_value(&tr.base_control, block, node) + block_dot(row, y, block, free);
+                let control = base_control + block_dot(row, values, free);
                 let violation = (libm::fabs(control) - tr.max_control_fu) / norm + TIGHTEN;
-                let multiplier = state.store.get(index).copied().unwrap_or(0.0);
                 let mut delta = control_step(control, tr.max_control_fu, norm * norm, multiplier);
                 let cap = penalty / norm;
                 if multiplier + delta > cap {
@@ -150,36 +158,34 @@ pub(crate) fn solve(
                     if let Some(slot) = state.store.get_mut(index) {
                         *slot = multiplier + delta;
                     }
-                    if let Some(values) = y.get_mut(block) {
-                        for (slot, g) in values.iter_mut().zip(row.iter()).take(free) {
-                            *slot += delta * g;
-                        }
+                    for (slot, g) in values.iter_mut().zip(row.iter()).take(free) {
+                        *slot += delta * g;
                     }
                     largest_move = largest_move.max(libm::fabs(delta) * norm);
                 }
             }
         }
-        for pair in 0..tr.pair_count {
-            for check in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
-                let pruned = tr
-                    .checks
-                    .get(pair)
-                    .and_then(|row| row.get(check))
-                    .is_none_or(|c| c.pruned);
+        let pair_checks = tr.checks.iter().zip(tr.check_count.iter());
+        for (pair, (checks, &count)) in pair_checks.take(tr.pair_count).indexed() {
+            for (check, c) in checks.iter().take(count).indexed() {
                 let id = keep_out_id(pair, check);
-                let Some(index) = dual_index(id) else {
+                // Every check has its slot in the table (`dual_index`, `DUAL_LEN`) and its row.
+                let Some((index, &multiplier)) =
+                    dual_index(id).and_then(|index| Some((index, state.store.get(index)?)))
+                else {
                     continue;
                 };
-                if pruned {
+                if c.pruned {
                     continue;
                 }
-                let view = tr.view(id);
+                let Some(view) = tr.view(id) else {
+                    continue;
+                };
                 if view.norm <= 0.0 {
                     continue;
                 }
                 let norm2 = view.norm * view.norm;
                 let slack = row_dot(&view, y, free) - view.rhs - TIGHTEN * view.norm;
-                let multiplier = state.store.get(index).copied().unwrap_or(0.0);
                 let cap = penalty / view.norm;
                 let delta = (-slack / norm2).max(-multiplier).min(cap - multiplier);
                 if multiplier + delta >= cap {

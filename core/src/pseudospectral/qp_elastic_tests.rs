@@ -49,7 +49,7 @@ fn solve(ws: &mut Workspace, penalty: f64) -> (QpOutcome, Coefficients) {
 fn slacks(tr: &Transcription, y: &Coefficients, mut f: impl FnMut(RowId, f64)) {
     let free = tr.basis.free;
     let mut visit = |id: RowId| {
-        let view = tr.view(id);
+        let view = tr.view(id).unwrap();
         if view.norm > 0.0 {
             f(id, (row_dot(&view, y, free) - view.rhs) / view.norm);
         }

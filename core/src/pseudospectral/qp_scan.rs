@@ -26,14 +26,19 @@ pub(super) fn most_violated(
     };
     // Blocks and nodes within the transcription's (validated) counts, walked with their flags.
     let nodes = tr.grid.nodes();
-    for (block, flags) in state.control_flags.iter().take(tr.blocks()).indexed() {
+    let control_blocks = state
+        .control_flags
+        .iter()
+        .zip(y.iter())
+        .zip(tr.base_control.iter());
+    for (block, ((flags, values), base)) in control_blocks.take(tr.blocks()).indexed() {
         let node_rows = tr.basis.accel_norm.iter().zip(tr.basis.accel.iter());
-        for (node, ((&norm, row), &flag)) in node_rows.zip(flags.iter()).take(nodes).indexed() {
+        let nodal = node_rows.zip(base.iter()).zip(flags.iter());
+        for (node, (((&norm, row), &base_control), &flag)) in nodal.take(nodes).indexed() {
             if norm <= 0.0 {
                 continue;
             }
-            let control = super::transcription::node_value(&tr.base_control, block, node)
-                + block_dot(row, y, block, free);
+            let control = base_control + block_dot(row, values, free);
             let (b, h) = (block as u8, node as u8);
             if flag & (UPPER_ACTIVE | UPPER_ELASTIC) == 0 {
                 let slack = (tr.max_control_fu - control) / norm;
@@ -61,29 +66,35 @@ pub(super) fn most_violated(
     }
     let mut dots: NodeDots = [[0.0; MAX_NODES]; MAX_BLOCKS];
     tr.node_dots(y, &mut dots);
-    // Pairs within the transcription's count, each with its checks and their active flags.
-    let pair_rows = tr.check_count.iter().zip(tr.pairs.iter());
+    // Pairs within the transcription's count, each with its checks and their active flags (a
+    // check without a row or a relative position is no candidate: never, both are built with
+    // the check).
     let check_rows = tr.checks.iter().zip(state.keep_out_flags.iter());
-    for (pair, ((&count, &(i, j)), (checks, active_flags))) in
-        pair_rows.zip(check_rows).take(tr.pair_count).indexed()
-    {
-        let (mi, mj) = (tr.mass_of(usize::from(i)), tr.mass_of(usize::from(j)));
+    for (pair, (checks, active_flags)) in check_rows.take(tr.pair_count).indexed() {
+        let (Some(geometry), Some(&count)) = (tr.pair(pair), tr.check_count.get(pair)) else {
+            continue;
+        };
+        let (mi, mj) = geometry.masses;
         let mass_factor = libm::sqrt(1.0 / (mi * mi) + 1.0 / (mj * mj));
         for (c, (check, &flags)) in checks.iter().zip(active_flags.iter()).take(count).indexed() {
             if check.pruned || flags != 0 {
                 continue;
             }
-            let (_, row_norm) = tr.check_row(check.source);
+            let Some((_, row_norm)) = tr.check_row(check.source) else {
+                continue;
+            };
             let norm = row_norm * mass_factor;
             if norm <= 0.0 {
                 continue;
             }
-            let relative = tr.relative_with(pair, check.source, y, &dots);
+            let Some(relative) = tr.relative_with(&geometry, check.source, y, &dots) else {
+                continue;
+            };
             let mut along = 0.0;
             for (n, r) in check.normal.iter().zip(relative.iter()) {
                 along += n * r;
             }
-            let slack = (along - tr.keep_out_for(pair)) / norm;
+            let slack = (along - geometry.keep_out) / norm;
             consider(
                 RowId::KeepOut {
                     pair: pair as u8,
@@ -129,15 +140,15 @@ pub(super) fn most_violated_hint(
         }
         if let RowId::KeepOut { pair, check } = id {
             let pruned = tr
-                .checks
-                .get(usize::from(pair))
-                .and_then(|row| row.get(usize::from(check)))
+                .check(usize::from(pair), usize::from(check))
                 .is_none_or(|c| c.pruned);
             if pruned {
                 continue;
             }
         }
-        let view = tr.view(id);
+        let Some(view) = tr.view(id) else {
+            continue;
+        };
         if view.norm <= 0.0 {
             continue;
         }
@@ -160,7 +171,9 @@ pub(super) fn most_met_elastic(
     let free = tr.basis.free;
     let mut best: Option<(RowId, f64)> = None;
     for_each_elastic(tr, &state.control_flags, &state.keep_out_flags, |id| {
-        let view = tr.view(id);
+        let Some(view) = tr.view(id) else {
+            return;
+        };
         if view.norm > 0.0 {
             let slack = (row_dot(&view, y, free) - view.rhs) / view.norm;
             if slack > tol && best.is_none_or(|(_, b)| slack > b) {
@@ -182,8 +195,10 @@ pub(super) fn elastic_slack_left(
     let free = tr.basis.free;
     let mut left = false;
     for_each_elastic(tr, &state.control_flags, &state.keep_out_flags, |id| {
-        let view = tr.view(id);
-        if view.norm > 0.0 && (view.rhs - row_dot(&view, y, free)) / view.norm > tol {
+        let left_here = tr.view(id).is_some_and(|view| {
+            view.norm > 0.0 && (view.rhs - row_dot(&view, y, free)) / view.norm > tol
+        });
+        if left_here {
             left = true;
         }
     });

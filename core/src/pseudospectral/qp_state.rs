@@ -102,30 +102,29 @@ impl QpState {
         }
     }
 
-    /// A row's `ROW_ACTIVE` / `ROW_ELASTIC` bits (a row outside the tables has none).
-    fn flags(&self, id: RowId) -> u8 {
+    /// A row's `ROW_ACTIVE` / `ROW_ELASTIC` bits (`None` for a row outside the tables).
+    fn flags(&self, id: RowId) -> Option<u8> {
         match id {
             RowId::Control { block, node, upper } => {
-                let flags = self
+                let flags = *self
                     .control_flags
-                    .get(usize::from(block))
-                    .and_then(|row| row.get(usize::from(node)))
-                    .copied()
-                    .unwrap_or(0);
+                    .get(usize::from(block))?
+                    .get(usize::from(node))?;
                 let (active, elastic) = if upper {
                     (UPPER_ACTIVE, UPPER_ELASTIC)
                 } else {
                     (LOWER_ACTIVE, LOWER_ELASTIC)
                 };
-                (if flags & active != 0 { ROW_ACTIVE } else { 0 })
-                    | (if flags & elastic != 0 { ROW_ELASTIC } else { 0 })
+                Some(
+                    (if flags & active != 0 { ROW_ACTIVE } else { 0 })
+                        | (if flags & elastic != 0 { ROW_ELASTIC } else { 0 }),
+                )
             }
             RowId::KeepOut { pair, check } => self
                 .keep_out_flags
-                .get(usize::from(pair))
-                .and_then(|row| row.get(usize::from(check)))
-                .copied()
-                .unwrap_or(0),
+                .get(usize::from(pair))?
+                .get(usize::from(check))
+                .copied(),
         }
     }
 
@@ -158,14 +157,14 @@ impl QpState {
         }
     }
 
-    /// Whether a row is in the active set.
+    /// Whether a row is in the active set (a row outside the flag tables never enters it).
     pub(super) fn is_active(&self, id: RowId) -> bool {
-        self.flags(id) & ROW_ACTIVE != 0
+        self.flags(id).is_some_and(|flags| flags & ROW_ACTIVE != 0)
     }
 
-    /// Whether a row is held elastic.
+    /// Whether a row is held elastic (a row outside the flag tables never is).
     pub(super) fn is_elastic(&self, id: RowId) -> bool {
-        self.flags(id) & ROW_ELASTIC != 0
+        self.flags(id).is_some_and(|flags| flags & ROW_ELASTIC != 0)
     }
 
     /// Release every row held elastic (their multipliers moved to the fallback's table).
@@ -208,16 +207,21 @@ impl QpState {
     }
 
     /// Refactor the Gram matrix of the active rows (as the transcription now linearises
-    /// them). Returns false on a non-positive pivot, or in fallback mode (no active set).
+    /// them). Returns false on a non-positive pivot, in fallback mode (no active set), or for an
+    /// active row the transcription does not hold.
     pub(crate) fn refactor(&mut self, tr: &Transcription) -> bool {
         if self.mode != Mode::Factor {
             return false;
         }
         let free = tr.basis.free;
         for (a, &ida) in self.active.iter().indexed().take(self.count) {
-            let va = tr.view(ida);
+            let Some(va) = tr.view(ida) else {
+                return false;
+            };
             for (b, &idb) in self.active.iter().indexed().take(a.saturating_add(1)) {
-                let vb = tr.view(idb);
+                let Some(vb) = tr.view(idb) else {
+                    return false;
+                };
                 packed::set(&mut self.store, a, b, rows_dot(&va, &vb, free));
             }
         }
@@ -238,9 +242,7 @@ impl QpState {
         }
         let tau_of = |id: RowId| match id {
             RowId::KeepOut { pair, check } => tr
-                .checks
-                .get(usize::from(pair))
-                .and_then(|row| row.get(usize::from(check)))
+                .check(usize::from(pair), usize::from(check))
                 .map(|c| (pair, c.tau)),
             RowId::Control { .. } => None,
         };
@@ -294,10 +296,13 @@ impl QpState {
         }
     }
 
-    /// Solve `G x = b` with the current Gram factor (factor mode).
-    pub(crate) fn gram_solve(&self, b: &mut [f64; MAX_ACTIVE]) {
-        solve_lower(&self.store, self.count, b);
-        solve_lower_transposed(&self.store, self.count, b);
+    /// Solve `G x = b` with the current Gram factor (factor mode). Returns false when the store
+    /// does not hold the factor of the working set (never: it holds `MAX_ACTIVE` rows' and the
+    /// set has at most that many).
+    #[must_use]
+    pub(crate) fn gram_solve(&self, b: &mut [f64; MAX_ACTIVE]) -> bool {
+        solve_lower(&self.store, self.count, b)
+            && solve_lower_transposed(&self.store, self.count, b)
     }
 
     /// Remove active row `index`, keeping the others' order and multipliers.
@@ -378,15 +383,13 @@ pub(super) fn keep_out_id(pair: usize, check: usize) -> RowId {
 
 /// Every nonzero value of the dual table with its row, in table order (control rows, then
 /// keep-out checks per pair): control values are signed (lower bound positive, upper negative).
-/// A row without a slot in the table has no multiplier, hence the zero.
+/// A row without a slot in the table has no multiplier: it is not visited.
 pub(super) fn for_each_stored(state: &QpState, tr: &Transcription, mut f: impl FnMut(RowId, f64)) {
     let mut visit = |id: RowId| {
-        let value = dual_index(id)
-            .and_then(|i| state.store.get(i))
-            .copied()
-            .unwrap_or(0.0);
-        if value != 0.0 {
-            f(id, value);
+        if let Some(&value) = dual_index(id).and_then(|i| state.store.get(i)) {
+            if value != 0.0 {
+                f(id, value);
+            }
         }
     };
     for block in 0..tr.blocks() {
@@ -394,8 +397,8 @@ pub(super) fn for_each_stored(state: &QpState, tr: &Transcription, mut f: impl F
             visit(control_id(block, node));
         }
     }
-    for pair in 0..tr.pair_count {
-        for check in 0..tr.check_count.get(pair).copied().unwrap_or(0) {
+    for (pair, &count) in tr.check_count.iter().take(tr.pair_count).indexed() {
+        for check in 0..count {
             visit(keep_out_id(pair, check));
         }
     }

@@ -3,13 +3,13 @@
 
 use super::collision;
 use super::guess::{self, tracks};
-use super::kernel::{per_axis, u8_of, Coefficients, MAX_BLOCKS};
+use super::kernel::{per_axis, u8_of, MAX_BLOCKS};
 use super::problem::Problem;
 use super::settings::Settings;
 use super::solution::Solution;
 use super::status::Stage;
 use super::swerve;
-use super::transcription::{node_value, Transcription};
+use super::transcription::Transcription;
 use super::workspace::Workspace;
 use crate::capacity::{
     MAX_FREE_PER_AXIS, MAX_NODES, MAX_PAIRS, MAX_SPACECRAFT, TEST_POINTS_PER_PAIR,
@@ -52,21 +52,24 @@ pub(super) fn setup(
     let nodes = tr.grid.nodes();
     tr.base_position = [[0.0; MAX_NODES]; MAX_BLOCKS];
     tr.base_control = [[0.0; MAX_NODES]; MAX_BLOCKS];
-    for sc in 0..m {
-        for axis in 0..3 {
-            let Some(law) = ws.setup.laws.get(sc).and_then(|row| row.get(axis)) else {
-                continue;
-            };
+    // Each spacecraft's three axis laws beside its three blocks of base positions and controls.
+    let horizon = tr.horizon_tu;
+    let blocks = tr
+        .base_position
+        .chunks_exact_mut(3)
+        .zip(tr.base_control.chunks_exact_mut(3));
+    for (laws, (positions, controls)) in ws.setup.laws.iter().zip(blocks).take(m) {
+        for (law, (position_row, control_row)) in laws
+            .iter()
+            .zip(positions.iter_mut().zip(controls.iter_mut()))
+        {
             let cubic = guess::unconstrained(law.boundary);
-            let block = sc.saturating_mul(3).saturating_add(axis);
-            for h in 0..nodes {
-                let t = tr.time_of(tr.grid.at(h));
-                if let Some(slot) = tr.base_position.get_mut(block).and_then(|r| r.get_mut(h)) {
-                    *slot = cubic.cubic_position(t);
-                }
-                if let Some(slot) = tr.base_control.get_mut(block).and_then(|r| r.get_mut(h)) {
-                    *slot = cubic.cubic_control(t);
-                }
+            let nodal = position_row.iter_mut().zip(control_row.iter_mut());
+            for ((position, control), tau) in nodal.zip(tr.grid.taus()) {
+                // `Transcription::time_of` (the transcription's rows are borrowed here).
+                let t = 0.5 * horizon * (tau + 1.0);
+                *position = cubic.cubic_position(t);
+                *control = cubic.cubic_control(t);
             }
         }
     }
@@ -89,22 +92,15 @@ pub(super) fn setup(
         }
     }
     let mut base_cost = 0.0;
-    for block in 0..tr.blocks() {
-        for h in 0..nodes {
-            let u = node_value(&tr.base_control, block, h);
-            base_cost +=
-                0.25 * tr.horizon_tu * tr.grid.weight.get(h).copied().unwrap_or(0.0) * u * u;
+    for control_row in tr.base_control.iter().take(tr.blocks()) {
+        for (&u, (_, w)) in control_row.iter().zip(tr.grid.nodes_and_weights()) {
+            base_cost += 0.25 * tr.horizon_tu * w * u * u;
         }
     }
     tr.base_cost = base_cost;
-    for h in 0..nodes {
-        let norm = match tr.basis.position.get(h) {
-            Some(row) => super::transcription::norm(row, tr.basis.free),
-            None => 0.0,
-        };
-        if let Some(slot) = tr.node_row_norm.get_mut(h) {
-            *slot = norm;
-        }
+    let rows = tr.node_row_norm.iter_mut().zip(tr.basis.position.iter());
+    for (slot, row) in rows.take(nodes) {
+        *slot = super::transcription::norm(row, tr.basis.free);
     }
     // Pairs, pruning windows (eq. 23) and checks at every node.
     tr.pair_count = 0;
@@ -145,7 +141,9 @@ pub(super) fn setup(
             }
             tr.pair_count = pair.saturating_add(1);
             for h in 0..nodes {
-                let tau = tr.grid.at(h);
+                let Some(&tau) = tr.grid.tau.get(h) else {
+                    return Err(Stage::Transcription);
+                };
                 if !tr.add_check(pair, tau) {
                     return Err(Stage::Transcription);
                 }
@@ -156,21 +154,26 @@ pub(super) fn setup(
     *test_times = [[0.0; TEST_POINTS_PER_PAIR]; MAX_PAIRS];
     if problem.test_points {
         let mut node_times = [0.0; MAX_NODES];
-        for (h, slot) in node_times.iter_mut().indexed().take(nodes) {
-            *slot = tr.time_of(tr.grid.at(h));
+        for (slot, tau) in node_times.iter_mut().zip(tr.grid.taus()) {
+            *slot = tr.time_of(tau);
         }
+        let Some(node_times) = node_times.get(..nodes) else {
+            return Err(Stage::Transcription);
+        };
         for pair in 0..tr.pair_count {
-            let (i, j) = tr.pairs.get(pair).copied().unwrap_or((0, 0));
+            let Some(&(i, j)) = tr.pairs.get(pair) else {
+                return Err(Stage::Transcription);
+            };
             let (Some(li), Some(lj)) = (
                 ws.setup.laws.get(usize::from(i)),
                 ws.setup.laws.get(usize::from(j)),
             ) else {
-                continue;
+                return Err(Stage::Transcription);
             };
             let (times, count) = collision::test_points(
                 &tracks(li),
                 &tracks(lj),
-                node_times.get(..nodes).unwrap_or(&[]),
+                node_times,
                 problem.horizon_tu,
                 settings.refine_max_iter,
             );
@@ -188,28 +191,28 @@ pub(super) fn setup(
     Ok(())
 }
 
-/// Project a control profile (node values, FU) onto the coefficients: `y_b = T/2 sum_h w_h
-/// G_h (U_h - U_cubic,h)`, the cost-metric projection (exact for a polynomial of degree N that
-/// meets the boundary conditions).
+/// Project a control profile (node values, FU) onto one block's coefficients `target`:
+/// `y_b = T/2 sum_h w_h G_h (U_h - U_cubic,h)`, `base_controls` the block's `U_cubic`, the
+/// cost-metric projection (exact for a polynomial of degree N that meets the boundary
+/// conditions).
 pub(super) fn project_controls(
     tr: &Transcription,
-    block: usize,
+    base_controls: &[f64; MAX_NODES],
     controls: &[f64; MAX_NODES],
-    y: &mut Coefficients,
+    target: &mut [f64; MAX_FREE_PER_AXIS],
 ) {
     let free = tr.basis.free;
-    let Some(target) = y.get_mut(block) else {
-        return;
-    };
     *target = [0.0; MAX_FREE_PER_AXIS];
-    for h in 0..tr.grid.nodes() {
-        let w = tr.grid.weight.get(h).copied().unwrap_or(0.0);
-        let du = controls.get(h).copied().unwrap_or(0.0) - node_value(&tr.base_control, block, h);
+    let nodal = tr
+        .grid
+        .nodes_and_weights()
+        .zip(controls.iter().zip(base_controls.iter()))
+        .zip(tr.basis.accel.iter());
+    for (((_, w), (&u, &base)), row) in nodal {
+        let du = u - base;
         let scale = 0.5 * tr.horizon_tu * w * du;
-        if let Some(row) = tr.basis.accel.get(h) {
-            for (slot, g) in target.iter_mut().zip(row.iter()).take(free) {
-                *slot += scale * g;
-            }
+        for (slot, g) in target.iter_mut().zip(row.iter()).take(free) {
+            *slot += scale * g;
         }
     }
 }
@@ -231,36 +234,43 @@ pub(super) fn initial_iterate(
     let rate = 2.0 / tr.horizon_tu;
     let nodes = tr.grid.nodes();
     ws.iterates.iterate = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
-    for sc in 0..tr.spacecraft {
-        for (axis, &amplitude) in lift.iter().indexed() {
-            let block = sc.saturating_mul(3).saturating_add(axis);
+    // Each spacecraft's three blocks with their base controls, its axis laws and its mass.
+    let spacecraft = ws
+        .iterates
+        .iterate
+        .chunks_exact_mut(3)
+        .zip(tr.base_control.chunks_exact(3))
+        .zip(ws.setup.laws.iter())
+        .zip(tr.mass.iter())
+        .take(tr.spacecraft);
+    for (sc, (((targets, base_controls), laws), &mass)) in spacecraft.indexed() {
+        let warm_nodes = warm.and_then(|previous| previous.controls_fu.get(sc));
+        let axes = targets
+            .iter_mut()
+            .zip(base_controls.iter())
+            .zip(laws.iter());
+        for (axis, (((target, base), law), &amplitude)) in axes.zip(lift.iter()).indexed() {
             let mut controls = [0.0; MAX_NODES];
-            for (h, slot) in controls.iter_mut().indexed().take(nodes) {
-                *slot = match warm {
-                    Some(previous) => previous
-                        .controls_fu
-                        .get(sc)
-                        .and_then(|row| row.get(h))
-                        .and_then(|u| u.get(axis))
-                        .copied()
-                        .unwrap_or(0.0),
-                    None => match ws.setup.laws.get(sc).and_then(|row| row.get(axis)) {
-                        Some(law) => law.control(tr.time_of(tr.grid.at(h))),
-                        None => 0.0,
-                    },
+            for (h, (slot, tau)) in controls
+                .iter_mut()
+                .zip(tr.grid.taus())
+                .take(nodes)
+                .indexed()
+            {
+                // The warm start's control (the solve checked its size), else the guess's.
+                let warm_control = warm_nodes
+                    .and_then(|nodes| nodes.get(h))
+                    .and_then(|u| u.get(axis));
+                *slot = match warm_control {
+                    Some(&u) => u,
+                    None => law.control(tr.time_of(tau)),
                 };
                 if amplitude != 0.0 {
-                    let tau = tr.grid.at(h);
                     let side = if sc % 2 == 0 { amplitude } else { -amplitude };
-                    *slot += tr.mass_of(sc)
-                        * rate
-                        * rate
-                        * tr.keep_out_lu
-                        * side
-                        * (12.0 * tau * tau - 4.0);
+                    *slot += mass * rate * rate * tr.keep_out_lu * side * (12.0 * tau * tau - 4.0);
                 }
             }
-            project_controls(tr, block, &controls, &mut ws.iterates.iterate);
+            project_controls(tr, base, &controls, target);
         }
     }
     out.info.warm_start_used = warm.is_some();

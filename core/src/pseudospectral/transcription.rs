@@ -35,6 +35,20 @@ pub(crate) enum Source {
     Point(u16),
 }
 
+/// A pair of spacecraft of the transcription with its lookups done once
+/// (`Transcription::pair`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Pair {
+    /// Its index among the transcription's pairs.
+    pub index: usize,
+    /// The spacecraft `(i, j)`, `i < j`.
+    pub spacecraft: (u8, u8),
+    /// Their masses.
+    pub masses: (f64, f64),
+    /// The keep-out enforced at its checks: d, the settings' margin and the pair's own.
+    pub keep_out: f64,
+}
+
 /// One keep-out check of one pair at one time, with its current linearisation.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Check {
@@ -131,8 +145,6 @@ pub(crate) struct Transcription {
     pub window: [(f64, f64); MAX_PAIRS],
 }
 
-const ZERO_ROW: [f64; MAX_FREE_PER_AXIS] = [0.0; MAX_FREE_PER_AXIS];
-
 impl Transcription {
     /// An empty transcription.
     pub const fn new() -> Self {
@@ -177,32 +189,63 @@ impl Transcription {
         2.0 * t / self.horizon_tu - 1.0
     }
 
-    /// Keep-out enforced at the checks of `pair`: d, the settings' margin and the pair's own.
-    pub fn keep_out_for(&self, pair: usize) -> f64 {
-        self.keep_out_active_lu + self.margin.get(pair).copied().unwrap_or(0.0)
+    /// The mass of spacecraft `sc` (`None` past the spacecraft array).
+    pub fn mass_of(&self, sc: usize) -> Option<f64> {
+        self.mass.get(sc).copied()
     }
 
-    pub fn mass_of(&self, sc: usize) -> f64 {
-        self.mass.get(sc).copied().unwrap_or(1.0)
+    /// Pair `index` with its lookups done once: its spacecraft, their masses, its keep-out.
+    /// `None` for an index that names no pair of this transcription.
+    pub fn pair(&self, index: usize) -> Option<Pair> {
+        if index >= self.pair_count {
+            return None;
+        }
+        let (&(i, j), &margin) = (self.pairs.get(index)?, self.margin.get(index)?);
+        Some(Pair {
+            index,
+            spacecraft: (i, j),
+            masses: (self.mass_of(usize::from(i))?, self.mass_of(usize::from(j))?),
+            keep_out: self.keep_out_active_lu + margin,
+        })
+    }
+
+    /// The checks of pair `index` in order, with their indices (none for an index that names no
+    /// pair).
+    pub fn checks_of(&self, index: usize) -> impl Iterator<Item = (usize, &Check)> + '_ {
+        self.checks
+            .iter()
+            .zip(self.check_count.iter())
+            .take(self.pair_count)
+            .nth(index)
+            .into_iter()
+            .flat_map(|(checks, &count)| checks.iter().take(count).indexed())
+    }
+
+    /// Check `check` of pair `pair` (`None` when the pair has no such check).
+    pub fn check(&self, pair: usize, check: usize) -> Option<Check> {
+        if pair >= self.pair_count || check >= *self.check_count.get(pair)? {
+            return None;
+        }
+        self.checks.get(pair)?.get(check).copied()
     }
 
     /// Add a keep-out check for `pair` at `tau`; node times reuse the node rows. Returns false
-    /// when the pair's checks or the point table are full.
+    /// when the pair's checks or the point table are full (or `pair` names no pair).
     pub fn add_check(&mut self, pair: usize, tau: f64) -> bool {
-        let count = self
-            .check_count
-            .get(pair)
-            .copied()
-            .unwrap_or(MAX_CHECKS_PER_PAIR);
+        let (Some(&count), Some(&(i, j)), Some(&(start, end))) = (
+            self.check_count.get(pair),
+            self.pairs.get(pair),
+            self.window.get(pair),
+        ) else {
+            return false;
+        };
         if count >= MAX_CHECKS_PER_PAIR {
             return false;
         }
-        let Some(&(i, j)) = self.pairs.get(pair) else {
-            return false;
-        };
+        // The node at `tau`, if one is (the nodes are distinct: at most one).
         let mut node = None;
-        for h in 0..self.grid.nodes() {
-            if self.grid.at(h) - tau == 0.0 {
+        for (h, node_tau) in self.grid.taus().indexed() {
+            if node_tau - tau == 0.0 {
                 node = u8::try_from(h).ok();
             }
         }
@@ -212,7 +255,9 @@ impl Transcription {
             if self.point_count >= MAX_POINTS {
                 return false;
             }
-            let point = self.point_at(i, j, tau);
+            let Some(point) = self.point_at(i, j, tau) else {
+                return false;
+            };
             let index = self.point_count;
             if let Some(slot) = self.points.get_mut(index) {
                 *slot = point;
@@ -221,7 +266,6 @@ impl Transcription {
             Source::Point(u16::try_from(index).unwrap_or(u16::MAX))
         };
         let t = self.time_of(tau);
-        let (start, end) = self.window.get(pair).copied().unwrap_or((0.0, 0.0));
         let check = Check {
             tau,
             source,
@@ -237,50 +281,48 @@ impl Transcription {
         true
     }
 
-    /// Position row and base relative position of pair (i, j) at `tau`.
-    fn point_at(&self, i: u8, j: u8, tau: f64) -> Point {
+    /// Position row and base relative position of pair (i, j) at `tau` (`None` when a spacecraft
+    /// index is past the base cubics).
+    fn point_at(&self, i: u8, j: u8, tau: f64) -> Option<Point> {
+        let (base_i, base_j) = (
+            spacecraft_blocks(&self.base_position, i)?,
+            spacecraft_blocks(&self.base_position, j)?,
+        );
         let mut lagrange = [0.0; MAX_NODES];
         self.grid.lagrange_row(tau, &mut lagrange);
         let mut point = Point::EMPTY;
         self.basis.position_row(&self.grid, tau, &mut point.row);
         point.row_norm = norm(&point.row, self.basis.free);
-        for axis in 0..3 {
-            let bi = usize::from(i).saturating_mul(3).saturating_add(axis);
-            let bj = usize::from(j).saturating_mul(3).saturating_add(axis);
-            let pi = dot_nodes(&lagrange, self.base_position.get(bi), self.grid.nodes());
-            let pj = dot_nodes(&lagrange, self.base_position.get(bj), self.grid.nodes());
-            if let Some(slot) = point.base_relative.get_mut(axis) {
-                *slot = pi - pj;
-            }
+        let nodes = self.grid.nodes();
+        for ((slot, bi), bj) in point.base_relative.iter_mut().zip(base_i).zip(base_j) {
+            let pi = super::lgl::dot(&lagrange, bi, nodes);
+            let pj = super::lgl::dot(&lagrange, bj, nodes);
+            *slot = pi - pj;
         }
-        point
+        Some(point)
     }
 
     /// The pair's moving check, when it has one.
     pub fn moving_check_of(&self, pair: usize) -> Option<Check> {
         let index = self.moving_check.get(pair).copied().flatten()?;
-        self.checks
-            .get(pair)
-            .and_then(|row| row.get(usize::from(index)))
-            .copied()
+        self.check(pair, usize::from(index))
     }
 
     /// Put the pair's moving check at `tau` (creating it on first use). Returns false when no
-    /// check or point slot is left. A node time is nudged off the node: the moving check always
-    /// owns an off-node point slot.
+    /// check or point slot is left (or `pair` names no pair). A node time is nudged off the
+    /// node: the moving check always owns an off-node point slot.
     pub fn place_moving_check(&mut self, pair: usize, tau: f64) -> bool {
-        let Some(&(i, j)) = self.pairs.get(pair) else {
+        let (Some(&(i, j)), Some(&count), Some(&(start, end)), Some(&existing)) = (
+            self.pairs.get(pair),
+            self.check_count.get(pair),
+            self.window.get(pair),
+            self.moving_check.get(pair),
+        ) else {
             return false;
         };
-        let existing = self.moving_check.get(pair).copied().flatten();
         let index = match existing {
             Some(index) => usize::from(index),
             None => {
-                let count = self
-                    .check_count
-                    .get(pair)
-                    .copied()
-                    .unwrap_or(MAX_CHECKS_PER_PAIR);
                 if count >= MAX_CHECKS_PER_PAIR || self.point_count >= MAX_POINTS {
                     return false;
                 }
@@ -301,23 +343,19 @@ impl Transcription {
                 count
             }
         };
-        let Some(check) = self
-            .checks
-            .get(pair)
-            .and_then(|row| row.get(index))
-            .copied()
-        else {
+        let Some(check) = self.check(pair, index) else {
             return false;
         };
         let Source::Point(point_index) = check.source else {
             return false;
         };
-        let value = self.point_at(i, j, tau);
+        let Some(value) = self.point_at(i, j, tau) else {
+            return false;
+        };
         if let Some(slot) = self.points.get_mut(usize::from(point_index)) {
             *slot = value;
         }
         let t = self.time_of(tau);
-        let (start, end) = self.window.get(pair).copied().unwrap_or((0.0, 0.0));
         if let Some(slot) = self.checks.get_mut(pair).and_then(|row| row.get_mut(index)) {
             slot.tau = tau;
             slot.pruned = t < start || t > end;
@@ -325,60 +363,57 @@ impl Transcription {
         true
     }
 
-    /// The position row of a check and its norm.
-    pub fn check_row(&self, source: Source) -> (&[f64; MAX_FREE_PER_AXIS], f64) {
+    /// The position row of a check and its norm (`None` for a node or point the transcription
+    /// does not hold).
+    pub fn check_row(&self, source: Source) -> Option<(&[f64; MAX_FREE_PER_AXIS], f64)> {
         match source {
-            Source::Node(h) => (
-                self.basis.position.get(usize::from(h)).unwrap_or(&ZERO_ROW),
-                self.node_row_norm
-                    .get(usize::from(h))
-                    .copied()
-                    .unwrap_or(0.0),
-            ),
-            Source::Point(p) => match self.points.get(usize::from(p)) {
-                Some(point) => (&point.row, point.row_norm),
-                None => (&ZERO_ROW, 0.0),
-            },
+            Source::Node(h) => {
+                let h = usize::from(h);
+                Some((self.basis.position.get(h)?, *self.node_row_norm.get(h)?))
+            }
+            Source::Point(p) => {
+                let point = self.points.get(usize::from(p))?;
+                Some((&point.row, point.row_norm))
+            }
         }
     }
 
-    /// `r_i - r_j` of the base cubics at a check.
-    pub fn base_relative(&self, pair: usize, source: Source) -> [f64; 3] {
+    /// `r_i - r_j` of the base cubics at a check of `pair`.
+    pub fn base_relative(&self, pair: &Pair, source: Source) -> Option<[f64; 3]> {
         match source {
             Source::Node(h) => {
+                let (i, j) = pair.spacecraft;
+                let h = usize::from(h);
+                let blocks = spacecraft_blocks(&self.base_position, i)?
+                    .iter()
+                    .zip(spacecraft_blocks(&self.base_position, j)?);
                 let mut out = [0.0; 3];
-                if let Some(&(i, j)) = self.pairs.get(pair) {
-                    for (axis, slot) in out.iter_mut().indexed() {
-                        let bi = usize::from(i).saturating_mul(3).saturating_add(axis);
-                        let bj = usize::from(j).saturating_mul(3).saturating_add(axis);
-                        *slot = node_value(&self.base_position, bi, usize::from(h))
-                            - node_value(&self.base_position, bj, usize::from(h));
-                    }
+                for (slot, (bi, bj)) in out.iter_mut().zip(blocks) {
+                    *slot = bi.get(h)? - bj.get(h)?;
                 }
-                out
+                Some(out)
             }
             Source::Point(p) => self
                 .points
                 .get(usize::from(p))
-                .map(|point| point.base_relative)
-                .unwrap_or([0.0; 3]),
+                .map(|point| point.base_relative),
         }
     }
 
-    /// `r_i - r_j` at a check for the coefficients `y`.
-    pub fn relative(&self, pair: usize, source: Source, y: &Coefficients) -> [f64; 3] {
-        let mut out = self.base_relative(pair, source);
-        let (row, _) = self.check_row(source);
-        if let Some(&(i, j)) = self.pairs.get(pair) {
-            let (mi, mj) = (self.mass_of(usize::from(i)), self.mass_of(usize::from(j)));
-            for (axis, slot) in out.iter_mut().indexed() {
-                let bi = usize::from(i).saturating_mul(3).saturating_add(axis);
-                let bj = usize::from(j).saturating_mul(3).saturating_add(axis);
-                *slot += block_dot(row, y, bi, self.basis.free) / mi
-                    - block_dot(row, y, bj, self.basis.free) / mj;
-            }
+    /// `r_i - r_j` at a check of `pair` for the coefficients `y`.
+    pub fn relative(&self, pair: &Pair, source: Source, y: &Coefficients) -> Option<[f64; 3]> {
+        let mut out = self.base_relative(pair, source)?;
+        let (row, _) = self.check_row(source)?;
+        let (i, j) = pair.spacecraft;
+        let (mi, mj) = pair.masses;
+        let free = self.basis.free;
+        let blocks = spacecraft_blocks(y, i)?
+            .iter()
+            .zip(spacecraft_blocks(y, j)?);
+        for (slot, (yi, yj)) in out.iter_mut().zip(blocks) {
+            *slot += block_dot(row, yi, free) / mi - block_dot(row, yj, free) / mj;
         }
-        out
+        Some(out)
     }
 
     /// `block_dot(position row of node h, y, b)` for every block and node: each block's node
@@ -387,13 +422,13 @@ impl Transcription {
     /// the 8-spacecraft crossing: 408 dot products per QP scan instead of about 2,900).
     pub fn node_dots(&self, y: &Coefficients, out: &mut NodeDots) {
         let free = self.basis.free;
-        for (block, row) in out.iter_mut().indexed().take(self.blocks()) {
+        for (row, values) in out.iter_mut().zip(y.iter()).take(self.blocks()) {
             for (slot, position) in row
                 .iter_mut()
                 .zip(self.basis.position.iter())
                 .take(self.grid.nodes())
             {
-                *slot = block_dot(position, y, block, free);
+                *slot = block_dot(position, values, free);
             }
         }
     }
@@ -402,113 +437,109 @@ impl Transcription {
     /// (`node_dots` of the same `y`): the same operations in the same order, so the same bits.
     pub fn relative_with(
         &self,
-        pair: usize,
+        pair: &Pair,
         source: Source,
         y: &Coefficients,
         dots: &NodeDots,
-    ) -> [f64; 3] {
+    ) -> Option<[f64; 3]> {
         let Source::Node(h) = source else {
             return self.relative(pair, source, y);
         };
-        let mut out = self.base_relative(pair, source);
-        if let Some(&(i, j)) = self.pairs.get(pair) {
-            let (mi, mj) = (self.mass_of(usize::from(i)), self.mass_of(usize::from(j)));
-            let h = usize::from(h);
-            for (axis, slot) in out.iter_mut().indexed() {
-                let bi = usize::from(i).saturating_mul(3).saturating_add(axis);
-                let bj = usize::from(j).saturating_mul(3).saturating_add(axis);
-                *slot += node_value(dots, bi, h) / mi - node_value(dots, bj, h) / mj;
-            }
+        let mut out = self.base_relative(pair, source)?;
+        let (i, j) = pair.spacecraft;
+        let (mi, mj) = pair.masses;
+        let h = usize::from(h);
+        let blocks = spacecraft_blocks(dots, i)?
+            .iter()
+            .zip(spacecraft_blocks(dots, j)?);
+        for (slot, (di, dj)) in out.iter_mut().zip(blocks) {
+            *slot += di.get(h)? / mi - dj.get(h)? / mj;
         }
-        out
+        Some(out)
     }
 
-    /// The coefficients of a constraint row.
-    pub fn view(&self, id: RowId) -> RowView<'_> {
+    /// The coefficients of a constraint row (`None` for a row this transcription does not hold).
+    pub fn view(&self, id: RowId) -> Option<RowView<'_>> {
         match id {
             RowId::Control { block, node, upper } => {
                 let h = usize::from(node);
                 let b = usize::from(block);
-                let base = node_value(&self.base_control, b, h);
+                let base = *self.base_control.get(b)?.get(h)?;
                 let (coef, rhs) = if upper {
                     (-1.0, base - self.max_control_fu)
                 } else {
                     (1.0, -self.max_control_fu - base)
                 };
-                RowView {
-                    vector: self.basis.accel.get(h).unwrap_or(&ZERO_ROW),
+                Some(RowView {
+                    vector: self.basis.accel.get(h)?,
                     blocks: [(b, coef), (0, 0.0), (0, 0.0), (0, 0.0), (0, 0.0), (0, 0.0)],
                     count: 1,
                     rhs,
-                    norm: self.basis.accel_norm.get(h).copied().unwrap_or(0.0),
-                }
+                    norm: *self.basis.accel_norm.get(h)?,
+                })
             }
             RowId::KeepOut { pair, check } => {
                 let p = usize::from(pair);
-                let c = self
-                    .checks
-                    .get(p)
-                    .and_then(|row| row.get(usize::from(check)))
-                    .copied()
-                    .unwrap_or(Check::EMPTY);
-                let (vector, row_norm) = self.check_row(c.source);
-                let base = self.base_relative(p, c.source);
-                let (i, j) = self.pairs.get(p).copied().unwrap_or((0, 0));
-                let (mi, mj) = (self.mass_of(usize::from(i)), self.mass_of(usize::from(j)));
-                let mut blocks = [(0usize, 0.0f64); 6];
-                for axis in 0..3 {
-                    let n = c.normal.get(axis).copied().unwrap_or(0.0);
-                    let bi = usize::from(i).saturating_mul(3).saturating_add(axis);
-                    let bj = usize::from(j).saturating_mul(3).saturating_add(axis);
-                    if let Some(slot) = blocks.get_mut(axis) {
-                        *slot = (bi, n / mi);
-                    }
-                    if let Some(slot) = blocks.get_mut(axis.saturating_add(3)) {
-                        *slot = (bj, -n / mj);
-                    }
-                }
+                let c = self.check(p, usize::from(check))?;
+                let pair = self.pair(p)?;
+                let (vector, row_norm) = self.check_row(c.source)?;
+                let base = self.base_relative(&pair, c.source)?;
+                let (i, j) = pair.spacecraft;
+                let (mi, mj) = pair.masses;
+                let [n0, n1, n2] = c.normal;
+                let bi = usize::from(i).saturating_mul(3);
+                let bj = usize::from(j).saturating_mul(3);
+                let blocks = [
+                    (bi, n0 / mi),
+                    (bi.saturating_add(1), n1 / mi),
+                    (bi.saturating_add(2), n2 / mi),
+                    (bj, -n0 / mj),
+                    (bj.saturating_add(1), -n1 / mj),
+                    (bj.saturating_add(2), -n2 / mj),
+                ];
                 let base_along = c.normal.iter().zip(base.iter()).map(|(a, b)| a * b);
                 let mut along = 0.0;
                 for v in base_along {
                     along += v;
                 }
-                RowView {
+                Some(RowView {
                     vector,
                     blocks,
                     count: 6,
-                    rhs: self.keep_out_for(p) - along,
+                    rhs: pair.keep_out - along,
                     norm: row_norm * libm::sqrt(1.0 / (mi * mi) + 1.0 / (mj * mj)),
-                }
+                })
             }
         }
     }
 }
 
-/// `row . y[block]` over the first `free` entries.
+/// The three blocks (x, y, z) of spacecraft `sc` in a per-block table (`None` past the table).
+pub(crate) fn spacecraft_blocks<T>(table: &[T; MAX_BLOCKS], sc: u8) -> Option<&[T; 3]> {
+    table.chunks_exact(3).nth(usize::from(sc))?.try_into().ok()
+}
+
+/// `row . values` over the first `free` entries (`values`: one block of a coefficient vector).
 pub(crate) fn block_dot(
     row: &[f64; MAX_FREE_PER_AXIS],
-    y: &Coefficients,
-    block: usize,
+    values: &[f64; MAX_FREE_PER_AXIS],
     free: usize,
 ) -> f64 {
-    match y.get(block) {
-        Some(values) => {
-            let mut sum = 0.0;
-            for (a, b) in row.iter().zip(values.iter()).take(free) {
-                sum += a * b;
-            }
-            sum
-        }
-        None => 0.0,
+    let mut sum = 0.0;
+    for (a, b) in row.iter().zip(values.iter()).take(free) {
+        sum += a * b;
     }
+    sum
 }
 
-/// `a^T y` for a row view.
+/// `a^T y` for a row view (its blocks are blocks of `y`: the view's pair or control node).
 pub(crate) fn row_dot(view: &RowView<'_>, y: &Coefficients, free: usize) -> f64 {
     let mut sum = 0.0;
     for &(block, coef) in view.blocks.iter().take(view.count) {
         if coef != 0.0 {
-            sum += coef * block_dot(view.vector, y, block, free);
+            if let Some(values) = y.get(block) {
+                sum += coef * block_dot(view.vector, values, free);
+            }
         }
     }
     sum
@@ -552,19 +583,4 @@ pub(crate) fn norm(row: &[f64; MAX_FREE_PER_AXIS], free: usize) -> f64 {
         sum += v * v;
     }
     libm::sqrt(sum)
-}
-
-pub(crate) fn node_value(table: &[[f64; MAX_NODES]; MAX_BLOCKS], block: usize, node: usize) -> f64 {
-    table
-        .get(block)
-        .and_then(|row| row.get(node))
-        .copied()
-        .unwrap_or(0.0)
-}
-
-fn dot_nodes(lagrange: &[f64; MAX_NODES], values: Option<&[f64; MAX_NODES]>, count: usize) -> f64 {
-    match values {
-        Some(values) => super::lgl::dot(lagrange, values, count),
-        None => 0.0,
-    }
 }

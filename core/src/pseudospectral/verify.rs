@@ -11,7 +11,6 @@
 
 use super::convex_minimum::{convex_minimum, is_convex};
 use super::lgl::LglGrid;
-use super::linalg::{get, set};
 use crate::capacity::{MAX_DEGREE, MAX_NODES};
 use crate::indexed::IndexedExt as _;
 
@@ -98,44 +97,67 @@ impl Bernstein {
         for row in inv.iter_mut() {
             row.fill(0.0);
         }
-        for h in 0..size {
-            let s = 0.5 * (grid.at(h) + 1.0);
-            for k in 0..size {
-                let c = self.binomial_n.get(k).copied().unwrap_or(0.0);
-                let value =
-                    c * libm::pow(s, k as f64) * libm::pow(1.0 - s, n.saturating_sub(k) as f64);
-                set(&mut a, h, k, value);
+        for (a_row, tau) in a.iter_mut().zip(grid.taus()).take(size) {
+            let s = 0.5 * (tau + 1.0);
+            let entries = a_row.iter_mut().zip(self.binomial_n.iter());
+            for (k, (slot, &c)) in entries.take(size).indexed() {
+                *slot = c * libm::pow(s, k as f64) * libm::pow(1.0 - s, n.saturating_sub(k) as f64);
             }
-            set(inv, h, h, 1.0);
+        }
+        // The identity: every (MAX_NODES + 1)-th entry of the rows laid end to end.
+        for diagonal in inv.iter_mut().flatten().step_by(MAX_NODES + 1).take(size) {
+            *diagonal = 1.0;
         }
         for col in 0..size {
+            // The first largest entry of column `col` from the diagonal down.
             let mut pivot = col;
-            for row in col..size {
-                if libm::fabs(get(&a, row, col)) > libm::fabs(get(&a, pivot, col)) {
+            let mut p = 0.0;
+            let column = a.iter().flatten().skip(col).step_by(MAX_NODES).indexed();
+            for (row, &value) in column.skip(col).take(size.saturating_sub(col)) {
+                if row == col || libm::fabs(value) > libm::fabs(p) {
                     pivot = row;
+                    p = value;
                 }
             }
-            let p = get(&a, pivot, col);
             if libm::fabs(p) < 1e-300 {
                 return false;
             }
             a.swap(col, pivot.min(MAX_NODES.saturating_sub(1)));
             inv.swap(col, pivot.min(MAX_NODES.saturating_sub(1)));
-            for k in 0..size {
-                let (va, vi) = (get(&a, col, k) / p, get(inv, col, k) / p);
-                set(&mut a, col, k, va);
-                set(inv, col, k, vi);
+            // The pivot row, and the others in row order.
+            let (Some((above, rest)), Some((inv_above, inv_rest))) =
+                (a.split_at_mut_checked(col), inv.split_at_mut_checked(col))
+            else {
+                return false;
+            };
+            let (Some((pivot_row, below)), Some((inv_pivot_row, inv_below))) =
+                (rest.split_first_mut(), inv_rest.split_first_mut())
+            else {
+                return false;
+            };
+            for (va, vi) in pivot_row
+                .iter_mut()
+                .zip(inv_pivot_row.iter_mut())
+                .take(size)
+            {
+                *va /= p;
+                *vi /= p;
             }
-            for row in 0..size {
-                if row != col {
-                    let factor = get(&a, row, col);
-                    if factor != 0.0 {
-                        for k in 0..size {
-                            let va = get(&a, row, k) - factor * get(&a, col, k);
-                            let vi = get(inv, row, k) - factor * get(inv, col, k);
-                            set(&mut a, row, k, va);
-                            set(inv, row, k, vi);
-                        }
+            let live_below = size.saturating_sub(col.saturating_add(1));
+            let others = above
+                .iter_mut()
+                .zip(inv_above.iter_mut())
+                .chain(below.iter_mut().zip(inv_below.iter_mut()).take(live_below));
+            for (row, inv_row) in others {
+                let Some(&factor) = row.get(col) else {
+                    return false;
+                };
+                if factor != 0.0 {
+                    let entries = row.iter_mut().zip(inv_row.iter_mut());
+                    let pivots = pivot_row.iter().zip(inv_pivot_row.iter());
+                    for ((va, vi), (pa, pi)) in entries.zip(pivots).take(size) {
+                        *va -= factor * pa;
+                        *vi -= factor * pi;
                     }
                 }
             }
@@ -202,7 +224,15 @@ impl Bernstein {
     ) -> Minimum {
         let degree = self.degree.saturating_mul(2);
         let &[first, ..] = coeffs;
-        let last = coeffs.get(degree).copied().unwrap_or(0.0);
+        // A degree beyond the coefficients (never: the grid's degree is validated) has no end
+        // value to start from: searched nothing, certified nothing.
+        let Some(&last) = coeffs.get(degree) else {
+            return Minimum {
+                value_squared: first,
+                at_s: 0.0,
+                certified: false,
+            };
+        };
         let mut best = if first <= last {
             Minimum {
                 value_squared: first,
