@@ -313,7 +313,7 @@ pub(super) fn project(tr: &Transcription, qp: &QpState, x: &mut Coefficients) ->
 pub(super) struct Curvature<'a> {
     pub tr: &'a Transcription,
     pub qp: &'a QpState,
-    /// `|r|` at each active row's check (`certificate::check_lengths`).
+    /// `|r|` at each active row's check (`check_lengths`).
     pub lengths: &'a [f64; MAX_ACTIVE],
     pub corrections: &'a [Envelope],
 }

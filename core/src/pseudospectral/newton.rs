@@ -13,7 +13,7 @@
 //! `p_R = -A^T G^-1 c` (G = A A^T, the QP's Gram factor, refactored at `y`) restores the active
 //! constraints to first order, and `p_N` solves the reduced Newton system
 //! `(P H P) p_N = -P (y + H p_R)` on the null space of `A` (`P = I - A^T G^-1 A`) by conjugate
-//! gradients with the operator applied matrix-free (`certificate::add_curvature`, one
+//! gradients with the operator applied matrix-free (`curvature::add_curvature`, one
 //! projection per step). On that null space the reduced Hessian is `I - P S P`: its eigenvalues
 //! are 1 except on the span of `P S P`, so CG ends in at most `rank + 1` steps, bounded by
 //! `2 (active checks) + 2`.
@@ -69,7 +69,7 @@ impl<'a> Scratch<'a> {
 type Envelopes = heapless::Vec<Envelope, MAX_ENVELOPES>;
 
 /// `out = S v` over the active keep-out checks with positive multipliers, less the envelope
-/// terms of the semi-infinite keep-out (see `certificate::Envelope`).
+/// terms of the semi-infinite keep-out (see `curvature::Envelope`).
 fn curvature(
     tr: &Transcription,
     qp: &QpState,
