@@ -49,9 +49,9 @@ pub enum LambertError {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LambertSolution {
     /// Velocity just after departure at `r1`.
-    pub v1_kmps: Vec3,
+    pub v1_km_s: Vec3,
     /// Velocity just before arrival at `r2`.
-    pub v2_kmps: Vec3,
+    pub v2_km_s: Vec3,
     /// Householder steps used.
     pub iterations: u16,
     /// Izzo's x at the solution: a starting point for a nearby solve ([`solve_from`]).
@@ -363,8 +363,8 @@ pub fn solve_from(
     let v2 = add(&scale(&ir2, vr2), &scale(&it2, vt2));
     if finite(&v1) && finite(&v2) {
         Ok(LambertSolution {
-            v1_kmps: v1,
-            v2_kmps: v2,
+            v1_km_s: v1,
+            v2_km_s: v2,
             iterations: used,
             x,
         })
@@ -379,14 +379,14 @@ pub fn solve_from(
 pub fn propagate(
     mu_km3_s2: f64,
     r_km: &Vec3,
-    v_kmps: &Vec3,
+    v_km_s: &Vec3,
     dt_s: f64,
     max_iter: u16,
 ) -> Option<(Vec3, Vec3)> {
     let r0 = norm(r_km);
-    let v0 = norm(v_kmps);
+    let v0 = norm(v_km_s);
     let sqmu = libm::sqrt(mu_km3_s2);
-    let rv = dot(r_km, v_kmps) / sqmu;
+    let rv = dot(r_km, v_km_s) / sqmu;
     let alpha = 2.0 / r0 - v0 * v0 / mu_km3_s2;
     let mut chi = sqmu * alpha.abs() * dt_s;
     if alpha <= 0.0 {
@@ -430,11 +430,11 @@ pub fn propagate(
     let (c2, c3) = stumpff(z);
     let f = 1.0 - chi * chi / r0 * c2;
     let g = dt_s - chi * chi * chi / sqmu * c3;
-    let r = add(&scale(r_km, f), &scale(v_kmps, g));
+    let r = add(&scale(r_km, f), &scale(v_km_s, g));
     let rn = norm(&r);
     let fdot = sqmu / (rn * r0) * (alpha * chi * chi * chi * c3 - chi);
     let gdot = 1.0 - chi * chi / rn * c2;
-    let v = add(&scale(r_km, fdot), &scale(v_kmps, gdot));
+    let v = add(&scale(r_km, fdot), &scale(v_km_s, gdot));
     (finite(&r) && finite(&v)).then_some((r, v))
 }
 
@@ -448,7 +448,7 @@ pub fn propagate(
 mod tests {
     use super::*;
 
-    const MU: f64 = 398_600.441_8;
+    const MU: f64 = crate::astro::EARTH_MU_KM3_S2;
 
     fn check_arc(r1: Vec3, r2: Vec3, tof_s: f64, revs: u16, branch: Branch) -> LambertSolution {
         let sol = solve(
@@ -463,7 +463,7 @@ mod tests {
             1e-13,
         )
         .unwrap();
-        let (r, _) = propagate(MU, &r1, &sol.v1_kmps, tof_s, 60).unwrap();
+        let (r, _) = propagate(MU, &r1, &sol.v1_km_s, tof_s, 60).unwrap();
         let miss = norm(&sub(&r, &r2));
         assert!(miss < 1e-6, "miss {miss} km (revs {revs}, {branch:?})");
         sol
@@ -513,15 +513,15 @@ mod tests {
         );
         let (left, right) = (left.unwrap(), right.unwrap());
         // One branch is the tangential phasing orbit, the other the rectilinear fall.
-        let sol = if left.v1_kmps[0].abs() < right.v1_kmps[0].abs() {
+        let sol = if left.v1_km_s[0].abs() < right.v1_km_s[0].abs() {
             left
         } else {
             right
         };
-        assert!(sol.v1_kmps[0].abs() < 1e-9, "radial {}", sol.v1_kmps[0]);
+        assert!(sol.v1_km_s[0].abs() < 1e-9, "radial {}", sol.v1_km_s[0]);
         let a_m = libm::cbrt(MU * (tof_s / (2.0 * core::f64::consts::PI)).powi(2));
         let v_apo = libm::sqrt(MU * (2.0 / a0 - 1.0 / a_m));
-        assert!((sol.v1_kmps[1] - v_apo).abs() < 1e-9);
+        assert!((sol.v1_km_s[1] - v_apo).abs() < 1e-9);
     }
 
     #[test]

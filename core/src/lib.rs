@@ -25,6 +25,7 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
+pub mod astro;
 pub mod capacity;
 pub mod geo_tour;
 pub mod impulsive;

@@ -88,7 +88,7 @@ pub fn arc_geometry(
         s.burns
             .iter()
             .take(usize::from(s.impulses))
-            .map(|b| (b.epoch_s, Some(b.dv_kmps))),
+            .map(|b| (b.epoch_s, Some(b.dv_km_s))),
     );
     // Burns after the even sample of the same epoch.
     events.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.is_some().cmp(&b.1.is_some())));

@@ -1,10 +1,11 @@
 //! One test per rejected-input class of planner B, each asserting the exact `PlanError`, plus
 //! the singular-geometry statuses (rank deficiency) that are solved and reported.
 
+use reconfig_core::astro::EARTH_RADIUS_KM;
 use reconfig_core::capacity::MAX_IMPULSES;
 use reconfig_core::impulsive::{
     solve, ImpulsePlan, ImpulsePoint, Orbit, PlanError, Problem, Quantity, Settings, SettingsError,
-    Solution, SolveStatus, Workspace, EARTH_RADIUS_KM, MAX_ANGLE_RAD, MAX_SMA_KM,
+    Solution, SolveStatus, Workspace, MAX_ANGLE_RAD, MAX_SMA_KM,
 };
 
 fn points(list: &[(f64, i32)]) -> heapless::Vec<ImpulsePoint, MAX_IMPULSES> {

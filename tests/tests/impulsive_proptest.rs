@@ -3,11 +3,12 @@
 //! number anywhere in its output, in any input form (`solve_form`: the plan and the end state).
 
 use proptest::prelude::*;
+use reconfig_core::astro::EARTH_MU_KM3_S2;
 use reconfig_core::capacity::MAX_IMPULSES;
 use reconfig_core::impulsive::{
     solve, solve_form, CartesianState, EndState, EquinoctialElements, FormProblem, ImpulsePlan,
     ImpulsePoint, MeanElements, OrbitForm, Problem, RelativeElements, RelativeForm, Roe, Settings,
-    Solution, SolveStatus, Workspace, EARTH_MU_KM3_S2,
+    Solution, SolveStatus, Workspace,
 };
 
 fn any_f64() -> impl Strategy<Value = f64> {

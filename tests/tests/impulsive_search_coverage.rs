@@ -8,9 +8,10 @@
 //! A measurement, not a regression test (about a minute in the test profile):
 //! `cargo test -p reconfig-tests --test impulsive_search_coverage -- --ignored --nocapture`
 
+use reconfig_core::astro::TWO_PI;
 use reconfig_core::impulsive::{
     solve, ImpulsePlan, ImpulsePoint, MeanElements, Problem, RelativeElements, Settings, Solution,
-    SolveStatus, Workspace, TWO_PI,
+    SolveStatus, Workspace,
 };
 
 const IMPULSES: usize = 3;

@@ -88,7 +88,7 @@ proptest! {
         let out = solve_arc(&problem, &settings);
         if let Ok(sol) = out {
             let burns = sol.burns.iter().flat_map(|b| {
-                [b.epoch_s].into_iter().chain(b.dv_kmps).chain(b.rtn_mps)
+                [b.epoch_s].into_iter().chain(b.dv_km_s).chain(b.rtn_mps)
             });
             let numbers: Vec<f64> = burns.chain([sol.total_dv_mps, sol.miss_m]).collect();
             prop_assert!(numbers.iter().all(|x| x.is_finite()), "{sol:?}");

@@ -10,8 +10,9 @@
 //! bounded bisection on `x`, and the price problem `min D + lambda t` is the root of
 //! `-D'(x) / t'(x) = lambda` (marginal Δv per second of the leg), found by bisection too.
 
-use super::geo::{Dual, Geo, M_PER_KM, TWO_PI};
+use super::geo::{Dual, Geo};
 use super::maneuver::{Burn, Direction, Maneuver, Method};
+use crate::astro::{M_PER_KM, TWO_PI};
 
 /// One leg's drift model.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -14,8 +14,9 @@
 //! answer is not used. So well m is searched on `[tau_m - T0/2, tau_m)` with K = m - 1, both
 //! branches, by golden section (`well_iterations` steps, each 1 or 2 Lambert solves).
 
-use super::geo::{inertial_to_rtn, Geo, M_PER_KM, TWO_PI};
+use super::geo::{inertial_to_rtn, Geo};
 use super::maneuver::{Burn, Direction, Maneuver, Method};
+use crate::astro::{M_PER_KM, TWO_PI};
 use crate::indexed::IndexedExt as _;
 use crate::lambert::{self, Branch, LambertSolution};
 
@@ -57,14 +58,14 @@ fn arc(
     )
     .ok()?;
     let d1 = [
-        sol.v1_kmps[0] - v1c[0],
-        sol.v1_kmps[1] - v1c[1],
-        sol.v1_kmps[2] - v1c[2],
+        sol.v1_km_s[0] - v1c[0],
+        sol.v1_km_s[1] - v1c[1],
+        sol.v1_km_s[2] - v1c[2],
     ];
     let d2 = [
-        v2c[0] - sol.v2_kmps[0],
-        v2c[1] - sol.v2_kmps[1],
-        v2c[2] - sol.v2_kmps[2],
+        v2c[0] - sol.v2_km_s[0],
+        v2c[1] - sol.v2_km_s[1],
+        v2c[2] - sol.v2_km_s[2],
     ];
     let k = |a: [f64; 3]| [a[0] * M_PER_KM, a[1] * M_PER_KM, a[2] * M_PER_KM];
     let burns = [
@@ -77,7 +78,7 @@ fn arc(
             dv_rtn_mps: k(inertial_to_rtn(&r2, &v2c, &d2)),
         },
     ];
-    let v = sol.v1_kmps;
+    let v = sol.v1_km_s;
     let energy = 0.5 * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) - g.mu / g.a0;
     let sma = -g.mu / (2.0 * energy);
     let m = Maneuver::from_burns(Method::Lambert, tau_s, sma, revs, &burns);

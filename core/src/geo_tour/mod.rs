@@ -39,9 +39,7 @@ mod workspace;
 
 pub use drift::{drift_at_depth, drift_for_duration};
 pub use error::{Field, PlanError};
-pub use geo::{
-    inertial_to_rtn, rtn_to_inertial, wrap_two_pi, Geo, EARTH_RATE_RAD_S, MU_KM3_S2, TWO_PI,
-};
+pub use geo::{inertial_to_rtn, rtn_to_inertial, Geo};
 pub use hohmann::hohmann;
 pub use lambert_phasing::lambert_phasing;
 pub use maneuver::{Burn, Direction, Maneuver, Method, MAX_BURNS};
@@ -54,6 +52,7 @@ pub use types::{
 pub use validate::{MAX_BURN_CAP_MPS, MAX_MISSION_TIME_S};
 pub use workspace::Workspace;
 
+use crate::astro::wrap_two_pi;
 use crate::indexed::IndexedExt as _;
 use allocate::{allocate, Choice};
 use table::{build, point_maneuver};

@@ -6,8 +6,9 @@
 //! `e = w / v0`, `a = a0 / (1 - e^2)`, arc time `2 (acos e - e sqrt(1 - e^2)) / n` through
 //! perigee, and the phase change `|pi - n0 * arc|`.
 
-use super::geo::{Geo, M_PER_KM, TWO_PI};
+use super::geo::Geo;
 use super::maneuver::{Burn, Direction, Maneuver, Method};
+use crate::astro::{M_PER_KM, TWO_PI};
 
 /// Arc time (s) and phase gained (rad, positive = the direction's way) for eccentricity `e`.
 fn arc(g: &Geo, dir: Direction, e: f64) -> (f64, f64) {

@@ -55,9 +55,6 @@ mod validate;
 mod work_units;
 mod workspace;
 
-pub use elements::{
-    wrap_pi, wrap_two_pi, EARTH_J2, EARTH_MU_KM3_S2, EARTH_RADIUS_KM, M_PER_KM, TWO_PI,
-};
 pub use error::{Orbit, PlanError, Quantity, SettingsError, MAX_ANGLE_RAD, MAX_SMA_KM};
 pub use form_problem::{
     end_state, EndForm, EndState, FormPart, FormProblem, OrbitForm, RelativeForm,

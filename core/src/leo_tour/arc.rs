@@ -15,11 +15,12 @@
 //! it charged to the work budget, which stops the search first when smaller.
 
 use super::flight::{Flight, Model};
-use super::j2::{join, pos, vel, Gravity, State};
+use super::j2::{join, pos, vel, State};
 use super::mean_j2::{self, MeanOrbit};
 use super::shoot::{corrected_lambert_from, shoot, Family, Offset, Secant};
 use super::track::Track;
 use super::types::{ArcSolution, Burn, Settings, Status, MAX_IMPULSES, MAX_VARS};
+use crate::astro::Gravity;
 use crate::indexed::IndexedExt as _;
 use crate::lambert::Branch;
 use crate::vec3::{add, cross, dot, norm, scale, sub, Vec3};
@@ -312,7 +313,7 @@ impl Ctx<'_> {
         let s = self.settings;
         self.refine_with(
             p,
-            (s.search_step_s, s.search_step_kmps),
+            (s.search_step_s, s.search_step_km_s),
             s.search_max_evals,
             true,
         )
@@ -325,7 +326,7 @@ impl Ctx<'_> {
         let s = self.settings;
         self.refine_with(
             p,
-            (s.search_step_s / 16.0, s.search_step_kmps / 16.0),
+            (s.search_step_s / 16.0, s.search_step_km_s / 16.0),
             s.polish_max_evals,
             false,
         )
@@ -336,7 +337,7 @@ impl Ctx<'_> {
     fn refine_with(
         &mut self,
         p: Point,
-        (first_step_s, first_step_kmps): (f64, f64),
+        (first_step_s, first_step_km_s): (f64, f64),
         budget: u32,
         pick_family: bool,
     ) -> Point {
@@ -366,7 +367,7 @@ impl Ctx<'_> {
         // frozen offset has led it where no J2 transfer of the family exists.
         let mut anchor = best;
         let mut step_t = first_step_s;
-        let mut step_v = first_step_kmps;
+        let mut step_v = first_step_km_s;
         let start_evals = self.evals;
         'levels: while step_t >= self.settings.search_min_step_s {
             let mut improved = true;
@@ -442,7 +443,7 @@ impl Ctx<'_> {
             if let Some(b) = burns.get_mut(k) {
                 *b = Burn {
                     epoch_s,
-                    dv_kmps: dv,
+                    dv_km_s: dv,
                     rtn_mps: scale(&rtn(state, &dv), 1e3),
                 };
             }
@@ -450,10 +451,10 @@ impl Ctx<'_> {
         for (k, ((state, dv), &epoch)) in pre.iter().zip(t.iter()).take(last).indexed() {
             fill(k, state, *dv, epoch);
         }
-        fill(last, &s, sub(&shot.v_dep_kmps, &vel(&s)), t_last);
+        fill(last, &s, sub(&shot.v_dep_km_s, &vel(&s)), t_last);
         let v_match = sub(&vel(&self.b_end), &vel(&shot.arrival));
         fill(last.checked_add(1)?, &shot.arrival, v_match, self.tf);
-        let total: f64 = burns.iter().map(|b| norm(&b.dv_kmps)).sum::<f64>() * 1e3;
+        let total: f64 = burns.iter().map(|b| norm(&b.dv_km_s)).sum::<f64>() * 1e3;
         let miss_m = shot.miss_km * 1e3;
         let status = if miss_m > self.settings.arrival_tol_km * 1e3 {
             Status::ArrivalMissed

@@ -76,7 +76,7 @@ impl Ctx<'_> {
         )?;
         Some(Offset {
             dr_km: sub(&r, &pos(&self.b_end)),
-            dv_kmps: sub(&vel(&self.b_end), &v),
+            dv_km_s: sub(&vel(&self.b_end), &v),
         })
     }
 
@@ -167,7 +167,7 @@ impl Ctx<'_> {
             self.settings.lambert_tol,
         )
         .ok()?;
-        let dv1 = sub(&leg.v1_kmps, &vel(sa));
+        let dv1 = sub(&leg.v1_km_s, &vel(sa));
         let mut x = [0.0; MAX_VARS];
         let free = self.impulses.saturating_sub(1);
         let room = self.tf - self.settings.min_gap_s - t1;

@@ -27,7 +27,7 @@ impl Ctx<'_> {
                 .zip(plan.burns.iter())
                 .take(vectors)
             {
-                slot.copy_from_slice(&b.dv_kmps);
+                slot.copy_from_slice(&b.dv_km_s);
             }
         }
         let Some(t) = self.epochs(&x) else {

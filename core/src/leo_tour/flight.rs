@@ -4,8 +4,9 @@
 //! unit per step, the closed form [`super::mean_j2::FLIGHT_UNITS`] per flight whatever its
 //! span.
 
-use super::j2::{propagate_steps, step_count, Gravity, State};
+use super::j2::{propagate_steps, step_count, State};
 use super::mean_j2;
+use crate::astro::Gravity;
 use crate::work::Meter;
 use serde::{Deserialize, Serialize};
 

@@ -19,7 +19,8 @@
 //! (`leo_tour::arc`), which decides the status.
 
 use super::elements::{state_of, Classical};
-use super::j2::{join, pos, vel, Gravity, State};
+use super::j2::{join, pos, vel, State};
+use crate::astro::Gravity;
 use crate::impulsive::elements::{wrap_pi, Elements, A, ARGP, E, I, MA, RAAN};
 use crate::impulsive::kepler::true_anomaly;
 use crate::impulsive::nonlinear::elements_and_true_anomaly_with;
@@ -232,11 +233,7 @@ mod tests {
     use crate::leo_tour::j2::{propagate_steps, step_count};
     use crate::vec3::{norm, sub};
 
-    const G: Gravity = Gravity {
-        mu_km3_s2: 398_600.441_8,
-        re_km: 6378.137,
-        j2: 1.082_63e-3,
-    };
+    const G: Gravity = Gravity::EARTH;
 
     fn orbit(a_km: f64, e: f64, i_deg: f64, raan_deg: f64, argp_deg: f64, nu_deg: f64) -> State {
         state_of(

@@ -18,7 +18,7 @@
 //! at most `N! (1 + 1/1! + 1/2! + ...) < e N!` arcs planned; `max_arcs` stops it first.
 
 use super::bound::{self, BoundSettings, Plane};
-use super::j2::Gravity;
+use crate::astro::Gravity;
 use crate::indexed::IndexedExt as _;
 use serde::{Deserialize, Serialize};
 
@@ -552,9 +552,8 @@ mod tests {
     }
 
     const G: Gravity = Gravity {
-        mu_km3_s2: 398_600.441_8,
-        re_km: 6378.137,
         j2: 0.0,
+        ..Gravity::EARTH
     };
 
     #[test]

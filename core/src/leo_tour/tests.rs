@@ -9,7 +9,7 @@ use super::elements::{state_of, Classical};
 use super::*;
 extern crate std;
 
-const MU: f64 = 398_600.441_8;
+const MU: f64 = crate::astro::EARTH_MU_KM3_S2;
 
 fn client(a_km: f64, i_deg: f64, raan_deg: f64, u_deg: f64) -> j2::State {
     state_of(
@@ -201,7 +201,7 @@ fn continuation_in_j2_recovers_a_shooting_started_far_away() {
     let (target, fam) = paper_last_leg(&settings);
     let far = Offset {
         dr_km: [3000.0, -2000.0, 1000.0],
-        dv_kmps: [0.0; 3],
+        dv_km_s: [0.0; 3],
     };
     let mut meter = crate::work::Meter::new(u64::MAX);
     let direct = shoot(
@@ -242,7 +242,7 @@ fn continuation_in_j2_recovers_a_shooting_started_far_away() {
         &mut meter,
     )
     .unwrap();
-    let dv = crate::vec3::norm(&crate::vec3::sub(&continued.v_dep_kmps, &good.v_dep_kmps));
+    let dv = crate::vec3::norm(&crate::vec3::sub(&continued.v_dep_km_s, &good.v_dep_km_s));
     assert!(dv < 1e-9, "{dv} km/s");
 }
 

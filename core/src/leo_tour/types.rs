@@ -1,7 +1,8 @@
 //! Settings, problem, solution and errors of the per-arc rendezvous.
 
 use super::flight::{Flight, Model};
-use super::j2::{Gravity, State};
+use super::j2::State;
+use crate::astro::{Gravity, EARTH_J2, EARTH_MU_KM3_S2, EARTH_RADIUS_KM};
 use crate::vec3::Vec3;
 use serde::{Deserialize, Serialize};
 
@@ -51,7 +52,7 @@ pub struct Settings {
     /// First compass step of an impulse epoch, s.
     pub search_step_s: f64,
     /// First compass step of an impulse component, km/s.
-    pub search_step_kmps: f64,
+    pub search_step_km_s: f64,
     /// The refinement stops when the epoch step is below this, s.
     pub search_min_step_s: f64,
     /// Least time between two impulses (and before the arrival), s.
@@ -71,9 +72,9 @@ pub struct Settings {
 impl Default for Settings {
     fn default() -> Self {
         Self {
-            mu_km3_s2: 398_600.441_8,
-            re_km: 6378.137,
-            j2: 1.082_63e-3,
+            mu_km3_s2: EARTH_MU_KM3_S2,
+            re_km: EARTH_RADIUS_KM,
+            j2: EARTH_J2,
             step_s: 20.0,
             max_steps: 50_000,
             lambert_max_iter: 40,
@@ -86,7 +87,7 @@ impl Default for Settings {
             hop_rounds: 6,
             search_max_evals: 4000,
             search_step_s: 600.0,
-            search_step_kmps: 0.02,
+            search_step_km_s: 0.02,
             search_min_step_s: 0.5,
             min_gap_s: 60.0,
             work_budget: 400_000_000,
@@ -137,7 +138,7 @@ pub struct Burn {
     /// Epoch from the arc start, s.
     pub epoch_s: f64,
     /// Inertial Δv, km/s.
-    pub dv_kmps: Vec3,
+    pub dv_km_s: Vec3,
     /// Δv in the chaser's RTN frame just before the burn (radial, along-track, normal), m/s.
     pub rtn_mps: Vec3,
 }
@@ -218,7 +219,7 @@ pub enum Field {
     SearchMaxEvals = 16,
     /// `Settings::search_step_s`.
     SearchStep = 17,
-    /// `Settings::search_step_kmps`.
+    /// `Settings::search_step_km_s`.
     SearchStepKmps = 18,
     /// `Settings::search_min_step_s`.
     SearchMinStep = 19,
@@ -254,7 +255,7 @@ impl Field {
             Self::Candidates => "candidates",
             Self::SearchMaxEvals => "search_max_evals",
             Self::SearchStep => "search_step_s",
-            Self::SearchStepKmps => "search_step_kmps",
+            Self::SearchStepKmps => "search_step_km_s",
             Self::SearchMinStep => "search_min_step_s",
             Self::MinGap => "min_gap_s",
             Self::WorkBudget => "work_budget",

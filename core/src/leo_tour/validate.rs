@@ -74,7 +74,7 @@ pub fn check(problem: &ArcProblem, settings: &Settings) -> Result<(), PlanError>
         1e6,
     )?;
     range(Field::SearchStep, s.search_step_s, 0.0, 1e5)?;
-    range(Field::SearchStepKmps, s.search_step_kmps, 0.0, 1.0)?;
+    range(Field::SearchStepKmps, s.search_step_km_s, 0.0, 1.0)?;
     range(Field::SearchMinStep, s.search_min_step_s, 1e-6, 1e5)?;
     range(Field::MinGap, s.min_gap_s, 0.0, problem.duration_s / 8.0)?;
     // The budget is an integer; as f64 only for the error's value (exact below 2^53).

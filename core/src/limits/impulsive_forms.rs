@@ -8,9 +8,8 @@
 
 use super::impulsive::Limits;
 use super::{at_least, below, LimitViolation, Setting};
-use crate::impulsive::{
-    osculating_shape, FormProblem, OrbitForm, RelativeForm, Settings, EARTH_RADIUS_KM,
-};
+use crate::astro::EARTH_RADIUS_KM;
+use crate::impulsive::{osculating_shape, FormProblem, OrbitForm, RelativeForm, Settings};
 
 /// The two settings an orbit's checks are named by.
 struct Names {
@@ -191,7 +190,7 @@ mod tests {
             (Setting::ImpChiefEccentricity, 1.0, Rule::Below)
         );
         // e = r v^2 / mu - 1 at a perigee with the velocity across the radius.
-        let expected = 7000.0 * 144.0 / crate::impulsive::EARTH_MU_KM3_S2 - 1.0;
+        let expected = 7000.0 * 144.0 / crate::astro::EARTH_MU_KM3_S2 - 1.0;
         assert!((e.value - expected).abs() < 1e-12, "{}", e.value);
         assert_eq!(e.setting.name(), "chief.eccentricity");
     }
@@ -200,7 +199,7 @@ mod tests {
     fn a_low_state_is_refused_with_its_perigee_altitude() {
         // Circular at 6378 + 80 km: perigee altitude 80 km, below the default 100 km.
         let r = EARTH_RADIUS_KM + 80.0;
-        let v = libm::sqrt(crate::impulsive::EARTH_MU_KM3_S2 / r);
+        let v = libm::sqrt(crate::astro::EARTH_MU_KM3_S2 / r);
         let s = CartesianState {
             pos_km: [r, 0.0, 0.0],
             vel_km_s: [0.0, 0.0, v],

@@ -176,7 +176,7 @@ impl Limits {
             hop_rounds,
             search_max_evals,
             search_step_s: _,    // method choice only
-            search_step_kmps: _, // method choice only
+            search_step_km_s: _, // method choice only
             search_min_step_s,
             min_gap_s: _, // the problem's operations constraint
             work_budget,

@@ -118,8 +118,8 @@ fn impulsive_plot(problem: &impulsive::Problem, name: &str, out: &std::path::Pat
     if let Err(e) = impulsive::solve(problem, &settings, &mut workspace, &mut solution) {
         bail!("{name}: the planner rejected the problem: {e}");
     }
-    let period_s =
-        std::f64::consts::TAU * (problem.chief.sma_km.powi(3) / impulsive::EARTH_MU_KM3_S2).sqrt();
+    let period_s = std::f64::consts::TAU
+        * (problem.chief.sma_km.powi(3) / reconfig_core::astro::EARTH_MU_KM3_S2).sqrt();
     let title = format!(
         "{name}: {:?}, total dv {:.4} m/s, {} impulses, last at {:.2} orbits, terminal position error {:.1e} m",
         solution.info.status,

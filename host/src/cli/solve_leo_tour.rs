@@ -249,7 +249,7 @@ pub fn replan_last_leg_states(
             r_kep[1] - client.end.pos_km[1],
             r_kep[2] - client.end.pos_km[2],
         ],
-        dv_kmps: [0.0; 3],
+        dv_km_s: [0.0; 3],
     };
     let mut meter = Meter::new(u64::MAX);
     // Then the core's J2 shooting from the reached truth state (the planning model's own
@@ -270,7 +270,7 @@ pub fn replan_last_leg_states(
         for b in &s.burns[..last] {
             state = core_propagate(settings, &state, b.epoch_s - t)?;
             for k in 0..3 {
-                state[3 + k] += b.dv_kmps[k];
+                state[3 + k] += b.dv_km_s[k];
             }
             t = b.epoch_s;
         }

@@ -12,7 +12,8 @@ use std::path::Path;
 
 /// The chief's Keplerian period, s.
 fn chief_period_s(problem: &impulsive::Problem) -> f64 {
-    2.0 * std::f64::consts::PI * (problem.chief.sma_km.powi(3) / impulsive::EARTH_MU_KM3_S2).sqrt()
+    2.0 * std::f64::consts::PI
+        * (problem.chief.sma_km.powi(3) / reconfig_core::astro::EARTH_MU_KM3_S2).sqrt()
 }
 
 /// One orbit of the formation with relative elements `rel` at `t0_s` (both spacecraft then

@@ -26,10 +26,10 @@ use super::integrator::Tolerance;
 use super::propagate::{propagate, Burn, EciState};
 use crate::fixture::impulsive::ImpulsiveFixture;
 use anyhow::{anyhow, bail, Result};
+use reconfig_core::astro::{EARTH_J2, EARTH_MU_KM3_S2, EARTH_RADIUS_KM};
 use reconfig_core::impulsive::{
     deputy_of, formation_position_rtn_km, osculating_state_of_mean, relative_position_rtn_km,
-    solve, CartesianState, MeanElements, Solution, Workspace, EARTH_J2, EARTH_MU_KM3_S2,
-    EARTH_RADIUS_KM,
+    solve, CartesianState, MeanElements, Solution, Workspace,
 };
 use std::time::Instant;
 
