@@ -4,8 +4,8 @@ use crate::status::*;
 use crate::types_a::*;
 use reconfig_core::capacity::MAX_SPACECRAFT;
 use reconfig_core::pseudospectral::{
-    ActiveConstraint, Boundary, Capacity, PlanError, Problem, Quantity, Settings, SettingsError,
-    Solution, SolveStatus, Spacecraft, Stage, UnmetConstraint, MAX_MAGNITUDE, MIN_POSITIVE,
+    ActiveConstraint, Boundary, Capacity, PlanError, Problem, Quantity, Settings, Solution,
+    SolveStatus, Spacecraft, Stage, UnmetConstraint, MAX_MAGNITUDE,
 };
 
 /// A C flag (0 or 1) as a bool, or the refusal naming it.
@@ -118,26 +118,30 @@ fn capacity_error(field: i32, requested: usize, capacity: usize) -> ReconfigErro
 /// is read back from the request the core refused.
 pub fn error_to_c(e: &PlanError, problem: &ReconfigAProblem) -> ReconfigError {
     match *e {
-        PlanError::NotFinite { what, spacecraft } => {
+        PlanError::NotFinite {
+            what, spacecraft, ..
+        } => {
             let (field, value, component) = quantity(what, spacecraft, problem, |v| !v.is_finite());
             ReconfigError::new(RECONFIG_A_ERR_NOT_FINITE, field, value, 0.0)
                 .at(i32::from(spacecraft))
                 .with_detail(component)
         }
-        PlanError::NotPositive { what, spacecraft } => {
+        PlanError::NotPositive {
+            what, spacecraft, ..
+        } => {
             let (field, value, component) = quantity(what, spacecraft, problem, |v| v <= 0.0);
             ReconfigError::new(RECONFIG_A_ERR_NOT_POSITIVE, field, value, 0.0)
                 .at(i32::from(spacecraft))
                 .with_detail(component)
         }
-        PlanError::OutOfRange { what, spacecraft } => {
+        PlanError::OutOfRange {
+            what,
+            spacecraft,
+            limit,
+            ..
+        } => {
             let (field, value, component) =
                 quantity(what, spacecraft, problem, |v| v.abs() > MAX_MAGNITUDE);
-            let limit = if value.abs() > MAX_MAGNITUDE {
-                MAX_MAGNITUDE
-            } else {
-                MIN_POSITIVE
-            };
             ReconfigError::new(RECONFIG_A_ERR_OUT_OF_RANGE, field, value, limit)
                 .at(i32::from(spacecraft))
                 .with_detail(component)
@@ -191,29 +195,14 @@ pub fn error_to_c(e: &PlanError, problem: &ReconfigAProblem) -> ReconfigError {
         )
         .at(i32::from(spacecraft))
         .with_detail(i32::from(axis)),
-        PlanError::InvalidSettings(s) => ReconfigError::new(
-            RECONFIG_A_ERR_INVALID_SETTINGS,
-            RECONFIG_FIELD_SETTINGS,
-            0.0,
-            0.0,
-        )
-        .with_detail(settings_class(s)),
+        PlanError::InvalidSetting(s) => setting_error_to_c(&s),
         // The C interface has no warm start; kept so that every core refusal maps to a code.
         PlanError::WarmStartMismatch => ReconfigError::new(
-            RECONFIG_A_ERR_INVALID_SETTINGS,
+            RECONFIG_A_ERR_WARM_START_MISMATCH,
             RECONFIG_FIELD_NONE,
             0.0,
             0.0,
         ),
-    }
-}
-
-fn settings_class(s: SettingsError) -> i32 {
-    match s {
-        SettingsError::ZeroIterationLimit => 0,
-        SettingsError::BadTolerance => 1,
-        SettingsError::TooManyVerifyRounds => 2,
-        SettingsError::AccelerationMemory => 3,
     }
 }
 

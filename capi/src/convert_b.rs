@@ -6,7 +6,7 @@ use crate::types_b::*;
 use reconfig_core::capacity::MAX_IMPULSES;
 use reconfig_core::impulsive::{
     ElementSet, EquinoctialElements, ImpulsePlan, ImpulsePoint, MeanElements, Orbit, PlanError,
-    Problem, Quantity, RelativeElements, Settings, SettingsError, Solution, SolveStatus, Stage,
+    Problem, Quantity, RelativeElements, Settings, Solution, SolveStatus, Stage,
 };
 
 /// Index of each settings flag or code in `RECONFIG_FIELD_SETTINGS_CODE` refusals.
@@ -253,15 +253,6 @@ fn input_value(what: Quantity, index: u8, problem: &Problem) -> (i32, f64) {
     }
 }
 
-fn settings_class(s: SettingsError) -> i32 {
-    match s {
-        SettingsError::ZeroIterationLimit => 0,
-        SettingsError::BadTolerance => 1,
-        SettingsError::BadThreshold => 2,
-        SettingsError::BadSearchBudget => 3,
-    }
-}
-
 /// The C refusal of a core refusal: field, element index, value and limit from the core's
 /// variant (the value read back from the request where the core does not carry it: `problem`
 /// is the core's problem as planned).
@@ -335,13 +326,7 @@ pub fn error_to_c(e: &PlanError, problem: &Problem) -> ReconfigError {
             0.0,
             1.0,
         ),
-        PlanError::InvalidSettings(s) => ReconfigError::new(
-            RECONFIG_B_ERR_INVALID_SETTINGS,
-            RECONFIG_FIELD_SETTINGS,
-            0.0,
-            0.0,
-        )
-        .with_detail(settings_class(s)),
+        PlanError::InvalidSetting(s) => setting_error_to_c(&s),
         PlanError::PerigeeTooLow {
             orbit,
             perigee_altitude_km,

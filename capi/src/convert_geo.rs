@@ -101,21 +101,6 @@ fn field_to_c(field: Field) -> i32 {
         Field::TargetLongitude => RECONFIG_FIELD_GEO_TARGET_LONGITUDE,
         Field::MissionTime => RECONFIG_FIELD_GEO_MISSION_TIME,
         Field::MaxBurn => RECONFIG_FIELD_GEO_MAX_BURN,
-        Field::LambertMaxRevolutions => RECONFIG_FIELD_GEO_LAMBERT_MAX_REVOLUTIONS,
-        Field::LambertMaxIter => RECONFIG_FIELD_GEO_LAMBERT_MAX_ITER,
-        Field::LambertTol => RECONFIG_FIELD_GEO_LAMBERT_TOL,
-        Field::WellIterations => RECONFIG_FIELD_GEO_WELL_ITERATIONS,
-        Field::RootMaxIter => RECONFIG_FIELD_GEO_ROOT_MAX_ITER,
-        Field::PriceMaxIter => RECONFIG_FIELD_GEO_PRICE_MAX_ITER,
-        Field::TimeTol => RECONFIG_FIELD_GEO_TIME_TOL,
-        Field::GapMaxLegs => RECONFIG_FIELD_GEO_GAP_MAX_LEGS,
-        Field::MinRadius => RECONFIG_FIELD_GEO_MIN_RADIUS,
-        Field::RuleDriftAbove => RECONFIG_FIELD_GEO_RULE_DRIFT_ABOVE,
-        Field::RuleHohmannAbove => RECONFIG_FIELD_GEO_RULE_HOHMANN_ABOVE,
-        Field::RuleRadialAbove => RECONFIG_FIELD_GEO_RULE_RADIAL_ABOVE,
-        Field::LambertDirectTime => RECONFIG_FIELD_GEO_LAMBERT_DIRECT_TIME,
-        Field::ExchangeRounds => RECONFIG_FIELD_GEO_EXCHANGE_ROUNDS,
-        Field::ExchangeMargin => RECONFIG_FIELD_GEO_EXCHANGE_MARGIN,
     }
 }
 
@@ -156,6 +141,7 @@ pub fn error_to_c(e: &PlanError) -> ReconfigError {
             0.0,
             1.0,
         ),
+        PlanError::InvalidSetting(s) => setting_error_to_c(&s),
     }
 }
 

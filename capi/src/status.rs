@@ -70,6 +70,16 @@ pub const RECONFIG_ERR_WORKSPACE_NOT_INITIALISED: i32 = -4;
 /// Refused: a flag or enumeration field holds a value outside its set (`value`; `limit` is the
 /// largest accepted value).
 pub const RECONFIG_ERR_INVALID_CODE: i32 = -5;
+/// Refused: a setting is outside the range the planner accepts (`field` =
+/// `RECONFIG_FIELD_SETTINGS`, `index` the setting's code in its planner's settings table, named
+/// by `reconfig_setting_name`; `value`; `limit` the end of the range it broke; `detail` 0 below
+/// the range, 1 above it, 2 not finite). The same code for every planner.
+pub const RECONFIG_ERR_SETTING_OUT_OF_RANGE: i32 = -6;
+/// Refused: the request asks for more work or less safety than the built-in limits allow (the
+/// same limits as the flight service's): `field` = `RECONFIG_FIELD_SETTINGS`, `index` the
+/// setting's code (a problem quantity's code is 128 and up), `value`, `limit`, `detail` the
+/// rule (0 at most, 1 at least, 2 must be on, 3 must be off, 4 below). Nothing was solved.
+pub const RECONFIG_ERR_LIMIT_EXCEEDED: i32 = -7;
 
 /// Planner A refused: a number is NaN or infinite.
 pub const RECONFIG_A_ERR_NOT_FINITE: i32 = -101;
@@ -87,8 +97,9 @@ pub const RECONFIG_A_ERR_BOUNDARY_TOO_CLOSE: i32 = -106;
 /// Planner A refused: bang-bang control at the bound cannot meet one axis (`index` spacecraft,
 /// `detail` axis).
 pub const RECONFIG_A_ERR_MANOEUVRE_INFEASIBLE: i32 = -107;
-/// Planner A refused: a setting is out of range (`detail` = settings error class).
-pub const RECONFIG_A_ERR_INVALID_SETTINGS: i32 = -108;
+/// Planner A refused: a warm start does not match the problem (not reachable from C, which has
+/// no warm start; kept so that every core refusal has a code).
+pub const RECONFIG_A_ERR_WARM_START_MISMATCH: i32 = -108;
 /// Planner A refused: a number is outside the accepted magnitude range (`limit`).
 pub const RECONFIG_A_ERR_OUT_OF_RANGE: i32 = -110;
 
@@ -110,8 +121,6 @@ pub const RECONFIG_B_ERR_REVOLUTIONS_OVER_LIMIT: i32 = -207;
 pub const RECONFIG_B_ERR_CAPACITY_EXCEEDED: i32 = -208;
 /// Planner B refused: no impulse in the plan.
 pub const RECONFIG_B_ERR_NO_IMPULSES: i32 = -209;
-/// Planner B refused: a setting is out of range (`detail` = settings error class).
-pub const RECONFIG_B_ERR_INVALID_SETTINGS: i32 = -210;
 /// Planner B refused: a perigee altitude is below the limit.
 pub const RECONFIG_B_ERR_PERIGEE_TOO_LOW: i32 = -211;
 /// Planner B refused: inclination not in [0, pi].
@@ -144,7 +153,8 @@ pub const RECONFIG_FIELD_KEEP_OUT_LU: i32 = 3;
 pub const RECONFIG_FIELD_MASS_MU: i32 = 4;
 /// Planner A: `spacecraft[index].initial_state` or `final_state`.
 pub const RECONFIG_FIELD_BOUNDARY_STATE: i32 = 5;
-/// A settings field (`detail` = the settings error class).
+/// A setting (`index` = its code in the planner's settings table, named by
+/// `reconfig_setting_name`).
 pub const RECONFIG_FIELD_SETTINGS: i32 = 6;
 /// Planner A: `spacecraft_count`.
 pub const RECONFIG_FIELD_SPACECRAFT_COUNT: i32 = 7;
@@ -182,36 +192,6 @@ pub const RECONFIG_FIELD_GEO_TARGET_LONGITUDE: i32 = 51;
 pub const RECONFIG_FIELD_GEO_MISSION_TIME: i32 = 52;
 /// GEO tour: `max_burn_mps`.
 pub const RECONFIG_FIELD_GEO_MAX_BURN: i32 = 53;
-/// GEO tour settings: `lambert_max_revolutions`.
-pub const RECONFIG_FIELD_GEO_LAMBERT_MAX_REVOLUTIONS: i32 = 54;
-/// GEO tour settings: `lambert_max_iter`.
-pub const RECONFIG_FIELD_GEO_LAMBERT_MAX_ITER: i32 = 55;
-/// GEO tour settings: `lambert_tol`.
-pub const RECONFIG_FIELD_GEO_LAMBERT_TOL: i32 = 56;
-/// GEO tour settings: `well_iterations`.
-pub const RECONFIG_FIELD_GEO_WELL_ITERATIONS: i32 = 57;
-/// GEO tour settings: `root_max_iter`.
-pub const RECONFIG_FIELD_GEO_ROOT_MAX_ITER: i32 = 58;
-/// GEO tour settings: `price_max_iter`.
-pub const RECONFIG_FIELD_GEO_PRICE_MAX_ITER: i32 = 59;
-/// GEO tour settings: `time_tol_s`.
-pub const RECONFIG_FIELD_GEO_TIME_TOL: i32 = 60;
-/// GEO tour settings: `gap_max_legs`.
-pub const RECONFIG_FIELD_GEO_GAP_MAX_LEGS: i32 = 61;
-/// GEO tour settings: `min_radius_km`.
-pub const RECONFIG_FIELD_GEO_MIN_RADIUS: i32 = 62;
-/// GEO tour settings: `rule_drift_above_rad`.
-pub const RECONFIG_FIELD_GEO_RULE_DRIFT_ABOVE: i32 = 63;
-/// GEO tour settings: `rule_hohmann_above_rad`.
-pub const RECONFIG_FIELD_GEO_RULE_HOHMANN_ABOVE: i32 = 64;
-/// GEO tour settings: `rule_radial_above_rad`.
-pub const RECONFIG_FIELD_GEO_RULE_RADIAL_ABOVE: i32 = 65;
-/// GEO tour settings: `lambert_direct_time_s`.
-pub const RECONFIG_FIELD_GEO_LAMBERT_DIRECT_TIME: i32 = 66;
-/// GEO tour settings: `exchange_rounds`.
-pub const RECONFIG_FIELD_GEO_EXCHANGE_ROUNDS: i32 = 67;
-/// GEO tour settings: `exchange_margin_mps`.
-pub const RECONFIG_FIELD_GEO_EXCHANGE_MARGIN: i32 = 68;
 /// GEO tour: `target_count`.
 pub const RECONFIG_FIELD_GEO_TARGET_COUNT: i32 = 69;
 /// GEO tour: `sweep` (`RECONFIG_GEO_SWEEP_*`).
@@ -274,4 +254,36 @@ impl ReconfigError {
     pub const fn with_detail(self, detail: i32) -> Self {
         Self { detail, ..self }
     }
+}
+
+/// The C refusal of a setting outside its range.
+pub fn setting_error_to_c(e: &reconfig_core::contract::SettingError) -> ReconfigError {
+    let r = e.range;
+    let (detail, limit) = if !e.value.is_finite() {
+        (2, r.max)
+    } else if e.value < r.min || (r.min_open && e.value <= r.min) {
+        (0, r.min)
+    } else {
+        (1, r.max)
+    };
+    ReconfigError::new(
+        RECONFIG_ERR_SETTING_OUT_OF_RANGE,
+        RECONFIG_FIELD_SETTINGS,
+        e.value,
+        limit,
+    )
+    .at(i32::from(e.setting.code()))
+    .with_detail(detail)
+}
+
+/// The C refusal of a request outside the built-in limits.
+pub fn limit_violation_to_c(v: &reconfig_core::limits::LimitViolation) -> ReconfigError {
+    ReconfigError::new(
+        RECONFIG_ERR_LIMIT_EXCEEDED,
+        RECONFIG_FIELD_SETTINGS,
+        v.value,
+        v.limit,
+    )
+    .at(i32::from(v.setting.code()))
+    .with_detail(i32::from(v.rule as u8))
 }

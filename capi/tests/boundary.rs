@@ -160,11 +160,24 @@ fn refusals_name_field_index_value_and_limit() {
         s.sqp_max_iter = 0;
         assert_eq!(
             reconfig_pseudospectral_solve(ws, &three_sats(), &s, &mut *out),
-            RECONFIG_A_ERR_INVALID_SETTINGS
+            RECONFIG_ERR_SETTING_OUT_OF_RANGE
         );
+        // Named: the setting's code, the value and the end of the range it broke.
         assert_eq!(
-            (out.error.field, out.error.detail),
-            (RECONFIG_FIELD_SETTINGS, 0)
+            (
+                out.error.field,
+                out.error.index,
+                out.error.detail,
+                out.error.value,
+                out.error.limit
+            ),
+            (
+                RECONFIG_FIELD_SETTINGS,
+                reconfig_core::pseudospectral::SettingId::SqpMaxIter as i32,
+                0,
+                0.0,
+                1.0
+            )
         );
     }
 }
@@ -446,11 +459,15 @@ fn geo_tour_refusals_name_field_index_value_and_limit() {
         bad.lambert_tol = f64::NAN;
         assert_eq!(
             reconfig_geo_tour_solve(ws, &problem, &bad, &mut out),
-            RECONFIG_GEO_ERR_OUT_OF_RANGE
+            RECONFIG_ERR_SETTING_OUT_OF_RANGE
         );
         assert_eq!(
-            (out.error.field, out.error.detail),
-            (RECONFIG_FIELD_GEO_LAMBERT_TOL, 2)
+            (out.error.field, out.error.index, out.error.detail),
+            (
+                RECONFIG_FIELD_SETTINGS,
+                reconfig_core::geo_tour::SettingId::LambertTol as i32,
+                2
+            )
         );
         // A plannable tour: solved, through the C structs as through the core.
         assert_eq!(

@@ -27,6 +27,7 @@
 
 pub mod astro;
 pub mod capacity;
+pub mod contract;
 pub mod geo_tour;
 pub mod impulsive;
 pub mod indexed;

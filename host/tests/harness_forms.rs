@@ -136,7 +136,11 @@ fn a_hyperbolic_state_is_refused_by_the_service_naming_the_field() {
         Outcome::LimitExceeded(v) => {
             assert_eq!(
                 (v.setting, v.limit, v.rule),
-                (Setting::ImpDeputyTargetEccentricity, 1.0, Rule::Below)
+                (
+                    Setting::Problem(reconfig_core::limits::ProblemLimit::DeputyTargetEccentricity),
+                    1.0,
+                    Rule::Below
+                )
             );
             let e = 7078.137 * 144.0 / reconfig_core::astro::EARTH_MU_KM3_S2 - 1.0;
             assert!((v.value - e).abs() < 1e-12, "{v}");

@@ -4,7 +4,7 @@
 use reconfig_core::astro::EARTH_RADIUS_KM;
 use reconfig_core::capacity::MAX_IMPULSES;
 use reconfig_core::impulsive::{
-    solve, ImpulsePlan, ImpulsePoint, Orbit, PlanError, Problem, Quantity, Settings, SettingsError,
+    solve, ImpulsePlan, ImpulsePoint, Orbit, PlanError, Problem, Quantity, SettingId, Settings,
     Solution, SolveStatus, Workspace, MAX_ANGLE_RAD, MAX_SMA_KM,
 };
 
@@ -438,40 +438,57 @@ fn more_impulses_than_capacity_and_none() {
 }
 
 #[test]
-fn invalid_settings() {
+fn invalid_settings_name_the_setting_the_value_and_the_range() {
     let p = paper();
-    let s = Settings {
-        fixed_point_max_iter: 0,
-        ..Settings::default()
-    };
-    assert_eq!(
-        reject(&p, &s),
-        PlanError::InvalidSettings(SettingsError::ZeroIterationLimit)
-    );
-    let s = Settings {
-        fixed_point_tol_mps: -1.0,
-        ..Settings::default()
-    };
-    assert_eq!(
-        reject(&p, &s),
-        PlanError::InvalidSettings(SettingsError::BadTolerance)
-    );
-    let s = Settings {
-        min_sin_inclination: 2.0,
-        ..Settings::default()
-    };
-    assert_eq!(
-        reject(&p, &s),
-        PlanError::InvalidSettings(SettingsError::BadThreshold)
-    );
-    let s = Settings {
-        search_starts: 0,
-        ..Settings::default()
-    };
-    assert_eq!(
-        reject(&p, &s),
-        PlanError::InvalidSettings(SettingsError::BadSearchBudget)
-    );
+    for (s, id, value, end) in [
+        (
+            Settings {
+                fixed_point_max_iter: 0,
+                ..Settings::default()
+            },
+            SettingId::FixedPointMaxIter,
+            0.0,
+            1.0,
+        ),
+        (
+            Settings {
+                fixed_point_tol_mps: -1.0,
+                ..Settings::default()
+            },
+            SettingId::FixedPointTolMps,
+            -1.0,
+            0.0,
+        ),
+        (
+            Settings {
+                min_sin_inclination: 2.0,
+                ..Settings::default()
+            },
+            SettingId::MinSinInclination,
+            2.0,
+            1.0,
+        ),
+        (
+            Settings {
+                search_starts: 0,
+                ..Settings::default()
+            },
+            SettingId::SearchStarts,
+            0.0,
+            1.0,
+        ),
+    ] {
+        let PlanError::InvalidSetting(e) = reject(&p, &s) else {
+            panic!("{id:?}: not a setting refusal")
+        };
+        assert_eq!((e.setting, e.value), (id.into(), value), "{id:?}");
+        let broken = if value < e.range.min {
+            e.range.min
+        } else {
+            e.range.max
+        };
+        assert_eq!(broken, end, "{id:?}");
+    }
 }
 
 #[test]

@@ -223,7 +223,10 @@ fn check_form(problem: &FormProblem) {
     ] {
         let limits = reconfig_core::limits::Limits {
             impulsive: reconfig_core::limits::impulsive::Limits {
-                nonlinear_correction: false,
+                settings: Settings {
+                    nonlinear_correction: false,
+                    ..Settings::default()
+                },
                 ..Default::default()
             },
             ..Default::default()

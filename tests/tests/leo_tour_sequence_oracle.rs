@@ -29,7 +29,7 @@ fn brute_force(f: &LeoTourFixture) -> (f64, Vec<usize>, f64) {
         *memo
             .entry((i, j, t0.to_bits(), dt.to_bits()))
             .or_insert_with(|| {
-                let b = arc_bound_mps(&g, &planes[i], &planes[j], t0, dt, &spec.settings.bound);
+                let b = arc_bound_mps(&g, &planes[i], &planes[j], t0, dt, &spec.settings.bound());
                 let at = |k: usize| -> Option<State> { propagate(s, &f.clients[k], t0) };
                 estimate_arc_mps(
                     &ArcProblem {
@@ -51,7 +51,7 @@ fn brute_force(f: &LeoTourFixture) -> (f64, Vec<usize>, f64) {
         let mut t0 = 0.0;
         let mut total = 0.0;
         for (k, w) in o.windows(2).enumerate() {
-            let dt = match spec.settings.intervals {
+            let dt = match spec.intervals {
                 Intervals::ByPosition(list) => list[k],
                 Intervals::PaperRule {
                     revolutions,
@@ -92,7 +92,12 @@ fn permutations(v: &mut Vec<usize>, k: usize, f: &mut dyn FnMut(&[usize])) {
 /// The branch-and-bound's order against the brute force: the same cheapest total.
 fn check(f: &LeoTourFixture) -> (f64, u32) {
     let spec = f.sequence.unwrap();
-    let q = choose_order(&f.clients, f.impulses, &spec.settings, &spec.arc_settings).unwrap();
+    let q = choose_order(
+        &f.sequence_problem().unwrap(),
+        &spec.settings,
+        &spec.arc_settings,
+    )
+    .unwrap();
     let (best, order, ratio) = brute_force(f);
     let got: Vec<usize> = q.order[..usize::from(q.len)]
         .iter()

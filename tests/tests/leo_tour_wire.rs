@@ -76,7 +76,7 @@ fn a_setting_above_the_service_limits_is_refused_by_name_unsolved() {
             assert_eq!(
                 (v.setting, v.value, v.limit, v.rule),
                 (
-                    Setting::LeoSearchMaxEvals,
+                    Setting::LeoArc(reconfig_core::leo_tour::SettingId::SearchMaxEvals),
                     1e6,
                     f64::from(Settings::default().search_max_evals),
                     Rule::AtMost
@@ -139,18 +139,16 @@ fn the_sequencing_request_is_answered_with_the_hosts_order() {
 fn a_sequencing_with_a_thinner_bound_margin_is_refused_by_name() {
     let f = leo_tour::load(&fixtures_dir().join("leo-tour-example1-sequence.toml")).unwrap();
     let Request::LeoSequence {
-        clients,
-        impulses,
+        problem,
         mut settings,
         arc_settings,
     } = leo_sequence_request(&f).unwrap()
     else {
         panic!("a sequencing request");
     };
-    settings.bound.margin = 0.0;
+    settings.bound_margin = 0.0;
     let request = Request::LeoSequence {
-        clients: clients.clone(),
-        impulses,
+        problem,
         settings,
         arc_settings,
     };
@@ -159,9 +157,14 @@ fn a_sequencing_with_a_thinner_bound_margin_is_refused_by_name() {
         Outcome::LimitExceeded(v) => {
             assert_eq!(
                 (v.setting, v.value, v.limit, v.rule),
-                (Setting::LeoBoundMargin, 0.0, 0.05, Rule::AtLeast)
+                (
+                    Setting::LeoSequence(reconfig_core::leo_tour::sequence::SettingId::BoundMargin),
+                    0.0,
+                    0.05,
+                    Rule::AtLeast
+                )
             );
-            assert!(v.to_string().contains("bound.margin"), "{v}");
+            assert!(v.to_string().contains("bound_margin"), "{v}");
         }
         other => panic!("expected LimitExceeded, got {other:?}"),
     }

@@ -46,7 +46,7 @@ pub use maneuver::{Burn, Direction, Maneuver, Method, MAX_BURNS};
 pub use radial::radial;
 pub use solution::{Leg, Solution, SolveInfo, SolveStatus};
 pub use types::{
-    MethodPolicy, Problem, Settings, SweepChoice, MAX_GAP_LEGS, MAX_LAMBERT_REVOLUTIONS,
+    MethodPolicy, Problem, SettingId, Settings, SweepChoice, MAX_GAP_LEGS, MAX_LAMBERT_REVOLUTIONS,
     MAX_TARGETS,
 };
 pub use validate::{MAX_BURN_CAP_MPS, MAX_MISSION_TIME_S};
@@ -77,7 +77,7 @@ pub fn solve(
     workspace: &mut Workspace,
     out: &mut Solution,
 ) -> Result<(), PlanError> {
-    validate::settings(settings)?;
+    settings.validate().map_err(PlanError::InvalidSetting)?;
     validate::problem(problem)?;
     let g = Geo::standard();
     match problem.sweep {

@@ -55,7 +55,7 @@ mod validate;
 mod work_units;
 mod workspace;
 
-pub use error::{Orbit, PlanError, Quantity, SettingsError, MAX_ANGLE_RAD, MAX_SMA_KM};
+pub use error::{Orbit, PlanError, Quantity, MAX_ANGLE_RAD, MAX_SMA_KM};
 pub use form_problem::{
     end_state, EndForm, EndState, FormPart, FormProblem, OrbitForm, RelativeForm,
 };
@@ -65,7 +65,7 @@ pub use forms::{
     relative_of_roe, roe_of, CartesianState, FormError, Roe, OSCULATING_MAX_ITER, OSCULATING_TOL,
 };
 pub use model::{point_phase, Phase};
-pub use settings::{ElementSet, Settings, MAX_SEARCH_STARTS};
+pub use settings::{ElementSet, SettingId, Settings, DEFAULT_WORK_BUDGET, MAX_SEARCH_STARTS};
 pub use socp::{least_fuel_rows, LeastFuel, SocpStatus};
 pub use solution::{Impulse, Solution};
 pub use status::{SolveInfo, SolveStatus, Stage};
@@ -94,7 +94,7 @@ pub fn solve(
     workspace: &mut Workspace,
     out: &mut Solution,
 ) -> Result<(), PlanError> {
-    settings.validate().map_err(PlanError::InvalidSettings)?;
+    settings.validate().map_err(PlanError::InvalidSetting)?;
     let ctx = validate::validate(problem, settings)?;
     let impulses = match &problem.plan {
         ImpulsePlan::Fixed(points) => points.len(),
@@ -165,7 +165,7 @@ pub fn solve(
 /// `form_problem`).
 ///
 /// # Errors
-/// [`PlanError::InvalidSettings`], [`PlanError::InputForm`] naming the part that cannot be
+/// [`PlanError::InvalidSetting`], [`PlanError::InputForm`] naming the part that cannot be
 /// converted, or any [`PlanError`] of [`solve`]; `out` and `workspace` are then untouched.
 pub fn solve_form(
     problem: &FormProblem,
@@ -173,7 +173,7 @@ pub fn solve_form(
     workspace: &mut Workspace,
     out: &mut Solution,
 ) -> Result<EndState, PlanError> {
-    settings.validate().map_err(PlanError::InvalidSettings)?;
+    settings.validate().map_err(PlanError::InvalidSetting)?;
     let (converted, evaluations) = problem
         .to_problem_and_evaluations(settings)
         .map_err(|(part, error)| PlanError::InputForm { part, error })?;

@@ -20,6 +20,19 @@ pub enum Model {
     MeanElements = 1,
 }
 
+impl crate::contract::SettingValue for Model {
+    fn to_f64(self) -> f64 {
+        f64::from(self as u8)
+    }
+    fn from_f64(value: f64) -> Option<Self> {
+        match u8::from_f64(value)? {
+            0 => Some(Self::Planning),
+            1 => Some(Self::MeanElements),
+            _ => None,
+        }
+    }
+}
+
 /// A flight model with its constants and step bounds.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Flight {

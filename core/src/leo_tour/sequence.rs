@@ -18,7 +18,9 @@
 //! at most `N! (1 + 1/1! + 1/2! + ...) < e N!` arcs planned; `max_arcs` stops it first.
 
 use super::bound::{self, BoundSettings, Plane};
+use super::j2::State;
 use crate::astro::Gravity;
+use crate::contract::{Range, SettingError};
 use crate::indexed::IndexedExt as _;
 use serde::{Deserialize, Serialize};
 
@@ -43,17 +45,56 @@ pub enum Intervals {
     },
 }
 
-/// Settings of the sequencing.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct SequenceSettings {
+/// A sequencing request: the clients, the impulses of every arc, the first client and how the
+/// arcs' durations are chosen.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SequenceProblem {
+    /// The clients' inertial states at the tour epoch, km and km/s.
+    pub clients: heapless::Vec<State, MAX_CLIENTS>,
+    /// Impulses per arc.
+    pub impulses: u8,
     /// The first client (0-based), or `None` for a free first client.
     pub first: Option<u8>,
     /// Arc durations.
     pub intervals: Intervals,
-    /// The bound's conservatism.
-    pub bound: BoundSettings,
-    /// Most arcs planned (the callback's calls); the enumeration stops there.
-    pub max_arcs: u32,
+}
+
+crate::settings_table! {
+    /// Settings of the sequencing: the bound's conservatism and the arc limit. The per-arc
+    /// estimates' settings travel beside them ([`super::Settings`]).
+    pub struct SequenceSettings;
+    /// The sequencing's settings, by name (stable codes on the wire and in the C interface).
+    pub enum SettingId in crate::limits::Setting::LeoSequence;
+    {
+        /// Most arcs planned (the callback's calls); the enumeration stops there.
+        max_arcs, MaxArcs = 0: u32 = DEFAULT_MAX_ARCS,
+        unit "", range Range::any(), limit AtMost;
+        /// The bound's semi-major-axis band margin on each side of the two clients', km (a
+        /// smaller margin prunes more).
+        band_margin_km, BandMarginKm = 1: f64 = 100.0,
+        unit "km", range Range::at_least(0.0), limit AtLeast;
+        /// The bound's inclination band margin on each side, rad.
+        band_margin_rad, BandMarginRad = 2: f64 = 1.0_f64 * (core::f64::consts::PI / 180.0),
+        unit "rad", range Range::at_least(0.0), limit AtLeast;
+        /// The bound is multiplied by `1 - bound_margin`.
+        bound_margin, BoundMargin = 3: f64 = 0.05,
+        unit "", range Range::closed_open(0.0, 1.0), limit AtLeast;
+    }
+}
+
+/// The arcs a sequencing may estimate by default: the whole tree of five clients (320) with
+/// room, about 0.4 s on the development machine at 1.7 ms an arc.
+pub const DEFAULT_MAX_ARCS: u32 = 400;
+
+impl SequenceSettings {
+    /// The bound's margins.
+    pub fn bound(&self) -> BoundSettings {
+        BoundSettings {
+            band_margin_km: self.band_margin_km,
+            band_margin_rad: self.band_margin_rad,
+            margin: self.bound_margin,
+        }
+    }
 }
 
 /// What the returned order is.
@@ -124,35 +165,8 @@ pub enum SequenceError {
         /// The value given, s.
         value_s: f64,
     },
-    /// A margin of the bound is not finite and non-negative (`margin` also below 1).
-    BoundMargin {
-        /// Which margin.
-        field: BoundField,
-        /// The value given.
-        value: f64,
-    },
-}
-
-/// A margin of [`BoundSettings`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub enum BoundField {
-    /// `band_margin_km`.
-    BandMarginKm,
-    /// `band_margin_rad`.
-    BandMarginRad,
-    /// `margin`.
-    Margin,
-}
-
-impl BoundField {
-    /// The margin's name in a request.
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::BandMarginKm => "band_margin_km",
-            Self::BandMarginRad => "band_margin_rad",
-            Self::Margin => "margin",
-        }
-    }
+    /// A setting is out of its range: the setting, the value and the range.
+    InvalidSetting(SettingError),
 }
 
 impl core::fmt::Display for SequenceError {
@@ -167,16 +181,7 @@ impl core::fmt::Display for SequenceError {
                 f,
                 "interval {position} = {value_s} s is not finite and positive"
             ),
-            Self::BoundMargin { field, value } => write!(
-                f,
-                "bound {} = {value} is not finite, non-negative{}",
-                field.name(),
-                if field == BoundField::Margin {
-                    " and below 1"
-                } else {
-                    ""
-                }
-            ),
+            Self::InvalidSetting(e) => write!(f, "{e}"),
         }
     }
 }
@@ -227,7 +232,9 @@ struct Search<'a, F> {
     planes: &'a [Plane],
     /// `planes.len()`, checked to be at most [`MAX_CLIENTS`]: client numbers are `u8`.
     count: u8,
-    settings: &'a SequenceSettings,
+    intervals: &'a Intervals,
+    bound: BoundSettings,
+    max_arcs: u32,
     /// Each client's cheapest entry bound from a given client: `any[j][i]`.
     any: [[f64; MAX_CLIENTS]; MAX_CLIENTS],
     plan_arc: F,
@@ -253,7 +260,7 @@ fn tree_arcs(remaining: u8) -> u32 {
 
 impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
     fn duration(&self, position: usize, from: usize, to: usize, start_s: f64) -> Option<f64> {
-        match self.settings.intervals {
+        match *self.intervals {
             Intervals::ByPosition(list) => list.get(position).copied(),
             Intervals::PaperRule {
                 revolutions,
@@ -329,7 +336,7 @@ impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
             else {
                 continue;
             };
-            let lb = bound::arc_bound_mps(self.g, a, b, time_s, dt, &self.settings.bound);
+            let lb = bound::arc_bound_mps(self.g, a, b, time_s, dt, &self.bound);
             if let Some(slot) = kids.get_mut(count) {
                 *slot = (lb, j, dt);
                 count = count.saturating_add(1);
@@ -349,7 +356,7 @@ impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
             if cost + lb + self.rest_bound(j, next_visited) >= self.incumbent() {
                 continue;
             }
-            if self.arcs_planned >= self.settings.max_arcs {
+            if self.arcs_planned >= self.max_arcs {
                 self.stopped = true;
                 return;
             }
@@ -397,6 +404,7 @@ impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
 pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
     g: &Gravity,
     planes: &[Plane],
+    (first, intervals): (Option<u8>, &Intervals),
     settings: &SequenceSettings,
     plan_arc: F,
 ) -> Result<Sequence, SequenceError> {
@@ -405,12 +413,12 @@ pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
         Ok(count) if (2..=MAX_CLIENTS).contains(&n) => count,
         _ => return Err(SequenceError::Clients { count: n }),
     };
-    if let Some(f) = settings.first {
+    if let Some(f) = first {
         if f >= count {
             return Err(SequenceError::First { index: f });
         }
     }
-    if let Intervals::ByPosition(list) = settings.intervals {
+    if let Intervals::ByPosition(list) = *intervals {
         for (position, &value_s) in list.iter().take(n.saturating_sub(1)).indexed() {
             if !(value_s.is_finite() && value_s > 0.0) {
                 return Err(SequenceError::Interval { position, value_s });
@@ -420,7 +428,7 @@ pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
     if let Intervals::PaperRule {
         revolutions,
         min_duration_s,
-    } = settings.intervals
+    } = *intervals
     {
         for (position, value_s) in [(0, revolutions), (1, min_duration_s)] {
             if !(value_s.is_finite() && value_s > 0.0) {
@@ -429,18 +437,12 @@ pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
         }
     }
     // A negative or NaN margin would make the bound prune orders it must not.
-    let b = &settings.bound;
-    for (field, value, below) in [
-        (BoundField::BandMarginKm, b.band_margin_km, f64::INFINITY),
-        (BoundField::BandMarginRad, b.band_margin_rad, f64::INFINITY),
-        (BoundField::Margin, b.margin, 1.0),
-    ] {
-        if !(value.is_finite() && value >= 0.0 && value < below) {
-            return Err(SequenceError::BoundMargin { field, value });
-        }
-    }
+    settings
+        .check_ranges()
+        .map_err(SequenceError::InvalidSetting)?;
+    let bound_settings = settings.bound();
     // The whole tour lasts at most (n - 1) of the longest interval.
-    let longest = match settings.intervals {
+    let longest = match *intervals {
         Intervals::ByPosition(list) => list
             .iter()
             .take(n.saturating_sub(1))
@@ -459,14 +461,16 @@ pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
     let mut any = [[f64::INFINITY; MAX_CLIENTS]; MAX_CLIENTS];
     for (row, b) in any.iter_mut().zip(planes.iter()) {
         for (cell, a) in row.iter_mut().zip(planes.iter()) {
-            *cell = bound::arc_bound_any_mps(g, a, b, horizon_s, &settings.bound);
+            *cell = bound::arc_bound_any_mps(g, a, b, horizon_s, &bound_settings);
         }
     }
     let mut search = Search {
         g,
         planes,
         count,
-        settings,
+        intervals,
+        bound: bound_settings,
+        max_arcs: settings.max_arcs,
         any,
         plan_arc,
         best: None,
@@ -478,17 +482,17 @@ pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
         violations: 0,
         stopped: false,
     };
-    let firsts = settings.first.map_or(0..count, |f| f..f.saturating_add(1));
-    for first in firsts {
+    let firsts = first.map_or(0..count, |f| f..f.saturating_add(1));
+    for start in firsts {
         if search.stopped {
             break;
         }
         if let Some(p) = search.path.first_mut() {
-            *p = first;
+            *p = start;
         }
-        search.extend(1, usize::from(first), 0.0, 0.0, 1_u16 << first);
+        search.extend(1, usize::from(start), 0.0, 0.0, 1_u16 << start);
     }
-    let first_choices = u32::from(if settings.first.is_some() { 1 } else { count });
+    let first_choices = u32::from(if first.is_some() { 1 } else { count });
     let per_first = factorial(count.saturating_sub(1));
     let orders_total = per_first.saturating_mul(first_choices);
     let arcs_in_tree = tree_arcs(count.saturating_sub(1)).saturating_mul(first_choices);
@@ -573,12 +577,14 @@ mod tests {
                     + t * 1e-5
             };
             let settings = SequenceSettings {
-                first: None,
-                intervals: Intervals::ByPosition([8e4, 1.6e5, 1.6e5, 1.6e5, 1.6e5, 1.6e5, 1.6e5]),
-                bound: BoundSettings::default(),
                 max_arcs: 1_000_000,
+                ..SequenceSettings::default()
             };
-            let s = best_order(&G, &p, &settings, |i, j, t, d| Some(cost(i, j, t, d))).unwrap();
+            let intervals = Intervals::ByPosition([8e4, 1.6e5, 1.6e5, 1.6e5, 1.6e5, 1.6e5, 1.6e5]);
+            let s = best_order(&G, &p, (None, &intervals), &settings, |i, j, t, d| {
+                Some(cost(i, j, t, d))
+            })
+            .unwrap();
             // Brute force over every permutation.
             let mut idx: Vec<usize> = (0..n).collect();
             let mut best = f64::INFINITY;
@@ -627,33 +633,29 @@ mod tests {
     fn a_cost_below_the_bound_is_reported_and_limits_stop_it() {
         let p = planes(4);
         let settings = SequenceSettings {
-            first: Some(0),
-            intervals: Intervals::ByPosition([8e4; MAX_CLIENTS - 1]),
-            bound: BoundSettings::default(),
             max_arcs: 1_000,
+            ..SequenceSettings::default()
         };
-        let s = best_order(&G, &p, &settings, |_, _, _, _| Some(0.0)).unwrap();
+        let intervals = Intervals::ByPosition([8e4; MAX_CLIENTS - 1]);
+        let tour = (Some(0), &intervals);
+        let s = best_order(&G, &p, tour, &settings, |_, _, _, _| Some(0.0)).unwrap();
         assert_eq!(s.status, SequenceStatus::BoundViolated);
         assert!(s.bound_violations > 0);
         let few = SequenceSettings {
             max_arcs: 2,
             ..settings
         };
-        let s = best_order(&G, &p, &few, |_, _, _, _| Some(100.0)).unwrap();
+        let s = best_order(&G, &p, tour, &few, |_, _, _, _| Some(100.0)).unwrap();
         assert_eq!(s.status, SequenceStatus::ArcLimit);
         assert_eq!(s.arcs_planned, 2);
-        let s = best_order(&G, &p, &settings, |_, _, _, _| None).unwrap();
+        let s = best_order(&G, &p, tour, &settings, |_, _, _, _| None).unwrap();
         assert_eq!(s.status, SequenceStatus::NoOrder);
         assert!(matches!(
-            best_order(&G, &p[..1], &settings, |_, _, _, _| None),
+            best_order(&G, &p[..1], tour, &settings, |_, _, _, _| None),
             Err(SequenceError::Clients { count: 1 })
         ));
-        let bad = SequenceSettings {
-            first: Some(9),
-            ..settings
-        };
         assert!(matches!(
-            best_order(&G, &p, &bad, |_, _, _, _| None),
+            best_order(&G, &p, (Some(9), &intervals), &settings, |_, _, _, _| None),
             Err(SequenceError::First { index: 9 })
         ));
     }

@@ -2,7 +2,9 @@
 #![allow(
     clippy::unwrap_used,
     clippy::indexing_slicing,
-    clippy::arithmetic_side_effects
+    clippy::arithmetic_side_effects,
+    clippy::panic,
+    clippy::float_cmp
 )]
 
 use super::elements::{state_of, Classical};
@@ -113,13 +115,11 @@ fn requests_outside_the_limits_are_refused_by_name() {
         ..Settings::default()
     };
     let e = solve_arc(&paper_arc(), &s).unwrap_err();
-    assert!(matches!(
-        e,
-        PlanError::OutOfRange {
-            field: Field::Step,
-            ..
-        }
-    ));
+    let PlanError::InvalidSetting(refusal) = e else {
+        panic!("{e:?}")
+    };
+    assert_eq!(refusal.setting, SettingId::StepS.into());
+    assert_eq!((refusal.value, refusal.range.min), (0.0, 0.1));
 }
 
 #[test]

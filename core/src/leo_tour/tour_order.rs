@@ -14,7 +14,7 @@ use super::bound::{plane_of, Plane};
 use super::j2::State;
 use super::schedule::{best_schedule, Schedule, ScheduleError, ScheduleSettings, MAX_STEPS};
 use super::sequence::{
-    best_order, dt_max_s, Sequence, SequenceError, SequenceSettings, MAX_CLIENTS,
+    best_order, dt_max_s, Sequence, SequenceError, SequenceProblem, SequenceSettings, MAX_CLIENTS,
 };
 use super::{estimate_arc_mps, propagate, solve_arc, ArcProblem, ArcSolution, PlanError, Settings};
 
@@ -61,20 +61,21 @@ impl<K: Copy + PartialEq, V: Copy, const N: usize> Memo<K, V, N> {
     }
 }
 
-/// The cheapest visiting order of the clients (`clients`: inertial states at the tour epoch,
-/// km and km/s, at most [`MAX_CLIENTS`]), with `impulses` per arc, each arc's cost the
-/// estimate of the per-arc search with `arc_settings` (which also give the planning model the
-/// clients are flown in).
+/// The cheapest visiting order of the clients (`problem.clients`: inertial states at the tour
+/// epoch, km and km/s, at most [`MAX_CLIENTS`]), with `problem.impulses` per arc, each arc's
+/// cost the estimate of the per-arc search with `arc_settings` (which also give the planning
+/// model the clients are flown in).
 ///
 /// # Errors
 /// [`SequenceError`]: a client count outside `2..=MAX_CLIENTS`, a client state with no
 /// elliptic plane, or sequencing settings out of range.
 pub fn choose_order(
-    clients: &[State],
-    impulses: u8,
+    problem: &SequenceProblem,
     settings: &SequenceSettings,
     arc_settings: &Settings,
 ) -> Result<Sequence, SequenceError> {
+    let clients = problem.clients.as_slice();
+    let impulses = problem.impulses;
     let g = arc_settings.gravity();
     let count = SequenceError::Clients {
         count: clients.len(),
@@ -93,7 +94,8 @@ pub fn choose_order(
     let planes = planes.get(..clients.len()).ok_or(count)?;
     let mut states: Memo<(usize, u64), Option<State>, STATE_CACHE> = Memo::new();
     let mut arcs: Memo<(usize, usize, u64, u64), Option<f64>, ARC_CACHE> = Memo::new();
-    best_order(&g, planes, settings, |i, j, t0, dt| {
+    let tour = (problem.first, &problem.intervals);
+    best_order(&g, planes, tour, settings, |i, j, t0, dt| {
         let key = (i, j, t0.to_bits(), dt.to_bits());
         if let Some(cost) = arcs.get(&key) {
             return cost;
@@ -232,10 +234,8 @@ impl StateRows {
 /// planned in full (what the LEO firmware image carries for a `[sequence]` fixture).
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct OnboardProblem {
-    /// The clients' inertial states at the tour epoch.
-    pub clients: heapless::Vec<State, MAX_CLIENTS>,
-    /// Impulses per arc.
-    pub impulses: u8,
+    /// The clients, the impulses per arc, the first client and the arcs' durations.
+    pub tour: SequenceProblem,
     /// The sequencing's settings.
     pub sequence: SequenceSettings,
     /// The arc estimates' settings while sequencing.
@@ -266,14 +266,9 @@ pub struct OnboardPlan {
 /// # Errors
 /// As [`choose_order`]. An arc that cannot be planned is in [`OnboardPlan::arcs`].
 pub fn plan_onboard(problem: &OnboardProblem) -> Result<OnboardPlan, SequenceError> {
-    let clients = problem.clients.as_slice();
+    let clients = problem.tour.clients.as_slice();
     let settings = &problem.arcs;
-    let sequence = choose_order(
-        clients,
-        problem.impulses,
-        &problem.sequence,
-        &problem.estimates,
-    )?;
+    let sequence = choose_order(&problem.tour, &problem.sequence, &problem.estimates)?;
     let mut arcs = [None; MAX_CLIENTS - 1];
     let legs = sequence
         .order
@@ -295,7 +290,7 @@ pub fn plan_onboard(problem: &OnboardProblem) -> Result<OnboardPlan, SequenceErr
                     from,
                     to,
                     duration_s,
-                    impulses: problem.impulses,
+                    impulses: problem.tour.impulses,
                 },
                 settings,
             ),
@@ -311,7 +306,7 @@ pub fn plan_onboard(problem: &OnboardProblem) -> Result<OnboardPlan, SequenceErr
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing)]
+#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::panic)]
 mod tests {
     extern crate std;
     use super::*;
@@ -330,46 +325,47 @@ mod tests {
         );
     }
 
+    fn tour(clients: &[State]) -> SequenceProblem {
+        SequenceProblem {
+            clients: heapless::Vec::from_slice(clients).unwrap(),
+            impulses: 3,
+            first: None,
+            intervals: super::super::sequence::Intervals::ByPosition([86_400.0; 7]),
+        }
+    }
+
     #[test]
     fn too_few_or_degenerate_clients_are_named() {
         let s = SequenceSettings {
-            first: None,
-            intervals: super::super::sequence::Intervals::ByPosition([86_400.0; 7]),
-            bound: super::super::bound::BoundSettings::default(),
             max_arcs: 10,
+            ..SequenceSettings::default()
         };
         let a = [7000.0, 0.0, 0.0, 0.0, 7.546, 0.0];
         assert_eq!(
-            choose_order(&[a], 3, &s, &Settings::default()).unwrap_err(),
+            choose_order(&tour(&[a]), &s, &Settings::default()).unwrap_err(),
             SequenceError::Clients { count: 1 }
-        );
-        assert_eq!(
-            choose_order(&[a; 9], 3, &s, &Settings::default()).unwrap_err(),
-            SequenceError::Clients { count: 9 }
         );
         let b = [7100.0, 0.0, 0.0, 0.0, 7.49, 0.1];
         let nan_margin = SequenceSettings {
-            bound: super::super::bound::BoundSettings {
-                margin: f64::NAN,
-                ..s.bound
-            },
+            bound_margin: f64::NAN,
             ..s
         };
-        let e = choose_order(&[a, b], 3, &nan_margin, &Settings::default()).unwrap_err();
-        assert!(
-            matches!(
-                e,
-                SequenceError::BoundMargin {
-                    field: super::super::sequence::BoundField::Margin,
-                    ..
-                }
-            ),
-            "{e:?}"
+        let e = choose_order(&tour(&[a, b]), &nan_margin, &Settings::default()).unwrap_err();
+        let SequenceError::InvalidSetting(refusal) = e else {
+            panic!("{e:?}")
+        };
+        assert_eq!(
+            refusal.setting,
+            super::super::sequence::SettingId::BoundMargin.into()
         );
-        assert!(e.to_string().starts_with("bound margin = NaN"), "{e}");
+        assert!(refusal.value.is_nan());
+        assert!(
+            e.to_string().starts_with("setting bound_margin = NaN"),
+            "{e}"
+        );
         let radial = [7000.0, 0.0, 0.0, 7.5, 0.0, 0.0];
         assert_eq!(
-            choose_order(&[a, radial], 3, &s, &Settings::default()).unwrap_err(),
+            choose_order(&tour(&[a, radial]), &s, &Settings::default()).unwrap_err(),
             SequenceError::Client { index: 1 }
         );
     }

@@ -48,11 +48,9 @@ pub enum Request {
     },
     /// The LEO tour's order (`leo_tour::tour_order::choose_order`).
     LeoSequence {
-        /// The clients' inertial states at the tour epoch, km and km/s.
-        clients: heapless::Vec<leo_tour::j2::State, { leo_tour::sequence::MAX_CLIENTS }>,
-        /// Impulses per arc.
-        impulses: u8,
-        /// First client, arc durations, the bound's margins, the arc limit.
+        /// The clients at the tour epoch, impulses per arc, first client, arc durations.
+        problem: leo_tour::sequence::SequenceProblem,
+        /// The bound's margins, the arc limit.
         settings: leo_tour::sequence::SequenceSettings,
         /// The per-arc search's settings for the arc estimates.
         arc_settings: leo_tour::Settings,

@@ -204,8 +204,7 @@ pub fn leo_sequence_request(f: &fixture::leo_tour::LeoTourFixture) -> Result<Req
     // The on-board part's request without the arcs' settings: the order alone.
     let p = crate::cli::leo_tour_sequence::onboard_problem(f)?;
     Ok(Request::LeoSequence {
-        clients: p.clients,
-        impulses: p.impulses,
+        problem: p.tour,
         settings: p.sequence,
         arc_settings: p.estimates,
     })

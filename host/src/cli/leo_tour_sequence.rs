@@ -34,8 +34,8 @@ pub fn choose_order(f: &LeoTourFixture) -> Result<Option<(LeoTourFixture, Chosen
     };
     let started = Instant::now();
     let sequence =
-        tour_order::choose_order(&f.clients, f.impulses, &spec.settings, &spec.arc_settings)
-            .map_err(|e| anyhow!("sequencing refused: {e:?}"))?;
+        tour_order::choose_order(&f.sequence_problem()?, &spec.settings, &spec.arc_settings)
+            .map_err(|e| anyhow!("sequencing refused: {e}"))?;
     let time_s = started.elapsed().as_secs_f64();
     Ok(Some((
         with_order(f, &sequence),
@@ -52,11 +52,8 @@ pub fn onboard_problem(f: &LeoTourFixture) -> Result<OnboardProblem> {
     let spec = f
         .sequence
         .ok_or_else(|| anyhow!("{} has no [sequence] table", f.name))?;
-    let clients = heapless::Vec::from_slice(&f.clients)
-        .map_err(|_| anyhow!("{} has {} clients", f.name, f.clients.len()))?;
     Ok(OnboardProblem {
-        clients,
-        impulses: f.impulses,
+        tour: f.sequence_problem()?,
         sequence: spec.settings,
         estimates: spec.arc_settings,
         arcs: f.settings,

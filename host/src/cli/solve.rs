@@ -71,12 +71,9 @@ pub fn run(args: &Args) -> Result<ExitCode> {
                 .and_then(|()| leo.check_settings(&f.settings))
                 .and_then(|()| {
                     f.sequence.as_ref().map_or(Ok(()), |s| {
-                        leo.check_sequence(
-                            f.clients.len(),
-                            f.impulses,
-                            &s.settings,
-                            &s.arc_settings,
-                        )
+                        f.sequence_problem().map_or(Ok(()), |problem| {
+                            leo.check_sequence(&problem, &s.settings, &s.arc_settings)
+                        })
                     })
                 })
                 // The schedule's estimates are arc searches too.

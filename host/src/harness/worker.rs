@@ -151,13 +151,11 @@ impl Worker {
                 }
             }
             Request::LeoSequence {
-                clients,
-                impulses,
+                problem,
                 settings,
                 arc_settings,
             } => {
-                let result =
-                    leo_tour::tour_order::choose_order(clients, *impulses, settings, arc_settings);
+                let result = leo_tour::tour_order::choose_order(problem, settings, arc_settings);
                 let ns = elapsed_ns(start);
                 match result {
                     Ok(q) => encode(frame.seq, ns, &OutcomeRef::LeoSequence(&q), out),
