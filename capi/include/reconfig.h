@@ -84,7 +84,8 @@
 #define RECONFIG_GEO_SOLVED 201
 
 // GEO tour: even the fastest admissible tour overruns the mission time (`status_leg` the leg
-// that needs the most time, `fastest_tour_s` how long the fastest tour takes).
+// that needs the most time, `fastest_tour_s` how long the fastest tour takes when
+// `has_fastest_tour_s`).
 #define RECONFIG_GEO_MISSION_TOO_SHORT 202
 
 // GEO tour: the tour fits without the burn cap but not with it (`status_leg`).
@@ -95,6 +96,14 @@
 
 // GEO tour: the final check failed at `status_leg`; the plan is for inspection only.
 #define RECONFIG_GEO_CHECK_FAILED 205
+
+// GEO tour: the work budget ran out; the returned plan (the best found) meets every condition
+// of SOLVED. May be flown.
+#define RECONFIG_GEO_BUDGET_EXHAUSTED_VERIFIED 206
+
+// GEO tour: the work budget ran out; the returned plan is not verified (or there is none:
+// `leg_count` 0). Not usable.
+#define RECONFIG_GEO_BUDGET_EXHAUSTED_UNVERIFIED 207
 
 // Refused: a pointer argument is null (`error.field` names it when the solution is usable).
 #define RECONFIG_ERR_NULL_POINTER -1
@@ -111,6 +120,18 @@
 // Refused: a flag or enumeration field holds a value outside its set (`value`; `limit` is the
 // largest accepted value).
 #define RECONFIG_ERR_INVALID_CODE -5
+
+// Refused: a setting is outside the range the planner accepts (`field` =
+// `RECONFIG_FIELD_SETTINGS`, `index` the setting's code in its planner's settings table, named
+// by `reconfig_setting_name`; `value`; `limit` the end of the range it broke; `detail` 0 below
+// the range, 1 above it, 2 not finite). The same code for every planner.
+#define RECONFIG_ERR_SETTING_OUT_OF_RANGE -6
+
+// Refused: the request asks for more work or less safety than the built-in limits allow (the
+// same limits as the flight service's): `field` = `RECONFIG_FIELD_SETTINGS`, `index` the
+// setting's code (a problem quantity's code is 128 and up), `value`, `limit`, `detail` the
+// rule (0 at most, 1 at least, 2 must be on, 3 must be off, 4 below). Nothing was solved.
+#define RECONFIG_ERR_LIMIT_EXCEEDED -7
 
 // Planner A refused: a number is NaN or infinite.
 #define RECONFIG_A_ERR_NOT_FINITE -101
@@ -135,8 +156,9 @@
 // `detail` axis).
 #define RECONFIG_A_ERR_MANOEUVRE_INFEASIBLE -107
 
-// Planner A refused: a setting is out of range (`detail` = settings error class).
-#define RECONFIG_A_ERR_INVALID_SETTINGS -108
+// Planner A refused: a warm start does not match the problem (not reachable from C, which has
+// no warm start; kept so that every core refusal has a code).
+#define RECONFIG_A_ERR_WARM_START_MISMATCH -108
 
 // Planner A refused: a number is outside the accepted magnitude range (`limit`).
 #define RECONFIG_A_ERR_OUT_OF_RANGE -110
@@ -167,9 +189,6 @@
 
 // Planner B refused: no impulse in the plan.
 #define RECONFIG_B_ERR_NO_IMPULSES -209
-
-// Planner B refused: a setting is out of range (`detail` = settings error class).
-#define RECONFIG_B_ERR_INVALID_SETTINGS -210
 
 // Planner B refused: a perigee altitude is below the limit.
 #define RECONFIG_B_ERR_PERIGEE_TOO_LOW -211
@@ -214,7 +233,8 @@
 // Planner A: `spacecraft[index].initial_state` or `final_state`.
 #define RECONFIG_FIELD_BOUNDARY_STATE 5
 
-// A settings field (`detail` = the settings error class).
+// A setting (`index` = its code in the planner's settings table, named by
+// `reconfig_setting_name`).
 #define RECONFIG_FIELD_SETTINGS 6
 
 // Planner A: `spacecraft_count`.
@@ -270,51 +290,6 @@
 
 // GEO tour: `max_burn_mps`.
 #define RECONFIG_FIELD_GEO_MAX_BURN 53
-
-// GEO tour settings: `lambert_max_revolutions`.
-#define RECONFIG_FIELD_GEO_LAMBERT_MAX_REVOLUTIONS 54
-
-// GEO tour settings: `lambert_max_iter`.
-#define RECONFIG_FIELD_GEO_LAMBERT_MAX_ITER 55
-
-// GEO tour settings: `lambert_tol`.
-#define RECONFIG_FIELD_GEO_LAMBERT_TOL 56
-
-// GEO tour settings: `well_iterations`.
-#define RECONFIG_FIELD_GEO_WELL_ITERATIONS 57
-
-// GEO tour settings: `root_max_iter`.
-#define RECONFIG_FIELD_GEO_ROOT_MAX_ITER 58
-
-// GEO tour settings: `price_max_iter`.
-#define RECONFIG_FIELD_GEO_PRICE_MAX_ITER 59
-
-// GEO tour settings: `time_tol_s`.
-#define RECONFIG_FIELD_GEO_TIME_TOL 60
-
-// GEO tour settings: `gap_max_legs`.
-#define RECONFIG_FIELD_GEO_GAP_MAX_LEGS 61
-
-// GEO tour settings: `min_radius_km`.
-#define RECONFIG_FIELD_GEO_MIN_RADIUS 62
-
-// GEO tour settings: `rule_drift_above_rad`.
-#define RECONFIG_FIELD_GEO_RULE_DRIFT_ABOVE 63
-
-// GEO tour settings: `rule_hohmann_above_rad`.
-#define RECONFIG_FIELD_GEO_RULE_HOHMANN_ABOVE 64
-
-// GEO tour settings: `rule_radial_above_rad`.
-#define RECONFIG_FIELD_GEO_RULE_RADIAL_ABOVE 65
-
-// GEO tour settings: `lambert_direct_time_s`.
-#define RECONFIG_FIELD_GEO_LAMBERT_DIRECT_TIME 66
-
-// GEO tour settings: `exchange_rounds`.
-#define RECONFIG_FIELD_GEO_EXCHANGE_ROUNDS 67
-
-// GEO tour settings: `exchange_margin_mps`.
-#define RECONFIG_FIELD_GEO_EXCHANGE_MARGIN 68
 
 // GEO tour: `target_count`.
 #define RECONFIG_FIELD_GEO_TARGET_COUNT 69
@@ -445,8 +420,8 @@
 // Direction code: no sweep was returned.
 #define RECONFIG_GEO_DIRECTION_NONE 2
 
-// Loop bounds, tolerances and the paper's rule (`reconfig_core::geo_tour::Settings`, same
-// names).
+// Loop bounds, tolerances, the paper's rule and the work budget
+// (`reconfig_core::geo_tour::Settings`, same names).
 typedef struct {
   // Lambert tolerance on Izzo's x.
   double lambert_tol;
@@ -464,6 +439,9 @@ typedef struct {
   double rule_radial_above_rad;
   // Transfer time of a direct Lambert leg (and of the paper's rule), s.
   double lambert_direct_time_s;
+  // Work units a solve may use; the best plan so far is returned, checked, when they run
+  // out (`RECONFIG_GEO_BUDGET_EXHAUSTED_*`).
+  uint64_t work_budget;
   // Most whole revolutions of a Lambert transfer.
   uint16_t lambert_max_revolutions;
   // Householder steps per Lambert solve.
@@ -568,8 +546,12 @@ typedef struct {
   int32_t status_leg;
   // Why the request was refused (all zero when it was not).
   ReconfigError error;
-  // 1 when the plan may be flown (SOLVED).
+  // 1 when the plan may be flown (SOLVED, BUDGET_EXHAUSTED_VERIFIED).
   uint8_t usable;
+  // 1 when `fastest_tour_s` holds a value: no tour is admissible at all (a leg has no
+  // method within the cap), or the solve stopped before every leg's options were known,
+  // leaves it 0 (and `fastest_tour_s` 0).
+  uint8_t has_fastest_tour_s;
   // `RECONFIG_GEO_DIRECTION_*` of the returned sweep.
   uint8_t direction;
   // Legs in `legs`.
@@ -588,8 +570,11 @@ typedef struct {
   double max_burn_mps;
   // Time price at the returned allocation, m/s per s.
   double price_mps_per_s;
-  // Duration of the fastest admissible tour of this sweep, s.
+  // Duration of the fastest admissible tour of this sweep, s, when `has_fastest_tour_s`;
+  // else 0.
   double fastest_tour_s;
+  // Work units used (`work_budget`), the final checks included.
+  uint64_t work_units;
   // Legs in visiting order; the first `leg_count` are used.
   ReconfigGeoLeg legs[RECONFIG_GEO_MAX_TARGETS];
 } ReconfigGeoSolution;

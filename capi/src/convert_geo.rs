@@ -25,6 +25,7 @@ pub fn settings_from_c(c: &ReconfigGeoSettings) -> Settings {
         rule_hohmann_above_rad: c.rule_hohmann_above_rad,
         rule_radial_above_rad: c.rule_radial_above_rad,
         lambert_direct_time_s: c.lambert_direct_time_s,
+        work_budget: c.work_budget,
     }
 }
 
@@ -39,6 +40,7 @@ pub fn settings_to_c(s: &Settings) -> ReconfigGeoSettings {
         rule_hohmann_above_rad: s.rule_hohmann_above_rad,
         rule_radial_above_rad: s.rule_radial_above_rad,
         lambert_direct_time_s: s.lambert_direct_time_s,
+        work_budget: s.work_budget,
         lambert_max_revolutions: s.lambert_max_revolutions,
         lambert_max_iter: s.lambert_max_iter,
         well_iterations: s.well_iterations,
@@ -156,6 +158,12 @@ pub fn status_to_c(s: SolveStatus) -> (i32, i32) {
             (RECONFIG_GEO_RULE_METHOD_INADMISSIBLE, i32::from(leg))
         }
         SolveStatus::CheckFailed { leg } => (RECONFIG_GEO_CHECK_FAILED, i32::from(leg)),
+        SolveStatus::BudgetExhausted { verified: true } => {
+            (RECONFIG_GEO_BUDGET_EXHAUSTED_VERIFIED, -1)
+        }
+        SolveStatus::BudgetExhausted { verified: false } => {
+            (RECONFIG_GEO_BUDGET_EXHAUSTED_UNVERIFIED, -1)
+        }
     }
 }
 
@@ -208,7 +216,8 @@ pub fn solution_to_c(s: &Solution) -> ReconfigGeoSolution {
         status,
         status_leg,
         error: ReconfigError::default(),
-        usable: u8::from(s.info.status == SolveStatus::Solved),
+        usable: u8::from(s.info.status.is_usable()),
+        has_fastest_tour_s: u8::from(s.info.fastest_tour_s.is_some()),
         direction: match s.info.direction {
             Some(Direction::East) => RECONFIG_GEO_DIRECTION_EAST,
             Some(Direction::West) => RECONFIG_GEO_DIRECTION_WEST,
@@ -223,7 +232,8 @@ pub fn solution_to_c(s: &Solution) -> ReconfigGeoSolution {
         mission_time_s: s.mission_time_s,
         max_burn_mps: s.max_burn_mps,
         price_mps_per_s: s.info.price_mps_per_s,
-        fastest_tour_s: s.info.fastest_tour_s,
+        fastest_tour_s: s.info.fastest_tour_s.unwrap_or(0.0),
+        work_units: s.info.work_units,
         legs,
     }
 }

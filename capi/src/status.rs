@@ -50,7 +50,8 @@ pub const RECONFIG_B_BUDGET_EXHAUSTED_UNVERIFIED: i32 = 109;
 /// GEO tour: the plan meets the mission time and the burn cap, checked. May be flown.
 pub const RECONFIG_GEO_SOLVED: i32 = 201;
 /// GEO tour: even the fastest admissible tour overruns the mission time (`status_leg` the leg
-/// that needs the most time, `fastest_tour_s` how long the fastest tour takes).
+/// that needs the most time, `fastest_tour_s` how long the fastest tour takes when
+/// `has_fastest_tour_s`).
 pub const RECONFIG_GEO_MISSION_TOO_SHORT: i32 = 202;
 /// GEO tour: the tour fits without the burn cap but not with it (`status_leg`).
 pub const RECONFIG_GEO_CAP_TOO_LOW: i32 = 203;
@@ -58,6 +59,12 @@ pub const RECONFIG_GEO_CAP_TOO_LOW: i32 = 203;
 pub const RECONFIG_GEO_RULE_METHOD_INADMISSIBLE: i32 = 204;
 /// GEO tour: the final check failed at `status_leg`; the plan is for inspection only.
 pub const RECONFIG_GEO_CHECK_FAILED: i32 = 205;
+/// GEO tour: the work budget ran out; the returned plan (the best found) meets every condition
+/// of SOLVED. May be flown.
+pub const RECONFIG_GEO_BUDGET_EXHAUSTED_VERIFIED: i32 = 206;
+/// GEO tour: the work budget ran out; the returned plan is not verified (or there is none:
+/// `leg_count` 0). Not usable.
+pub const RECONFIG_GEO_BUDGET_EXHAUSTED_UNVERIFIED: i32 = 207;
 
 /// Refused: a pointer argument is null (`error.field` names it when the solution is usable).
 pub const RECONFIG_ERR_NULL_POINTER: i32 = -1;

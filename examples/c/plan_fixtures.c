@@ -184,11 +184,18 @@ static int plan_g(void) {
                    g_solution.error.value, g_solution.error.limit);
             continue;
         }
+        /* The fastest tour is printed only when the solution has one (has_fastest_tour_s). */
         printf("G %s status=%" PRId32 " usable=%u legs=%u dv_mps=%.9f dv_bits=%016" PRIx64
-               " checksum=%016" PRIx64 "\n",
+               " work_units=%" PRIu64 " fastest_tour=",
                G_CASES[c].name, status, (unsigned)g_solution.usable,
                (unsigned)g_solution.leg_count, g_solution.total_dv_mps,
-               bits(g_solution.total_dv_mps), geo_checksum(&g_solution));
+               bits(g_solution.total_dv_mps), g_solution.work_units);
+        if (g_solution.has_fastest_tour_s) {
+            printf("%016" PRIx64, bits(g_solution.fastest_tour_s));
+        } else {
+            printf("none");
+        }
+        printf(" checksum=%016" PRIx64 "\n", geo_checksum(&g_solution));
     }
     return 0;
 }

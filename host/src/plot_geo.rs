@@ -6,7 +6,7 @@ use crate::fixture::geo_tour::{GeoTourFixture, DAY_S};
 use crate::plot::range;
 use anyhow::{anyhow, Result};
 use plotters::prelude::*;
-use reconfig_core::geo_tour::{rtn_to_inertial, Geo, MethodPolicy, Solution, SolveStatus};
+use reconfig_core::geo_tour::{rtn_to_inertial, Geo, MethodPolicy, Solution};
 use reconfig_core::lambert::propagate;
 use std::path::Path;
 
@@ -155,7 +155,7 @@ pub fn pareto_svg(f: &GeoTourFixture, days: &[f64], out: &Path) -> Result<Vec<Pa
         let solved = |x: &GeoTourFixture| {
             solve_fixture(x, Some(d))
                 .ok()
-                .filter(|(s, _)| s.info.status == SolveStatus::Solved)
+                .filter(|(s, _)| s.info.status.is_usable())
                 .map(|(s, _)| s.total_dv_mps)
         };
         curve.push((d, solved(&by_cost), solved(&by_rule)));

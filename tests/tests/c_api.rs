@@ -253,7 +253,7 @@ fn g_case(name: &str, p: &geo_tour::Problem, st: &geo_tour::Settings) -> String 
          .rule_drift_above_rad = {}, .rule_hohmann_above_rad = {}, .rule_radial_above_rad = {}, \
          .lambert_direct_time_s = {}, .lambert_max_revolutions = {}, .lambert_max_iter = {}, \
          .well_iterations = {}, .root_max_iter = {}, .price_max_iter = {}, .exchange_rounds = {}, \
-         .gap_max_legs = {}}}}},\n",
+         .gap_max_legs = {}, .work_budget = {}ULL}}}},\n",
         hexf(p.start_lon_rad),
         hexf(p.mission_time_s),
         hexf(p.max_burn_mps),
@@ -274,6 +274,7 @@ fn g_case(name: &str, p: &geo_tour::Problem, st: &geo_tour::Settings) -> String 
         st.price_max_iter,
         st.exchange_rounds,
         st.gap_max_legs,
+        st.work_budget,
     )
 }
 
@@ -398,12 +399,18 @@ fn g_expected(name: &str, p: &geo_tour::Problem, settings: &geo_tour::Settings) 
     }
     h = mix(h, s.mission_time_s);
     let (status, _) = reconfig_capi::convert_geo::status_to_c(s.info.status);
+    let fastest = s
+        .info
+        .fastest_tour_s
+        .map_or_else(|| "none".to_owned(), |t| format!("{:016x}", t.to_bits()));
     format!(
-        "G {name} status={status} usable={} legs={} dv_mps={:.9} dv_bits={:016x} checksum={h:016x}",
-        u8::from(s.info.status == geo_tour::SolveStatus::Solved),
+        "G {name} status={status} usable={} legs={} dv_mps={:.9} dv_bits={:016x} work_units={} \
+         fastest_tour={fastest} checksum={h:016x}",
+        u8::from(s.info.status.is_usable()),
         s.legs.len(),
         s.total_dv_mps,
         s.total_dv_mps.to_bits(),
+        s.info.work_units,
     )
 }
 

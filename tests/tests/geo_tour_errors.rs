@@ -168,7 +168,10 @@ fn infeasible_requests_name_the_leg() {
     p.sweep = SweepChoice::East;
     let out = run(&p, &s).unwrap();
     assert_eq!(out.info.status, SolveStatus::MissionTooShort { leg: 5 });
-    assert!(out.info.fastest_tour_s > p.mission_time_s);
+    assert!(out
+        .info
+        .fastest_tour_s
+        .is_some_and(|t| t > p.mission_time_s && t.is_finite()));
     // Five days fit without the cap (large burns), not with 5 m/s: CapTooLow names the leg
     // the cap slows most.
     let mut p = base();
@@ -196,6 +199,10 @@ fn infeasible_requests_name_the_leg() {
         "{:?}",
         out.info.status
     );
+    // No tour is admissible at all (a leg has no method within the cap): the fastest tour
+    // does not exist, and is absent rather than infinite.
+    assert_eq!(out.info.fastest_tour_s, None, "{:?}", out.info);
+    assert!(!out.info.status.is_usable());
 }
 
 #[test]
@@ -213,6 +220,8 @@ fn odd_but_valid_requests_never_give_nan() {
             p.mission_time_s = days * DAY;
             let out = run(&p, &s).unwrap();
             assert!(out.total_dv_mps.is_finite() && out.mission_time_s.is_finite());
+            assert!(out.info.price_mps_per_s.is_finite());
+            assert!(out.info.fastest_tour_s.is_none_or(f64::is_finite));
             if out.info.status == SolveStatus::Solved {
                 assert_eq!(out.legs.len(), p.targets_lon_rad.len());
                 assert!(out.mission_time_s <= p.mission_time_s);

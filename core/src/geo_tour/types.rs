@@ -61,13 +61,10 @@ pub struct Problem {
 const DEG_RAD: f64 = core::f64::consts::PI / 180.0;
 
 crate::settings_table! {
-    /// Loop bounds, tolerances and the paper's rule. Worst case of a solve (per sweep, M legs,
-    /// W = `lambert_max_revolutions + 1` wells): table building M (W (`well_iterations` + 3) +
-    /// 2) Lambert pairs (<= 2 `lambert_max_iter` Householder steps each) and 4 M
-    /// `root_max_iter` drift/radial bisection steps; allocation (1 + 2^`gap_max_legs`)
-    /// `price_max_iter` price steps of M drift roots of at most `root_max_iter` steps each; the
-    /// exchange search at most `exchange_rounds` x M x (`MAX_POINTS` + 1) exact re-allocations
-    /// (each `price_max_iter` x M drift roots) and M x W well searches.
+    /// Loop bounds, tolerances, the paper's rule and the work budget. Every loop of a solve is
+    /// bounded by these and the capacities, and charged to the work meter at its worst case
+    /// (`work_units.rs`): a solve stops at `work_budget` units, which bounds its Cortex-M7
+    /// instructions (docs/geo-tour.md, "Work budget").
     pub struct Settings;
     /// The GEO tour's settings, by name (stable codes on the wire and in the C interface).
     pub enum SettingId in crate::limits::Setting::GeoTour;
@@ -123,6 +120,12 @@ crate::settings_table! {
         /// (9 h). A method choice: no limit.
         lambert_direct_time_s, LambertDirectTimeS = 14: f64 = 9.0 * 3600.0,
         unit "s", range Range::closed(60.0, 864_000.0), limit Free;
+        /// Work units a solve may use (`crate::work`); when they run out the best plan so far is
+        /// returned, checked, with `SolveStatus::BudgetExhausted`. Part of it is kept for the
+        /// checks of the returned plan. The default bounds every request within the default
+        /// limits to 400 M Cortex-M7 instructions (docs/geo-tour.md, "Work budget").
+        work_budget, WorkBudget = 15: u64 = super::work_units::DEFAULT_WORK_BUDGET,
+        unit "units", range Range::any(), limit AtMost;
     }
 }
 

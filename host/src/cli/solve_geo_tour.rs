@@ -75,6 +75,7 @@ pub fn to_json(name: &str, limit_s: f64, s: &Solution, solve_time_s: f64) -> ser
         "price_iterations": s.info.price_iterations,
         "gap_assignments": s.info.gap_assignments,
         "refined_legs": s.info.refined_legs,
+        "work_units": s.info.work_units,
         "legs": legs,
         "solve_time_s": solve_time_s,
     })
@@ -89,11 +90,15 @@ pub fn status_text(s: &SolveStatus) -> String {
             format!("RuleMethodInadmissible(leg {leg})")
         }
         SolveStatus::CheckFailed { leg } => format!("CheckFailed(leg {leg})"),
+        SolveStatus::BudgetExhausted { verified } => {
+            format!("BudgetExhausted(verified: {verified})")
+        }
         other => format!("{other:?}"),
     }
 }
 
-/// Solve and report. Exit code 0 when the plan is `Solved`, 1 otherwise.
+/// Solve and report. Exit code 0 when the plan is usable (`Solved`, or a verified budget
+/// stop), 1 otherwise.
 pub fn run(fixture: &GeoTourFixture, json: bool, mission_days: Option<f64>) -> Result<ExitCode> {
     let limit_s = mission_days.map_or(fixture.problem.mission_time_s, |d| d * DAY_S);
     let (s, solve_time_s) = match solve_fixture(fixture, mission_days) {
@@ -151,13 +156,17 @@ pub fn run(fixture: &GeoTourFixture, json: bool, mission_days: Option<f64>) -> R
             limit_s / DAY_S,
             s.max_burn_mps
         );
+        let fastest = s.info.fastest_tour_s.map_or_else(
+            || "none admissible".to_owned(),
+            |t| format!("{:.4} d", t / DAY_S),
+        );
         println!(
-            "time price {:.5} m/s per day; fastest tour {:.4} d; {} price steps, {} gap assignments, {} Lambert legs refined; solve time {:.6} s",
+            "time price {:.5} m/s per day; fastest tour {fastest}; {} price steps, {} gap assignments, {} Lambert legs refined; {} work units; solve time {:.6} s",
             s.info.price_mps_per_s * DAY_S,
-            s.info.fastest_tour_s / DAY_S,
             s.info.price_iterations,
             s.info.gap_assignments,
             s.info.refined_legs,
+            s.info.work_units,
             solve_time_s
         );
         if let Some(p) = fixture.published.total_dv_mps {
@@ -165,7 +174,7 @@ pub fn run(fixture: &GeoTourFixture, json: bool, mission_days: Option<f64>) -> R
         }
         println!("burns: RTN frame (radial, along-track, normal), epochs in --json");
     }
-    Ok(if s.info.status == SolveStatus::Solved {
+    Ok(if s.info.status.is_usable() {
         ExitCode::from(EXIT_USABLE)
     } else {
         ExitCode::from(EXIT_NOT_USABLE)
