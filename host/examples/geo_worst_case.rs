@@ -46,6 +46,8 @@ struct Candidate {
     policy: &'static str,
     /// Settings overrides (fixture keys).
     settings: BTreeMap<&'static str, toml::Value>,
+    /// The random draw this candidate descends from (elites are kept diverse by family).
+    family: usize,
 }
 
 /// A scored candidate.
@@ -216,14 +218,51 @@ fn random_candidate(rng: &mut ChaCha8Rng) -> Candidate {
         sweep,
         policy,
         settings,
+        family: 0,
     }
 }
 
-fn mutate(rng: &mut ChaCha8Rng, parent: &Candidate) -> Candidate {
+fn mutate(rng: &mut ChaCha8Rng, parent: &Candidate, other: &Candidate) -> Candidate {
     let mut c = parent.clone();
-    let changes = rng.random_range(1..=2);
+    let changes = rng.random_range(1..=3);
     for _ in 0..changes {
-        match rng.random_range(0..10) {
+        match rng.random_range(0..15) {
+            10 => {
+                // Jitter every client a little.
+                let s = log_uniform(rng, 0.005, 1.0);
+                for t in &mut c.targets_deg {
+                    *t = wrap_deg(*t + s * (rng.random::<f64>() - 0.5));
+                }
+            }
+            11 => {
+                // A new layout of as many clients.
+                let sign = if rng.random::<bool>() { 1.0 } else { -1.0 };
+                let start = c.start_deg;
+                c.targets_deg = layout(rng, c.targets_deg.len().max(1))
+                    .into_iter()
+                    .map(|o| wrap_deg(start + sign * o))
+                    .collect();
+            }
+            12 => {
+                // Move the servicer.
+                c.start_deg = wrap_deg(
+                    c.start_deg
+                        + log_uniform(rng, 0.01, 90.0) * if rng.random() { 1.0 } else { -1.0 },
+                );
+            }
+            13 => {
+                // The other elite's clients (relative to its start) with this one's scalars.
+                let shift = c.start_deg - other.start_deg;
+                c.targets_deg = other
+                    .targets_deg
+                    .iter()
+                    .map(|&t| wrap_deg(t + shift))
+                    .collect();
+            }
+            14 => {
+                // The other elite's settings.
+                c.settings = other.settings.clone();
+            }
             0 | 1 => {
                 // Move one client.
                 if !c.targets_deg.is_empty() {
@@ -327,12 +366,12 @@ fn accepted(name: &str, c: &Candidate) -> Option<GeoTourFixture> {
     Some(f)
 }
 
-/// Host solve: status and the work units (none before the GEO tour had a work meter).
+/// Host solve: status and the work units.
 fn host_eval(f: &GeoTourFixture) -> (String, Option<u64>) {
     let mut ws = Box::new(Workspace::new());
     let mut out = Box::new(Solution::new());
     let _ = geo_tour::solve(&f.problem, &f.settings, &mut ws, &mut out);
-    (format!("{:?}", out.info.status), None)
+    (format!("{:?}", out.info.status), Some(out.info.work_units))
 }
 
 fn root() -> PathBuf {
@@ -487,6 +526,7 @@ fn main() -> Result<()> {
     let mut rng = ChaCha8Rng::seed_from_u64(o.seed);
     let work = root().join("target/geo-worst-case/round");
     let mut best: Vec<Scored> = Vec::new();
+    let mut families = 0usize;
     for round in 0..=o.rounds {
         // Candidates of this round: random draws in round 0, then mutants of the elite and a
         // quarter of fresh draws.
@@ -496,10 +536,16 @@ fn main() -> Result<()> {
             attempts += 1;
             let fresh = round == 0 || best.is_empty() || batch.len() % 4 == 3;
             let c = if fresh {
-                random_candidate(&mut rng)
+                let mut c = random_candidate(&mut rng);
+                families += 1;
+                c.family = families;
+                c
             } else {
-                let parent = &best[batch.len() % best.len().min(o.elite)].candidate;
-                mutate(&mut rng, parent)
+                // Parents by rank: the best most often.
+                let k = best.len().min(o.elite);
+                let i = rng.random_range(0..k).min(rng.random_range(0..k));
+                let j = rng.random_range(0..k);
+                mutate(&mut rng, &best[i].candidate, &best[j].candidate)
             };
             let name = format!("cand-r{round:02}-{:03}", batch.len());
             if let Some(f) = accepted(&name, &c) {
@@ -536,7 +582,23 @@ fn main() -> Result<()> {
                 .cmp(&score(a, &o.objective))
                 .then_with(|| a.name.cmp(&b.name))
         });
-        best.truncate(o.elite.max(o.keep));
+        // Keep the best, at most a quarter of the elite from one family (diversity), and never
+        // the same request twice.
+        let per_family = (o.elite / 4).max(1);
+        let mut kept: Vec<Scored> = Vec::new();
+        for s in best {
+            let same_family = kept
+                .iter()
+                .filter(|k| k.candidate.family == s.candidate.family)
+                .count();
+            let duplicate = kept
+                .iter()
+                .any(|k| score(k, &o.objective) == score(&s, &o.objective));
+            if same_family < per_family && !duplicate && kept.len() < o.elite.max(o.keep) {
+                kept.push(s);
+            }
+        }
+        best = kept;
         if let Some(top) = best.first() {
             println!(
                 "round {round:2}: best {} = {:?} instructions, {:?} units, {} ({})",
