@@ -112,6 +112,18 @@
 // largest accepted value).
 #define RECONFIG_ERR_INVALID_CODE -5
 
+// Refused: a setting is outside the range the planner accepts (`field` =
+// `RECONFIG_FIELD_SETTINGS`, `index` the setting's code in its planner's settings table, named
+// by `reconfig_setting_name`; `value`; `limit` the end of the range it broke; `detail` 0 below
+// the range, 1 above it, 2 not finite). The same code for every planner.
+#define RECONFIG_ERR_SETTING_OUT_OF_RANGE -6
+
+// Refused: the request asks for more work or less safety than the built-in limits allow (the
+// same limits as the flight service's): `field` = `RECONFIG_FIELD_SETTINGS`, `index` the
+// setting's code (a problem quantity's code is 128 and up), `value`, `limit`, `detail` the
+// rule (0 at most, 1 at least, 2 must be on, 3 must be off, 4 below). Nothing was solved.
+#define RECONFIG_ERR_LIMIT_EXCEEDED -7
+
 // Planner A refused: a number is NaN or infinite.
 #define RECONFIG_A_ERR_NOT_FINITE -101
 
@@ -135,8 +147,9 @@
 // `detail` axis).
 #define RECONFIG_A_ERR_MANOEUVRE_INFEASIBLE -107
 
-// Planner A refused: a setting is out of range (`detail` = settings error class).
-#define RECONFIG_A_ERR_INVALID_SETTINGS -108
+// Planner A refused: a warm start does not match the problem (not reachable from C, which has
+// no warm start; kept so that every core refusal has a code).
+#define RECONFIG_A_ERR_WARM_START_MISMATCH -108
 
 // Planner A refused: a number is outside the accepted magnitude range (`limit`).
 #define RECONFIG_A_ERR_OUT_OF_RANGE -110
@@ -167,9 +180,6 @@
 
 // Planner B refused: no impulse in the plan.
 #define RECONFIG_B_ERR_NO_IMPULSES -209
-
-// Planner B refused: a setting is out of range (`detail` = settings error class).
-#define RECONFIG_B_ERR_INVALID_SETTINGS -210
 
 // Planner B refused: a perigee altitude is below the limit.
 #define RECONFIG_B_ERR_PERIGEE_TOO_LOW -211
@@ -214,7 +224,8 @@
 // Planner A: `spacecraft[index].initial_state` or `final_state`.
 #define RECONFIG_FIELD_BOUNDARY_STATE 5
 
-// A settings field (`detail` = the settings error class).
+// A setting (`index` = its code in the planner's settings table, named by
+// `reconfig_setting_name`).
 #define RECONFIG_FIELD_SETTINGS 6
 
 // Planner A: `spacecraft_count`.
@@ -270,51 +281,6 @@
 
 // GEO tour: `max_burn_mps`.
 #define RECONFIG_FIELD_GEO_MAX_BURN 53
-
-// GEO tour settings: `lambert_max_revolutions`.
-#define RECONFIG_FIELD_GEO_LAMBERT_MAX_REVOLUTIONS 54
-
-// GEO tour settings: `lambert_max_iter`.
-#define RECONFIG_FIELD_GEO_LAMBERT_MAX_ITER 55
-
-// GEO tour settings: `lambert_tol`.
-#define RECONFIG_FIELD_GEO_LAMBERT_TOL 56
-
-// GEO tour settings: `well_iterations`.
-#define RECONFIG_FIELD_GEO_WELL_ITERATIONS 57
-
-// GEO tour settings: `root_max_iter`.
-#define RECONFIG_FIELD_GEO_ROOT_MAX_ITER 58
-
-// GEO tour settings: `price_max_iter`.
-#define RECONFIG_FIELD_GEO_PRICE_MAX_ITER 59
-
-// GEO tour settings: `time_tol_s`.
-#define RECONFIG_FIELD_GEO_TIME_TOL 60
-
-// GEO tour settings: `gap_max_legs`.
-#define RECONFIG_FIELD_GEO_GAP_MAX_LEGS 61
-
-// GEO tour settings: `min_radius_km`.
-#define RECONFIG_FIELD_GEO_MIN_RADIUS 62
-
-// GEO tour settings: `rule_drift_above_rad`.
-#define RECONFIG_FIELD_GEO_RULE_DRIFT_ABOVE 63
-
-// GEO tour settings: `rule_hohmann_above_rad`.
-#define RECONFIG_FIELD_GEO_RULE_HOHMANN_ABOVE 64
-
-// GEO tour settings: `rule_radial_above_rad`.
-#define RECONFIG_FIELD_GEO_RULE_RADIAL_ABOVE 65
-
-// GEO tour settings: `lambert_direct_time_s`.
-#define RECONFIG_FIELD_GEO_LAMBERT_DIRECT_TIME 66
-
-// GEO tour settings: `exchange_rounds`.
-#define RECONFIG_FIELD_GEO_EXCHANGE_ROUNDS 67
-
-// GEO tour settings: `exchange_margin_mps`.
-#define RECONFIG_FIELD_GEO_EXCHANGE_MARGIN 68
 
 // GEO tour: `target_count`.
 #define RECONFIG_FIELD_GEO_TARGET_COUNT 69

@@ -36,7 +36,7 @@ fn bad_frames_and_invalid_problems_get_error_responses_and_the_service_keeps_run
     assert!(status_of("fault: spacecraft count 9 (over capacity)").contains("malformed body"));
     // The core's own error comes back as a response, naming what was wrong.
     for (label, names) in [
-        ("invalid: NaN horizon", "Horizon is NaN or infinite"),
+        ("invalid: NaN horizon", "Horizon = NaN is NaN or infinite"),
         ("invalid: degree over capacity", "exceeds capacity 24"),
         (
             "invalid: manoeuvre infeasible",
