@@ -62,4 +62,8 @@ pub trait Planner {
 
     /// The status of an answer.
     fn status(solution: &Self::Solution) -> Self::Status;
+
+    /// Reset `out` to the empty `Unsolved` answer, in place (no large temporary on the stack:
+    /// a flight image's stack is measured to the byte).
+    fn reset(out: &mut Self::Solution);
 }

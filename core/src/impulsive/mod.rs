@@ -73,6 +73,39 @@ pub use trajectory::{formation_position_rtn_km, relative_position_rtn_km, Trajec
 pub use types::*;
 pub use workspace::Workspace;
 
+/// Planner B in the planners' contract ([`crate::contract::Planner`]): [`solve`]. (A
+/// request in the user's input forms goes through [`solve_form`], which writes the same
+/// solution.)
+#[derive(Clone, Copy, Debug)]
+pub struct Impulsive;
+
+impl crate::contract::Planner for Impulsive {
+    type Problem = Problem;
+    type Settings = Settings;
+    type Workspace = Workspace;
+    type Solution = Solution;
+    type Error = PlanError;
+    type Status = SolveStatus;
+    const KIND: crate::wire::Planner = crate::wire::Planner::Impulsive;
+
+    fn solve(
+        problem: &Problem,
+        settings: &Settings,
+        workspace: &mut Workspace,
+        out: &mut Solution,
+    ) -> Result<(), PlanError> {
+        solve(problem, settings, workspace, out)
+    }
+
+    fn status(solution: &Solution) -> SolveStatus {
+        solution.info.status
+    }
+
+    fn reset(out: &mut Solution) {
+        *out = Solution::new();
+    }
+}
+
 /// Plan the impulses of `problem`: at its fixed impulse points, or by a bounded search over
 /// them (`ImpulsePlan::Search`).
 ///

@@ -140,6 +140,25 @@ pub struct Sequence {
     pub bound_violations: u32,
 }
 
+impl Sequence {
+    /// An empty outcome (no order), for use as an output buffer.
+    pub const fn new() -> Self {
+        Self {
+            status: SequenceStatus::NoOrder,
+            order: [0; MAX_CLIENTS],
+            len: 0,
+            total_dv_mps: 0.0,
+            starts_s: [0.0; MAX_CLIENTS - 1],
+            durations_s: [0.0; MAX_CLIENTS - 1],
+            arcs_planned: 0,
+            arcs_in_tree: 0,
+            orders_completed: 0,
+            orders_total: 0,
+            bound_violations: 0,
+        }
+    }
+}
+
 /// Why a sequencing was refused.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub enum SequenceError {

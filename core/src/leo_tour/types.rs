@@ -181,6 +181,28 @@ pub struct ArcSolution {
     pub work_units: u64,
 }
 
+impl ArcSolution {
+    /// An empty answer (no burns), for use as an output buffer.
+    pub const fn new() -> Self {
+        const NO_BURN: Burn = Burn {
+            epoch_s: 0.0,
+            dv_km_s: [0.0; 3],
+            rtn_mps: [0.0; 3],
+        };
+        Self {
+            status: Status::ArrivalMissed,
+            burns: [NO_BURN; MAX_IMPULSES],
+            impulses: 0,
+            total_dv_mps: 0.0,
+            miss_m: 0.0,
+            last_leg_revolutions: 0,
+            last_leg_branch: crate::lambert::Branch::Left,
+            evaluations: 0,
+            work_units: 0,
+        }
+    }
+}
+
 /// A field of the request.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[repr(u8)]

@@ -31,6 +31,38 @@ pub use status::{SolveInfo, SolveStatus, Stage};
 mod workspace;
 pub use workspace::Workspace;
 
+/// Planner A in the planners' contract ([`crate::contract::Planner`]): [`solve`] from the
+/// analytic guess.
+#[derive(Clone, Copy, Debug)]
+pub struct Pseudospectral;
+
+impl crate::contract::Planner for Pseudospectral {
+    type Problem = Problem;
+    type Settings = Settings;
+    type Workspace = Workspace;
+    type Solution = Solution;
+    type Error = PlanError;
+    type Status = SolveStatus;
+    const KIND: crate::wire::Planner = crate::wire::Planner::Pseudospectral;
+
+    fn solve(
+        problem: &Problem,
+        settings: &Settings,
+        workspace: &mut Workspace,
+        out: &mut Solution,
+    ) -> Result<(), PlanError> {
+        solve(problem, settings, workspace, out)
+    }
+
+    fn status(solution: &Solution) -> SolveStatus {
+        solution.info.status
+    }
+
+    fn reset(out: &mut Solution) {
+        out.reset();
+    }
+}
+
 /// Solve a reconfiguration problem from the analytic Pontryagin guess.
 ///
 /// Writes the result (or the best iterate, with a status saying why) into `out`.

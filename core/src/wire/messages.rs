@@ -127,6 +127,9 @@ pub enum Outcome {
     LeoSequence(leo_tour::sequence::Sequence),
     /// The LEO tour's sequencing rejected the request.
     LeoSequenceRejected(leo_tour::sequence::SequenceError),
+    /// The front end that answered does not carry the request's planner (a one-planner flight
+    /// image); nothing was solved.
+    Unsupported(Planner),
 }
 
 /// How long an expired request waited and the deadline it had, in microseconds.
@@ -174,6 +177,8 @@ pub enum OutcomeRef<'a> {
     LeoSequence(&'a leo_tour::sequence::Sequence),
     /// See [`Outcome::LeoSequenceRejected`].
     LeoSequenceRejected(leo_tour::sequence::SequenceError),
+    /// See [`Outcome::Unsupported`].
+    Unsupported(Planner),
 }
 
 impl Outcome {
@@ -200,6 +205,7 @@ impl Outcome {
             Self::LeoArcRejected(e) => OutcomeRef::LeoArcRejected(*e),
             Self::LeoSequence(q) => OutcomeRef::LeoSequence(q),
             Self::LeoSequenceRejected(e) => OutcomeRef::LeoSequenceRejected(*e),
+            Self::Unsupported(p) => OutcomeRef::Unsupported(*p),
         }
     }
 }

@@ -3,8 +3,7 @@
 //! test `harness_alloc`).
 
 use reconfig_core::limits::Limits;
-use reconfig_core::wire::{self, Outcome, OutcomeRef, Request};
-use reconfig_core::{geo_tour, impulsive, leo_tour, pseudospectral};
+use reconfig_core::wire::{self, AllPlanners, Outcome, OutcomeRef};
 use std::time::Instant;
 
 /// Stack size for threads that own a [`Worker`]: workspaces are boxed, but building them goes
@@ -13,14 +12,10 @@ pub const WORKER_STACK_BYTES: usize = 32 * 1024 * 1024;
 
 /// A worker's workspaces and output buffers, each built once.
 pub struct Worker {
-    ps_workspace: Box<pseudospectral::Workspace>,
-    ps_solution: Box<pseudospectral::Solution>,
-    imp_workspace: Box<impulsive::Workspace>,
-    imp_solution: Box<impulsive::Solution>,
+    /// Every planner's workspace and solution (the request path's buffers).
+    buffers: Box<AllPlanners>,
     /// The service's limits: a request outside them is answered `LimitExceeded` unsolved.
     pub limits: Limits,
-    geo_workspace: Box<geo_tour::Workspace>,
-    geo_solution: Box<geo_tour::Solution>,
     /// Test hook: sleep this long per request (a stand-in for a long solve in fault tests).
     pub delay: std::time::Duration,
 }
@@ -35,19 +30,15 @@ impl Worker {
     /// Build the workspaces (the only allocations a worker makes).
     pub fn new() -> Self {
         Self {
-            ps_workspace: Box::new(pseudospectral::Workspace::new()),
-            ps_solution: Box::new(pseudospectral::Solution::new()),
-            imp_workspace: Box::new(impulsive::Workspace::new()),
-            imp_solution: Box::new(impulsive::Solution::new()),
+            buffers: Box::new(AllPlanners::new()),
             limits: Limits::default(),
-            geo_workspace: Box::new(geo_tour::Workspace::new()),
-            geo_solution: Box::new(geo_tour::Solution::new()),
             delay: std::time::Duration::ZERO,
         }
     }
 
     /// Answer one request frame: writes the response frame into `out` (at least
-    /// [`wire::RESPONSE_MAX_BYTES`] long) and returns its length.
+    /// [`wire::RESPONSE_MAX_BYTES`] long) and returns its length. The request goes through the
+    /// core's one request path ([`wire::answer`]): the limits check, then the planner.
     pub fn handle(&mut self, request: &[u8], out: &mut [u8]) -> usize {
         let seq = wire::peek_request_seq(request).unwrap_or(0);
         let frame = match wire::decode_request(request) {
@@ -58,111 +49,9 @@ impl Worker {
             std::thread::sleep(self.delay);
         }
         let start = Instant::now();
-        // Before any solve: a request outside the limits is refused, never clamped.
-        if let Err(violation) = self.limits.check(&frame.request) {
-            let ns = elapsed_ns(start);
-            return encode(frame.seq, ns, &OutcomeRef::LimitExceeded(violation), out);
-        }
-        match &frame.request {
-            Request::Pseudospectral { problem, settings } => {
-                // A fresh output buffer per solve: a rejected request leaves `out` untouched,
-                // and the answer must not depend on the previous request.
-                *self.ps_solution = pseudospectral::Solution::new();
-                let result = pseudospectral::solve(
-                    problem,
-                    settings,
-                    &mut self.ps_workspace,
-                    &mut self.ps_solution,
-                );
-                let ns = elapsed_ns(start);
-                match result {
-                    Ok(()) => encode(
-                        frame.seq,
-                        ns,
-                        &OutcomeRef::Pseudospectral(&self.ps_solution),
-                        out,
-                    ),
-                    Err(e) => encode(frame.seq, ns, &OutcomeRef::PseudospectralRejected(e), out),
-                }
-            }
-            Request::Impulsive { problem, settings } => {
-                *self.imp_solution = impulsive::Solution::new();
-                let result = impulsive::solve(
-                    problem,
-                    settings,
-                    &mut self.imp_workspace,
-                    &mut self.imp_solution,
-                );
-                let ns = elapsed_ns(start);
-                match result {
-                    Ok(()) => encode(
-                        frame.seq,
-                        ns,
-                        &OutcomeRef::Impulsive(&self.imp_solution),
-                        out,
-                    ),
-                    Err(e) => encode(frame.seq, ns, &OutcomeRef::ImpulsiveRejected(e), out),
-                }
-            }
-            Request::ImpulsiveForm { problem, settings } => {
-                // Converted here by the core's `impulsive::forms`, the one implementation.
-                *self.imp_solution = impulsive::Solution::new();
-                let result = impulsive::solve_form(
-                    problem,
-                    settings,
-                    &mut self.imp_workspace,
-                    &mut self.imp_solution,
-                );
-                let ns = elapsed_ns(start);
-                match result {
-                    Ok(end_state) => encode(
-                        frame.seq,
-                        ns,
-                        &OutcomeRef::ImpulsiveForm {
-                            solution: &self.imp_solution,
-                            end_state,
-                        },
-                        out,
-                    ),
-                    Err(e) => encode(frame.seq, ns, &OutcomeRef::ImpulsiveRejected(e), out),
-                }
-            }
-            Request::GeoTour { problem, settings } => {
-                *self.geo_solution = geo_tour::Solution::new();
-                let result = geo_tour::solve(
-                    problem,
-                    settings,
-                    &mut self.geo_workspace,
-                    &mut self.geo_solution,
-                );
-                let ns = elapsed_ns(start);
-                match result {
-                    Ok(()) => encode(frame.seq, ns, &OutcomeRef::GeoTour(&self.geo_solution), out),
-                    Err(e) => encode(frame.seq, ns, &OutcomeRef::GeoTourRejected(e), out),
-                }
-            }
-            Request::LeoArc { problem, settings } => {
-                // No workspace: the arc planner's state is on the stack (fixed size).
-                let result = leo_tour::solve_arc(problem, settings);
-                let ns = elapsed_ns(start);
-                match result {
-                    Ok(sol) => encode(frame.seq, ns, &OutcomeRef::LeoArc(&sol), out),
-                    Err(e) => encode(frame.seq, ns, &OutcomeRef::LeoArcRejected(e), out),
-                }
-            }
-            Request::LeoSequence {
-                problem,
-                settings,
-                arc_settings,
-            } => {
-                let result = leo_tour::tour_order::choose_order(problem, settings, arc_settings);
-                let ns = elapsed_ns(start);
-                match result {
-                    Ok(q) => encode(frame.seq, ns, &OutcomeRef::LeoSequence(&q), out),
-                    Err(e) => encode(frame.seq, ns, &OutcomeRef::LeoSequenceRejected(e), out),
-                }
-            }
-        }
+        let outcome = wire::answer(&frame.request, &self.limits, &mut *self.buffers);
+        let ns = elapsed_ns(start);
+        encode(frame.seq, ns, &outcome, out)
     }
 }
 
@@ -262,6 +151,12 @@ pub fn summarize(outcome: &Outcome) -> (String, String, String, String) {
         ),
         Outcome::LimitExceeded(v) => (
             format!("limit exceeded: {v}"),
+            "-".into(),
+            "-".into(),
+            "-".into(),
+        ),
+        Outcome::Unsupported(p) => (
+            format!("unsupported planner {p:?}"),
             "-".into(),
             "-".into(),
             "-".into(),
