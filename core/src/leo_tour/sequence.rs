@@ -159,6 +159,12 @@ impl Sequence {
     }
 }
 
+impl Default for Sequence {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 /// Why a sequencing was refused.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub enum SequenceError {

@@ -203,6 +203,12 @@ impl ArcSolution {
     }
 }
 
+impl Default for ArcSolution {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 /// A field of the request.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[repr(u8)]
