@@ -350,6 +350,9 @@
 // says why; the plan itself is unaffected, its status says whether it is usable).
 #define RECONFIG_B_END_UNAVAILABLE 5
 
+// No end state: the plan's nonlinear check could not be flown (a numerical failure).
+#define RECONFIG_B_END_NOT_FLOWN 6
+
 // Why a form could not be converted (`error.detail` of `RECONFIG_B_ERR_INPUT_FORM`, and
 // `unavailable_reason`): a number is not finite.
 #define RECONFIG_B_FORM_NOT_FINITE 0
@@ -731,6 +734,15 @@ typedef struct {
   uint8_t min_fuel_used;
   // 1: the nonlinear correction was applied.
   uint8_t correction_used;
+  // 1: `condition_number` holds a value; 0: absent (F rank-deficient, or not computed).
+  uint8_t has_condition_number;
+  // 1: `min_norm_total_dv_mps` holds a value; 0: absent (it came out non-finite).
+  uint8_t has_min_norm_total_dv_mps;
+  // 1: `linear_total_dv_mps` holds a value; 0: absent (it came out non-finite).
+  uint8_t has_linear_total_dv_mps;
+  // 1: the `terminal_*` fields hold the nonlinear check; 0: absent (the check could not be
+  // flown: a numerical failure), and they are 0.
+  uint8_t has_terminal_error;
   // Fixed-point iterations of the returned plan.
   uint16_t iterations;
   // Interior-point iterations, all told.
@@ -741,15 +753,15 @@ typedef struct {
   uint32_t evaluations;
   // Work units used.
   uint64_t work_units;
-  // Condition number of F at the returned plan.
+  // Condition number of F at the returned plan (when `has_condition_number`, else 0).
   double condition_number;
   // Certified least-fuel gap, m/s.
   double min_fuel_gap_mps;
   // sum |dv_k|, m/s.
   double total_dv_mps;
-  // Total of the minimum-norm fixed point, m/s.
+  // Total of the minimum-norm fixed point, m/s (when `has_min_norm_total_dv_mps`, else 0).
   double min_norm_total_dv_mps;
-  // Total of the linear-model fixed point, m/s.
+  // Total of the linear-model fixed point, m/s (when `has_linear_total_dv_mps`, else 0).
   double linear_total_dv_mps;
   // Time of the last impulse, s.
   double final_time_s;

@@ -413,6 +413,7 @@ pub fn status_to_c(s: SolveStatus) -> (i32, i32, i32, f64, f64) {
 pub fn solution_to_c(s: &Solution) -> ReconfigBSolution {
     let (status, numerical_stage, unsafe_arc, unsafe_perigee_altitude_km, linearised_miss_m) =
         status_to_c(s.info.status);
+    let terminal = s.terminal_error.as_ref();
     let mut impulses = [ReconfigBImpulse::default(); RECONFIG_B_MAX_IMPULSES];
     for (slot, i) in impulses.iter_mut().zip(s.impulses.iter()) {
         *slot = ReconfigBImpulse {
@@ -441,16 +442,25 @@ pub fn solution_to_c(s: &Solution) -> ReconfigBSolution {
         correction_iterations: s.info.correction_iterations,
         evaluations: s.info.evaluations,
         work_units: s.info.work_units,
-        condition_number: s.info.condition_number,
+        has_condition_number: u8::from(s.info.condition_number.is_some()),
+        has_min_norm_total_dv_mps: u8::from(s.min_norm_total_dv_mps.is_some()),
+        has_linear_total_dv_mps: u8::from(s.linear_total_dv_mps.is_some()),
+        has_terminal_error: u8::from(terminal.is_some()),
+        condition_number: s.info.condition_number.unwrap_or_default(),
         min_fuel_gap_mps: s.info.min_fuel_gap_mps,
         total_dv_mps: s.total_dv_mps,
-        min_norm_total_dv_mps: s.min_norm_total_dv_mps,
-        linear_total_dv_mps: s.linear_total_dv_mps,
+        min_norm_total_dv_mps: s.min_norm_total_dv_mps.unwrap_or_default(),
+        linear_total_dv_mps: s.linear_total_dv_mps.unwrap_or_default(),
         final_time_s: s.final_time_s,
-        terminal_error_m: s.terminal_error_m,
-        terminal_position_error_m: s.terminal_position_error_m,
-        terminal_error_elements: relative_to_c(&s.terminal_error_elements),
-        terminal_error_equinoctial: equinoctial_to_c(&s.terminal_error_equinoctial),
+        terminal_error_m: terminal.map_or(0.0, |t| t.along_track_m),
+        terminal_position_error_m: terminal.map_or(0.0, |t| t.position_m),
+        terminal_error_elements: terminal.map_or_else(ReconfigBRelativeElements::default, |t| {
+            relative_to_c(&t.elements)
+        }),
+        terminal_error_equinoctial: terminal
+            .map_or_else(ReconfigBEquinoctialElements::default, |t| {
+                equinoctial_to_c(&t.equinoctial)
+            }),
         impulses,
     }
 }

@@ -328,7 +328,8 @@ fn b_expected(name: &str, fixed_point_only: bool, p: &impulsive::Problem) -> Str
         h = mix(h, i.time_s);
         h = i.dv_rtn_mps.iter().fold(h, |h, v| mix(h, *v));
     }
-    h = mix(h, s.terminal_position_error_m);
+    // C writes 0 with has_terminal_error = 0 when the check was not flown.
+    h = mix(h, s.terminal_error.map_or(0.0, |t| t.position_m));
     let (status, ..) = reconfig_capi::convert_b::status_to_c(s.info.status);
     format!(
         "B {name} status={status} usable={} impulses={} dv_mps={:.9} dv_bits={:016x} work_units={} checksum={h:016x}",
@@ -357,7 +358,8 @@ fn f_expected(name: &str, fixed_point_only: bool, p: &impulsive::FormProblem) ->
         h = mix(h, i.time_s);
         h = i.dv_rtn_mps.iter().fold(h, |h, v| mix(h, *v));
     }
-    h = mix(h, s.terminal_position_error_m);
+    // C writes 0 with has_terminal_error = 0 when the check was not flown.
+    h = mix(h, s.terminal_error.map_or(0.0, |t| t.position_m));
     let c_end = reconfig_capi::convert_b_form::end_state_to_c(&end);
     let values: Option<[f64; 6]> = match &end {
         impulsive::EndState::Elements(r) => Some(relative_values(r)),
@@ -365,7 +367,7 @@ fn f_expected(name: &str, fixed_point_only: bool, p: &impulsive::FormProblem) ->
         impulsive::EndState::DeputyClassical(m) => Some(mean_values(m)),
         impulsive::EndState::DeputyEquinoctial(q) => Some(equinoctial_values(q)),
         impulsive::EndState::DeputyState(st) => Some(state_values(st)),
-        impulsive::EndState::Unavailable(_) => None,
+        impulsive::EndState::Unavailable(_) | impulsive::EndState::NotFlown => None,
     };
     let end_checksum = values.iter().flatten().fold(FNV_OFFSET, |h, v| mix(h, *v));
     let (status, ..) = reconfig_capi::convert_b::status_to_c(s.info.status);

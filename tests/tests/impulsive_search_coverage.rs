@@ -111,7 +111,9 @@ fn cost(chief: MeanElements, u0: f64, phi: &[f64], ws: &mut Workspace, out: &mut
         ..Settings::default()
     };
     match solve(&problem(chief, ImpulsePlan::Fixed(pts)), &settings, ws, out) {
-        Ok(()) if out.info.status == SolveStatus::Solved => out.linear_total_dv_mps,
+        Ok(()) if out.info.status == SolveStatus::Solved => {
+            out.linear_total_dv_mps.unwrap_or(f64::INFINITY)
+        }
         _ => f64::INFINITY,
     }
 }
@@ -177,7 +179,10 @@ fn searched(case: &Case, budget_factor: u32) -> (f64, u32) {
     let mut ws = Box::new(Workspace::new());
     let mut out = Box::new(Solution::new());
     solve(&p, &settings, &mut ws, &mut out).unwrap();
-    (out.linear_total_dv_mps, out.info.evaluations)
+    (
+        out.linear_total_dv_mps.unwrap_or(f64::INFINITY),
+        out.info.evaluations,
+    )
 }
 
 #[test]

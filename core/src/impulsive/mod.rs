@@ -67,7 +67,7 @@ pub use forms::{
 pub use model::{point_phase, Phase};
 pub use settings::{ElementSet, SettingId, Settings, DEFAULT_WORK_BUDGET, MAX_SEARCH_STARTS};
 pub use socp::{least_fuel_rows, LeastFuel, SocpStatus};
-pub use solution::{Impulse, Solution};
+pub use solution::{Impulse, Solution, TerminalError};
 pub use status::{SolveInfo, SolveStatus, Stage};
 pub use trajectory::{formation_position_rtn_km, relative_position_rtn_km, TrajectoryError};
 pub use types::*;

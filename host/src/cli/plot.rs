@@ -121,12 +121,14 @@ fn impulsive_plot(problem: &impulsive::Problem, name: &str, out: &std::path::Pat
     let period_s = std::f64::consts::TAU
         * (problem.chief.sma_km.powi(3) / reconfig_core::astro::EARTH_MU_KM3_S2).sqrt();
     let title = format!(
-        "{name}: {:?}, total dv {:.4} m/s, {} impulses, last at {:.2} orbits, terminal position error {:.1e} m",
+        "{name}: {:?}, total dv {:.4} m/s, {} impulses, last at {:.2} orbits, terminal position error {}",
         solution.info.status,
         solution.total_dv_mps,
         solution.impulses.len(),
         solution.final_time_s / period_s,
-        solution.terminal_position_error_m,
+        solution
+            .terminal_error
+            .map_or_else(|| "absent".to_string(), |t| format!("{:.1e} m", t.position_m)),
     );
     plot::impulsive_svg(problem, &settings, &solution, &title, out)
 }

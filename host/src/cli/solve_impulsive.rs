@@ -68,8 +68,7 @@ pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
                 entry
             })
             .collect();
-        let e = &s.terminal_error_elements;
-        let q = &s.terminal_error_equinoctial;
+        let t = s.terminal_error.as_ref();
         println!(
             "{}",
             serde_json::to_string_pretty(&json!({
@@ -80,10 +79,11 @@ pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
                 "linear_total_dv_mps": s.linear_total_dv_mps,
                 "impulses": impulses,
                 "final_time_s": s.final_time_s,
-                "terminal_error_m": s.terminal_error_m,
-                "terminal_position_error_m": s.terminal_position_error_m,
-                "terminal_error_elements": [e.dsma_km, e.decc, e.dinc_rad, e.draan_rad, e.dargp_rad, e.dmean_anomaly_rad],
-                "terminal_error_equinoctial": [q.sma_km, q.mean_longitude_rad, q.ex, q.ey, q.hx, q.hy],
+                // Absent (null) when the nonlinear check could not be flown.
+                "terminal_error_m": t.map(|t| t.along_track_m),
+                "terminal_position_error_m": t.map(|t| t.position_m),
+                "terminal_error_elements": t.map(|t| t.elements.as_array()),
+                "terminal_error_equinoctial": t.map(|t| t.equinoctial.as_array()),
                 "end_state": end,
                 "element_set": format!("{:?}", settings.element_set),
                 "iterations": s.info.iterations,
@@ -125,21 +125,30 @@ pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
                 (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
             );
         }
+        let figure = |x: Option<f64>| x.map_or_else(|| "absent".to_string(), |v| format!("{v:.5}"));
         println!(
-            "total dv            {:.5} m/s (linear model: minimum norm {:.5}, returned plan {:.5} m/s)",
-            s.total_dv_mps, s.min_norm_total_dv_mps, s.linear_total_dv_mps
+            "total dv            {:.5} m/s (linear model: minimum norm {}, returned plan {} m/s)",
+            s.total_dv_mps,
+            figure(s.min_norm_total_dv_mps),
+            figure(s.linear_total_dv_mps)
+        );
+        match &s.terminal_error {
+            Some(t) => println!(
+                "terminal error      {:.3e} m along-track, {:.3e} m position (nonlinear check)",
+                t.along_track_m, t.position_m
+            ),
+            None => println!("terminal error      absent (the nonlinear check could not be flown)"),
+        }
+        let cond = s.info.condition_number.map_or_else(
+            || "absent (rank-deficient)".to_string(),
+            |c| format!("{c:.3e}"),
         );
         println!(
-            "terminal error      {:.3e} m along-track, {:.3e} m position (nonlinear check)",
-            s.terminal_error_m, s.terminal_position_error_m
-        );
-        println!(
-            "iterations          {} fixed point, {} min-fuel, {} correction; rank {}, cond {:.3e}",
+            "iterations          {} fixed point, {} min-fuel, {} correction; rank {}, cond {cond}",
             s.info.iterations,
             s.info.min_fuel_iterations,
             s.info.correction_iterations,
             s.info.rank,
-            s.info.condition_number
         );
         println!(
             "min fuel used {}, nonlinear correction used {}, evaluations {}, solve time {:.6} s",
