@@ -79,32 +79,10 @@ pub use workspace::Workspace;
 #[derive(Clone, Copy, Debug)]
 pub struct Impulsive;
 
-impl crate::contract::Planner for Impulsive {
-    type Problem = Problem;
-    type Settings = Settings;
-    type Workspace = Workspace;
-    type Solution = Solution;
-    type Error = PlanError;
-    type Status = SolveStatus;
-    const KIND: crate::wire::Planner = crate::wire::Planner::Impulsive;
-
-    fn solve(
-        problem: &Problem,
-        settings: &Settings,
-        workspace: &mut Workspace,
-        out: &mut Solution,
-    ) -> Result<(), PlanError> {
-        solve(problem, settings, workspace, out)
-    }
-
-    fn status(solution: &Solution) -> SolveStatus {
-        solution.info.status
-    }
-
-    fn reset(out: &mut Solution) {
-        *out = Solution::new();
-    }
-}
+crate::impl_planner!(
+    Impulsive: Problem, Settings, Workspace, Solution, PlanError, SolveStatus,
+    crate::wire::Planner::Impulsive, solve, reset |out| *out = Solution::new()
+);
 
 /// Plan the impulses of `problem`: at its fixed impulse points, or by a bounded search over
 /// them (`ImpulsePlan::Search`).

@@ -36,32 +36,10 @@ pub use workspace::Workspace;
 #[derive(Clone, Copy, Debug)]
 pub struct Pseudospectral;
 
-impl crate::contract::Planner for Pseudospectral {
-    type Problem = Problem;
-    type Settings = Settings;
-    type Workspace = Workspace;
-    type Solution = Solution;
-    type Error = PlanError;
-    type Status = SolveStatus;
-    const KIND: crate::wire::Planner = crate::wire::Planner::Pseudospectral;
-
-    fn solve(
-        problem: &Problem,
-        settings: &Settings,
-        workspace: &mut Workspace,
-        out: &mut Solution,
-    ) -> Result<(), PlanError> {
-        solve(problem, settings, workspace, out)
-    }
-
-    fn status(solution: &Solution) -> SolveStatus {
-        solution.info.status
-    }
-
-    fn reset(out: &mut Solution) {
-        out.reset();
-    }
-}
+crate::impl_planner!(
+    Pseudospectral: Problem, Settings, Workspace, Solution, PlanError, SolveStatus,
+    crate::wire::Planner::Pseudospectral, solve, reset |out| out.reset()
+);
 
 /// Solve a reconfiguration problem from the analytic Pontryagin guess.
 ///

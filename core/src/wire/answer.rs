@@ -139,24 +139,19 @@ pub fn answer<'a, B: Buffers + ?Sized>(
         return OutcomeRef::LimitExceeded(violation);
     }
     match request {
-        Request::Pseudospectral { problem, settings } => match buffers.pseudospectral() {
-            None => OutcomeRef::Unsupported(Planner::Pseudospectral),
-            Some((workspace, out)) => {
-                match run::<pseudospectral::Pseudospectral>(problem, settings, workspace, out) {
-                    Ok(solution) => OutcomeRef::Pseudospectral(solution),
-                    Err(e) => OutcomeRef::PseudospectralRejected(e),
-                }
-            }
-        },
-        Request::Impulsive { problem, settings } => match buffers.impulsive() {
-            None => OutcomeRef::Unsupported(Planner::Impulsive),
-            Some((workspace, out)) => {
-                match run::<impulsive::Impulsive>(problem, settings, workspace, out) {
-                    Ok(solution) => OutcomeRef::Impulsive(solution),
-                    Err(e) => OutcomeRef::ImpulsiveRejected(e),
-                }
-            }
-        },
+        Request::Pseudospectral { problem, settings } => run::<pseudospectral::Pseudospectral>(
+            (problem, settings),
+            buffers.pseudospectral(),
+            (
+                OutcomeRef::Pseudospectral,
+                OutcomeRef::PseudospectralRejected,
+            ),
+        ),
+        Request::Impulsive { problem, settings } => run::<impulsive::Impulsive>(
+            (problem, settings),
+            buffers.impulsive(),
+            (OutcomeRef::Impulsive, OutcomeRef::ImpulsiveRejected),
+        ),
         Request::ImpulsiveForm { problem, settings } => match buffers.impulsive() {
             None => OutcomeRef::Unsupported(Planner::Impulsive),
             Some((workspace, out)) => {
@@ -209,14 +204,22 @@ pub fn answer<'a, B: Buffers + ?Sized>(
     }
 }
 
-/// One planner's solve into its slot, the slot reset first.
+/// One planner's answer: `Unsupported` without a slot, else its solve into the slot (reset
+/// first) and the outcome `ok` of the solution or `rejected` of the refusal.
 fn run<'a, P: crate::contract::Planner>(
-    problem: &P::Problem,
-    settings: &P::Settings,
-    workspace: &mut P::Workspace,
-    out: &'a mut P::Solution,
-) -> Result<&'a P::Solution, P::Error> {
+    (problem, settings): (&P::Problem, &P::Settings),
+    slot: Option<(&'a mut P::Workspace, &'a mut P::Solution)>,
+    (ok, rejected): (
+        fn(&'a P::Solution) -> OutcomeRef<'a>,
+        fn(P::Error) -> OutcomeRef<'a>,
+    ),
+) -> OutcomeRef<'a> {
+    let Some((workspace, out)) = slot else {
+        return OutcomeRef::Unsupported(P::KIND);
+    };
     P::reset(out);
-    P::solve(problem, settings, workspace, out)?;
-    Ok(out)
+    match P::solve(problem, settings, workspace, out) {
+        Ok(()) => ok(out),
+        Err(e) => rejected(e),
+    }
 }
