@@ -204,15 +204,18 @@ pub fn answer<'a, B: Buffers + ?Sized>(
     }
 }
 
+/// How a planner's answer and refusal become outcomes (its two `OutcomeRef` variants).
+type Outcomes<'a, P> = (
+    fn(&'a <P as crate::contract::Planner>::Solution) -> OutcomeRef<'a>,
+    fn(<P as crate::contract::Planner>::Error) -> OutcomeRef<'a>,
+);
+
 /// One planner's answer: `Unsupported` without a slot, else its solve into the slot (reset
 /// first) and the outcome `ok` of the solution or `rejected` of the refusal.
 fn run<'a, P: crate::contract::Planner>(
     (problem, settings): (&P::Problem, &P::Settings),
     slot: Option<(&'a mut P::Workspace, &'a mut P::Solution)>,
-    (ok, rejected): (
-        fn(&'a P::Solution) -> OutcomeRef<'a>,
-        fn(P::Error) -> OutcomeRef<'a>,
-    ),
+    (ok, rejected): Outcomes<'a, P>,
 ) -> OutcomeRef<'a> {
     let Some((workspace, out)) = slot else {
         return OutcomeRef::Unsupported(P::KIND);
