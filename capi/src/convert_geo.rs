@@ -3,51 +3,27 @@
 use crate::status::*;
 use crate::types_geo::*;
 use reconfig_core::geo_tour::{
-    Direction, Field, Leg, Method, MethodPolicy, PlanError, Problem, Settings, Solution,
+    Direction, Field, Leg, Method, MethodPolicy, PlanError, Problem, SettingId, Settings, Solution,
     SolveStatus, SweepChoice, MAX_TARGETS,
 };
 
-/// The core's settings from the C struct (every range is the core's own check in the solve).
-pub fn settings_from_c(c: &ReconfigGeoSettings) -> Settings {
-    Settings {
-        lambert_max_revolutions: c.lambert_max_revolutions,
-        lambert_max_iter: c.lambert_max_iter,
-        lambert_tol: c.lambert_tol,
-        well_iterations: c.well_iterations,
-        root_max_iter: c.root_max_iter,
-        price_max_iter: c.price_max_iter,
-        time_tol_s: c.time_tol_s,
-        gap_max_legs: c.gap_max_legs,
-        exchange_rounds: c.exchange_rounds,
-        exchange_margin_mps: c.exchange_margin_mps,
-        min_radius_km: c.min_radius_km,
-        rule_drift_above_rad: c.rule_drift_above_rad,
-        rule_hohmann_above_rad: c.rule_hohmann_above_rad,
-        rule_radial_above_rad: c.rule_radial_above_rad,
-        lambert_direct_time_s: c.lambert_direct_time_s,
-    }
-}
-
-/// The C struct of the core's settings (for `_default_settings`).
-pub fn settings_to_c(s: &Settings) -> ReconfigGeoSettings {
-    ReconfigGeoSettings {
-        lambert_tol: s.lambert_tol,
-        time_tol_s: s.time_tol_s,
-        exchange_margin_mps: s.exchange_margin_mps,
-        min_radius_km: s.min_radius_km,
-        rule_drift_above_rad: s.rule_drift_above_rad,
-        rule_hohmann_above_rad: s.rule_hohmann_above_rad,
-        rule_radial_above_rad: s.rule_radial_above_rad,
-        lambert_direct_time_s: s.lambert_direct_time_s,
-        lambert_max_revolutions: s.lambert_max_revolutions,
-        lambert_max_iter: s.lambert_max_iter,
-        well_iterations: s.well_iterations,
-        root_max_iter: s.root_max_iter,
-        price_max_iter: s.price_max_iter,
-        exchange_rounds: s.exchange_rounds,
-        gap_max_legs: s.gap_max_legs,
-    }
-}
+crate::mirror_settings!(ReconfigGeoSettings => Settings, SettingId {
+    lambert_tol,
+    time_tol_s,
+    exchange_margin_mps,
+    min_radius_km,
+    rule_drift_above_rad,
+    rule_hohmann_above_rad,
+    rule_radial_above_rad,
+    lambert_direct_time_s,
+    lambert_max_revolutions,
+    lambert_max_iter,
+    well_iterations,
+    root_max_iter,
+    price_max_iter,
+    exchange_rounds,
+    gap_max_legs,
+});
 
 fn code_error(field: i32, value: u8, largest: u8) -> ReconfigError {
     ReconfigError::new(
@@ -145,7 +121,9 @@ pub fn error_to_c(e: &PlanError) -> ReconfigError {
     }
 }
 
-/// The C status code of a core status and the leg it names (-1 when none).
+/// The C status code of a core status and the leg it names (-1 when none). Written out: the
+/// GEO tour's status does not implement `contract::Status` yet (planners A and B take theirs
+/// from `status::status_code`).
 pub fn status_to_c(s: SolveStatus) -> (i32, i32) {
     match s {
         SolveStatus::Unsolved => (RECONFIG_UNSOLVED, -1),
