@@ -62,6 +62,21 @@ const EMPTY_FORM: FormProblem = FormProblem {
     plan: ImpulsePlan::Fixed(heapless::Vec::new()),
 };
 
+/// Put planner B's empty request of the mean-element form or of the other forms into the
+/// block. Out of line, so that the request-sized value it builds lives in this call's frame
+/// only (the call returns before the solve), not in the frame under every solve.
+#[inline(never)]
+fn switch_request(request: &mut Request, form: bool) {
+    *request = if form {
+        Request::ImpulsiveForm {
+            problem: EMPTY_FORM,
+            settings: Settings::default(),
+        }
+    } else {
+        PlannerB::empty_request()
+    };
+}
+
 impl Shell for PlannerB {
     type Slot = Slot<Workspace, Solution>;
     /// "RCFG-IMB" in ASCII.
@@ -90,7 +105,7 @@ impl Entry for PlannerB {
     ) -> Result<(), ReconfigError> {
         // The block's request may hold the other form (the last solve was `_solve_form`).
         if !matches!(request, Request::Impulsive { .. }) {
-            *request = PlannerB::empty_request();
+            switch_request(request, false);
         }
         let Request::Impulsive {
             problem: core_problem,
@@ -140,10 +155,7 @@ impl Entry for PlannerBForm {
         settings: &ReconfigBSettings,
     ) -> Result<(), ReconfigError> {
         if !matches!(request, Request::ImpulsiveForm { .. }) {
-            *request = Request::ImpulsiveForm {
-                problem: EMPTY_FORM,
-                settings: Settings::default(),
-            };
+            switch_request(request, true);
         }
         let Request::ImpulsiveForm {
             problem: core_problem,
