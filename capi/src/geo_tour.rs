@@ -72,7 +72,7 @@ impl Entry for GeoTour {
     ) -> Result<i32, ReconfigError> {
         match outcome {
             OutcomeRef::GeoTour(solution) => {
-                *out = solution_to_c(solution);
+                solution_to_c(solution, out);
                 Ok(out.status)
             }
             OutcomeRef::GeoTourRejected(e) => Err(error_to_c(&e)),
@@ -81,7 +81,7 @@ impl Entry for GeoTour {
     }
 
     fn refuse(error: ReconfigError, out: &mut ReconfigGeoSolution) -> i32 {
-        *out = refusal_to_c(error);
+        refusal_to_c(error, out);
         out.status
     }
 }
