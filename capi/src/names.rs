@@ -5,7 +5,7 @@
 //! allocation.
 
 use core::ffi::c_char;
-use reconfig_core::limits::{ProblemLimit, Setting};
+use reconfig_core::limits::ProblemLimit;
 use reconfig_core::wire::Planner;
 use reconfig_core::{geo_tour, impulsive, pseudospectral};
 
@@ -168,10 +168,4 @@ pub extern "C" fn reconfig_setting_name(planner: i32, code: i32) -> *const c_cha
         Some(name) => name.as_ptr().cast::<c_char>(),
         None => core::ptr::null(),
     }
-}
-
-/// The C pair (planner, code) of a core setting: what a refusal carries and
-/// [`reconfig_setting_name`] reads.
-pub fn setting_code(setting: Setting) -> (i32, i32) {
-    (setting.planner() as i32, i32::from(setting.code()))
 }
