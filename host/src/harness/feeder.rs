@@ -102,6 +102,8 @@ pub enum Fate {
         solve_ns: u64,
         /// The response body (encoded outcome), for comparison with a local solve.
         body: Vec<u8>,
+        /// Where the request stood in the service's order of service.
+        order: super::dispatch::ServiceOrder,
     },
 }
 
@@ -153,7 +155,13 @@ pub struct FeedRun {
     pub elapsed: Duration,
 }
 
-type Pending = PendingResponse<ipc::Service, [u8], super::service::RequestHeader, [u8], ()>;
+type Pending = PendingResponse<
+    ipc::Service,
+    [u8],
+    super::service::RequestHeader,
+    [u8],
+    super::dispatch::ServiceOrder,
+>;
 
 struct InFlight {
     index: usize,
@@ -205,6 +213,7 @@ pub fn run(items: &[Item], opts: &FeedOptions) -> Result<FeedRun> {
         node.service_builder(&inst.service_name("rpc")?)
             .request_response::<[u8], [u8]>()
             .request_user_header::<super::service::RequestHeader>()
+            .response_user_header::<super::dispatch::ServiceOrder>()
             .open()
             .map_err(|e| anyhow!("{e:?}"))
     })
@@ -302,6 +311,7 @@ pub fn run(items: &[Item], opts: &FeedOptions) -> Result<FeedRun> {
                             rtt_ns,
                             solve_ns: view.solve_time_ns,
                             body: view.body.to_vec(),
+                            order: *response.user_header(),
                         }
                     }
                     Ok(view) => {

@@ -21,8 +21,6 @@ pub struct Worker {
     pub limits: Limits,
     geo_workspace: Box<geo_tour::Workspace>,
     geo_solution: Box<geo_tour::Solution>,
-    /// Test hook: sleep this long per request (a stand-in for a long solve in fault tests).
-    pub delay: std::time::Duration,
 }
 
 impl Default for Worker {
@@ -42,7 +40,6 @@ impl Worker {
             limits: Limits::default(),
             geo_workspace: Box::new(geo_tour::Workspace::new()),
             geo_solution: Box::new(geo_tour::Solution::new()),
-            delay: std::time::Duration::ZERO,
         }
     }
 
@@ -54,9 +51,6 @@ impl Worker {
             Ok(frame) => frame,
             Err(e) => return encode(seq, 0, &OutcomeRef::BadRequest(e), out),
         };
-        if !self.delay.is_zero() {
-            std::thread::sleep(self.delay);
-        }
         let start = Instant::now();
         // Before any solve: a request outside the limits is refused, never clamped.
         if let Err(violation) = self.limits.check(&frame.request) {
