@@ -7,7 +7,6 @@ mod harness_common;
 
 use harness_common::*;
 use std::path::Path;
-use std::time::Duration;
 
 fn result<'a>(report: &'a serde_json::Value, label: &str) -> &'a serde_json::Value {
     report["results"]
@@ -157,14 +156,33 @@ fn a_request_queued_past_its_deadline_is_answered_expired_unsolved() {
     stop_and_check_clean(service, &inst);
 }
 
+/// For each of one client's answers `[received_at_turn, turn]`: (turns of its own earlier
+/// requests, turns of other clients) between the request's receipt and its turn.
+fn waits(served: &[(u64, u64)]) -> Vec<(u64, u64)> {
+    served
+        .iter()
+        .map(|&(received, turn)| {
+            let own = served
+                .iter()
+                .filter(|(_, t)| (received..turn).contains(t))
+                .count() as u64;
+            (own, turn - received - own)
+        })
+        .collect()
+}
+
 #[test]
 fn two_feeders_are_served_in_turn() {
     // `reconfig fairness` starts its own service (one worker here) and two feeders per phase:
-    // expensive + cheap, then two alike (neither below half of the other's throughput); every
-    // answer checked, nothing lost. This test asserts behaviour, not speed: the cheap client's
-    // bound is a starvation bound (a starved client waits out the whole 2 s phase), not the
-    // 100 ms on-board budget, which `reconfig fairness --seconds 60` measures on a quiet
-    // machine (docs/harness.md). A 250 ms bound failed here with the two cores loaded.
+    // expensive (crossings, 2 in flight) + cheap (planner-B fixed points, one at a time), then
+    // two alike (crossings, 2 in flight each); every answer is checked against a local solve.
+    // This test asserts the order of service, not a speed (issue 29: a count of the cheap
+    // client's answers in a 2 s window failed once on a loaded machine): every answer carries
+    // its request's turn (counted over all clients) and the number of turns given when the
+    // request arrived. Round-robin means that while a request waits, the other client gets at
+    // most one turn more than the waiting client's own earlier requests. The command's own
+    // verdict also holds latency and throughput, which a loaded machine may miss; they are not
+    // asserted here (`reconfig fairness --seconds 60` measures them, docs/harness.md).
     let json = temp("fair", "fair.json");
     let out = std::process::Command::new(exe())
         .args([
@@ -176,8 +194,6 @@ fn two_feeders_are_served_in_turn() {
             "--cpus",
             "0",
             "--no-pin",
-            "--budget-ms",
-            "1900",
             "--json",
         ])
         .arg(&json)
@@ -187,12 +203,53 @@ fn two_feeders_are_served_in_turn() {
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap_or_default())
             .unwrap_or(serde_json::Value::Null);
-    assert!(out.status.success(), "{stdout}\n{report}");
-    assert_eq!(report["passed"], true, "{report}");
-    let cheap = &report["mixed"][1];
-    // Served throughout the phase, not only after the expensive client's queue drained.
-    assert!(cheap["correct"].as_u64().unwrap_or(0) >= 10, "{report}");
-    assert!(report["same_kind_throughput_ratio"].as_f64().unwrap_or(0.0) >= 0.5);
+    let checks = &report["checks"];
+    assert_eq!(checks["all_correct"], true, "{stdout}\n{report}");
+    assert_eq!(checks["stopped_cleanly"], true, "{stdout}\n{report}");
+    for phase in ["mixed", "same_kind"] {
+        let clients = report[phase].as_array().expect("clients");
+        assert_eq!(clients.len(), 2, "{report}");
+        let mut all_turns = Vec::new();
+        for c in clients {
+            let served: Vec<(u64, u64)> = c["served"]
+                .as_array()
+                .expect("served")
+                .iter()
+                .map(|p| (p[0].as_u64().expect("turn"), p[1].as_u64().expect("turn")))
+                .collect();
+            // Every answer was given in a turn (none expired), and there was one.
+            assert_eq!(Some(served.len() as u64), c["correct"].as_u64(), "{c}");
+            assert!(!served.is_empty(), "{phase}: {c}");
+            for (k, (own, others)) in waits(&served).into_iter().enumerate() {
+                assert!(
+                    others <= own + 1,
+                    "{phase}, {}: request {k} waited for {others} turns of the other client \
+                     and {own} of its own: {c}",
+                    c["client"]
+                );
+            }
+            all_turns.extend(served.iter().map(|(_, t)| *t));
+        }
+        // Each turn served one request of one client.
+        let n = all_turns.len();
+        all_turns.sort_unstable();
+        all_turns.dedup();
+        assert_eq!(all_turns.len(), n, "{phase}: a turn given twice: {report}");
+    }
+    // Both clients of the second phase keep two requests in flight on one worker, so each of
+    // them has requests that waited for a turn of the other: the clients took turns.
+    for c in report["same_kind"].as_array().expect("clients") {
+        let served: Vec<(u64, u64)> = c["served"]
+            .as_array()
+            .expect("served")
+            .iter()
+            .map(|p| (p[0].as_u64().unwrap_or(0), p[1].as_u64().unwrap_or(0)))
+            .collect();
+        assert!(
+            waits(&served).iter().any(|(_, others)| *others >= 1),
+            "{}: never waited for the other client: {report}",
+            c["client"]
+        );
+    }
     let _ = std::fs::remove_file(&json);
-    let _ = Duration::ZERO;
 }

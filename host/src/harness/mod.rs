@@ -16,6 +16,7 @@ pub mod dispatch;
 pub mod faults;
 pub mod feeder;
 pub mod flood;
+pub mod order;
 pub mod report;
 pub mod schedule;
 pub mod service;
