@@ -12,7 +12,9 @@
 //!
 //! Timeouts are safety nets only. Before the fix, the good client lost every request in most
 //! runs, during the flood and after the flooder was gone: iceoryx2's event lost a wake-up under
-//! the flood and the dispatcher slept for good (docs/harness.md, *Hostile clients*).
+//! the flood and the dispatcher slept for good (docs/harness.md, *Hostile clients*). The last
+//! test puts that lost wake-up in place by hand, since a flood of a few seconds does not cause
+//! it on demand.
 
 mod harness_common;
 
@@ -133,4 +135,60 @@ fn a_flooder_that_reads_its_answers_starves_no_one() {
 #[test]
 fn a_flooder_that_never_reads_its_answers_starves_no_one() {
     flood_case("ignore");
+}
+
+/// The listener state byte of iceoryx2 0.10's `UnixDatagramShmCountingBitSet` event in its
+/// `*.event_mgmt` segment, right after `event_id_max` (a `u64`, 255 here): 0 IDLE, 1 PENDING,
+/// 2 NOTIFIED. Read off a stuck service and an idle one (docs/harness.md, *Hostile clients*).
+const STATE_AT: usize = 0x28;
+const EVENT_ID_MAX_AT: usize = 0x20;
+const NOTIFIED: u8 = 2;
+
+#[test]
+fn a_lost_wake_up_costs_the_service_a_heartbeat_not_its_clients() {
+    // The state a notification flood left the service's listener in: NOTIFIED with an empty
+    // socket, so that every later notify() sends nothing. Put there by hand, before any client
+    // exists (the service's `to-service` listener is then the instance's only event listener).
+    // A dispatcher that waits for notifications alone never wakes again: the requests below
+    // would be lost. With the heartbeat they are answered.
+    let inst = instance("wedge");
+    let service = serve(&inst, &[]);
+    let mgmt: Vec<_> = std::fs::read_dir("/dev/shm")
+        .expect("/dev/shm")
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| {
+            let name = p.file_name().unwrap_or_default().to_string_lossy();
+            name.starts_with(&inst.prefix) && name.ends_with(".event_mgmt")
+        })
+        .collect();
+    assert_eq!(mgmt.len(), 1, "one listener expected: {mgmt:?}");
+    let bytes = std::fs::read(&mgmt[0]).expect("read the listener's segment");
+    // Fail loudly if iceoryx2's layout is not the one this test knows.
+    assert_eq!(
+        bytes.get(EVENT_ID_MAX_AT..STATE_AT),
+        Some(&255u64.to_le_bytes()[..]),
+        "iceoryx2's event layout changed: {:02x?}",
+        bytes.get(..0x40)
+    );
+    assert_eq!(bytes.get(STATE_AT), Some(&0), "an idle listener is IDLE");
+    {
+        use std::io::{Seek, SeekFrom, Write};
+        let mut f = std::fs::OpenOptions::new()
+            .write(true)
+            .open(&mgmt[0])
+            .expect("open the listener's segment");
+        f.seek(SeekFrom::Start(STATE_AT as u64)).expect("seek");
+        f.write_all(&[NOTIFIED]).expect("write");
+    }
+    let json = temp("wedge", "report.json");
+    let (code, report) = feed(
+        &inst,
+        &["--random", "5", "--seed", "23", "--timeout-ms", "30000"],
+        &json,
+    );
+    assert_eq!(code, Some(0), "{report}");
+    assert_eq!(report["reports"][0]["counters"]["answered"], 5, "{report}");
+    let _ = std::fs::remove_file(&json);
+    stop_and_check_clean(service, &inst);
 }

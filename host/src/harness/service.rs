@@ -128,6 +128,10 @@ pub type RequestHeader = u64;
 /// module's documentation: iceoryx2 can lose a wake-up).
 pub const HEARTBEAT: Duration = Duration::from_millis(10);
 
+/// Pumps per wake-up at most, before the dispatcher returns to its `WaitSet` (which reports
+/// SIGTERM) and comes straight back.
+const PUMPS_PER_WAKE: usize = 64;
+
 /// How often, at most, the dispatcher looks for clients that have gone.
 const DEPARTED_CHECK: Duration = Duration::from_secs(1);
 
@@ -267,11 +271,16 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
     let mut missed_wakeups: u64 = 0;
     let mut departed_checked = Instant::now();
     let mut failed: Option<anyhow::Error> = None;
+    let mut busy = false;
     let outcome = loop {
-        let timeout = dispatcher
-            .next_deadline()
-            .map_or(HEARTBEAT, |d| d.saturating_duration_since(Instant::now()))
-            .min(HEARTBEAT);
+        let timeout = if busy {
+            Duration::ZERO
+        } else {
+            dispatcher
+                .next_deadline()
+                .map_or(HEARTBEAT, |d| d.saturating_duration_since(Instant::now()))
+                .min(HEARTBEAT)
+        };
         let mut evented = false;
         let result = waitset.wait_and_process_once_with_timeout(
             |id| {
@@ -287,9 +296,11 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
         }
         let mut first = true;
         let mut idle = true;
-        loop {
-            // Consume the notifications (and undo a lost wake-up's NOTIFIED state) before
-            // looking: a notification sent after this is for work the pump may not see.
+        busy = false;
+        for round in 0..PUMPS_PER_WAKE {
+            // Consume the notifications first (and move a lost wake-up's NOTIFIED state back
+            // to IDLE): one sent after this wakes the next wait, so work this pump misses does
+            // not wait for the heartbeat.
             let _ = listener.try_wait(|_| {});
             let pumped = match dispatcher.pump(&server, finished, &job_txs) {
                 Ok(p) => p,
@@ -309,6 +320,9 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
                 break;
             }
             idle = false;
+            // Still work after the last round: look again at once, after the WaitSet has had
+            // its say (SIGTERM).
+            busy = round + 1 == PUMPS_PER_WAKE;
         }
         if failed.is_some() {
             break Ok(WaitSetRunResult::StopRequest);
