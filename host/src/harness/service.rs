@@ -181,6 +181,10 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
         .initial_max_slice_len(RESPONSE_MAX_BYTES)
         .allocation_strategy(AllocationStrategy::Static)
         .max_loaned_responses_per_request(1)
+        // Never wait for a client: a response that finds the client's buffer for it full (a
+        // client that does not read its answers) is dropped. iceoryx2's default would retry
+        // until delivered, and a client that never reads could hold the dispatcher forever.
+        .backpressure_strategy(BackpressureStrategy::DiscardData)
         .create()
         .map_err(|e| anyhow!("cannot create server: {e:?}"))?;
     let listener = to_service
