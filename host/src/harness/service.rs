@@ -158,6 +158,11 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
         .max_nodes(MAX_CLIENTS + 4)
         .enable_safe_overflow_for_requests(false)
         .enable_safe_overflow_for_responses(false)
+        // Hand the dispatcher the requests their clients have already dropped too (iceoryx2's
+        // default, stated here on purpose): it judges them and spends their turns. Without it,
+        // `Server::receive` drops them in a loop of its own, which a client sending and dropping
+        // requests as fast as it can could keep going.
+        .enable_fire_and_forget_requests(true)
         .open_or_create()
         .map_err(|e| anyhow!("cannot open service rpc: {e:?}"))?;
     let to_service = node
