@@ -65,6 +65,15 @@ pub struct Args {
     /// request still queued then is answered `Expired`, unsolved.
     #[arg(long)]
     pub deadline_ms: Option<u64>,
+    /// Instead of feeding requests, flood the service with garbage frames and wake-ups (a
+    /// hostile client, for the fairness checks) until killed or after `--flood-count` attempts:
+    /// `read` reads the answers, `abandon` drops each request unread, `ignore` keeps requests
+    /// open unread. Prints a `flooding: ...` line every 1000 attempts.
+    #[arg(long, value_name = "MODE")]
+    pub flood: Option<crate::harness::flood::FloodMode>,
+    /// With `--flood`: stop after this many attempts.
+    #[arg(long)]
+    pub flood_count: Option<u64>,
     /// The service's limits file, for checking its answers locally.
     #[command(flatten)]
     pub limits: crate::limits::LimitsArg,
@@ -94,6 +103,13 @@ pub struct JsonResult {
     pub correct: bool,
     /// Round trip, us.
     pub rtt_us: Option<f64>,
+    /// Sequence number sent.
+    pub seq: u64,
+    /// The request's turn in the service's order of service (none when not answered in a
+    /// turn: lost, or expired in the queue).
+    pub turn: Option<u64>,
+    /// Turns the service had given when it received the request.
+    pub received_at_turn: Option<u64>,
 }
 
 /// Feed items for every fixture file, either planner. A fixture that does not load is reported
@@ -243,8 +259,12 @@ pub fn conclude(
             check::print_table(items, &verdicts, rows);
             first = false;
         }
-        for v in &verdicts {
+        for (v, record) in verdicts.iter().zip(&run.records) {
             all_correct &= v.correct;
+            let order = match &record.fate {
+                crate::harness::feeder::Fate::Answered { order, .. } => Some(*order),
+                _ => None,
+            };
             results.push(JsonResult {
                 label: items[v.index].label.clone(),
                 status: v.outcome.as_ref().map_or_else(
@@ -253,6 +273,11 @@ pub fn conclude(
                 ),
                 correct: v.correct,
                 rtt_us: v.rtt_us,
+                seq: record.seq,
+                turn: order
+                    .map(|o| o.turn)
+                    .filter(|t| *t != crate::harness::dispatch::NO_TURN),
+                received_at_turn: order.map(|o| o.received_at_turn),
             });
         }
         let c = &run.counters;
@@ -275,6 +300,21 @@ pub fn conclude(
 
 /// Run `reconfig feed`.
 pub fn run(args: &Args) -> Result<ExitCode> {
+    if let Some(mode) = args.flood {
+        let stats = crate::harness::flood::run(&crate::harness::flood::FloodOptions {
+            instance: args.instance.clone(),
+            mode,
+            count: args.flood_count,
+            report_every: 1000,
+            wait_service: Duration::from_millis(args.wait_service_ms),
+            seed: args.seed,
+        })?;
+        println!(
+            "flood done: {} attempts, {} frames sent, {} answers read, {} refused",
+            stats.attempts, stats.sent, stats.answered, stats.refused
+        );
+        return Ok(ExitCode::SUCCESS);
+    }
     let mut items = fixture_items(&args.fixtures);
     items.extend(crate::scenario::generate(args.random, args.seed));
     if args.faults {

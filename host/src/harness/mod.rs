@@ -11,8 +11,12 @@
 pub mod affinity;
 pub mod alloc_count;
 pub mod check;
+pub mod conduct;
+pub mod dispatch;
 pub mod faults;
 pub mod feeder;
+pub mod flood;
+pub mod order;
 pub mod report;
 pub mod schedule;
 pub mod service;

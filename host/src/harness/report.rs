@@ -296,6 +296,7 @@ mod tests {
                 rtt_ns: ms * 1_000_000,
                 solve_ns: ms * 900_000,
                 body: Vec::new(),
+                order: Default::default(),
             },
         };
         let run = FeedRun {

@@ -16,8 +16,6 @@ pub struct Worker {
     buffers: Box<AllPlanners>,
     /// The service's limits: a request outside them is answered `LimitExceeded` unsolved.
     pub limits: Limits,
-    /// Test hook: sleep this long per request (a stand-in for a long solve in fault tests).
-    pub delay: std::time::Duration,
 }
 
 impl Default for Worker {
@@ -32,7 +30,6 @@ impl Worker {
         Self {
             buffers: Box::new(AllPlanners::new()),
             limits: Limits::default(),
-            delay: std::time::Duration::ZERO,
         }
     }
 
@@ -45,9 +42,6 @@ impl Worker {
             Ok(frame) => frame,
             Err(e) => return encode(seq, 0, &OutcomeRef::BadRequest(e), out),
         };
-        if !self.delay.is_zero() {
-            std::thread::sleep(self.delay);
-        }
         let start = Instant::now();
         let outcome = wire::answer(&frame.request, &self.limits, &mut *self.buffers);
         let ns = elapsed_ns(start);
