@@ -21,6 +21,10 @@ pub struct Worker {
     pub limits: Limits,
     geo_workspace: Box<geo_tour::Workspace>,
     geo_solution: Box<geo_tour::Solution>,
+    leo_arc_workspace: Box<leo_tour::Workspace>,
+    leo_arc_solution: Box<leo_tour::ArcSolution>,
+    leo_sequence_workspace: Box<leo_tour::tour_order::SequenceWorkspace>,
+    leo_sequence: Box<leo_tour::sequence::Sequence>,
     /// Test hook: sleep this long per request (a stand-in for a long solve in fault tests).
     pub delay: std::time::Duration,
 }
@@ -42,6 +46,10 @@ impl Worker {
             limits: Limits::default(),
             geo_workspace: Box::new(geo_tour::Workspace::new()),
             geo_solution: Box::new(geo_tour::Solution::new()),
+            leo_arc_workspace: Box::new(leo_tour::Workspace::new()),
+            leo_arc_solution: Box::new(leo_tour::ArcSolution::new()),
+            leo_sequence_workspace: Box::new(leo_tour::tour_order::SequenceWorkspace::new()),
+            leo_sequence: Box::new(leo_tour::sequence::Sequence::new()),
             delay: std::time::Duration::ZERO,
         }
     }
@@ -142,11 +150,21 @@ impl Worker {
                 }
             }
             Request::LeoArc { problem, settings } => {
-                // No workspace: the arc planner's state is on the stack (fixed size).
-                let result = leo_tour::solve_arc(problem, settings);
+                self.leo_arc_solution.reset();
+                let result = leo_tour::solve_arc(
+                    problem,
+                    settings,
+                    &mut self.leo_arc_workspace,
+                    &mut self.leo_arc_solution,
+                );
                 let ns = elapsed_ns(start);
                 match result {
-                    Ok(sol) => encode(frame.seq, ns, &OutcomeRef::LeoArc(&sol), out),
+                    Ok(()) => encode(
+                        frame.seq,
+                        ns,
+                        &OutcomeRef::LeoArc(&self.leo_arc_solution),
+                        out,
+                    ),
                     Err(e) => encode(frame.seq, ns, &OutcomeRef::LeoArcRejected(e), out),
                 }
             }
@@ -155,10 +173,22 @@ impl Worker {
                 settings,
                 arc_settings,
             } => {
-                let result = leo_tour::tour_order::choose_order(problem, settings, arc_settings);
+                self.leo_sequence.reset();
+                let result = leo_tour::tour_order::solve_sequence(
+                    problem,
+                    settings,
+                    arc_settings,
+                    &mut self.leo_sequence_workspace,
+                    &mut self.leo_sequence,
+                );
                 let ns = elapsed_ns(start);
                 match result {
-                    Ok(q) => encode(frame.seq, ns, &OutcomeRef::LeoSequence(&q), out),
+                    Ok(()) => encode(
+                        frame.seq,
+                        ns,
+                        &OutcomeRef::LeoSequence(&self.leo_sequence),
+                        out,
+                    ),
                     Err(e) => encode(frame.seq, ns, &OutcomeRef::LeoSequenceRejected(e), out),
                 }
             }
@@ -228,10 +258,10 @@ pub fn summarize(outcome: &Outcome) -> (String, String, String, String) {
             (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
         }
         Outcome::LeoArc(s) => (
-            format!("{:?}", s.status),
+            format!("{:?}", s.info.status),
             format!("dv={:.4} m/s", s.total_dv_mps),
             "-".into(),
-            format!("{}", s.evaluations),
+            format!("{}", s.info.evaluations),
         ),
         Outcome::LeoArcRejected(e) => {
             (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
@@ -239,7 +269,7 @@ pub fn summarize(outcome: &Outcome) -> (String, String, String, String) {
         Outcome::LeoSequence(q) => (
             format!(
                 "{:?} {}",
-                q.status,
+                q.info.status,
                 q.order
                     .iter()
                     .take(usize::from(q.len))
@@ -247,9 +277,10 @@ pub fn summarize(outcome: &Outcome) -> (String, String, String, String) {
                     .collect::<Vec<_>>()
                     .join(">")
             ),
-            format!("dv={:.4} m/s", q.total_dv_mps),
+            q.total_dv_mps
+                .map_or("no order".into(), |t| format!("dv={t:.4} m/s")),
             "-".into(),
-            format!("{}", q.arcs_planned),
+            format!("{}", q.info.arcs_planned),
         ),
         Outcome::LeoSequenceRejected(e) => {
             (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
