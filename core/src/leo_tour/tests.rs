@@ -400,3 +400,19 @@ fn fewer_revolutions_allowed_than_the_clients_make_still_give_a_plan() {
     );
     std::println!("max 8 revolutions: {:.3} m/s", sol.total_dv_mps);
 }
+
+#[test]
+fn the_workspaces_hold_the_large_buffers_at_a_known_size() {
+    // The arc search's checkpoints and candidate lists, and the sequencing's memos with an arc
+    // workspace: measured on x86_64 9,488 / 32,352 B (on the Cortex-M7 9,488 / 29,216 B, the
+    // LEO record's leo_workspace_bytes and leo_sequence_workspace_bytes).
+    let arc = core::mem::size_of::<Workspace>();
+    let sequence = core::mem::size_of::<tour_order::SequenceWorkspace>();
+    std::println!(
+        "Workspace {arc} B, SequenceWorkspace {sequence} B, ArcSolution {} B, Sequence {} B",
+        core::mem::size_of::<ArcSolution>(),
+        core::mem::size_of::<sequence::Sequence>()
+    );
+    assert!(arc <= 12 * 1024, "{arc}");
+    assert!(sequence <= 40 * 1024, "{sequence}");
+}
