@@ -1,5 +1,5 @@
 //! The tour's order from the clients' states, on board ([`solve_sequence`], the planners'
-//! contract as [`LeoSequence`]): [`sequence::best_order`] with each arc's cost the per-arc
+//! contract as [`LeoSequence`]): [`super::sequence::best_order`] with each arc's cost the per-arc
 //! search's estimate ([`super::estimate_arc_mps`]), the clients flown to each arc start in the
 //! planning model ([`super::propagate`]).
 //!
@@ -229,7 +229,7 @@ impl crate::contract::Planner for LeoSequence {
 }
 
 /// The arcs' durations for the visiting `order` (0-based client indices into `clients`,
-/// inertial states at the tour epoch): [`schedule::best_schedule`] on the grid of `Δt_max /
+/// inertial states at the tour epoch): [`super::schedule::best_schedule`] on the grid of `Δt_max /
 /// settings.steps` (`Δt_max` from the order's first client), each arc's cost the estimate of
 /// the per-arc search with `arc_settings` in `workspace`, the clients flown to each arc start
 /// in the planning model.
@@ -237,7 +237,7 @@ impl crate::contract::Planner for LeoSequence {
 /// Each client is needed at the grid's starts of the arc that reaches it and of the arc that
 /// leaves it; both rows of states are kept (a client state is flown once per start).
 ///
-/// Worst case: [`schedule::best_schedule`]'s arcs, each one estimate within
+/// Worst case: [`super::schedule::best_schedule`]'s arcs, each one estimate within
 /// `arc_settings.work_budget`, and at most `2 × (horizon units + 1)` propagations per arc of
 /// at most `arc_settings.max_steps` RK4 steps.
 ///
