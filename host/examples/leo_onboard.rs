@@ -6,7 +6,7 @@
 //! `cargo run --release -p reconfig-host --example leo_onboard -- FIXTURE [RUNS]`
 
 use anyhow::{anyhow, Context, Result};
-use reconfig_core::leo_tour::Status;
+use reconfig_core::leo_tour::SolveStatus;
 use reconfig_host::cli::leo_tour_sequence::choose_order;
 use reconfig_host::cli::solve_leo_tour::plan;
 use reconfig_host::fixture::leo_tour::load;
@@ -37,7 +37,12 @@ fn main() -> Result<()> {
                     .collect();
                 print!(
                     "sequencing {:?} {:?} {:.3} m/s, {} / {} arcs, {:.4} s | ",
-                    order, q.status, q.total_dv_mps, q.arcs_planned, q.arcs_in_tree, c.time_s
+                    order,
+                    q.info.status,
+                    q.total_dv_mps.unwrap_or(0.0),
+                    q.info.arcs_planned,
+                    q.info.arcs_in_tree,
+                    c.time_s
                 );
                 (chosen, c.time_s)
             }
@@ -49,7 +54,7 @@ fn main() -> Result<()> {
         let dvs: Vec<String> = arcs
             .iter()
             .map(|a| {
-                let flag = if a.solution.status == Status::Solved {
+                let flag = if a.solution.info.status == SolveStatus::Solved {
                     ""
                 } else {
                     " (not Solved)"

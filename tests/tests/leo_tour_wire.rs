@@ -4,7 +4,9 @@
 //! planner's ranges is answered with the planner's error naming the field.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use reconfig_core::leo_tour::{solve_arc, ArcProblem, Field, PlanError, Settings, Status};
+use reconfig_core::leo_tour::{
+    solve_arc, ArcProblem, ArcSolution, Field, PlanError, Settings, SolveStatus, Workspace,
+};
 use reconfig_core::limits::{Rule, Setting};
 use reconfig_core::wire::{
     decode_request, decode_response, encode_request, encode_response, Outcome, OutcomeRef, Request,
@@ -44,8 +46,15 @@ fn the_paper_arc_round_trips_and_the_worker_answers_the_direct_solve() {
     let n = encode_request(7, &request, &mut buf).unwrap();
     assert_eq!(decode_request(&buf[..n]).unwrap().request, request);
 
-    let direct = solve_arc(&problem, &settings).unwrap();
-    assert_eq!(direct.status, Status::Solved);
+    let mut direct = ArcSolution::new();
+    solve_arc(
+        &problem,
+        &settings,
+        &mut Box::new(Workspace::new()),
+        &mut direct,
+    )
+    .unwrap();
+    assert_eq!(direct.info.status, SolveStatus::Solved);
     // The published arc costs 418.445 m/s; ours is below it (docs/leo-tour.md).
     assert!(direct.total_dv_mps < 418.445, "{}", direct.total_dv_mps);
     let mut rbuf = vec![0u8; RESPONSE_MAX_BYTES];
@@ -132,7 +141,7 @@ fn the_sequencing_request_is_answered_with_the_hosts_order() {
     // The one implementation: the service's answer is the host command's, bit for bit.
     assert_eq!(q, chosen.sequence);
     assert_eq!(&q.order[..5], &[3, 2, 0, 4, 1]);
-    assert_eq!((q.arcs_planned, q.arcs_in_tree), (123, 320));
+    assert_eq!((q.info.arcs_planned, q.info.arcs_in_tree), (123, 320));
 }
 
 #[test]

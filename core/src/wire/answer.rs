@@ -10,6 +10,8 @@
 
 use super::{OutcomeRef, Planner, Request};
 use crate::contract::Planner as _;
+use crate::leo_tour::sequence::Sequence;
+use crate::leo_tour::tour_order::{LeoSequence, SequencePlanSettings, SequenceWorkspace};
 use crate::limits::Limits;
 use crate::{geo_tour, impulsive, leo_tour, pseudospectral};
 
@@ -44,11 +46,11 @@ pub trait Buffers {
         None
     }
     /// The LEO arc's.
-    fn leo_arc(&mut self) -> Option<&mut leo_tour::ArcSolution> {
+    fn leo_arc(&mut self) -> Option<(&mut leo_tour::Workspace, &mut leo_tour::ArcSolution)> {
         None
     }
     /// The LEO sequencing's.
-    fn leo_sequence(&mut self) -> Option<&mut leo_tour::sequence::Sequence> {
+    fn leo_sequence(&mut self) -> Option<(&mut SequenceWorkspace, &mut Sequence)> {
         None
     }
 }
@@ -64,9 +66,9 @@ pub struct AllPlanners {
     /// The GEO tour.
     pub geo_tour: Slot<geo_tour::Workspace, geo_tour::Solution>,
     /// The LEO arc.
-    pub leo_arc: leo_tour::ArcSolution,
+    pub leo_arc: Slot<leo_tour::Workspace, leo_tour::ArcSolution>,
     /// The LEO sequencing.
-    pub leo_sequence: leo_tour::sequence::Sequence,
+    pub leo_sequence: Slot<SequenceWorkspace, Sequence>,
 }
 
 impl AllPlanners {
@@ -85,8 +87,14 @@ impl AllPlanners {
                 workspace: geo_tour::Workspace::new(),
                 solution: geo_tour::Solution::new(),
             },
-            leo_arc: leo_tour::ArcSolution::new(),
-            leo_sequence: leo_tour::sequence::Sequence::new(),
+            leo_arc: Slot {
+                workspace: leo_tour::Workspace::new(),
+                solution: leo_tour::ArcSolution::new(),
+            },
+            leo_sequence: Slot {
+                workspace: SequenceWorkspace::new(),
+                solution: Sequence::new(),
+            },
         }
     }
 }
@@ -115,11 +123,13 @@ impl Buffers for AllPlanners {
         let s = &mut self.geo_tour;
         Some((&mut s.workspace, &mut s.solution))
     }
-    fn leo_arc(&mut self) -> Option<&mut leo_tour::ArcSolution> {
-        Some(&mut self.leo_arc)
+    fn leo_arc(&mut self) -> Option<(&mut leo_tour::Workspace, &mut leo_tour::ArcSolution)> {
+        let s = &mut self.leo_arc;
+        Some((&mut s.workspace, &mut s.solution))
     }
-    fn leo_sequence(&mut self) -> Option<&mut leo_tour::sequence::Sequence> {
-        Some(&mut self.leo_sequence)
+    fn leo_sequence(&mut self) -> Option<(&mut SequenceWorkspace, &mut Sequence)> {
+        let s = &mut self.leo_sequence;
+        Some((&mut s.workspace, &mut s.solution))
     }
 }
 
@@ -165,32 +175,26 @@ pub fn answer<'a, B: Buffers + ?Sized>(
                 }
             }
         },
-        Request::LeoArc { problem, settings } => match buffers.leo_arc() {
-            None => OutcomeRef::Unsupported(Planner::LeoArc),
-            Some(out) => match leo_tour::solve_arc(problem, settings) {
-                Ok(solution) => {
-                    *out = solution;
-                    OutcomeRef::LeoArc(out)
-                }
-                Err(e) => OutcomeRef::LeoArcRejected(e),
-            },
-        },
+        Request::LeoArc { problem, settings } => run::<leo_tour::LeoArc>(
+            (problem, settings),
+            buffers.leo_arc(),
+            (OutcomeRef::LeoArc, OutcomeRef::LeoArcRejected),
+        ),
         Request::LeoSequence {
             problem,
             settings,
             arc_settings,
-        } => match buffers.leo_sequence() {
-            None => OutcomeRef::Unsupported(Planner::LeoSequence),
-            Some(out) => {
-                match leo_tour::tour_order::choose_order(problem, settings, arc_settings) {
-                    Ok(sequence) => {
-                        *out = sequence;
-                        OutcomeRef::LeoSequence(out)
-                    }
-                    Err(e) => OutcomeRef::LeoSequenceRejected(e),
-                }
-            }
-        },
+        } => run::<LeoSequence>(
+            (
+                problem,
+                &SequencePlanSettings {
+                    order: *settings,
+                    arc: *arc_settings,
+                },
+            ),
+            buffers.leo_sequence(),
+            (OutcomeRef::LeoSequence, OutcomeRef::LeoSequenceRejected),
+        ),
     }
 }
 

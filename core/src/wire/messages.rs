@@ -46,7 +46,7 @@ pub enum Request {
         /// Loop bounds, tolerances and the work budget.
         settings: leo_tour::Settings,
     },
-    /// The LEO tour's order (`leo_tour::tour_order::choose_order`).
+    /// The LEO tour's order (`leo_tour::tour_order::solve_sequence`).
     LeoSequence {
         /// The clients at the tour epoch, impulses per arc, first client, arc durations.
         problem: leo_tour::sequence::SequenceProblem,

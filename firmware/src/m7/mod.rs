@@ -7,6 +7,7 @@
 //! binary text_bytes=.. rodata_bytes=.. data_bytes=.. bss_bytes=.. uninit_bytes=.. static_ram_bytes=..
 //! planners pseudospectral_workspace_bytes=.. pseudospectral_solution_bytes=.. impulsive_workspace_bytes=.. impulsive_solution_bytes=..
 //! planners geo_tour_workspace_bytes=.. geo_tour_solution_bytes=..   (GEO image only)
+//! planners leo_workspace_bytes=.. leo_sequence_workspace_bytes=.. leo_arc_solution_bytes=.. leo_onboard_plan_bytes=..   (LEO image only)
 //! fixture index=0 name=.. planner=pseudospectral outcome=ok|error stack_bytes=.. systick_instructions=.. work_units=.. (no work_units on the GEO image)
 //! result index=0 hex=..
 //! done fixtures=5
@@ -114,6 +115,17 @@ fn main() -> ! {
     #[cfg(feature = "geo_tour")]
     static mut GEO_SOLUTION: geo_tour::Solution = geo_tour::Solution::new();
 
+    // The LEO image's: the sequencing's workspace (its memos and the arc search's workspace,
+    // which the single arcs use too), an arc's answer and the on-board part's.
+    #[cfg(feature = "leo_tour")]
+    static mut LEO_WORKSPACE: leo_tour::tour_order::SequenceWorkspace =
+        leo_tour::tour_order::SequenceWorkspace::new();
+    #[cfg(feature = "leo_tour")]
+    static mut LEO_ARC_SOLUTION: leo_tour::ArcSolution = leo_tour::ArcSolution::new();
+    #[cfg(feature = "leo_tour")]
+    static mut LEO_ONBOARD: leo_tour::tour_order::OnboardPlan =
+        leo_tour::tour_order::OnboardPlan::new();
+
     let mut out = Out::new();
     let _ = writeln!(
         out,
@@ -151,6 +163,17 @@ fn main() -> ! {
         "planners geo_tour_workspace_bytes={} geo_tour_solution_bytes={}",
         core::mem::size_of::<geo_tour::Workspace>(),
         core::mem::size_of::<geo_tour::Solution>(),
+    );
+
+    #[cfg(feature = "leo_tour")]
+    let _ = writeln!(
+        out,
+        "planners leo_workspace_bytes={} leo_sequence_workspace_bytes={} \
+         leo_arc_solution_bytes={} leo_onboard_plan_bytes={}",
+        core::mem::size_of::<leo_tour::Workspace>(),
+        core::mem::size_of::<leo_tour::tour_order::SequenceWorkspace>(),
+        core::mem::size_of::<leo_tour::ArcSolution>(),
+        core::mem::size_of::<leo_tour::tour_order::OnboardPlan>(),
     );
 
     systick::start();
@@ -204,9 +227,19 @@ fn main() -> ! {
                 );
             }
             #[cfg(feature = "leo_tour")]
-            Planner::LeoArc => run_leo_arc(&mut out, (index, marker, fixture)),
+            Planner::LeoArc => run_leo_arc(
+                &mut out,
+                (index, marker, fixture),
+                &mut LEO_WORKSPACE.arc,
+                &mut *LEO_ARC_SOLUTION,
+            ),
             #[cfg(feature = "leo_tour")]
-            Planner::LeoOnboard => run_leo_onboard(&mut out, (index, marker, fixture)),
+            Planner::LeoOnboard => run_leo_onboard(
+                &mut out,
+                (index, marker, fixture),
+                &mut *LEO_WORKSPACE,
+                &mut *LEO_ONBOARD,
+            ),
             #[cfg(feature = "geo_tour")]
             Planner::GeoTour => run_geo_tour(
                 &mut out,
@@ -382,47 +415,24 @@ fn run_geo_tour(
 /// One LEO arc (the LEO image): its bytes carry `(ArcProblem, Settings)`.
 #[cfg(feature = "leo_tour")]
 #[inline(never)]
-fn run_leo_arc(out: &mut Out, (index, marker, fixture): (usize, u32, &Fixture)) {
+fn run_leo_arc(
+    out: &mut Out,
+    (index, marker, fixture): (usize, u32, &Fixture),
+    workspace: &mut leo_tour::Workspace,
+    solution: &mut leo_tour::ArcSolution,
+) {
+    solution.reset();
     repaint_stack();
     let (problem, settings): (leo_tour::ArcProblem, leo_tour::Settings) = decode(fixture);
     let run = measured(marker, || {
-        leo_tour::solve_arc(black_box(&problem), black_box(&settings))
+        leo_tour::solve_arc(
+            black_box(&problem),
+            black_box(&settings),
+            black_box(&mut *workspace),
+            black_box(&mut *solution),
+        )
     });
-    let units = run.result.as_ref().ok().map(|s| s.work_units);
-    report_leo(out, (index, fixture), &run, units);
-}
-
-/// The LEO tour's on-board part (the LEO image): the sequencing and every arc of the order;
-/// its bytes carry a `tour_order::OnboardProblem`. Its work units are the arcs' (the
-/// sequencing's estimates are not metered in total).
-#[cfg(feature = "leo_tour")]
-#[inline(never)]
-fn run_leo_onboard(out: &mut Out, (index, marker, fixture): (usize, u32, &Fixture)) {
-    repaint_stack();
-    let problem: leo_tour::tour_order::OnboardProblem = decode(fixture);
-    let run = measured(marker, || {
-        leo_tour::tour_order::plan_onboard(black_box(&problem))
-    });
-    let units = run.result.as_ref().ok().map(|p| {
-        p.arcs
-            .iter()
-            .flatten()
-            .flatten()
-            .map(|a| a.work_units)
-            .sum::<u64>()
-    });
-    report_leo(out, (index, fixture), &run, units);
-}
-
-/// Report a LEO run and print its result. The LEO planners keep their state on the stack (no
-/// workspace), so the stack figure is their memory.
-#[cfg(feature = "leo_tour")]
-fn report_leo<T: serde::Serialize, E: serde::Serialize>(
-    out: &mut Out,
-    (index, fixture): (usize, &Fixture),
-    run: &measure::Measured<Result<T, E>>,
-    units: Option<u64>,
-) {
+    let units = run.result.is_ok().then_some(solution.info.work_units);
     report(
         out,
         index,
@@ -432,7 +442,48 @@ fn report_leo<T: serde::Serialize, E: serde::Serialize>(
         run.stack_bytes,
         (run.ticks, units),
     );
-    print_result(out, index, &run.result);
+    print_result(out, index, &run.result.map(|()| &*solution));
+}
+
+/// The LEO tour's on-board part (the LEO image): the sequencing and every arc of the order;
+/// its bytes carry a `tour_order::OnboardProblem`. Its work units are the arcs' (the
+/// sequencing's estimates are not metered in total).
+#[cfg(feature = "leo_tour")]
+#[inline(never)]
+fn run_leo_onboard(
+    out: &mut Out,
+    (index, marker, fixture): (usize, u32, &Fixture),
+    workspace: &mut leo_tour::tour_order::SequenceWorkspace,
+    plan: &mut leo_tour::tour_order::OnboardPlan,
+) {
+    *plan = leo_tour::tour_order::OnboardPlan::new();
+    repaint_stack();
+    let problem: leo_tour::tour_order::OnboardProblem = decode(fixture);
+    let run = measured(marker, || {
+        leo_tour::tour_order::plan_onboard(
+            black_box(&problem),
+            black_box(&mut *workspace),
+            black_box(&mut *plan),
+        )
+    });
+    let units = run.result.is_ok().then(|| {
+        plan.arcs
+            .iter()
+            .flatten()
+            .flatten()
+            .map(|a| a.info.work_units)
+            .sum::<u64>()
+    });
+    report(
+        out,
+        index,
+        fixture,
+        "leo-tour",
+        run.result.is_ok(),
+        run.stack_bytes,
+        (run.ticks, units),
+    );
+    print_result(out, index, &run.result.map(|()| &*plan));
 }
 
 #[panic_handler]

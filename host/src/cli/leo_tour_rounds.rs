@@ -21,7 +21,9 @@ use crate::truth::plan_check::{full_model, TruthSettings};
 use crate::truth::propagate::{propagate, EciState};
 use anyhow::{anyhow, Result};
 use reconfig_core::leo_tour::j2::State;
-use reconfig_core::leo_tour::{solve_arc, solve_arc_warm, ArcProblem, Status};
+use reconfig_core::leo_tour::{
+    solve_arc, solve_arc_warm, ArcProblem, ArcSolution, SolveStatus, Workspace,
+};
 use serde_json::json;
 use std::time::Instant;
 
@@ -74,6 +76,7 @@ pub fn multi_round(f: &LeoTourFixture, planned: &[PlannedArc]) -> Result<Vec<Rou
     let mut chaser = to_eci(&f.clients[first]);
     let mut t0 = 0.0;
     let mut rounds = Vec::new();
+    let mut workspace = Box::new(Workspace::new());
     for (pair, &interval) in f.order.windows(2).zip(f.intervals_s.iter()) {
         let (from, to) = (pair[0], pair[1]);
         // The client's truth state at the arc start, flown from the tour epoch.
@@ -109,9 +112,16 @@ pub fn multi_round(f: &LeoTourFixture, planned: &[PlannedArc]) -> Result<Vec<Rou
         let warm = planned
             .iter()
             .find(|a| a.from == from && a.to == to && a.start_s.to_bits() == t0.to_bits());
-        let solution = match warm {
-            Some(a) => solve_arc_warm(&problem, &f.settings, &a.solution),
-            None => solve_arc(&problem, &f.settings),
+        let mut solution = ArcSolution::new();
+        match warm {
+            Some(a) => solve_arc_warm(
+                &problem,
+                &f.settings,
+                &a.solution,
+                &mut workspace,
+                &mut solution,
+            ),
+            None => solve_arc(&problem, &f.settings, &mut workspace, &mut solution),
         }
         .map_err(|e| anyhow!("round {} -> {}: {e:?}", from + 1, to + 1))?;
         let arc = PlannedArc {
@@ -151,9 +161,9 @@ pub fn multi_round(f: &LeoTourFixture, planned: &[PlannedArc]) -> Result<Vec<Rou
 
 /// Whether every round was planned `Solved`, re-planned, and arrives within `tol_m`.
 pub fn all_within(rounds: &[Round], tol_m: f64) -> bool {
-    rounds
-        .iter()
-        .all(|r| r.arc.solution.status == Status::Solved && r.corrected && r.miss_after_m <= tol_m)
+    rounds.iter().all(|r| {
+        r.arc.solution.info.status == SolveStatus::Solved && r.corrected && r.miss_after_m <= tol_m
+    })
 }
 
 /// `multi_round`'s outcome as JSON (an error as `{"error": ...}`).
@@ -167,7 +177,7 @@ pub fn rounds_json(rounds: &Result<Vec<Round>>) -> serde_json::Value {
                 "to": r.arc.to + 1,
                 "start_s": r.arc.start_s,
                 "end_s": r.arc.end_s,
-                "status": format!("{:?}", r.arc.solution.status),
+                "status": format!("{:?}", r.arc.solution.info.status),
                 "dv_mps": r.arc.solution.total_dv_mps,
                 "dv_after_mps": r.dv_after_mps,
                 "corrected": r.corrected,
@@ -189,7 +199,7 @@ pub fn print_rounds(rounds: &Result<Vec<Round>>) {
                     "    arc {} -> {}  {:?}{}  dv {:.3} m/s planned, {:.3} m/s flown; start offset {:.3e} m; truth miss {:.3} m before, {:.3e} m after",
                     r.arc.from + 1,
                     r.arc.to + 1,
-                    r.arc.solution.status,
+                    r.arc.solution.info.status,
                     if r.corrected { "" } else { " (last leg not re-planned: flown as made)" },
                     r.arc.solution.total_dv_mps,
                     r.dv_after_mps,

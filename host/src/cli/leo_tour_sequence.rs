@@ -6,8 +6,9 @@
 use crate::fixture::leo_tour::LeoTourFixture;
 use anyhow::{anyhow, Result};
 use reconfig_core::leo_tour::schedule::{Schedule, ScheduleStatus};
-use reconfig_core::leo_tour::sequence::{Sequence, SequenceStatus};
-use reconfig_core::leo_tour::tour_order::{self, OnboardProblem};
+use reconfig_core::leo_tour::sequence::Sequence;
+use reconfig_core::leo_tour::tour_order::{self, OnboardProblem, SequenceWorkspace};
+use reconfig_core::leo_tour::Workspace;
 use serde_json::json;
 use std::time::Instant;
 
@@ -21,9 +22,9 @@ pub struct ChosenOrder {
 }
 
 /// Choose the order of `f`'s tour with the core's on-board sequencing
-/// (`leo_tour::tour_order::choose_order`: branch-and-bound, each arc's cost the per-arc
+/// (`leo_tour::tour_order::solve_sequence`: branch-and-bound, each arc's cost the per-arc
 /// search's estimate with the `[sequence]` settings), and return the fixture with that order
-/// and its intervals.
+/// and its intervals (none when no order was found: the status says so).
 ///
 /// # Errors
 /// A sequencing request the core refuses (too few or many clients, a client without an
@@ -32,10 +33,18 @@ pub fn choose_order(f: &LeoTourFixture) -> Result<Option<(LeoTourFixture, Chosen
     let Some(spec) = f.sequence else {
         return Ok(None);
     };
+    let problem = f.sequence_problem()?;
+    let mut workspace = Box::new(SequenceWorkspace::new());
+    let mut sequence = Sequence::new();
     let started = Instant::now();
-    let sequence =
-        tour_order::choose_order(&f.sequence_problem()?, &spec.settings, &spec.arc_settings)
-            .map_err(|e| anyhow!("sequencing refused: {e}"))?;
+    tour_order::solve_sequence(
+        &problem,
+        &spec.settings,
+        &spec.arc_settings,
+        &mut workspace,
+        &mut sequence,
+    )
+    .map_err(|e| anyhow!("sequencing refused: {e}"))?;
     let time_s = started.elapsed().as_secs_f64();
     Ok(Some((
         with_order(f, &sequence),
@@ -83,16 +92,17 @@ pub fn with_order(f: &LeoTourFixture, sequence: &Sequence) -> LeoTourFixture {
 pub fn sequence_json(c: &ChosenOrder) -> serde_json::Value {
     let q = &c.sequence;
     let n = usize::from(q.len);
+    let i = &q.info;
     json!({
-        "status": format!("{:?}", q.status),
+        "status": format!("{:?}", i.status),
         "order": q.order[..n].iter().map(|&k| usize::from(k) + 1).collect::<Vec<_>>(),
         "total_dv_mps": q.total_dv_mps,
         "durations_s": q.durations_s[..n.saturating_sub(1)].to_vec(),
-        "arcs_planned": q.arcs_planned,
-        "arcs_in_tree": q.arcs_in_tree,
-        "orders_completed": q.orders_completed,
-        "orders_total": q.orders_total,
-        "bound_violations": q.bound_violations,
+        "arcs_planned": i.arcs_planned,
+        "arcs_in_tree": i.arcs_in_tree,
+        "orders_completed": i.orders_completed,
+        "orders_total": i.orders_total,
+        "bound_violations": i.bound_violations,
         "time_s": c.time_s,
     })
 }
@@ -123,6 +133,7 @@ pub fn choose_schedule(f: &LeoTourFixture) -> Result<Option<(LeoTourFixture, Cho
         .iter()
         .map(|&k| u8::try_from(k))
         .collect::<Result<_, _>>()?;
+    let mut workspace = Box::new(Workspace::new());
     let started = Instant::now();
     let schedule = tour_order::choose_schedule(
         &f.clients,
@@ -130,6 +141,7 @@ pub fn choose_schedule(f: &LeoTourFixture) -> Result<Option<(LeoTourFixture, Cho
         f.impulses,
         &spec.settings,
         &spec.arc_settings,
+        &mut workspace,
     )
     .map_err(|e| anyhow!("schedule refused: {e}"))?;
     let time_s = started.elapsed().as_secs_f64();
@@ -196,10 +208,11 @@ pub struct Prepared {
 pub fn prepare(f: &LeoTourFixture) -> Result<Prepared> {
     let chosen = choose_order(f)?;
     if let Some((_, c)) = &chosen {
-        if c.sequence.status == SequenceStatus::NoOrder {
+        if !c.sequence.info.status.is_usable() {
             return Err(anyhow!(
-                "sequencing: no order could be planned ({} arcs tried)",
-                c.sequence.arcs_planned
+                "sequencing: no order could be planned ({:?}, {} arcs tried)",
+                c.sequence.info.status,
+                c.sequence.info.arcs_planned
             ));
         }
     }

@@ -58,7 +58,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
                 "arc {} -> {}: {:?}, {:.3} m/s",
                 a.from + 1,
                 a.to + 1,
-                a.solution.status,
+                a.solution.info.status,
                 a.solution.total_dv_mps
             );
         }

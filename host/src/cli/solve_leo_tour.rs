@@ -17,7 +17,9 @@ use anyhow::{anyhow, Result};
 use reconfig_core::leo_tour::flight::Model;
 use reconfig_core::leo_tour::j2::State;
 use reconfig_core::leo_tour::shoot::{corrected_lambert, shoot_continued, Family, Offset, Secant};
-use reconfig_core::leo_tour::{propagate as core_propagate, solve_arc, ArcProblem, ArcSolution};
+use reconfig_core::leo_tour::{
+    propagate as core_propagate, solve_arc, ArcProblem, ArcSolution, Workspace,
+};
 use reconfig_core::work::Meter;
 use serde_json::json;
 use std::process::ExitCode;
@@ -34,7 +36,8 @@ pub struct PlannedArc {
     pub start_s: f64,
     /// Arc end from the tour epoch, s.
     pub end_s: f64,
-    /// The core's plan (epochs from the arc start).
+    /// The core's answer (epochs from the arc start): its burns, or with no plan
+    /// (`impulses == 0`) only its status.
     pub solution: ArcSolution,
     /// The arc's problem (states at the arc start).
     pub problem: ArcProblem,
@@ -71,15 +74,18 @@ pub fn arc_problems(f: &LeoTourFixture) -> Result<Vec<ArcRequest>> {
     Ok(out)
 }
 
-/// Plan every arc of the fixture's order.
+/// Plan every arc of the fixture's order (one workspace for all of them). An arc that ends
+/// without a usable plan is in the list with its status.
 ///
 /// # Errors
 /// A client that cannot be propagated to an arc start, or the core's `PlanError` (as text).
 pub fn plan(f: &LeoTourFixture) -> Result<Vec<PlannedArc>> {
     let mut arcs = Vec::new();
+    let mut workspace = Box::new(Workspace::new());
     for (from, to, start_s, problem) in arc_problems(f)? {
         let started = Instant::now();
-        let solution = solve_arc(&problem, &f.settings)
+        let mut solution = ArcSolution::new();
+        solve_arc(&problem, &f.settings, &mut workspace, &mut solution)
             .map_err(|e| anyhow!("arc {} -> {}: {e}", from + 1, to + 1))?;
         arcs.push(PlannedArc {
             from,
@@ -179,14 +185,17 @@ pub struct Replanned {
 /// [`replan_last_leg`] with the states it reached.
 ///
 /// # Errors
-/// As [`replan_last_leg`]; also when no truth flight of the re-planned leg succeeded.
+/// As [`replan_last_leg`]; also when no truth flight of the re-planned leg succeeded, or the
+/// arc has no plan.
 pub fn replan_last_leg_states(
     arc: &PlannedArc,
     settings: &reconfig_core::leo_tour::Settings,
 ) -> Result<Replanned> {
     let s = &arc.solution;
     let m = usize::from(s.impulses);
-    let last = m - 2;
+    let Some(last) = m.checked_sub(2) else {
+        return Err(anyhow!("the arc has no plan ({:?})", s.info.status));
+    };
     let t_last = s.burns[last].epoch_s;
     let dur = arc.problem.duration_s;
     let at = |t: f64| TruthSettings {
@@ -398,14 +407,16 @@ pub fn run(f: &LeoTourFixture, json_output: bool) -> Result<ExitCode> {
         Err(e) => return Ok(report_rejection(&f.name, &e, json_output)),
     };
     let total: f64 = arcs.iter().map(|a| a.solution.total_dv_mps).sum();
-    let usable = arcs
-        .iter()
-        .all(|a| a.solution.status == reconfig_core::leo_tour::Status::Solved);
+    let usable = arcs.iter().all(|a| a.solution.info.status.is_usable());
     let status = if usable { "Solved" } else { "NotSolved" };
     let mut rows = Vec::new();
     for a in &arcs {
-        let j2_miss = truth_miss_m(a, false)?;
-        let full_miss = truth_miss_m(a, true)?;
+        // An arc without a plan is not flown (its misses are absent: null in JSON).
+        let (j2_miss, full_miss) = if a.solution.impulses == 0 {
+            (None, None)
+        } else {
+            (Some(truth_miss_m(a, false)?), Some(truth_miss_m(a, true)?))
+        };
         // A re-plan that fails is reported as such (NaN: printed as "failed", null in JSON).
         let after = replan_last_leg(a, &f.settings).unwrap_or((f64::NAN, f64::NAN));
         rows.push((a, j2_miss, full_miss, after));
@@ -434,14 +445,14 @@ pub fn run(f: &LeoTourFixture, json_output: bool) -> Result<ExitCode> {
                     "to": a.to + 1,
                     "start_s": a.start_s,
                     "end_s": a.end_s,
-                    "status": format!("{:?}", s.status),
+                    "status": format!("{:?}", s.info.status),
                     "dv_mps": s.total_dv_mps,
                     "burns": burns,
                     "model_miss_m": s.miss_m,
                     "truth_miss_m": { "j2_only": j2m, "full": fm, "after_replanning": after.0.is_finite().then_some(after.0) },
                     "dv_after_replanning_mps": after.1.is_finite().then_some(after.1),
-                    "evaluations": s.evaluations,
-                    "work_units": s.work_units,
+                    "evaluations": s.info.evaluations,
+                    "work_units": s.info.work_units,
                     "solve_time_s": a.solve_time_s,
                 })
             })
@@ -468,16 +479,17 @@ pub fn run(f: &LeoTourFixture, json_output: bool) -> Result<ExitCode> {
         println!("{}: {status}, order {}", f.name, order.join(" -> "));
         if let Some(c) = &prepared.order {
             let q = &c.sequence;
+            let i = &q.info;
             println!(
-                "  sequencing: {:?}, {:.3} m/s with the sequencing search; planned {} of the tree's {} arcs ({:.1} %), {} of {} orders completed, {} bound violations, {:.2} s",
-                q.status,
-                q.total_dv_mps,
-                q.arcs_planned,
-                q.arcs_in_tree,
-                100.0 * f64::from(q.arcs_planned) / f64::from(q.arcs_in_tree.max(1)),
-                q.orders_completed,
-                q.orders_total,
-                q.bound_violations,
+                "  sequencing: {:?}, {} m/s with the sequencing search; planned {} of the tree's {} arcs ({:.1} %), {} of {} orders completed, {} bound violations, {:.2} s",
+                i.status,
+                q.total_dv_mps.map_or("no order".into(), |t| format!("{t:.3}")),
+                i.arcs_planned,
+                i.arcs_in_tree,
+                100.0 * f64::from(i.arcs_planned) / f64::from(i.arcs_in_tree.max(1)),
+                i.orders_completed,
+                i.orders_total,
+                i.bound_violations,
                 c.time_s
             );
         }
@@ -512,7 +524,7 @@ pub fn run(f: &LeoTourFixture, json_output: bool) -> Result<ExitCode> {
                 a.to + 1,
                 a.start_s,
                 a.end_s,
-                s.status,
+                s.info.status,
                 s.total_dv_mps
             );
             for b in s.burns.iter().take(usize::from(s.impulses)) {
@@ -526,9 +538,11 @@ pub fn run(f: &LeoTourFixture, json_output: bool) -> Result<ExitCode> {
                     size
                 );
             }
+            let (j2m, fm) = (j2m.unwrap_or(f64::NAN), fm.unwrap_or(f64::NAN));
+            let model_miss = s.miss_m.map_or("none".into(), |m| format!("{m:.2e}"));
             println!(
-                "    arrival miss: planning model {:.2e} m, truth J2-only {:.3} m, truth full {:.3} m  ({} evaluations, {:.2} s)",
-                s.miss_m, j2m, fm, s.evaluations, a.solve_time_s
+                "    arrival miss: planning model {model_miss} m, truth J2-only {j2m:.3} m, truth full {fm:.3} m  ({} evaluations, {:.2} s)",
+                s.info.evaluations, a.solve_time_s
             );
             println!(
                 "    last leg re-planned in the truth model: miss {:.3e} m, arc dv {:.3} m/s",

@@ -111,10 +111,10 @@ pub fn summarize(outcome: &Outcome) -> (String, String, String, String) {
             (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
         }
         Outcome::LeoArc(s) => (
-            format!("{:?}", s.status),
+            format!("{:?}", s.info.status),
             format!("dv={:.4} m/s", s.total_dv_mps),
             "-".into(),
-            format!("{}", s.evaluations),
+            format!("{}", s.info.evaluations),
         ),
         Outcome::LeoArcRejected(e) => {
             (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
@@ -122,7 +122,7 @@ pub fn summarize(outcome: &Outcome) -> (String, String, String, String) {
         Outcome::LeoSequence(q) => (
             format!(
                 "{:?} {}",
-                q.status,
+                q.info.status,
                 q.order
                     .iter()
                     .take(usize::from(q.len))
@@ -130,9 +130,10 @@ pub fn summarize(outcome: &Outcome) -> (String, String, String, String) {
                     .collect::<Vec<_>>()
                     .join(">")
             ),
-            format!("dv={:.4} m/s", q.total_dv_mps),
+            q.total_dv_mps
+                .map_or("no order".into(), |t| format!("dv={t:.4} m/s")),
             "-".into(),
-            format!("{}", q.arcs_planned),
+            format!("{}", q.info.arcs_planned),
         ),
         Outcome::LeoSequenceRejected(e) => {
             (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())

@@ -94,18 +94,27 @@ pub fn host_result(planner: Planner, problem: &[u8]) -> Vec<u8> {
             },
             |result, s| encode(&result.map(|()| s)),
         ),
-        // A LEO arc's bytes carry `(ArcProblem, Settings)`; the arc planner has no workspace.
-        Planner::LeoArc => {
-            let (p, settings): (leo_tour::ArcProblem, leo_tour::Settings) =
-                postcard::from_bytes(problem).expect("the baked problem decodes");
-            encode(&leo_tour::solve_arc(&p, &settings))
-        }
+        // A LEO arc's bytes carry `(ArcProblem, Settings)`.
+        Planner::LeoArc => encoded(
+            problem,
+            (leo_tour::Workspace::new(), leo_tour::ArcSolution::new()),
+            |(p, settings): &(leo_tour::ArcProblem, leo_tour::Settings), w, s| {
+                leo_tour::solve_arc(p, settings, w, s)
+            },
+            |result, s| encode(&result.map(|()| s)),
+        ),
         // The on-board part's bytes carry its `tour_order::OnboardProblem`.
-        Planner::LeoOnboard => {
-            let p: leo_tour::tour_order::OnboardProblem =
-                postcard::from_bytes(problem).expect("the baked problem decodes");
-            encode(&leo_tour::tour_order::plan_onboard(&p))
-        }
+        Planner::LeoOnboard => encoded(
+            problem,
+            (
+                leo_tour::tour_order::SequenceWorkspace::new(),
+                leo_tour::tour_order::OnboardPlan::new(),
+            ),
+            |p: &leo_tour::tour_order::OnboardProblem, w, s| {
+                leo_tour::tour_order::plan_onboard(p, w, s)
+            },
+            |result, s| encode(&result.map(|()| s)),
+        ),
     }
 }
 
