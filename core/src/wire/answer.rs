@@ -138,28 +138,33 @@ pub fn answer<'a, B: Buffers + ?Sized>(
     if let Err(violation) = limits.check(request) {
         return OutcomeRef::LimitExceeded(violation);
     }
+    // Each planner's arm runs in a frame of its own (`apart`): a front end's stack while it
+    // answers one planner's request holds no other planner's locals (a two-planner flight
+    // image measures each planner's stack as its one-planner image does).
     match request {
         Request::Pseudospectral { problem, settings } => match buffers.pseudospectral() {
             None => OutcomeRef::Unsupported(Planner::Pseudospectral),
-            Some((workspace, out)) => {
+            Some((workspace, out)) => apart(|| {
                 match run::<pseudospectral::Pseudospectral>(problem, settings, workspace, out) {
                     Ok(solution) => OutcomeRef::Pseudospectral(solution),
                     Err(e) => OutcomeRef::PseudospectralRejected(e),
                 }
-            }
+            }),
         },
         Request::Impulsive { problem, settings } => match buffers.impulsive() {
             None => OutcomeRef::Unsupported(Planner::Impulsive),
             Some((workspace, out)) => {
-                match run::<impulsive::Impulsive>(problem, settings, workspace, out) {
-                    Ok(solution) => OutcomeRef::Impulsive(solution),
-                    Err(e) => OutcomeRef::ImpulsiveRejected(e),
-                }
+                apart(
+                    || match run::<impulsive::Impulsive>(problem, settings, workspace, out) {
+                        Ok(solution) => OutcomeRef::Impulsive(solution),
+                        Err(e) => OutcomeRef::ImpulsiveRejected(e),
+                    },
+                )
             }
         },
         Request::ImpulsiveForm { problem, settings } => match buffers.impulsive() {
             None => OutcomeRef::Unsupported(Planner::Impulsive),
-            Some((workspace, out)) => {
+            Some((workspace, out)) => apart(|| {
                 impulsive::Impulsive::reset(out);
                 match impulsive::solve_form(problem, settings, workspace, out) {
                     Ok(end_state) => OutcomeRef::ImpulsiveForm {
@@ -168,27 +173,27 @@ pub fn answer<'a, B: Buffers + ?Sized>(
                     },
                     Err(e) => OutcomeRef::ImpulsiveRejected(e),
                 }
-            }
+            }),
         },
         Request::GeoTour { problem, settings } => match buffers.geo_tour() {
             None => OutcomeRef::Unsupported(Planner::GeoTour),
-            Some((workspace, out)) => {
+            Some((workspace, out)) => apart(|| {
                 *out = geo_tour::Solution::new();
                 match geo_tour::solve(problem, settings, workspace, out) {
                     Ok(()) => OutcomeRef::GeoTour(out),
                     Err(e) => OutcomeRef::GeoTourRejected(e),
                 }
-            }
+            }),
         },
         Request::LeoArc { problem, settings } => match buffers.leo_arc() {
             None => OutcomeRef::Unsupported(Planner::LeoArc),
-            Some(out) => match leo_tour::solve_arc(problem, settings) {
+            Some(out) => apart(|| match leo_tour::solve_arc(problem, settings) {
                 Ok(solution) => {
                     *out = solution;
                     OutcomeRef::LeoArc(out)
                 }
                 Err(e) => OutcomeRef::LeoArcRejected(e),
-            },
+            }),
         },
         Request::LeoSequence {
             problem,
@@ -196,7 +201,7 @@ pub fn answer<'a, B: Buffers + ?Sized>(
             arc_settings,
         } => match buffers.leo_sequence() {
             None => OutcomeRef::Unsupported(Planner::LeoSequence),
-            Some(out) => {
+            Some(out) => apart(|| {
                 match leo_tour::tour_order::choose_order(problem, settings, arc_settings) {
                     Ok(sequence) => {
                         *out = sequence;
@@ -204,9 +209,15 @@ pub fn answer<'a, B: Buffers + ?Sized>(
                     }
                     Err(e) => OutcomeRef::LeoSequenceRejected(e),
                 }
-            }
+            }),
         },
     }
+}
+
+/// `f` in a frame of its own, never inlined into the caller (see [`answer`]).
+#[inline(never)]
+fn apart<R>(f: impl FnOnce() -> R) -> R {
+    f()
 }
 
 /// One planner's solve into its slot, the slot reset first.
