@@ -1,100 +1,145 @@
-//! The tour's order for a fixture with a `[sequence]` table: the core's on-board sequencing
-//! (`reconfig_core::leo_tour::tour_order`: the branch-and-bound of `leo_tour::sequence`, each
-//! arc's cost the core's estimate `leo_tour::estimate_arc_mps`, the per-arc search in the
-//! search model with the table's faster settings).
+//! The LEO tour's driver: a tour fixture's requests answered in turn through the core's one
+//! request path (`wire::answer`, with the caller's limits): the order (the sequencing request
+//! of a `[sequence]` fixture), then the arcs' durations (a `[schedule]` fixture: the core's
+//! schedule, a planning step on the host, not a request), then one request per arc of the
+//! tour (`Fixture::requests` builds every one).
 
+use super::answer::{answer, no_plan, refused};
 use crate::fixture::leo_tour::LeoTourFixture;
 use anyhow::{anyhow, Result};
 use reconfig_core::leo_tour::schedule::{Schedule, ScheduleStatus};
 use reconfig_core::leo_tour::sequence::{Sequence, SequenceStatus};
-use reconfig_core::leo_tour::tour_order::{self, OnboardProblem};
-use serde_json::json;
+use reconfig_core::leo_tour::{tour_order, ArcProblem, ArcSolution};
+use reconfig_core::limits::Limits;
+use reconfig_core::wire::{Buffers, OutcomeRef, Request};
 use std::time::Instant;
+
+/// The LEO planners' buffers: the driver answers only LEO requests.
+#[derive(Debug, Default)]
+pub struct LeoBuffers {
+    arc: ArcSolution,
+    sequence: Sequence,
+}
+
+impl Buffers for LeoBuffers {
+    fn leo_arc(&mut self) -> Option<&mut ArcSolution> {
+        Some(&mut self.arc)
+    }
+    fn leo_sequence(&mut self) -> Option<&mut Sequence> {
+        Some(&mut self.sequence)
+    }
+}
+
+/// One planned arc of the tour.
+#[derive(Debug, Clone)]
+pub struct PlannedArc {
+    /// Client index (0-based) the arc leaves.
+    pub from: usize,
+    /// Client index (0-based) the arc reaches.
+    pub to: usize,
+    /// Arc start from the tour epoch, s.
+    pub start_s: f64,
+    /// Arc end from the tour epoch, s.
+    pub end_s: f64,
+    /// The core's plan (epochs from the arc start).
+    pub solution: ArcSolution,
+    /// The arc's problem (states at the arc start).
+    pub problem: ArcProblem,
+    /// Planning time (the answer through the request path), s.
+    pub solve_time_s: f64,
+}
+
+/// Plan every arc of the fixture's order: each arc's request ([`LeoTourFixture::requests`])
+/// answered through the request path under `limits`.
+///
+/// # Errors
+/// A fixture whose order is still to be chosen (a `[sequence]` table), a client that cannot
+/// be propagated to an arc start, or an arc request refused by the limits or rejected by the
+/// planner ([`super::answer::NoPlan`], naming the arc).
+pub fn plan(f: &LeoTourFixture, limits: &Limits) -> Result<Vec<PlannedArc>> {
+    if f.sequence.is_some() {
+        return Err(anyhow!("{}: choose the order first (prepare)", f.name));
+    }
+    let mut buffers = LeoBuffers::default();
+    let mut arcs = Vec::new();
+    for ((from, to, start_s, duration_s), r) in f.legs().into_iter().zip(f.requests()?) {
+        let Request::LeoArc { problem, .. } = r.request else {
+            return Err(anyhow!("{}: not an arc request", r.label));
+        };
+        let answered = answer(&r.request, limits, &mut buffers);
+        let OutcomeRef::LeoArc(solution) = answered.outcome else {
+            return Err(no_plan(&r.label, &answered));
+        };
+        arcs.push(PlannedArc {
+            from,
+            to,
+            start_s,
+            end_s: start_s + duration_s,
+            solution: *solution,
+            problem,
+            solve_time_s: answered.time_s,
+        });
+    }
+    Ok(arcs)
+}
 
 /// The order chosen by the core's sequencing for a fixture with a `[sequence]` table.
 #[derive(Debug, Clone, Copy)]
 pub struct ChosenOrder {
     /// The core's outcome (order, per-arc starts and durations, pruning counts).
     pub sequence: Sequence,
-    /// Wall time of the sequencing (every arc it planned), s.
+    /// Wall time of the answer to the sequencing request (every arc it planned), s.
     pub time_s: f64,
 }
 
-/// Choose the order of `f`'s tour with the core's on-board sequencing
-/// (`leo_tour::tour_order::choose_order`: branch-and-bound, each arc's cost the per-arc
-/// search's estimate with the `[sequence]` settings), and return the fixture with that order
-/// and its intervals.
+/// Choose the order of `f`'s tour: its sequencing request ([`LeoTourFixture::requests`])
+/// answered through the request path under `limits` (`leo_tour::tour_order::choose_order`:
+/// branch-and-bound, each arc's cost the per-arc search's estimate with the `[sequence]`
+/// settings), and return the fixture with that order and its intervals; `None` for a fixture
+/// without a `[sequence]` table.
 ///
 /// # Errors
-/// A sequencing request the core refuses (too few or many clients, a client without an
-/// elliptic plane, intervals out of range).
-pub fn choose_order(f: &LeoTourFixture) -> Result<Option<(LeoTourFixture, ChosenOrder)>> {
-    let Some(spec) = f.sequence else {
+/// The sequencing request refused by the limits or rejected (too few or many clients, a
+/// client without an elliptic plane, intervals out of range).
+pub fn choose_order(
+    f: &LeoTourFixture,
+    limits: &Limits,
+) -> Result<Option<(LeoTourFixture, ChosenOrder)>> {
+    if f.sequence.is_none() {
         return Ok(None);
+    }
+    let mut buffers = LeoBuffers::default();
+    let requests = f.requests()?;
+    let [r] = &requests[..] else {
+        return Err(anyhow!("{}: one sequencing request expected", f.name));
     };
-    let started = Instant::now();
-    let sequence =
-        tour_order::choose_order(&f.sequence_problem()?, &spec.settings, &spec.arc_settings)
-            .map_err(|e| anyhow!("sequencing refused: {e}"))?;
-    let time_s = started.elapsed().as_secs_f64();
-    Ok(Some((
-        with_order(f, &sequence),
-        ChosenOrder { sequence, time_s },
-    )))
+    let answered = answer(&r.request, limits, &mut buffers);
+    let OutcomeRef::LeoSequence(sequence) = answered.outcome else {
+        return Err(no_plan(&r.label, &answered));
+    };
+    let chosen = ChosenOrder {
+        sequence: *sequence,
+        time_s: answered.time_s,
+    };
+    Ok(Some((f.with_order(sequence), chosen)))
 }
 
-/// The on-board part of a `[sequence]` fixture as one core request
-/// (`leo_tour::tour_order::plan_onboard`: the order, then every arc of it).
+/// The on-board part of a `[sequence]` fixture as its requests, in the order a flight computer
+/// answers them: the sequencing request, then each arc's request of the order it answers (the
+/// answer computed here, through the request path under `limits`).
 ///
 /// # Errors
-/// A fixture without a `[sequence]` table, or with more clients than a request carries.
-pub fn onboard_problem(f: &LeoTourFixture) -> Result<OnboardProblem> {
-    let spec = f
-        .sequence
-        .ok_or_else(|| anyhow!("{} has no [sequence] table", f.name))?;
-    Ok(OnboardProblem {
-        tour: f.sequence_problem()?,
-        sequence: spec.settings,
-        estimates: spec.arc_settings,
-        arcs: f.settings,
-    })
-}
-
-/// `f` with the order and the arc durations of `sequence` (still with its `[sequence]`
-/// table).
-pub fn with_order(f: &LeoTourFixture, sequence: &Sequence) -> LeoTourFixture {
-    let n = usize::from(sequence.len);
-    let mut chosen = f.clone();
-    chosen.order = sequence
-        .order
-        .iter()
-        .take(n)
-        .map(|&k| usize::from(k))
-        .collect();
-    chosen.intervals_s = sequence
-        .durations_s
-        .iter()
-        .take(n.saturating_sub(1))
-        .copied()
-        .collect();
-    chosen
-}
-
-pub fn sequence_json(c: &ChosenOrder) -> serde_json::Value {
-    let q = &c.sequence;
-    let n = usize::from(q.len);
-    json!({
-        "status": format!("{:?}", q.status),
-        "order": q.order[..n].iter().map(|&k| usize::from(k) + 1).collect::<Vec<_>>(),
-        "total_dv_mps": q.total_dv_mps,
-        "durations_s": q.durations_s[..n.saturating_sub(1)].to_vec(),
-        "arcs_planned": q.arcs_planned,
-        "arcs_in_tree": q.arcs_in_tree,
-        "orders_completed": q.orders_completed,
-        "orders_total": q.orders_total,
-        "bound_violations": q.bound_violations,
-        "time_s": c.time_s,
-    })
+/// As [`choose_order`]; a fixture without a `[sequence]` table.
+pub fn onboard_requests(
+    f: &LeoTourFixture,
+    limits: &Limits,
+) -> Result<Vec<crate::fixture::FixtureRequest>> {
+    let Some((ordered, _)) = choose_order(f, limits)? else {
+        return Err(anyhow!("{} has no [sequence] table", f.name));
+    };
+    let mut requests = f.requests()?;
+    requests.extend(ordered.requests()?);
+    Ok(requests)
 }
 
 /// The arcs' durations chosen by the core's schedule for a fixture with a `[schedule]` table.
@@ -109,15 +154,23 @@ pub struct ChosenSchedule {
 }
 
 /// Choose the durations of `f`'s arcs, for its order, with the core's schedule
-/// (`leo_tour::tour_order::choose_schedule`) and return the fixture with them; `None` for a
-/// fixture without a `[schedule]` table.
+/// (`leo_tour::tour_order::choose_schedule`, a planning step on the host: no request kind)
+/// and return the fixture with them; `None` for a fixture without a `[schedule]` table. Its
+/// arc estimates are arc searches: their settings are held to the limits of an arc request.
 ///
 /// # Errors
-/// A schedule the core refuses (settings out of range) or one with no complete schedule.
-pub fn choose_schedule(f: &LeoTourFixture) -> Result<Option<(LeoTourFixture, ChosenSchedule)>> {
+/// Estimate settings outside the limits ([`super::answer::NoPlan`], a refusal), a schedule
+/// the core refuses (settings out of range) or one with no complete schedule.
+pub fn choose_schedule(
+    f: &LeoTourFixture,
+    limits: &Limits,
+) -> Result<Option<(LeoTourFixture, ChosenSchedule)>> {
     let Some(spec) = f.schedule else {
         return Ok(None);
     };
+    if let Err(v) = limits.leo_tour.check_settings(&spec.arc_settings) {
+        return Err(refused(&format!("{} schedule", f.name), v));
+    }
     let order: Vec<u8> = f
         .order
         .iter()
@@ -161,21 +214,6 @@ pub fn choose_schedule(f: &LeoTourFixture) -> Result<Option<(LeoTourFixture, Cho
     )))
 }
 
-pub fn schedule_json(c: &ChosenSchedule) -> serde_json::Value {
-    let q = &c.schedule;
-    let n = usize::from(q.arcs);
-    json!({
-        "status": format!("{:?}", q.status),
-        "durations_s": q.durations_s[..n].to_vec(),
-        "duration_units": q.duration_units[..n].to_vec(),
-        "unit_s": q.unit_s,
-        "horizon_s": c.horizon_s,
-        "total_dv_mps": q.total_dv_mps,
-        "arcs_planned": q.arcs_planned,
-        "time_s": c.time_s,
-    })
-}
-
 /// A LEO tour fixture ready to plan: its order chosen when it has a `[sequence]` table, then
 /// its arcs' durations when it has a `[schedule]` table.
 #[derive(Debug, Clone)]
@@ -192,9 +230,9 @@ pub struct Prepared {
 /// fixture): what `reconfig solve`, `reconfig plot` and the feeder plan.
 ///
 /// # Errors
-/// A sequencing or schedule the core refuses, or one that found no order or schedule.
-pub fn prepare(f: &LeoTourFixture) -> Result<Prepared> {
-    let chosen = choose_order(f)?;
+/// A sequencing or schedule refused or rejected, or one that found no order or schedule.
+pub fn prepare(f: &LeoTourFixture, limits: &Limits) -> Result<Prepared> {
+    let chosen = choose_order(f, limits)?;
     if let Some((_, c)) = &chosen {
         if c.sequence.status == SequenceStatus::NoOrder {
             return Err(anyhow!(
@@ -207,7 +245,7 @@ pub fn prepare(f: &LeoTourFixture) -> Result<Prepared> {
         Some((g, c)) => (g, Some(c)),
         None => (f.clone(), None),
     };
-    let (fixture, schedule) = match choose_schedule(&ordered)? {
+    let (fixture, schedule) = match choose_schedule(&ordered, limits)? {
         Some((g, c)) => (g, Some(c)),
         None => (ordered, None),
     };

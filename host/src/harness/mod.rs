@@ -11,8 +11,11 @@
 pub mod affinity;
 pub mod alloc_count;
 pub mod check;
+pub mod child;
 pub mod faults;
 pub mod feeder;
+pub mod items;
+pub mod leo_onboard;
 pub mod report;
 pub mod schedule;
 pub mod service;
