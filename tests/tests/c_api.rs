@@ -3,8 +3,8 @@
 //! Rust API's solve of the same fixture (status, cost or total delta-v bits, work units, and a
 //! checksum over the bits of the whole trajectory or plan): bit-identical or the test fails.
 //!
-//! The problems come from `firmware/fixture_set.rs` (the same decoded bytes the firmware and
-//! the QEMU tests use), planner A with default settings, planner B with default settings or
+//! The problems come from `firmware/fixture_set.rs` (the same decoded request bytes the firmware
+//! and the QEMU tests use), planner A with default settings, planner B with default settings or
 //! `Settings::fixed_point_only()` (`+fixed-point` runs), and planner B's other input forms
 //! (ROE, osculating states, the deputy's orbits) through `reconfig_impulsive_solve_form`, whose
 //! end state in the request's form is compared too, and the GEO tour's fixtures with their own
@@ -17,9 +17,11 @@
 
 #[path = "../../firmware/fixture_set.rs"]
 mod fixture_set;
+#[path = "../../firmware/image_limits.rs"]
+mod image_limits;
 
-use fixture_set::Planner;
 use reconfig_core::limits::{LimitViolation, Limits};
+use reconfig_core::wire::Request;
 use reconfig_core::{geo_tour, impulsive, pseudospectral, wire};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -494,39 +496,47 @@ struct Prepared {
 fn prepared() -> &'static Prepared {
     static PREPARED: OnceLock<Prepared> = OnceLock::new();
     PREPARED.get_or_init(|| {
-        let fixtures = fixture_set::encode_all(&root().join("fixtures")).expect("fixtures load");
+        let fixtures =
+            fixture_set::encode_all(&root().join("fixtures"), &image_limits::IMAGE_LIMITS)
+                .expect("fixtures load");
         let mut a_cases = String::new();
         let mut b_cases = String::new();
         let mut f_cases = String::new();
         let mut g_cases = String::new();
         let mut expected = Vec::new();
         for f in &fixtures {
-            match f.planner {
-                Planner::Pseudospectral => {
-                    let p: pseudospectral::Problem = postcard::from_bytes(&f.problem).unwrap();
-                    a_cases.push_str(&a_case(&f.name, &p));
-                    expected.push(a_expected(&f.name, &p));
+            let request: Request = postcard::from_bytes(&f.request).unwrap();
+            let fixed = |settings: &impulsive::Settings| {
+                *settings == impulsive::Settings::fixed_point_only()
+            };
+            match &request {
+                Request::Pseudospectral { problem: p, .. } => {
+                    a_cases.push_str(&a_case(&f.name, p));
+                    expected.push(a_expected(&f.name, p));
                 }
-                Planner::Impulsive | Planner::ImpulsiveFixedPoint => {
-                    let fixed = f.planner == Planner::ImpulsiveFixedPoint;
-                    let p: impulsive::Problem = postcard::from_bytes(&f.problem).unwrap();
-                    b_cases.push_str(&b_case(&f.name, fixed, &p));
-                    expected.push(b_expected(&f.name, fixed, &p));
+                Request::Impulsive {
+                    problem: p,
+                    settings,
+                } => {
+                    b_cases.push_str(&b_case(&f.name, fixed(settings), p));
+                    expected.push(b_expected(&f.name, fixed(settings), p));
                 }
-                Planner::ImpulsiveForm | Planner::ImpulsiveFormFixedPoint => {
-                    let fixed = f.planner == Planner::ImpulsiveFormFixedPoint;
-                    let p: impulsive::FormProblem = postcard::from_bytes(&f.problem).unwrap();
-                    f_cases.push_str(&f_case(&f.name, fixed, &p));
-                    expected.push(f_expected(&f.name, fixed, &p));
+                Request::ImpulsiveForm {
+                    problem: p,
+                    settings,
+                } => {
+                    f_cases.push_str(&f_case(&f.name, fixed(settings), p));
+                    expected.push(f_expected(&f.name, fixed(settings), p));
                 }
-                Planner::GeoTour => {
-                    let (p, st): (geo_tour::Problem, geo_tour::Settings) =
-                        postcard::from_bytes(&f.problem).unwrap();
-                    g_cases.push_str(&g_case(&f.name, &p, &st));
-                    expected.push(g_expected(&f.name, &p, &st));
+                Request::GeoTour {
+                    problem: p,
+                    settings: st,
+                } => {
+                    g_cases.push_str(&g_case(&f.name, p, st));
+                    expected.push(g_expected(&f.name, p, st));
                 }
                 // The LEO tour has no C interface yet.
-                Planner::LeoArc | Planner::LeoOnboard => {}
+                Request::LeoArc { .. } | Request::LeoSequence { .. } => {}
             }
         }
         // Planner A lines first, then planner B, its other forms and the GEO tour, as the

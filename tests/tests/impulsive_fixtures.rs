@@ -3,14 +3,13 @@
 //! nonlinear correction, the search against the paper's Table 3 bests, determinism.
 
 use reconfig_core::impulsive::{solve, Problem, Settings, Solution, SolveStatus, Workspace};
-use reconfig_host::fixture::{load, Fixture};
+use reconfig_host::fixture::{impulsive::ImpulsiveFixture, load_as};
 use reconfig_tests::fixtures_dir;
 
 fn problem(name: &str) -> Problem {
-    match load(&fixtures_dir().join(format!("{name}.toml"))).unwrap() {
-        Fixture::Impulsive(f) => f.problem,
-        Fixture::Pseudospectral(_) => panic!("{name} is not an impulsive fixture"),
-    }
+    load_as::<ImpulsiveFixture>(&fixtures_dir().join(format!("{name}.toml")))
+        .unwrap()
+        .problem
 }
 
 fn run(problem: &Problem, settings: &Settings) -> Solution {

@@ -7,24 +7,33 @@
 use reconfig_core::leo_tour::{
     solve_arc, ArcProblem, ArcSolution, Field, PlanError, Settings, SolveStatus, Workspace,
 };
+use reconfig_core::limits::Limits;
 use reconfig_core::limits::{Rule, Setting};
 use reconfig_core::wire::{
     decode_request, decode_response, encode_request, encode_response, Outcome, OutcomeRef, Request,
     REQUEST_MAX_BYTES, RESPONSE_MAX_BYTES,
 };
-use reconfig_host::cli::feed::leo_sequence_request;
-use reconfig_host::cli::leo_tour_sequence::choose_order;
-use reconfig_host::cli::solve_leo_tour::arc_problems;
-use reconfig_host::fixture::leo_tour;
+use reconfig_host::drivers::leo_tour::choose_order;
+use reconfig_host::fixture::leo_tour::{self, LeoTourFixture};
 use reconfig_host::harness::worker::Worker;
 use reconfig_tests::fixtures_dir;
 
 /// The paper's single arc (client 1 -> 2, Example I) as the fixture gives it.
 fn paper_arc() -> (ArcProblem, Settings) {
     let f = leo_tour::load(&fixtures_dir().join("leo-tour-example1-single-arc.toml")).unwrap();
-    let arcs = arc_problems(&f).unwrap();
-    assert_eq!(arcs.len(), 1);
-    (arcs[0].3, f.settings)
+    let mut requests = f.requests().unwrap();
+    assert_eq!(requests.len(), 1);
+    let Request::LeoArc { problem, settings } = requests.remove(0).request else {
+        panic!("an arc request");
+    };
+    (problem, settings)
+}
+
+/// The sequencing request of a `[sequence]` fixture (`Fixture::requests`).
+fn leo_sequence_request(f: &LeoTourFixture) -> Request {
+    let mut requests = f.requests().unwrap();
+    assert_eq!(requests.len(), 1);
+    requests.remove(0).request
 }
 
 /// The outcome the worker answers to `request`.
@@ -129,11 +138,11 @@ fn a_request_outside_the_planners_ranges_is_answered_with_the_field() {
 #[test]
 fn the_sequencing_request_is_answered_with_the_hosts_order() {
     let f = leo_tour::load(&fixtures_dir().join("leo-tour-example1-sequence.toml")).unwrap();
-    let request = leo_sequence_request(&f).unwrap();
+    let request = leo_sequence_request(&f);
     let mut buf = vec![0u8; REQUEST_MAX_BYTES];
     let n = encode_request(3, &request, &mut buf).unwrap();
     println!("LEO sequencing request: {n} bytes");
-    let (_, chosen) = choose_order(&f).unwrap().unwrap();
+    let (_, chosen) = choose_order(&f, &Limits::default()).unwrap().unwrap();
     let mut worker = Worker::new();
     let Outcome::LeoSequence(q) = answer(&mut worker, &request) else {
         panic!("expected LeoSequence");
@@ -151,7 +160,7 @@ fn a_sequencing_with_a_thinner_bound_margin_is_refused_by_name() {
         problem,
         mut settings,
         arc_settings,
-    } = leo_sequence_request(&f).unwrap()
+    } = leo_sequence_request(&f)
     else {
         panic!("a sequencing request");
     };

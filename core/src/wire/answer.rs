@@ -148,6 +148,10 @@ pub fn answer<'a, B: Buffers + ?Sized>(
     if let Err(violation) = limits.check(request) {
         return OutcomeRef::LimitExceeded(violation);
     }
+    // Each planner's arm runs in a frame of its own (`run`, `run_form`, `apart`, never inlined):
+    // a front end's stack while it
+    // answers one planner's request holds no other planner's locals (a two-planner flight
+    // image measures each planner's stack as its one-planner image does).
     match request {
         Request::Pseudospectral { problem, settings } => run::<pseudospectral::Pseudospectral>(
             (problem, settings),
@@ -167,13 +171,13 @@ pub fn answer<'a, B: Buffers + ?Sized>(
         }
         Request::GeoTour { problem, settings } => match buffers.geo_tour() {
             None => OutcomeRef::Unsupported(Planner::GeoTour),
-            Some((workspace, out)) => {
+            Some((workspace, out)) => apart(|| {
                 *out = geo_tour::Solution::new();
                 match geo_tour::solve(problem, settings, workspace, out) {
                     Ok(()) => OutcomeRef::GeoTour(out),
                     Err(e) => OutcomeRef::GeoTourRejected(e),
                 }
-            }
+            }),
         },
         Request::LeoArc { problem, settings } => run::<leo_tour::LeoArc>(
             (problem, settings),
@@ -227,7 +231,9 @@ type Outcomes<'a, P> = (
 );
 
 /// One planner's answer: `Unsupported` without a slot, else its solve into the slot (reset
-/// first) and the outcome `ok` of the solution or `rejected` of the refusal.
+/// first) and the outcome `ok` of the solution or `rejected` of the refusal. Out of line, so
+/// each planner's arm has a frame of its own (see [`answer`]).
+#[inline(never)]
 fn run<'a, P: crate::contract::Planner>(
     (problem, settings): (&P::Problem, &P::Settings),
     slot: Option<(&'a mut P::Workspace, &'a mut P::Solution)>,
@@ -241,4 +247,10 @@ fn run<'a, P: crate::contract::Planner>(
         Ok(()) => ok(out),
         Err(e) => rejected(e),
     }
+}
+
+/// `f` in a frame of its own, never inlined into the caller (see [`answer`]).
+#[inline(never)]
+fn apart<R>(f: impl FnOnce() -> R) -> R {
+    f()
 }

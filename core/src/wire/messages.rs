@@ -86,6 +86,19 @@ pub enum Planner {
     LeoSequence = 4,
 }
 
+impl Planner {
+    /// The planner's name in reports, records and fixture files.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Pseudospectral => "pseudospectral",
+            Self::Impulsive => "impulsive",
+            Self::GeoTour => "geo-tour",
+            Self::LeoArc => "leo-arc",
+            Self::LeoSequence => "leo-sequence",
+        }
+    }
+}
+
 /// What the service answers to one request.
 // No heap in the core: the solution stays inline (about 16 KB at capacity).
 #[allow(clippy::large_enum_variant)]
@@ -179,6 +192,53 @@ pub enum OutcomeRef<'a> {
     LeoSequenceRejected(leo_tour::sequence::SequenceError),
     /// See [`Outcome::Unsupported`].
     Unsupported(Planner),
+}
+
+/// A planner's refusal of a request before planning (its `PlanError`), as a report shows it.
+pub trait Rejection: core::fmt::Debug + core::fmt::Display {}
+
+impl<T: core::fmt::Debug + core::fmt::Display> Rejection for T {}
+
+impl OutcomeRef<'_> {
+    /// Whether the answer's plan may be flown: `Some` when the planner planned (its status's
+    /// verdict: `contract::Status::is_usable` for planners A and B and the LEO arc and
+    /// sequencing, `Solved` for the GEO tour), `None` when nothing was planned
+    /// (refused, rejected, unsupported, expired or a bad frame).
+    pub fn usable(&self) -> Option<bool> {
+        match self {
+            Self::Pseudospectral(s) => Some(s.info.status.is_usable()),
+            Self::Impulsive(s) | Self::ImpulsiveForm { solution: s, .. } => {
+                Some(s.info.status.is_usable())
+            }
+            Self::GeoTour(s) => Some(s.info.status == geo_tour::SolveStatus::Solved),
+            Self::LeoArc(s) => Some(s.info.status.is_usable()),
+            Self::LeoSequence(q) => Some(q.info.status.is_usable()),
+            _ => None,
+        }
+    }
+
+    /// The planner's refusal of the request before planning (a `*Rejected` outcome).
+    pub fn rejection(&self) -> Option<&dyn Rejection> {
+        match self {
+            Self::PseudospectralRejected(e) => Some(e),
+            Self::ImpulsiveRejected(e) => Some(e),
+            Self::GeoTourRejected(e) => Some(e),
+            Self::LeoArcRejected(e) => Some(e),
+            Self::LeoSequenceRejected(e) => Some(e),
+            _ => None,
+        }
+    }
+
+    /// The work units the planner used, for a planner with a work meter that planned (the
+    /// GEO tour and the LEO sequencing have none).
+    pub fn work_units(&self) -> Option<u64> {
+        match self {
+            Self::Pseudospectral(s) => Some(s.info.work_units),
+            Self::Impulsive(s) | Self::ImpulsiveForm { solution: s, .. } => Some(s.info.work_units),
+            Self::LeoArc(s) => Some(s.info.work_units),
+            _ => None,
+        }
+    }
 }
 
 impl Outcome {

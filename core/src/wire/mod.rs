@@ -33,7 +33,7 @@ pub use frame::{
     decode_request, decode_response, encode_outcome, encode_request, encode_response,
     peek_request_seq, view_response, RequestFrame, ResponseFrame, ResponseView,
 };
-pub use messages::{Expiry, Outcome, OutcomeRef, Planner, Request};
+pub use messages::{Expiry, Outcome, OutcomeRef, Planner, Rejection, Request};
 
 /// Protocol version carried in every frame; a frame of another version is refused.
 /// 2: planner A's solution carries its certificate, planner B's settings and solve info

@@ -23,16 +23,17 @@
 //! client than the round-robin allows (*served in turn*; *starved* counts the requests lost or
 //! served out of turn). Exit 0 only if all holds; the JSON report says which check failed.
 
-use crate::cli::demo::ServiceChild;
+use crate::harness::child::ServiceChild;
 use crate::harness::dispatch::{ServiceOrder, NO_TURN};
-use crate::harness::feeder::{self, Fate, FeedOptions, FeedRun, Item, Payload};
+use crate::harness::feeder::{self, Fate, FeedOptions, FeedRun, Item};
 use crate::harness::flood::{FloodMode, FlooderProcess};
+use crate::harness::items::request_item;
 use crate::harness::worker::{local_outcome, Worker, WORKER_STACK_BYTES};
 use crate::harness::{order, report, Instance};
 use anyhow::{anyhow, Result};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use reconfig_core::wire::{Planner, Request};
+use reconfig_core::wire::Request;
 use reconfig_core::{impulsive, pseudospectral};
 use serde::Serialize;
 use std::path::PathBuf;
@@ -155,14 +156,11 @@ pub struct FairnessOut {
 fn expensive_templates() -> Vec<Item> {
     let mut rng = ChaCha8Rng::seed_from_u64(11);
     (0..8)
-        .map(|k| Item {
-            label: format!("crossing M8 N16 #{k}"),
-            planner: Some(Planner::Pseudospectral),
-            size: "M8 N16".into(),
-            payload: Payload::Request(Box::new(Request::Pseudospectral {
-                problem: crate::scenario::crossing(&mut rng, 8, 16),
-                settings: pseudospectral::Settings::default(),
-            })),
+        .map(|k| {
+            let problem = crate::scenario::crossing(&mut rng, 8, 16);
+            let settings = pseudospectral::Settings::default();
+            let request = Request::Pseudospectral { problem, settings };
+            request_item(format!("crossing M8 N16 #{k}"), "M8 N16".into(), request)
         })
         .collect()
 }
@@ -171,14 +169,11 @@ fn expensive_templates() -> Vec<Item> {
 fn cheap_templates() -> Vec<Item> {
     let mut rng = ChaCha8Rng::seed_from_u64(12);
     (0..8)
-        .map(|k| Item {
-            label: format!("fixed point K3 #{k}"),
-            planner: Some(Planner::Impulsive),
-            size: "K3".into(),
-            payload: Payload::Request(Box::new(Request::Impulsive {
-                problem: crate::scenario::perturbed_impulsive(&mut rng, 3),
-                settings: impulsive::Settings::default(),
-            })),
+        .map(|k| {
+            let problem = crate::scenario::perturbed_impulsive(&mut rng, 3);
+            let settings = impulsive::Settings::default();
+            let request = Request::Impulsive { problem, settings };
+            request_item(format!("fixed point K3 #{k}"), "K3".into(), request)
         })
         .collect()
 }

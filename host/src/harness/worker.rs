@@ -69,8 +69,14 @@ pub fn local_outcome(worker: &mut Worker, request: &[u8]) -> Vec<u8> {
     }
 }
 
-/// A short human summary of an outcome: (status, cost or dv, min separation, iterations).
+/// A short human summary of an outcome: (status, cost or dv, min separation, iterations). The
+/// outcomes of the planners shown here have their figures; a refusal, a rejection or a bad
+/// frame says what went wrong; any other outcome shows as it is.
 pub fn summarize(outcome: &Outcome) -> (String, String, String, String) {
+    let dash = || "-".to_owned();
+    let figures =
+        |status: String, cost: String, iterations: String| (status, cost, dash(), iterations);
+    let dv = |mps: f64| format!("dv={mps:.4} m/s");
     match outcome {
         Outcome::Pseudospectral(s) => (
             format!("{:?}", s.info.status),
@@ -83,43 +89,22 @@ pub fn summarize(outcome: &Outcome) -> (String, String, String, String) {
             ),
             format!("{}", s.info.sqp_iterations),
         ),
-        Outcome::Impulsive(s) => (
+        Outcome::Impulsive(s) | Outcome::ImpulsiveForm { solution: s, .. } => figures(
             format!("{:?}", s.info.status),
-            format!("dv={:.4} m/s", s.total_dv_mps),
-            "-".into(),
+            dv(s.total_dv_mps),
             format!("{}", s.info.iterations),
         ),
-        Outcome::ImpulsiveForm { solution: s, .. } => (
+        Outcome::GeoTour(s) => figures(
             format!("{:?}", s.info.status),
-            format!("dv={:.4} m/s", s.total_dv_mps),
-            "-".into(),
-            format!("{}", s.info.iterations),
-        ),
-        Outcome::PseudospectralRejected(e) => {
-            (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
-        }
-        Outcome::ImpulsiveRejected(e) => {
-            (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
-        }
-        Outcome::GeoTour(s) => (
-            format!("{:?}", s.info.status),
-            format!("dv={:.4} m/s", s.total_dv_mps),
-            "-".into(),
+            dv(s.total_dv_mps),
             format!("{}", s.info.price_iterations),
         ),
-        Outcome::GeoTourRejected(e) => {
-            (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
-        }
-        Outcome::LeoArc(s) => (
+        Outcome::LeoArc(s) => figures(
             format!("{:?}", s.info.status),
-            format!("dv={:.4} m/s", s.total_dv_mps),
-            "-".into(),
+            dv(s.total_dv_mps),
             format!("{}", s.info.evaluations),
         ),
-        Outcome::LeoArcRejected(e) => {
-            (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
-        }
-        Outcome::LeoSequence(q) => (
+        Outcome::LeoSequence(q) => figures(
             format!(
                 "{:?} {}",
                 q.info.status,
@@ -130,41 +115,24 @@ pub fn summarize(outcome: &Outcome) -> (String, String, String, String) {
                     .collect::<Vec<_>>()
                     .join(">")
             ),
-            q.total_dv_mps
-                .map_or("no order".into(), |t| format!("dv={t:.4} m/s")),
-            "-".into(),
+            q.total_dv_mps.map_or("no order".into(), dv),
             format!("{}", q.info.arcs_planned),
         ),
-        Outcome::LeoSequenceRejected(e) => {
-            (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
-        }
-        Outcome::BadRequest(e) => (
-            format!("bad request: {e}"),
-            "-".into(),
-            "-".into(),
-            "-".into(),
-        ),
-        Outcome::LimitExceeded(v) => (
-            format!("limit exceeded: {v}"),
-            "-".into(),
-            "-".into(),
-            "-".into(),
-        ),
-        Outcome::Unsupported(p) => (
-            format!("unsupported planner {p:?}"),
-            "-".into(),
-            "-".into(),
-            "-".into(),
-        ),
-        Outcome::Expired(x) => (
+        Outcome::BadRequest(e) => figures(format!("bad request: {e}"), dash(), dash()),
+        Outcome::LimitExceeded(v) => figures(format!("limit exceeded: {v}"), dash(), dash()),
+        Outcome::Unsupported(p) => figures(format!("unsupported planner {p:?}"), dash(), dash()),
+        Outcome::Expired(x) => figures(
             format!(
                 "expired: queued {:.1} ms, deadline {:.1} ms",
                 x.queued_us as f64 / 1e3,
                 x.deadline_us as f64 / 1e3
             ),
-            "-".into(),
-            "-".into(),
-            "-".into(),
+            dash(),
+            dash(),
         ),
+        other => match other.as_ref().rejection() {
+            Some(e) => figures(format!("rejected: {e}"), dash(), dash()),
+            None => figures(format!("{other:?}"), dash(), dash()),
+        },
     }
 }
