@@ -6,20 +6,17 @@
 #include <stddef.h>
 #include <stdint.h>
 
-// Index of each settings flag in `RECONFIG_FIELD_SETTINGS_CODE` refusals.
-#define RECONFIG_SETTINGS_CODE_CONTINUOUS_VERIFICATION 0
-
-// Index of each settings flag or code in `RECONFIG_FIELD_SETTINGS_CODE` refusals.
-#define RECONFIG_SETTINGS_CODE_MIN_FUEL 0
-
-// See [`RECONFIG_SETTINGS_CODE_MIN_FUEL`].
-#define RECONFIG_SETTINGS_CODE_NONLINEAR_CORRECTION 1
-
-// See [`RECONFIG_SETTINGS_CODE_MIN_FUEL`].
-#define RECONFIG_SETTINGS_CODE_ELEMENT_SET 2
-
 // Field code of `relative.form` in `RECONFIG_ERR_INVALID_CODE` refusals.
 #define RECONFIG_FIELD_RELATIVE_FORM 30
+
+// Planner A (`reconfig_pseudospectral_*`).
+#define RECONFIG_PLANNER_PSEUDOSPECTRAL 0
+
+// Planner B (`reconfig_impulsive_*`, both input forms).
+#define RECONFIG_PLANNER_IMPULSIVE 1
+
+// The GEO servicing tour (`reconfig_geo_tour_*`).
+#define RECONFIG_PLANNER_GEO_TOUR 2
 
 // No solve has written this solution.
 #define RECONFIG_UNSOLVED 0
@@ -117,20 +114,24 @@
 // Refused: the workspace was not initialised by this planner's `_init`.
 #define RECONFIG_ERR_WORKSPACE_NOT_INITIALISED -4
 
-// Refused: a flag or enumeration field holds a value outside its set (`value`; `limit` is the
-// largest accepted value).
+// Refused: a flag or enumeration field of the problem holds a value outside its set (`value`;
+// `limit` is the largest accepted value). A setting's flag or code outside its set is
+// `RECONFIG_ERR_SETTING_OUT_OF_RANGE` naming the setting.
 #define RECONFIG_ERR_INVALID_CODE -5
 
 // Refused: a setting is outside the range the planner accepts (`field` =
 // `RECONFIG_FIELD_SETTINGS`, `index` the setting's code in its planner's settings table, named
 // by `reconfig_setting_name`; `value`; `limit` the end of the range it broke; `detail` 0 below
-// the range, 1 above it, 2 not finite). The same code for every planner.
+// the range, 1 above it, 2 not finite). The same code for every planner; also a flag other
+// than 0 or 1 or an enumeration code outside its set (`limit` the largest code, `detail` 1).
 #define RECONFIG_ERR_SETTING_OUT_OF_RANGE -6
 
 // Refused: the request asks for more work or less safety than the built-in limits allow (the
-// same limits as the flight service's): `field` = `RECONFIG_FIELD_SETTINGS`, `index` the
-// setting's code (a problem quantity's code is 128 and up), `value`, `limit`, `detail` the
-// rule (0 at most, 1 at least, 2 must be on, 3 must be off, 4 below). Nothing was solved.
+// same limits as the flight service's, checked before the planner's own validation, as the
+// service checks them): `field` = `RECONFIG_FIELD_SETTINGS`, `index` the setting's code (a
+// problem quantity's code is 128 and up), named by `reconfig_setting_name`, `value`, `limit`,
+// `detail` the rule (0 at most, 1 at least, 2 must be on, 3 must be off, 4 below). Nothing was
+// solved.
 #define RECONFIG_ERR_LIMIT_EXCEEDED -7
 
 // Planner A refused: a number is NaN or infinite.
@@ -276,9 +277,6 @@
 // Planner B: `search` (0 or 1).
 #define RECONFIG_FIELD_SEARCH 28
 
-// Settings flag or enumeration (`index` names it, see docs/c-api.md).
-#define RECONFIG_FIELD_SETTINGS_CODE 29
-
 // GEO tour: `start_lon_rad`.
 #define RECONFIG_FIELD_GEO_START_LONGITUDE 50
 
@@ -358,6 +356,9 @@
 // End-state form code: the end state could not be written in the form (`unavailable_reason`
 // says why; the plan itself is unaffected, its status says whether it is usable).
 #define RECONFIG_B_END_UNAVAILABLE 5
+
+// No end state: the plan's nonlinear check could not be flown (a numerical failure).
+#define RECONFIG_B_END_NOT_FLOWN 6
 
 // Why a form could not be converted (`error.detail` of `RECONFIG_B_ERR_INPUT_FORM`, and
 // `unavailable_reason`): a number is not finite.
@@ -750,6 +751,15 @@ typedef struct {
   uint8_t min_fuel_used;
   // 1: the nonlinear correction was applied.
   uint8_t correction_used;
+  // 1: `condition_number` holds a value; 0: absent (F rank-deficient, or not computed).
+  uint8_t has_condition_number;
+  // 1: `min_norm_total_dv_mps` holds a value; 0: absent (it came out non-finite).
+  uint8_t has_min_norm_total_dv_mps;
+  // 1: `linear_total_dv_mps` holds a value; 0: absent (it came out non-finite).
+  uint8_t has_linear_total_dv_mps;
+  // 1: the `terminal_*` fields hold the nonlinear check; 0: absent (the check could not be
+  // flown: a numerical failure), and they are 0.
+  uint8_t has_terminal_error;
   // Fixed-point iterations of the returned plan.
   uint16_t iterations;
   // Interior-point iterations, all told.
@@ -760,15 +770,15 @@ typedef struct {
   uint32_t evaluations;
   // Work units used.
   uint64_t work_units;
-  // Condition number of F at the returned plan.
+  // Condition number of F at the returned plan (when `has_condition_number`, else 0).
   double condition_number;
   // Certified least-fuel gap, m/s.
   double min_fuel_gap_mps;
   // sum |dv_k|, m/s.
   double total_dv_mps;
-  // Total of the minimum-norm fixed point, m/s.
+  // Total of the minimum-norm fixed point, m/s (when `has_min_norm_total_dv_mps`, else 0).
   double min_norm_total_dv_mps;
-  // Total of the linear-model fixed point, m/s.
+  // Total of the linear-model fixed point, m/s (when `has_linear_total_dv_mps`, else 0).
   double linear_total_dv_mps;
   // Time of the last impulse, s.
   double final_time_s;
@@ -1048,7 +1058,9 @@ int32_t reconfig_geo_tour_init(void *workspace, size_t size);
 int32_t reconfig_geo_tour_default_settings(ReconfigGeoSettings *out);
 
 // Plan the tour `problem` with `settings` in the initialised `workspace`; write the result
-// into `out`.
+// into `out`. The request is answered by the core's request path with the built-in limits
+// (the flight service's): a setting outside them is refused `RECONFIG_ERR_LIMIT_EXCEEDED`,
+// named.
 //
 // Returns the status code (also in `out->status`): `>= 0` a solve status (only
 // `RECONFIG_GEO_SOLVED` may be flown), `< 0` a refusal whose field, index, value and limit are
@@ -1086,6 +1098,9 @@ int32_t reconfig_impulsive_init(void *workspace, size_t size);
 int32_t reconfig_impulsive_default_settings(ReconfigBSettings *out);
 
 // Plan `problem` with `settings` in the initialised `workspace`; write the result into `out`.
+// The request is answered by the core's request path with the built-in limits (the flight
+// service's): a setting outside them is refused `RECONFIG_ERR_LIMIT_EXCEEDED`, named (the
+// limits require `nonlinear_correction = 1`).
 //
 // Returns the status code (also in `out->status`): `>= 0` a solve status, `< 0` a refusal
 // whose field, index, value and limit are in `out->error` (when `out` is usable).
@@ -1103,7 +1118,9 @@ int32_t reconfig_impulsive_solve(void *workspace,
 // elements or an osculating ECI state; the relative state as element differences, ROE or the
 // deputy's own orbits) with `settings` in the initialised planner-B `workspace`; write the plan
 // and its end state, in the form the target was given in, into `out`. The conversion runs on
-// board (the core's `impulsive::solve_form`) and is charged to the same work budget.
+// board (the core's `impulsive::solve_form`) and is charged to the same work budget; the
+// built-in limits also bound the orbits as given (eccentricity below 1, perigee altitude, the
+// chief's `|sin i|` under ROE: `RECONFIG_ERR_LIMIT_EXCEEDED` with `index` 128 and up).
 //
 // Returns the status code (also in `out->plan.status`): `>= 0` a solve status, `< 0` a
 // refusal whose field, index, value and limit are in `out->plan.error`
@@ -1115,6 +1132,13 @@ int32_t reconfig_impulsive_solve_form(void *workspace,
                                       const ReconfigBFormProblem *problem,
                                       const ReconfigBSettings *settings,
                                       ReconfigBFormSolution *out);
+
+// The name of the setting or problem quantity a refusal names: `planner` a
+// `RECONFIG_PLANNER_*` code, `code` the refusal's `error.index` (a setting's code in its
+// planner's settings table, or 128 plus a problem quantity's code). Returns a static
+// NUL-terminated string (never to be freed; the same pointer every call), or NULL for a code
+// the planner has no setting for.
+const char *reconfig_setting_name(int32_t planner, int32_t code);
 
 // Bytes of caller memory one planner-A workspace needs.
 size_t reconfig_pseudospectral_workspace_size(void);
@@ -1139,6 +1163,8 @@ int32_t reconfig_pseudospectral_init(void *workspace, size_t size);
 int32_t reconfig_pseudospectral_default_settings(ReconfigASettings *out);
 
 // Plan `problem` with `settings` in the initialised `workspace`; write the result into `out`.
+// The request is answered by the core's request path with the built-in limits (the flight
+// service's): a setting outside them is refused `RECONFIG_ERR_LIMIT_EXCEEDED`, named.
 //
 // Returns the status code (also in `out->status`): `>= 0` a solve status, `< 0` a refusal
 // whose field, index, value and limit are in `out->error` (when `out` is usable).

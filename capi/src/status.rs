@@ -3,6 +3,12 @@
 //! Codes `>= 0` are the core's solve statuses (the solution is written); codes `< 0` are
 //! refusals (nothing was solved; the solution's `error` says why when the solution pointer is
 //! usable). Each core status and each refusal has its own code; the table is in docs/c-api.md.
+//!
+//! A status code is the planner's base (A 0, B 100, GEO 200) plus the core status's own code
+//! (`contract::Status::code`), plus one for a budget stop whose plan is not verified (the core
+//! has one `BudgetExhausted { verified }` variant, C one code for each answer to "may it be
+//! flown?"); `Unsolved` is 0 for every planner ([`status_code`]; the unit test
+//! `c_codes_are_base_plus_the_core_code` checks every constant below against it).
 
 /// No solve has written this solution.
 pub const RECONFIG_UNSOLVED: i32 = 0;
@@ -74,18 +80,22 @@ pub const RECONFIG_ERR_MISALIGNED: i32 = -2;
 pub const RECONFIG_ERR_WORKSPACE_TOO_SMALL: i32 = -3;
 /// Refused: the workspace was not initialised by this planner's `_init`.
 pub const RECONFIG_ERR_WORKSPACE_NOT_INITIALISED: i32 = -4;
-/// Refused: a flag or enumeration field holds a value outside its set (`value`; `limit` is the
-/// largest accepted value).
+/// Refused: a flag or enumeration field of the problem holds a value outside its set (`value`;
+/// `limit` is the largest accepted value). A setting's flag or code outside its set is
+/// `RECONFIG_ERR_SETTING_OUT_OF_RANGE` naming the setting.
 pub const RECONFIG_ERR_INVALID_CODE: i32 = -5;
 /// Refused: a setting is outside the range the planner accepts (`field` =
 /// `RECONFIG_FIELD_SETTINGS`, `index` the setting's code in its planner's settings table, named
 /// by `reconfig_setting_name`; `value`; `limit` the end of the range it broke; `detail` 0 below
-/// the range, 1 above it, 2 not finite). The same code for every planner.
+/// the range, 1 above it, 2 not finite). The same code for every planner; also a flag other
+/// than 0 or 1 or an enumeration code outside its set (`limit` the largest code, `detail` 1).
 pub const RECONFIG_ERR_SETTING_OUT_OF_RANGE: i32 = -6;
 /// Refused: the request asks for more work or less safety than the built-in limits allow (the
-/// same limits as the flight service's): `field` = `RECONFIG_FIELD_SETTINGS`, `index` the
-/// setting's code (a problem quantity's code is 128 and up), `value`, `limit`, `detail` the
-/// rule (0 at most, 1 at least, 2 must be on, 3 must be off, 4 below). Nothing was solved.
+/// same limits as the flight service's, checked before the planner's own validation, as the
+/// service checks them): `field` = `RECONFIG_FIELD_SETTINGS`, `index` the setting's code (a
+/// problem quantity's code is 128 and up), named by `reconfig_setting_name`, `value`, `limit`,
+/// `detail` the rule (0 at most, 1 at least, 2 must be on, 3 must be off, 4 below). Nothing was
+/// solved.
 pub const RECONFIG_ERR_LIMIT_EXCEEDED: i32 = -7;
 
 /// Planner A refused: a number is NaN or infinite.
@@ -189,8 +199,6 @@ pub const RECONFIG_FIELD_IMPULSE_COUNT: i32 = 26;
 pub const RECONFIG_FIELD_REVOLUTIONS: i32 = 27;
 /// Planner B: `search` (0 or 1).
 pub const RECONFIG_FIELD_SEARCH: i32 = 28;
-/// Settings flag or enumeration (`index` names it, see docs/c-api.md).
-pub const RECONFIG_FIELD_SETTINGS_CODE: i32 = 29;
 /// GEO tour: `start_lon_rad`.
 pub const RECONFIG_FIELD_GEO_START_LONGITUDE: i32 = 50;
 /// GEO tour: `targets_lon_rad[index]`.
@@ -293,4 +301,83 @@ pub fn limit_violation_to_c(v: &reconfig_core::limits::LimitViolation) -> Reconf
     )
     .at(i32::from(v.setting.code()))
     .with_detail(i32::from(v.rule as u8))
+}
+
+/// First status code of planner A (its statuses are this plus the core's code).
+pub(crate) const A_STATUS_BASE: i32 = 0;
+/// First status code of planner B.
+pub(crate) const B_STATUS_BASE: i32 = 100;
+
+/// The C status code of a core status: `base` plus the status's code, plus one for a budget
+/// stop whose plan is not verified; `RECONFIG_UNSOLVED` for `Unsolved`.
+pub fn status_code<S: reconfig_core::contract::Status>(base: i32, status: &S) -> i32 {
+    match status.code() {
+        0 => RECONFIG_UNSOLVED,
+        code => base
+            .saturating_add(i32::from(code))
+            .saturating_add(i32::from(status.budget_exhausted() == Some(false))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use reconfig_core::{impulsive, pseudospectral};
+
+    #[test]
+    fn c_codes_are_base_plus_the_core_code() {
+        use pseudospectral::{SolveStatus as A, Stage as AS};
+        let a = [
+            (A::Unsolved, RECONFIG_UNSOLVED),
+            (A::Solved, RECONFIG_A_SOLVED),
+            (A::SeparationNotVerified, RECONFIG_A_SEPARATION_NOT_VERIFIED),
+            (A::MaxIterations, RECONFIG_A_MAX_ITERATIONS),
+            (A::Infeasible, RECONFIG_A_INFEASIBLE),
+            (A::QpLimit, RECONFIG_A_QP_LIMIT),
+            (A::NumericalFailure(AS::Basis), RECONFIG_A_NUMERICAL_FAILURE),
+            (A::Feasible, RECONFIG_A_FEASIBLE),
+            (
+                A::BudgetExhausted { verified: true },
+                RECONFIG_A_BUDGET_EXHAUSTED_VERIFIED,
+            ),
+            (
+                A::BudgetExhausted { verified: false },
+                RECONFIG_A_BUDGET_EXHAUSTED_UNVERIFIED,
+            ),
+        ];
+        for (s, c) in a {
+            assert_eq!(status_code(A_STATUS_BASE, &s), c, "{s:?}");
+        }
+        use impulsive::{SolveStatus as B, Stage as BS};
+        let b = [
+            (B::Unsolved, RECONFIG_UNSOLVED),
+            (B::Solved, RECONFIG_B_SOLVED),
+            (B::RankDeficient, RECONFIG_B_RANK_DEFICIENT),
+            (B::MaxIterations, RECONFIG_B_MAX_ITERATIONS),
+            (
+                B::CorrectionNotConverged,
+                RECONFIG_B_CORRECTION_NOT_CONVERGED,
+            ),
+            (B::NumericalFailure(BS::Svd), RECONFIG_B_NUMERICAL_FAILURE),
+            (
+                B::UnsafePerigee {
+                    arc: 1,
+                    perigee_altitude_km: 50.0,
+                },
+                RECONFIG_B_UNSAFE_PERIGEE,
+            ),
+            (B::Linearised { miss_m: 1.0 }, RECONFIG_B_LINEARISED),
+            (
+                B::BudgetExhausted { verified: true },
+                RECONFIG_B_BUDGET_EXHAUSTED_VERIFIED,
+            ),
+            (
+                B::BudgetExhausted { verified: false },
+                RECONFIG_B_BUDGET_EXHAUSTED_UNVERIFIED,
+            ),
+        ];
+        for (s, c) in b {
+            assert_eq!(status_code(B_STATUS_BASE, &s), c, "{s:?}");
+        }
+    }
 }

@@ -176,19 +176,20 @@ mod tests {
     fn limit_names_are_the_settings_names() {
         // A limits file and a fixture's [settings] use one vocabulary: the settings table's
         // names, each setting once.
-        let keys = |v: toml::Table| v.keys().cloned().collect::<std::collections::BTreeSet<_>>();
-        let a = keys(toml::Table::try_from(pseudospectral::Settings::default()).unwrap());
-        let names: std::collections::BTreeSet<_> = pseudospectral::SettingId::ALL
-            .iter()
-            .map(|id| id.name().to_string())
-            .collect();
-        assert_eq!(a, names);
-        let b = keys(toml::Table::try_from(impulsive::Settings::default()).unwrap());
-        let names: std::collections::BTreeSet<_> = impulsive::SettingId::ALL
-            .iter()
-            .map(|id| id.name().to_string())
-            .collect();
-        assert_eq!(b, names);
+        use std::collections::BTreeSet;
+        fn same<'a>(settings: impl Serialize, names: impl Iterator<Item = &'a str>) {
+            let table = toml::Table::try_from(settings).unwrap();
+            let keys: BTreeSet<&str> = table.keys().map(String::as_str).collect();
+            assert_eq!(keys, names.collect::<BTreeSet<_>>());
+        }
+        same(
+            pseudospectral::Settings::default(),
+            pseudospectral::SettingId::ALL.iter().map(|id| id.name()),
+        );
+        same(
+            impulsive::Settings::default(),
+            impulsive::SettingId::ALL.iter().map(|id| id.name()),
+        );
     }
 
     #[test]

@@ -8,7 +8,8 @@ use reconfig_core::geo_tour::{
     solve, GeoTour, MethodPolicy, Problem, Settings, Solution, SolveStatus, SweepChoice, Workspace,
     DEFAULT_WORK_BUDGET, MAX_INSTRUCTIONS_PER_UNIT,
 };
-use reconfig_host::fixture::geo_tour::{is_geo_tour, load, GeoTourFixture, DAY_S};
+use reconfig_host::fixture::geo_tour::{GeoTourFixture, DAY_S};
+use reconfig_host::fixture::{load, Fixture};
 use std::path::PathBuf;
 
 const DEG: f64 = std::f64::consts::PI / 180.0;
@@ -29,10 +30,22 @@ fn fixtures_in(folder: &str) -> Vec<GeoTourFixture> {
         .unwrap()
         .map(|e| e.unwrap().path())
         .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .filter(|p| is_geo_tour(&std::fs::read_to_string(p).unwrap()))
         .collect();
     files.sort();
-    files.iter().map(|p| load(p).unwrap()).collect()
+    files
+        .iter()
+        .filter_map(|p| match load(p).unwrap() {
+            Fixture::GeoTour(f) => Some(f),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The solution as the C interface writes it.
+fn in_c(s: &Solution) -> Box<reconfig_capi::types_geo::ReconfigGeoSolution> {
+    let mut c = Box::<reconfig_capi::types_geo::ReconfigGeoSolution>::default();
+    reconfig_capi::convert_geo::solution_to_c(s, &mut c);
+    c
 }
 
 /// Every number of `out` is finite; a usable plan also keeps its promise (every burn within
@@ -236,13 +249,13 @@ fn numbers_stay_finite_and_the_fastest_tour_absent_when_nothing_fits() {
     assert!(!out.info.status.is_usable(), "{:?}", out.info.status);
     assert_eq!(out.info.fastest_tour_s, None);
     assert_finite_and_kept(&out, &p, "no method within the cap");
-    let c = reconfig_capi::convert_geo::solution_to_c(&out);
+    let c = in_c(&out);
     assert_eq!((c.has_fastest_tour_s, c.fastest_tour_s), (0, 0.0));
     assert_eq!(c.work_units, out.info.work_units);
     // A feasible request has its fastest tour, in C too.
     let f = &fixtures_in("fixtures")[0];
     let out = run(&f.problem, &f.settings);
-    let c = reconfig_capi::convert_geo::solution_to_c(&out);
+    let c = in_c(&out);
     assert_eq!(c.has_fastest_tour_s, 1);
     assert_eq!(Some(c.fastest_tour_s), out.info.fastest_tour_s);
 }

@@ -163,7 +163,12 @@ fn circular_and_equatorial_chiefs_are_ordinary_in_the_equinoctial_set() {
         let mut out = Solution::new();
         solve(&p, &Settings::default(), &mut ws, &mut out).unwrap();
         assert_eq!(out.info.status, SolveStatus::Solved, "e {ecc} i {inc_rad}");
-        assert!(out.terminal_position_error_m < 1e-3);
+        assert!(
+            out.terminal_error
+                .expect("nonlinear check flown")
+                .position_m
+                < 1e-3
+        );
     }
 }
 
@@ -502,7 +507,7 @@ fn coincident_points_are_least_squares_with_their_rank_reported() {
     assert_eq!(out.info.status, SolveStatus::RankDeficient);
     assert!(!out.info.status.is_usable());
     assert_eq!(out.info.rank, 3);
-    assert_eq!(out.info.condition_number, f64::MAX);
+    assert_eq!(out.info.condition_number, None);
     assert_eq!(out.impulses.len(), 2);
     assert!(out.total_dv_mps.is_finite());
     // Minimum norm splits the least-squares impulse evenly between the two coincident points.

@@ -62,4 +62,47 @@ pub trait Planner {
 
     /// The status of an answer.
     fn status(solution: &Self::Solution) -> Self::Status;
+
+    /// Reset `out` to the empty `Unsolved` answer, in place (no large temporary on the stack:
+    /// a flight image's stack is measured to the byte).
+    fn reset(out: &mut Self::Solution);
+}
+
+/// Implement [`Planner`] for a planner's unit struct from its module's items: the problem,
+/// settings, workspace, solution, error and status types, the wire kind, the solve function
+/// and the in-place reset of a solution (`|out| ...`).
+#[macro_export]
+macro_rules! impl_planner {
+    (
+        $Unit:ident: $Problem:ty, $Settings:ty, $Workspace:ty, $Solution:ty, $Error:ty,
+        $Status:ty, $kind:expr, $solve:path, reset $reset:expr
+    ) => {
+        impl $crate::contract::Planner for $Unit {
+            type Problem = $Problem;
+            type Settings = $Settings;
+            type Workspace = $Workspace;
+            type Solution = $Solution;
+            type Error = $Error;
+            type Status = $Status;
+            const KIND: $crate::wire::Planner = $kind;
+
+            fn solve(
+                problem: &$Problem,
+                settings: &$Settings,
+                workspace: &mut $Workspace,
+                out: &mut $Solution,
+            ) -> Result<(), $Error> {
+                $solve(problem, settings, workspace, out)
+            }
+
+            fn status(solution: &$Solution) -> $Status {
+                solution.info.status
+            }
+
+            fn reset(out: &mut $Solution) {
+                let reset: fn(&mut $Solution) = $reset;
+                reset(out);
+            }
+        }
+    };
 }

@@ -280,11 +280,16 @@ macro_rules! settings_table {
             )+
         }
 
+        impl $Settings {
+            /// The defaults, as a constant (a flight image's limits can then sit in flash).
+            pub const DEFAULT: Self = Self {
+                $( $field: $default, )+
+            };
+        }
+
         impl Default for $Settings {
             fn default() -> Self {
-                Self {
-                    $( $field: $default, )+
-                }
+                Self::DEFAULT
             }
         }
 

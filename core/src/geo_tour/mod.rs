@@ -72,28 +72,10 @@ pub fn rule_method(phase_rad: f64, settings: &Settings) -> Method {
 #[derive(Clone, Copy, Debug)]
 pub struct GeoTour;
 
-impl crate::contract::Planner for GeoTour {
-    type Problem = Problem;
-    type Settings = Settings;
-    type Workspace = Workspace;
-    type Solution = Solution;
-    type Error = PlanError;
-    type Status = SolveStatus;
-    const KIND: crate::wire::Planner = crate::wire::Planner::GeoTour;
-
-    fn solve(
-        problem: &Problem,
-        settings: &Settings,
-        workspace: &mut Workspace,
-        out: &mut Solution,
-    ) -> Result<(), PlanError> {
-        solve(problem, settings, workspace, out)
-    }
-
-    fn status(solution: &Solution) -> SolveStatus {
-        solution.info.status
-    }
-}
+crate::impl_planner!(
+    GeoTour: Problem, Settings, Workspace, Solution, PlanError, SolveStatus,
+    crate::wire::Planner::GeoTour, solve, reset |out| *out = Solution::new()
+);
 
 /// Plan the tour of `problem` into `out`.
 ///

@@ -67,11 +67,22 @@ pub use forms::{
 pub use model::{point_phase, Phase};
 pub use settings::{ElementSet, SettingId, Settings, DEFAULT_WORK_BUDGET, MAX_SEARCH_STARTS};
 pub use socp::{least_fuel_rows, LeastFuel, SocpStatus};
-pub use solution::{Impulse, Solution};
+pub use solution::{Impulse, Solution, TerminalError};
 pub use status::{SolveInfo, SolveStatus, Stage};
 pub use trajectory::{formation_position_rtn_km, relative_position_rtn_km, TrajectoryError};
 pub use types::*;
 pub use workspace::Workspace;
+
+/// Planner B in the planners' contract ([`crate::contract::Planner`]): [`solve`]. (A
+/// request in the user's input forms goes through [`solve_form`], which writes the same
+/// solution.)
+#[derive(Clone, Copy, Debug)]
+pub struct Impulsive;
+
+crate::impl_planner!(
+    Impulsive: Problem, Settings, Workspace, Solution, PlanError, SolveStatus,
+    crate::wire::Planner::Impulsive, solve, reset |out| *out = Solution::new()
+);
 
 /// Plan the impulses of `problem`: at its fixed impulse points, or by a bounded search over
 /// them (`ImpulsePlan::Search`).

@@ -19,7 +19,7 @@ use super::j2::{join, pos, vel, State};
 use super::mean_j2::{self, MeanOrbit};
 use super::shoot::{corrected_lambert_from, shoot, Family, Offset, Secant};
 use super::track::Track;
-use super::types::{ArcSolution, Burn, Settings, Status, MAX_IMPULSES, MAX_VARS};
+use super::types::{Burn, Settings, MAX_IMPULSES, MAX_VARS};
 use crate::astro::Gravity;
 use crate::indexed::IndexedExt as _;
 use crate::lambert::Branch;
@@ -32,10 +32,10 @@ pub(crate) struct Ctx<'a> {
     pub g: Gravity,
     pub impulses: usize,
     pub tf: f64,
-    /// The clients' checkpoints in the planning model (`None` for an estimate, which never
-    /// flies in the planning model).
-    pub a: Option<Track>,
-    pub b: Option<Track>,
+    /// The clients' checkpoints in the planning model, in the caller's workspace (`None` for
+    /// an estimate, which never flies in the planning model).
+    pub a: Option<&'a Track>,
+    pub b: Option<&'a Track>,
     pub b_end: State,
     /// The model of the flights now (the search's, or the planning model's for the polish
     /// and the final check).
@@ -90,6 +90,23 @@ impl Point {
     }
 }
 
+/// A plan flown from scratch in the planning model with an exact shooting of its last leg
+/// ([`Ctx::finish`]): what the caller gets, and whether it arrives.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Flown {
+    /// The burns, `impulses` of them.
+    pub burns: [Burn; MAX_IMPULSES],
+    pub impulses: u8,
+    /// Sum of the burn sizes, m/s (finite).
+    pub total_dv_mps: f64,
+    /// Arrival miss, m (finite).
+    pub miss_m: f64,
+    /// The last leg's family.
+    pub fam: Family,
+    /// The miss is within `arrival_tol_km`.
+    pub arrives: bool,
+}
+
 pub(super) fn families(max_revs: u16) -> impl Iterator<Item = Family> {
     core::iter::once(Family {
         revs: 0,
@@ -133,11 +150,11 @@ impl Ctx<'_> {
 
     fn client_state_flown(&mut self, which: Client, t_s: f64) -> Option<State> {
         let (track, mean) = match which {
-            Client::A => (&self.a, self.mean_a),
-            Client::B => (&self.b, self.mean_b),
+            Client::A => (self.a, self.mean_a),
+            Client::B => (self.b, self.mean_b),
         };
         match self.flight.model {
-            Model::Planning => track.as_ref()?.state_at(&self.flight, t_s, &mut self.meter),
+            Model::Planning => track?.state_at(&self.flight, t_s, &mut self.meter),
             Model::MeanElements => {
                 if !self.meter.spend(mean_j2::STATE_UNITS) {
                     return None;
@@ -417,11 +434,11 @@ impl Ctx<'_> {
 
     /// Fly `p` in the planning model with an exact J2 shooting of the last leg, and check the
     /// arrival: the plan the caller gets.
-    pub fn finish(&mut self, p: &Point) -> Option<ArcSolution> {
+    pub(crate) fn finish(&mut self, p: &Point) -> Option<Flown> {
         self.in_model(Model::Planning, |ctx| ctx.finish_in_planning_model(p))
     }
 
-    fn finish_in_planning_model(&mut self, p: &Point) -> Option<ArcSolution> {
+    fn finish_in_planning_model(&mut self, p: &Point) -> Option<Flown> {
         let (pre, s, t) = self.fly_to_last_leg(&p.x)?;
         let last = self.impulses.checked_sub(2)?;
         let t_last = *t.get(last)?;
@@ -456,23 +473,15 @@ impl Ctx<'_> {
         fill(last.checked_add(1)?, &shot.arrival, v_match, self.tf);
         let total: f64 = burns.iter().map(|b| norm(&b.dv_km_s)).sum::<f64>() * 1e3;
         let miss_m = shot.miss_km * 1e3;
-        let status = if miss_m > self.settings.arrival_tol_km * 1e3 {
-            Status::ArrivalMissed
-        } else if self.meter.exhausted() {
-            Status::BudgetExhaustedSolved
-        } else {
-            Status::Solved
-        };
-        (total.is_finite() && miss_m.is_finite()).then_some(ArcSolution {
-            status,
+        // Finite below (or no plan): the old `miss > tol` test's complement.
+        let arrives = miss_m <= self.settings.arrival_tol_km * 1e3;
+        (total.is_finite() && miss_m.is_finite()).then_some(Flown {
             burns,
             impulses: u8::try_from(self.impulses).ok()?,
             total_dv_mps: total,
             miss_m,
-            last_leg_revolutions: p.fam.revs,
-            last_leg_branch: p.fam.branch,
-            evaluations: self.evals,
-            work_units: self.meter.used(),
+            fam: p.fam,
+            arrives,
         })
     }
 }

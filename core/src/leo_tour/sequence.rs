@@ -97,36 +97,64 @@ impl SequenceSettings {
     }
 }
 
-/// What the returned order is.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+/// What the returned order is (the contract's vocabulary, [`crate::contract::Status`]; the
+/// sequencing has no work budget of its own: `max_arcs` bounds it).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[repr(u8)]
 pub enum SequenceStatus {
+    /// No sequencing has written this outcome.
+    #[default]
+    Unsolved = 0,
     /// Every order was either planned or pruned by the bound, and no planned arc was cheaper
-    /// than its bound: the order is the cheapest for the arc planner given.
-    Optimal,
+    /// than its bound: the order is the cheapest for the arc costs given (the contract's
+    /// `Solved`).
+    Optimal = 1,
     /// The enumeration finished but some planned arc was cheaper than its bound: the order is
     /// the cheapest of those planned, and a pruned order might have been cheaper.
-    BoundViolated,
+    BoundViolated = 2,
     /// `max_arcs` stopped the enumeration: the best order planned so far.
-    ArcLimit,
-    /// No order could be planned (every one has an arc the planner refused).
-    NoOrder,
+    ArcLimit = 3,
+    /// No order was found: no `order`, no `total_dv_mps`. With `arc_limit`, `max_arcs` stopped
+    /// the enumeration before any complete order; without it, every order has an arc the
+    /// planner refused.
+    NoOrder {
+        /// `max_arcs` stopped the enumeration.
+        arc_limit: bool,
+    } = 4,
 }
 
-/// The outcome of a sequencing.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Sequence {
+impl SequenceStatus {
+    /// An order exists (`Optimal`, `BoundViolated`, `ArcLimit`).
+    pub const fn is_usable(&self) -> bool {
+        matches!(self, Self::Optimal | Self::BoundViolated | Self::ArcLimit)
+    }
+}
+
+impl crate::contract::Status for SequenceStatus {
+    fn is_usable(&self) -> bool {
+        SequenceStatus::is_usable(self)
+    }
+
+    fn code(&self) -> u8 {
+        match self {
+            Self::Unsolved => 0,
+            Self::Optimal => 1,
+            Self::BoundViolated => 2,
+            Self::ArcLimit => 3,
+            Self::NoOrder { .. } => 4,
+        }
+    }
+
+    fn budget_exhausted(&self) -> Option<bool> {
+        None
+    }
+}
+
+/// How a sequencing ended and what it took.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SequenceInfo {
     /// What the order is.
     pub status: SequenceStatus,
-    /// The order, 0-based client indices; `len` of them.
-    pub order: [u8; MAX_CLIENTS],
-    /// Clients in the order.
-    pub len: u8,
-    /// The planned Δv of the order, m/s.
-    pub total_dv_mps: f64,
-    /// The arcs' start epochs (from the tour epoch), s; `len - 1` of them.
-    pub starts_s: [f64; MAX_CLIENTS - 1],
-    /// The arcs' durations, s.
-    pub durations_s: [f64; MAX_CLIENTS - 1],
     /// Arcs planned (callback calls).
     pub arcs_planned: u32,
     /// Arcs in the whole enumeration tree (what planning every order would take with each
@@ -138,6 +166,57 @@ pub struct Sequence {
     pub orders_total: u32,
     /// Planned arcs cheaper than their bound.
     pub bound_violations: u32,
+}
+
+/// The outcome of a sequencing. Every number is finite whatever the status; with no order
+/// (`len == 0`) the order, starts and durations are zero and `total_dv_mps` is absent.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Sequence {
+    /// The order, 0-based client indices; `len` of them.
+    pub order: [u8; MAX_CLIENTS],
+    /// Clients in the order (0 when there is none).
+    pub len: u8,
+    /// The planned Δv of the order, m/s; absent when there is no order.
+    pub total_dv_mps: Option<f64>,
+    /// The arcs' start epochs (from the tour epoch), s; `len - 1` of them.
+    pub starts_s: [f64; MAX_CLIENTS - 1],
+    /// The arcs' durations, s.
+    pub durations_s: [f64; MAX_CLIENTS - 1],
+    /// The status and the counters.
+    pub info: SequenceInfo,
+}
+
+impl Sequence {
+    /// The empty `Unsolved` outcome (no order), for use as an output buffer (a `const fn`: it
+    /// can sit in a `static`).
+    pub const fn new() -> Self {
+        Self {
+            order: [0; MAX_CLIENTS],
+            len: 0,
+            total_dv_mps: None,
+            starts_s: [0.0; MAX_CLIENTS - 1],
+            durations_s: [0.0; MAX_CLIENTS - 1],
+            info: SequenceInfo {
+                status: SequenceStatus::Unsolved,
+                arcs_planned: 0,
+                arcs_in_tree: 0,
+                orders_completed: 0,
+                orders_total: 0,
+                bound_violations: 0,
+            },
+        }
+    }
+
+    /// Make this the empty `Unsolved` outcome, in place.
+    pub fn reset(&mut self) {
+        *self = Self::new();
+    }
+}
+
+impl Default for Sequence {
+    fn default() -> Self {
+        Self::new()
+    }
 }
 
 /// Why a sequencing was refused.
@@ -227,6 +306,15 @@ pub fn paper_rule_duration_s(
     dt.max(min_duration_s)
 }
 
+/// The cheapest complete order found so far.
+#[derive(Clone, Copy)]
+struct Best {
+    order: [u8; MAX_CLIENTS],
+    total_dv_mps: f64,
+    starts_s: [f64; MAX_CLIENTS - 1],
+    durations_s: [f64; MAX_CLIENTS - 1],
+}
+
 struct Search<'a, F> {
     g: &'a Gravity,
     planes: &'a [Plane],
@@ -238,7 +326,7 @@ struct Search<'a, F> {
     /// Each client's cheapest entry bound from a given client: `any[j][i]`.
     any: [[f64; MAX_CLIENTS]; MAX_CLIENTS],
     plan_arc: F,
-    best: Option<Sequence>,
+    best: Option<Best>,
     path: [u8; MAX_CLIENTS],
     starts: [f64; MAX_CLIENTS - 1],
     durations: [f64; MAX_CLIENTS - 1],
@@ -306,18 +394,11 @@ impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
         if depth == usize::from(self.count) {
             self.orders_completed = self.orders_completed.saturating_add(1);
             if cost < self.incumbent() {
-                self.best = Some(Sequence {
-                    status: SequenceStatus::Optimal,
+                self.best = Some(Best {
                     order: self.path,
-                    len: self.count,
                     total_dv_mps: cost,
                     starts_s: self.starts,
                     durations_s: self.durations,
-                    arcs_planned: 0,
-                    arcs_in_tree: 0,
-                    orders_completed: 0,
-                    orders_total: 0,
-                    bound_violations: 0,
                 });
             }
             return;
@@ -397,17 +478,18 @@ impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
 
 /// The cheapest visiting order of the clients (`planes`, from [`bound::plane_of`] of their
 /// states at the tour epoch), each arc planned by `plan_arc(from, to, start_s, duration_s)`
-/// (its Δv in m/s, or `None` when it cannot be planned).
+/// (its Δv in m/s, or `None` when it cannot be planned), written into `out`.
 ///
 /// # Errors
-/// [`SequenceError`] for a request outside the limits.
+/// [`SequenceError`] for a request outside the limits; `out` is then untouched.
 pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
     g: &Gravity,
     planes: &[Plane],
     (first, intervals): (Option<u8>, &Intervals),
     settings: &SequenceSettings,
     plan_arc: F,
-) -> Result<Sequence, SequenceError> {
+    out: &mut Sequence,
+) -> Result<(), SequenceError> {
     let n = planes.len();
     let count = match u8::try_from(n) {
         Ok(count) if (2..=MAX_CLIENTS).contains(&n) => count,
@@ -496,40 +578,35 @@ pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
     let per_first = factorial(count.saturating_sub(1));
     let orders_total = per_first.saturating_mul(first_choices);
     let arcs_in_tree = tree_arcs(count.saturating_sub(1)).saturating_mul(first_choices);
-    let status = if search.stopped {
-        SequenceStatus::ArcLimit
-    } else if search.violations > 0 {
-        SequenceStatus::BoundViolated
-    } else {
-        SequenceStatus::Optimal
-    };
-    let mut out = match search.best {
-        Some(b) => b,
-        None => Sequence {
-            status: SequenceStatus::NoOrder,
-            order: [0; MAX_CLIENTS],
-            len: 0,
-            total_dv_mps: f64::INFINITY,
-            starts_s: [0.0; MAX_CLIENTS - 1],
-            durations_s: [0.0; MAX_CLIENTS - 1],
-            arcs_planned: 0,
-            arcs_in_tree: 0,
-            orders_completed: 0,
-            orders_total: 0,
-            bound_violations: 0,
+    out.reset();
+    let status = match search.best {
+        Some(b) => {
+            out.order = b.order;
+            out.len = count;
+            out.total_dv_mps = Some(b.total_dv_mps);
+            out.starts_s = b.starts_s;
+            out.durations_s = b.durations_s;
+            if search.stopped {
+                SequenceStatus::ArcLimit
+            } else if search.violations > 0 {
+                SequenceStatus::BoundViolated
+            } else {
+                SequenceStatus::Optimal
+            }
+        }
+        None => SequenceStatus::NoOrder {
+            arc_limit: search.stopped,
         },
     };
-    if out.status != SequenceStatus::NoOrder {
-        out.status = status;
-    } else if search.stopped {
-        out.status = SequenceStatus::ArcLimit;
-    }
-    out.arcs_planned = search.arcs_planned;
-    out.arcs_in_tree = arcs_in_tree;
-    out.orders_completed = search.orders_completed;
-    out.orders_total = orders_total;
-    out.bound_violations = search.violations;
-    Ok(out)
+    out.info = SequenceInfo {
+        status,
+        arcs_planned: search.arcs_planned,
+        arcs_in_tree,
+        orders_completed: search.orders_completed,
+        orders_total,
+        bound_violations: search.violations,
+    };
+    Ok(())
 }
 
 #[cfg(test)]
@@ -581,9 +658,15 @@ mod tests {
                 ..SequenceSettings::default()
             };
             let intervals = Intervals::ByPosition([8e4, 1.6e5, 1.6e5, 1.6e5, 1.6e5, 1.6e5, 1.6e5]);
-            let s = best_order(&G, &p, (None, &intervals), &settings, |i, j, t, d| {
-                Some(cost(i, j, t, d))
-            })
+            let mut s = Sequence::new();
+            best_order(
+                &G,
+                &p,
+                (None, &intervals),
+                &settings,
+                |i, j, t, d| Some(cost(i, j, t, d)),
+                &mut s,
+            )
             .unwrap();
             // Brute force over every permutation.
             let mut idx: Vec<usize> = (0..n).collect();
@@ -598,21 +681,19 @@ mod tests {
                 }
                 best = best.min(c);
             });
-            assert_eq!(s.status, SequenceStatus::Optimal);
-            assert!(
-                (s.total_dv_mps - best).abs() < 1e-9,
-                "n {n}: {} vs {best}",
-                s.total_dv_mps
-            );
-            assert!(s.arcs_planned < s.arcs_in_tree, "n {n}: no pruning");
-            assert_eq!(s.orders_total, factorial(u8::try_from(n).unwrap()));
-            assert_eq!(s.arcs_in_tree, [0, 0, 2, 12, 60, 320, 1950][n]);
+            assert_eq!(s.info.status, SequenceStatus::Optimal);
+            let total = s.total_dv_mps.unwrap();
+            assert!((total - best).abs() < 1e-9, "n {n}: {total} vs {best}");
+            let i = s.info;
+            assert!(i.arcs_planned < i.arcs_in_tree, "n {n}: no pruning");
+            assert_eq!(i.orders_total, factorial(u8::try_from(n).unwrap()));
+            assert_eq!(i.arcs_in_tree, [0, 0, 2, 12, 60, 320, 1950][n]);
             std::println!(
                 "n {n}: planned {} of {} arcs, {} of {} orders",
-                s.arcs_planned,
-                s.arcs_in_tree,
-                s.orders_completed,
-                s.orders_total
+                i.arcs_planned,
+                i.arcs_in_tree,
+                i.orders_completed,
+                i.orders_total
             );
         }
     }
@@ -638,25 +719,58 @@ mod tests {
         };
         let intervals = Intervals::ByPosition([8e4; MAX_CLIENTS - 1]);
         let tour = (Some(0), &intervals);
-        let s = best_order(&G, &p, tour, &settings, |_, _, _, _| Some(0.0)).unwrap();
-        assert_eq!(s.status, SequenceStatus::BoundViolated);
-        assert!(s.bound_violations > 0);
+        let run = |settings: &SequenceSettings, cost: Option<f64>| {
+            let mut s = Sequence::new();
+            best_order(&G, &p, tour, settings, |_, _, _, _| cost, &mut s).map(|()| s)
+        };
+        let s = run(&settings, Some(0.0)).unwrap();
+        assert_eq!(s.info.status, SequenceStatus::BoundViolated);
+        assert!(s.info.bound_violations > 0);
         let few = SequenceSettings {
             max_arcs: 2,
             ..settings
         };
-        let s = best_order(&G, &p, tour, &few, |_, _, _, _| Some(100.0)).unwrap();
-        assert_eq!(s.status, SequenceStatus::ArcLimit);
-        assert_eq!(s.arcs_planned, 2);
-        let s = best_order(&G, &p, tour, &settings, |_, _, _, _| None).unwrap();
-        assert_eq!(s.status, SequenceStatus::NoOrder);
+        // Two arcs of a four-client tour: stopped before any complete order.
+        let s = run(&few, Some(100.0)).unwrap();
+        assert_eq!(s.info.status, SequenceStatus::NoOrder { arc_limit: true });
+        assert_eq!(s.info.arcs_planned, 2);
+        assert_eq!((s.len, s.total_dv_mps), (0, None));
+        // Three arcs: one complete order, stopped at the next arc (far above every bound, so
+        // never pruned).
+        let three = SequenceSettings {
+            max_arcs: 3,
+            ..settings
+        };
+        let s = run(&three, Some(1e6)).unwrap();
+        assert_eq!(s.info.status, SequenceStatus::ArcLimit);
+        assert!(s.info.status.is_usable());
+        assert_eq!((s.len, s.total_dv_mps), (4, Some(3e6)));
+        let s = run(&settings, None).unwrap();
+        assert_eq!(s.info.status, SequenceStatus::NoOrder { arc_limit: false });
+        assert!(!s.info.status.is_usable());
+        let mut untouched = Sequence::new();
         assert!(matches!(
-            best_order(&G, &p[..1], tour, &settings, |_, _, _, _| None),
+            best_order(
+                &G,
+                &p[..1],
+                tour,
+                &settings,
+                |_, _, _, _| None,
+                &mut untouched
+            ),
             Err(SequenceError::Clients { count: 1 })
         ));
         assert!(matches!(
-            best_order(&G, &p, (Some(9), &intervals), &settings, |_, _, _, _| None),
+            best_order(
+                &G,
+                &p,
+                (Some(9), &intervals),
+                &settings,
+                |_, _, _, _| None,
+                &mut untouched
+            ),
             Err(SequenceError::First { index: 9 })
         ));
+        assert_eq!(untouched, Sequence::new());
     }
 }

@@ -145,40 +145,146 @@ pub struct Burn {
     pub rtn_mps: Vec3,
 }
 
-/// What the returned plan is.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+/// How an arc's solve ended (the contract's vocabulary, [`crate::contract::Status`]). The
+/// plan in the solution, when there is one, was flown from scratch in the planning model with
+/// an exact shooting of its last leg; that flight decides the status.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[repr(u8)]
-pub enum Status {
+pub enum SolveStatus {
+    /// No solve has written this solution.
+    #[default]
+    Unsolved = 0,
     /// The plan, flown from scratch in the planning model, arrives within `arrival_tol_km` of
     /// the client with its velocity.
-    Solved = 0,
-    /// The best plan found misses by more than `arrival_tol_km` (its miss is returned).
-    ArrivalMissed = 1,
-    /// The work budget stopped the search; the plan returned is checked as for `Solved`.
-    BudgetExhaustedSolved = 2,
+    Solved = 1,
+    /// The best plan found misses by more than `arrival_tol_km` (its miss is returned). Not
+    /// usable.
+    ArrivalMissed = 2,
+    /// The work budget (`work_budget`) stopped the search. With `verified` the returned plan
+    /// arrives as for `Solved` (usable; a longer search might find less Δv); without it, the
+    /// plan returned misses (its burns and miss are returned), or the budget was spent before
+    /// any plan (no burns: `impulses == 0`, `miss_m` absent).
+    BudgetExhausted {
+        /// The returned plan arrives within `arrival_tol_km`.
+        verified: bool,
+    } = 3,
+    /// No transfer of the search reached the client (no Lambert leg converged): no burns.
+    NoTransfer = 4,
 }
 
-/// A planned arc.
+impl SolveStatus {
+    /// The plan may be flown: `Solved` or `BudgetExhausted { verified: true }`.
+    pub const fn is_usable(&self) -> bool {
+        matches!(
+            self,
+            Self::Solved | Self::BudgetExhausted { verified: true }
+        )
+    }
+}
+
+impl crate::contract::Status for SolveStatus {
+    fn is_usable(&self) -> bool {
+        SolveStatus::is_usable(self)
+    }
+
+    fn code(&self) -> u8 {
+        match self {
+            Self::Unsolved => 0,
+            Self::Solved => 1,
+            Self::ArrivalMissed => 2,
+            Self::BudgetExhausted { .. } => 3,
+            Self::NoTransfer => 4,
+        }
+    }
+
+    fn budget_exhausted(&self) -> Option<bool> {
+        match *self {
+            Self::BudgetExhausted { verified } => Some(verified),
+            _ => None,
+        }
+    }
+}
+
+/// How an arc's solve ended and what it cost.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SolveInfo {
+    /// The status.
+    pub status: SolveStatus,
+    /// Cost evaluations made.
+    pub evaluations: u32,
+    /// Work units used (`work_budget`).
+    pub work_units: u64,
+}
+
+/// A planned arc, or with a status other than `Solved`, what could be shown. Every number is
+/// finite whatever the status; a plan with no burns (`impulses == 0`: `NoTransfer`, a budget
+/// spent before any plan, `Unsolved`) has zero burns, `total_dv_mps = 0`, no `miss_m` and
+/// `last_leg_revolutions = 0` / `last_leg_branch = Left`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ArcSolution {
-    /// What the plan is.
-    pub status: Status,
     /// The burns, `impulses` of them in time order (the rest zero).
     pub burns: [Burn; MAX_IMPULSES],
-    /// How many of `burns` are used.
+    /// How many of `burns` are used (0 when no plan was found).
     pub impulses: u8,
-    /// Sum of the burn sizes, m/s.
+    /// Sum of the burn sizes, m/s (0 with no burns).
     pub total_dv_mps: f64,
-    /// Position miss at arrival when the plan is flown in the planning model, m.
-    pub miss_m: f64,
+    /// Position miss at arrival when the plan is flown in the planning model, m; absent when
+    /// no plan was flown.
+    pub miss_m: Option<f64>,
     /// Revolutions of the last Lambert leg.
     pub last_leg_revolutions: u16,
     /// Lambert branch of the last leg (for a re-plan of the same family).
     pub last_leg_branch: crate::lambert::Branch,
-    /// Cost evaluations made.
-    pub evaluations: u32,
-    /// Work units used.
-    pub work_units: u64,
+    /// The status and the counters.
+    pub info: SolveInfo,
+}
+
+impl ArcSolution {
+    /// The empty `Unsolved` answer (no burns), for use as an output buffer (a `const fn`: it
+    /// can sit in a `static`).
+    pub const fn new() -> Self {
+        const NO_BURN: Burn = Burn {
+            epoch_s: 0.0,
+            dv_km_s: [0.0; 3],
+            rtn_mps: [0.0; 3],
+        };
+        Self {
+            burns: [NO_BURN; MAX_IMPULSES],
+            impulses: 0,
+            total_dv_mps: 0.0,
+            miss_m: None,
+            last_leg_revolutions: 0,
+            last_leg_branch: crate::lambert::Branch::Left,
+            info: SolveInfo {
+                status: SolveStatus::Unsolved,
+                evaluations: 0,
+                work_units: 0,
+            },
+        }
+    }
+
+    /// Make this the empty `Unsolved` answer, in place.
+    pub fn reset(&mut self) {
+        *self = Self::new();
+    }
+}
+
+impl Default for ArcSolution {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// The sequencing's arc cost ([`super::estimate_arc_mps`]): the Δv of the best plan of the
+/// search shot in the search model, or why there is none.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ArcEstimate {
+    /// The estimate, m/s; absent when the search shot no plan (`status` says why).
+    pub dv_mps: Option<f64>,
+    /// `Solved` (an estimate), `BudgetExhausted { verified }` (the budget stopped the search;
+    /// `verified`: an estimate was shot before), `NoTransfer`; with `search_model =
+    /// Planning` the planned arc's status (an estimate only when it is usable).
+    pub status: SolveStatus,
 }
 
 /// A field of the request.
@@ -207,7 +313,8 @@ impl Field {
     }
 }
 
-/// Why an arc was not planned.
+/// Why an arc was refused before planning (a plan that ends without a transfer is a
+/// [`SolveStatus`], not an error).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub enum PlanError {
     /// A setting is out of its range: the setting, the value and the range.
@@ -229,15 +336,6 @@ pub enum PlanError {
         /// Which client (`From` or `To`).
         field: Field,
     },
-    /// No transfer of the grid reached the client (no Lambert leg converged).
-    NoTransfer,
-    /// The work budget was spent before any plan was found.
-    BudgetExhausted {
-        /// Units used.
-        used: u64,
-        /// The budget.
-        budget: u64,
-    },
 }
 
 impl core::fmt::Display for PlanError {
@@ -254,11 +352,6 @@ impl core::fmt::Display for PlanError {
                 f,
                 "client state `{}` cannot be propagated over the arc",
                 field.name()
-            ),
-            Self::NoTransfer => f.write_str("no transfer of the grid reached the client"),
-            Self::BudgetExhausted { used, budget } => write!(
-                f,
-                "work budget spent before any plan ({used} of {budget} units)"
             ),
         }
     }

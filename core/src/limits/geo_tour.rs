@@ -16,12 +16,17 @@ pub struct Limits {
     pub settings: Settings,
 }
 
+impl Limits {
+    /// The built-in limits, as a constant.
+    pub const BUILT_IN: Self = Self {
+        targets: MAX_TARGETS as u8,
+        settings: Settings::DEFAULT,
+    };
+}
+
 impl Default for Limits {
     fn default() -> Self {
-        Self {
-            targets: MAX_TARGETS as u8,
-            settings: Settings::default(),
-        }
+        Self::BUILT_IN
     }
 }
 

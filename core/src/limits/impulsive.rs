@@ -19,13 +19,18 @@ pub struct Limits {
     pub settings: Settings,
 }
 
+impl Limits {
+    /// The built-in limits, as a constant.
+    pub const BUILT_IN: Self = Self {
+        impulses: MAX_IMPULSES as u8,
+        search: true,
+        settings: Settings::DEFAULT,
+    };
+}
+
 impl Default for Limits {
     fn default() -> Self {
-        Self {
-            impulses: MAX_IMPULSES as u8,
-            search: true,
-            settings: Settings::default(),
-        }
+        Self::BUILT_IN
     }
 }
 

@@ -23,14 +23,19 @@ pub struct Limits {
     pub sequence: SequenceSettings,
 }
 
+impl Limits {
+    /// The built-in limits, as a constant.
+    pub const BUILT_IN: Self = Self {
+        impulses: MAX_IMPULSES as u8,
+        clients: MAX_CLIENTS as u8,
+        arc: Settings::DEFAULT,
+        sequence: SequenceSettings::DEFAULT,
+    };
+}
+
 impl Default for Limits {
     fn default() -> Self {
-        Self {
-            impulses: MAX_IMPULSES as u8,
-            clients: MAX_CLIENTS as u8,
-            arc: Settings::default(),
-            sequence: SequenceSettings::default(),
-        }
+        Self::BUILT_IN
     }
 }
 

@@ -220,7 +220,7 @@ impl core::fmt::Display for LimitViolation {
 impl core::error::Error for LimitViolation {}
 
 /// The limits of every planner.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Limits {
     /// Planner A.
@@ -233,7 +233,22 @@ pub struct Limits {
     pub leo_tour: leo_tour::Limits,
 }
 
+impl Default for Limits {
+    fn default() -> Self {
+        Self::BUILT_IN
+    }
+}
+
 impl Limits {
+    /// The built-in limits (each planner's default settings and compiled capacities), as a
+    /// constant: a flight image's limits can sit in flash, not in RAM.
+    pub const BUILT_IN: Self = Self {
+        pseudospectral: pseudospectral::Limits::BUILT_IN,
+        impulsive: impulsive::Limits::BUILT_IN,
+        geo_tour: geo_tour::Limits::BUILT_IN,
+        leo_tour: leo_tour::Limits::BUILT_IN,
+    };
+
     /// Check a request against the limits of its planner.
     ///
     /// # Errors

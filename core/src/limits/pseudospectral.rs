@@ -18,13 +18,18 @@ pub struct Limits {
     pub settings: Settings,
 }
 
+impl Limits {
+    /// The built-in limits, as a constant.
+    pub const BUILT_IN: Self = Self {
+        spacecraft: MAX_SPACECRAFT as u8,
+        nodes: MAX_DEGREE as u16,
+        settings: Settings::DEFAULT,
+    };
+}
+
 impl Default for Limits {
     fn default() -> Self {
-        Self {
-            spacecraft: MAX_SPACECRAFT as u8,
-            nodes: MAX_DEGREE as u16,
-            settings: Settings::default(),
-        }
+        Self::BUILT_IN
     }
 }
 

@@ -31,6 +31,16 @@ pub use status::{SolveInfo, SolveStatus, Stage};
 mod workspace;
 pub use workspace::Workspace;
 
+/// Planner A in the planners' contract ([`crate::contract::Planner`]): [`solve`] from the
+/// analytic guess.
+#[derive(Clone, Copy, Debug)]
+pub struct Pseudospectral;
+
+crate::impl_planner!(
+    Pseudospectral: Problem, Settings, Workspace, Solution, PlanError, SolveStatus,
+    crate::wire::Planner::Pseudospectral, solve, reset |out| out.reset()
+);
+
 /// Solve a reconfiguration problem from the analytic Pontryagin guess.
 ///
 /// Writes the result (or the best iterate, with a status saying why) into `out`.

@@ -102,8 +102,9 @@ pub struct PlanCheck {
     pub total_dv_mps: f64,
     /// The last impulse, s from the epoch (the end of the check).
     pub final_time_s: f64,
-    /// The plan's own terminal position error in its model, m.
-    pub planner_terminal_error_m: f64,
+    /// The plan's own terminal position error in its model, m (absent when its nonlinear check
+    /// could not be flown).
+    pub planner_terminal_error_m: Option<f64>,
     /// The deputy's end position in the full model minus the J2-only one, norm, m: what the
     /// forces beyond J2 move it by (absolute, not relative to the chief).
     pub deputy_full_minus_j2_only_m: f64,
@@ -257,7 +258,7 @@ pub fn check(fixture: &ImpulsiveFixture, settings: &TruthSettings) -> Result<Pla
         status: format!("{:?}", solution.info.status),
         total_dv_mps: solution.total_dv_mps,
         final_time_s: solution.final_time_s,
-        planner_terminal_error_m: solution.terminal_position_error_m,
+        planner_terminal_error_m: solution.terminal_error.map(|t| t.position_m),
         deputy_full_minus_j2_only_m,
         full: full.miss,
         j2_only: j2_only.miss,
