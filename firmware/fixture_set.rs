@@ -1,71 +1,35 @@
-//! The fixture set as the firmware sees it: every `fixtures/*.toml` (sorted by file name, not
-//! recursive, so `fixtures/golden/` is not read), parsed by `reconfig_host::fixture` and encoded
-//! with postcard into the core's own `Problem` bytes.
+//! The fixture set as the firmware sees it: the `wire::Request`s of every `fixtures/*.toml`
+//! (sorted by file name, not recursive, so `fixtures/golden/` is not read), built by the host's
+//! one request builder (`reconfig_host::fixture::Fixture::requests`) and encoded with postcard.
+//! The firmware decodes each and answers it through `wire::answer`, as every front end does.
 //!
 //! Std-side code shared by two users, which include this file with `#[path]`:
 //! * `firmware/build.rs` bakes these bytes into the firmware;
-//! * the QEMU tests (`tests/tests/qemu_firmware/`) decode the *same* bytes and solve them on the
-//!   host, so the bit-identity comparison cannot drift from what the firmware ran.
+//! * the QEMU tests (`tests/tests/qemu_firmware/`) decode the *same* bytes and answer them on
+//!   the host, so the bit-identity comparison cannot drift from what the firmware ran.
 
 #![allow(dead_code)] // each includer uses part of it
 
+use reconfig_core::limits::Limits;
+use reconfig_core::wire::{Planner, Request};
+use reconfig_host::fixture::{self, Fixture, FixtureRequest};
 use std::path::{Path, PathBuf};
 
-/// Which planner a fixture is for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Planner {
-    /// Planner A, `reconfig_core::pseudospectral`.
-    Pseudospectral,
-    /// Planner B, `reconfig_core::impulsive`, default settings.
-    Impulsive,
-    /// Planner B with `Settings::fixed_point_only()`: the fixed-point plan the 2 M instruction
-    /// budget is for. Every fixed-point planner-B fixture also runs as `<name>+fixed-point`.
-    ImpulsiveFixedPoint,
-    /// Planner B on a fixture in other input forms (ROE, an osculating state, ...): the bytes
-    /// are its `impulsive::FormProblem`, converted on board by `impulsive::solve_form`.
-    ImpulsiveForm,
-    /// [`Planner::ImpulsiveForm`] with `Settings::fixed_point_only()`.
-    ImpulsiveFormFixedPoint,
-    /// The GEO servicing tour, `reconfig_core::geo_tour`, with the fixture's settings: carried
-    /// only by the GEO image (`cargo firmware-geo`).
-    GeoTour,
-    /// One arc of the LEO rendezvous tour, `reconfig_core::leo_tour::solve_arc`, with the
-    /// fixture's settings: carried only by the LEO image (`cargo firmware-leo`). Baked from the
-    /// single-arc LEO fixtures (an order of two clients, no sequencing).
-    LeoArc,
-    /// The LEO tour's on-board part, `reconfig_core::leo_tour::tour_order::plan_onboard`: the
-    /// order of a `[sequence]` fixture and every arc of it; carried only by the LEO image. The
-    /// bytes carry its `tour_order::OnboardProblem`.
-    LeoOnboard,
-}
-
-impl Planner {
-    /// The fixture files' `planner` value.
-    pub fn key(self) -> &'static str {
-        match self {
-            Self::Pseudospectral => "pseudospectral",
-            Self::Impulsive
-            | Self::ImpulsiveFixedPoint
-            | Self::ImpulsiveForm
-            | Self::ImpulsiveFormFixedPoint => "impulsive",
-            Self::GeoTour => "geo-tour",
-            Self::LeoArc | Self::LeoOnboard => "leo-tour",
-        }
-    }
-}
-
-/// One fixture, ready for the firmware.
+/// One request, ready for the firmware.
 #[derive(Clone, Debug)]
-pub struct EncodedFixture {
-    /// The fixture's `name` (unique over the set).
+pub struct EncodedRequest {
+    /// Its name (unique over the set, no white space): the fixture's name, `<name>+fixed-point`
+    /// for planner B's fixed-point plan alone, `<name>/order` and `<name>/arc-<k>` for the
+    /// requests of a LEO tour's on-board part.
     pub name: String,
-    /// The file it came from.
+    /// The fixture file it came from.
     pub file: PathBuf,
-    /// Which planner.
+    /// Its planner (`Request::planner`).
     pub planner: Planner,
-    /// `postcard` encoding of the planner's core `Problem` (GEO tour: of the pair
-    /// `(Problem, Settings)`, since its fixtures may set their settings).
-    pub problem: Vec<u8>,
+    /// The LEO tour's on-board part it belongs to (the fixture's name), if any.
+    pub part_of: Option<String>,
+    /// The `postcard` encoding of the `wire::Request`.
+    pub request: Vec<u8>,
 }
 
 /// The `*.toml` files directly in `dir`, sorted by file name.
@@ -85,144 +49,99 @@ pub fn fixture_files(dir: &Path) -> Result<Vec<PathBuf>, String> {
     Ok(files)
 }
 
-/// Append `fixture` unless its name is taken.
-fn push_unique(out: &mut Vec<EncodedFixture>, fixture: EncodedFixture) -> Result<(), String> {
-    if let Some(other) = out.iter().find(|f| f.name == fixture.name) {
-        return Err(format!(
-            "fixture name {:?} is used by both {} and {}",
-            fixture.name,
-            other.file.display(),
-            fixture.file.display()
-        ));
-    }
-    out.push(fixture);
-    Ok(())
+/// The requests the firmware runs for one fixture, with their names (see
+/// [`EncodedRequest::name`]) and the on-board part they belong to.
+///
+/// * planners A and B and the GEO tour: the fixture's request; a fixed-point planner-B fixture
+///   also as `<name>+fixed-point`, the same fixture with `Settings::fixed_point_only()`;
+/// * the LEO tour: a `[sequence]` fixture's on-board part (its sequencing request, then each
+///   arc's request of the order the host answers it, under `limits`); a tour of one arc its
+///   request; a tour of several arcs of a given order and a `[schedule]` fixture (a host
+///   planning step) stay on the host.
+fn requests_of(
+    fixture: Fixture,
+    limits: &Limits,
+) -> Result<Vec<(String, Option<String>, FixtureRequest)>, String> {
+    let name = fixture.name().to_owned();
+    let built = |requests| named(&name, requests);
+    let single = |requests: Vec<FixtureRequest>, name: &str| {
+        requests
+            .into_iter()
+            .map(|r| (name.to_owned(), None, r))
+            .collect::<Vec<_>>()
+    };
+    Ok(match fixture {
+        Fixture::Impulsive(f)
+            if matches!(
+                f.problem.plan,
+                reconfig_core::impulsive::ImpulsePlan::Fixed(_)
+            ) =>
+        {
+            let mut fixed_point = f.clone();
+            fixed_point.settings = reconfig_core::impulsive::Settings::fixed_point_only();
+            let mut out = single(
+                built(Fixture::Impulsive(fixed_point).requests())?,
+                &format!("{name}+fixed-point"),
+            );
+            out.extend(single(built(Fixture::Impulsive(f).requests())?, &name));
+            out
+        }
+        Fixture::LeoTour(f) if f.schedule.is_some() => Vec::new(),
+        Fixture::LeoTour(f) if f.sequence.is_some() => {
+            let requests = built(reconfig_host::drivers::leo_tour::onboard_requests(
+                &f, limits,
+            ))?;
+            requests
+                .into_iter()
+                .enumerate()
+                .map(|(k, r)| {
+                    let part = if k == 0 {
+                        "order".to_owned()
+                    } else {
+                        format!("arc-{k}")
+                    };
+                    (format!("{name}/{part}"), Some(name.clone()), r)
+                })
+                .collect()
+        }
+        Fixture::LeoTour(f) if f.order.len() != 2 => Vec::new(),
+        other => single(built(other.requests())?, &name),
+    })
 }
 
-/// Parse and encode every fixture in `dir`.
+/// `result` with its error as text naming the fixture.
+fn named<T, E: std::fmt::Display>(name: &str, result: Result<T, E>) -> Result<T, String> {
+    result.map_err(|e| format!("{name}: {e:#}"))
+}
+
+/// Build and encode every request of the fixtures in `dir` (`limits`: the image's, under which
+/// a LEO tour's sequencing is answered here to build its arcs' requests).
 ///
 /// # Errors
-/// A fixture that does not parse, a duplicated name, or an encoding failure: the firmware must
-/// run every fixture, so none is skipped silently.
-pub fn encode_all(dir: &Path) -> Result<Vec<EncodedFixture>, String> {
-    use reconfig_host::fixture::{load, Fixture};
-    let mut out: Vec<EncodedFixture> = Vec::new();
+/// A fixture that does not parse or whose requests cannot be built, a duplicated name, or an
+/// encoding failure: the firmware must run every fixture, so none is skipped silently.
+pub fn encode_all(dir: &Path, limits: &Limits) -> Result<Vec<EncodedRequest>, String> {
+    let mut out: Vec<EncodedRequest> = Vec::new();
     for file in fixture_files(dir)? {
-        let text = std::fs::read_to_string(&file).unwrap_or_default();
-        // The LEO tour (issue 13): its single-arc fixtures and the on-board part of a
-        // `[sequence]` fixture (the order and its arcs) run on the LEO image; a tour of a given
-        // order (several arcs, the truth model) and a `[schedule]` fixture are host-only.
-        if reconfig_host::fixture::leo_tour::is_leo_tour(&text) {
-            let f = reconfig_host::fixture::leo_tour::load(&file).map_err(|e| format!("{e:#}"))?;
-            // A chosen schedule is a host planning step, not part of the on-board request.
-            if f.schedule.is_some() {
-                continue;
+        let fixture = fixture::load(&file).map_err(|e| format!("{e:#}"))?;
+        let requests = requests_of(fixture, limits)?;
+        for (name, part_of, r) in requests {
+            if let Some(other) = out.iter().find(|f| f.name == name) {
+                return Err(format!(
+                    "fixture name {name:?} is used by both {} and {}",
+                    other.file.display(),
+                    file.display()
+                ));
             }
-            if f.sequence.is_some() {
-                let problem = reconfig_host::cli::leo_tour_sequence::onboard_problem(&f)
-                    .and_then(|p| Ok(postcard::to_stdvec(&p)?))
-                    .map_err(|e| format!("{}: {e:#}", f.name))?;
-                push_unique(
-                    &mut out,
-                    EncodedFixture {
-                        name: f.name,
-                        file,
-                        planner: Planner::LeoOnboard,
-                        problem,
-                    },
-                )?;
-                continue;
-            }
-            if f.order.len() != 2 {
-                continue;
-            }
-            let (Some(&from), Some(&to), Some(&duration_s)) =
-                (f.order.first(), f.order.get(1), f.intervals_s.first())
-            else {
-                continue;
-            };
-            let problem = reconfig_core::leo_tour::ArcProblem {
-                from: f.clients[from],
-                to: f.clients[to],
-                duration_s,
-                impulses: f.impulses,
-            };
-            let problem = postcard::to_stdvec(&(&problem, &f.settings))
-                .map_err(|e| format!("{}: {e}", f.name))?;
-            push_unique(
-                &mut out,
-                EncodedFixture {
-                    name: f.name,
-                    file,
-                    planner: Planner::LeoArc,
-                    problem,
-                },
-            )?;
-            continue;
-        }
-        if reconfig_host::fixture::geo_tour::is_geo_tour(&text) {
-            let f = reconfig_host::fixture::geo_tour::load(&file).map_err(|e| format!("{e:#}"))?;
-            let problem = postcard::to_stdvec(&(&f.problem, &f.settings))
-                .map_err(|e| format!("{}: {e}", f.name))?;
-            push_unique(
-                &mut out,
-                EncodedFixture {
-                    name: f.name,
-                    file,
-                    planner: Planner::GeoTour,
-                    problem,
-                },
-            )?;
-            continue;
-        }
-        let fixture = load(&file).map_err(|e| format!("{e:#}"))?;
-        let name = fixture.name().to_owned();
-        if let Some(other) = out.iter().find(|f| f.name == name) {
-            return Err(format!(
-                "fixture name {name:?} is used by both {} and {}",
-                other.file.display(),
-                file.display()
-            ));
-        }
-        let (planner, problem) = match &fixture {
-            Fixture::Pseudospectral(f) => (
-                Planner::Pseudospectral,
-                postcard::to_stdvec(&f.problem).map_err(|e| format!("{name}: {e}"))?,
-            ),
-            // A fixture in other input forms is baked in them: the M7 converts it.
-            Fixture::Impulsive(f) => match &f.form {
-                Some(form) => (
-                    Planner::ImpulsiveForm,
-                    postcard::to_stdvec(form).map_err(|e| format!("{name}: {e}"))?,
-                ),
-                None => (
-                    Planner::Impulsive,
-                    postcard::to_stdvec(&f.problem).map_err(|e| format!("{name}: {e}"))?,
-                ),
-            },
-        };
-        let fixed_point = matches!(
-            &fixture,
-            Fixture::Impulsive(f) if matches!(f.problem.plan, reconfig_core::impulsive::ImpulsePlan::Fixed(_))
-        );
-        if fixed_point {
-            out.push(EncodedFixture {
-                name: format!("{name}+fixed-point"),
+            let request: &Request = &r.request;
+            out.push(EncodedRequest {
+                planner: request.planner(),
+                request: postcard::to_stdvec(request).map_err(|e| format!("{name}: {e}"))?,
+                name,
                 file: file.clone(),
-                planner: if planner == Planner::ImpulsiveForm {
-                    Planner::ImpulsiveFormFixedPoint
-                } else {
-                    Planner::ImpulsiveFixedPoint
-                },
-                problem: problem.clone(),
+                part_of,
             });
         }
-        out.push(EncodedFixture {
-            name,
-            file,
-            planner,
-            problem,
-        });
     }
     Ok(out)
 }

@@ -6,20 +6,17 @@
 #include <stddef.h>
 #include <stdint.h>
 
-// Index of each settings flag in `RECONFIG_FIELD_SETTINGS_CODE` refusals.
-#define RECONFIG_SETTINGS_CODE_CONTINUOUS_VERIFICATION 0
-
-// Index of each settings flag or code in `RECONFIG_FIELD_SETTINGS_CODE` refusals.
-#define RECONFIG_SETTINGS_CODE_MIN_FUEL 0
-
-// See [`RECONFIG_SETTINGS_CODE_MIN_FUEL`].
-#define RECONFIG_SETTINGS_CODE_NONLINEAR_CORRECTION 1
-
-// See [`RECONFIG_SETTINGS_CODE_MIN_FUEL`].
-#define RECONFIG_SETTINGS_CODE_ELEMENT_SET 2
-
 // Field code of `relative.form` in `RECONFIG_ERR_INVALID_CODE` refusals.
 #define RECONFIG_FIELD_RELATIVE_FORM 30
+
+// Planner A (`reconfig_pseudospectral_*`).
+#define RECONFIG_PLANNER_PSEUDOSPECTRAL 0
+
+// Planner B (`reconfig_impulsive_*`, both input forms).
+#define RECONFIG_PLANNER_IMPULSIVE 1
+
+// The GEO servicing tour (`reconfig_geo_tour_*`).
+#define RECONFIG_PLANNER_GEO_TOUR 2
 
 // No solve has written this solution.
 #define RECONFIG_UNSOLVED 0
@@ -84,7 +81,8 @@
 #define RECONFIG_GEO_SOLVED 201
 
 // GEO tour: even the fastest admissible tour overruns the mission time (`status_leg` the leg
-// that needs the most time, `fastest_tour_s` how long the fastest tour takes).
+// that needs the most time, `fastest_tour_s` how long the fastest tour takes when
+// `has_fastest_tour_s`).
 #define RECONFIG_GEO_MISSION_TOO_SHORT 202
 
 // GEO tour: the tour fits without the burn cap but not with it (`status_leg`).
@@ -95,6 +93,14 @@
 
 // GEO tour: the final check failed at `status_leg`; the plan is for inspection only.
 #define RECONFIG_GEO_CHECK_FAILED 205
+
+// GEO tour: the work budget ran out; the returned plan (the best found) meets every condition
+// of SOLVED. May be flown.
+#define RECONFIG_GEO_BUDGET_EXHAUSTED_VERIFIED 206
+
+// GEO tour: the work budget ran out; the returned plan is not verified (or there is none:
+// `leg_count` 0). Not usable.
+#define RECONFIG_GEO_BUDGET_EXHAUSTED_UNVERIFIED 207
 
 // Refused: a pointer argument is null (`error.field` names it when the solution is usable).
 #define RECONFIG_ERR_NULL_POINTER -1
@@ -108,9 +114,25 @@
 // Refused: the workspace was not initialised by this planner's `_init`.
 #define RECONFIG_ERR_WORKSPACE_NOT_INITIALISED -4
 
-// Refused: a flag or enumeration field holds a value outside its set (`value`; `limit` is the
-// largest accepted value).
+// Refused: a flag or enumeration field of the problem holds a value outside its set (`value`;
+// `limit` is the largest accepted value). A setting's flag or code outside its set is
+// `RECONFIG_ERR_SETTING_OUT_OF_RANGE` naming the setting.
 #define RECONFIG_ERR_INVALID_CODE -5
+
+// Refused: a setting is outside the range the planner accepts (`field` =
+// `RECONFIG_FIELD_SETTINGS`, `index` the setting's code in its planner's settings table, named
+// by `reconfig_setting_name`; `value`; `limit` the end of the range it broke; `detail` 0 below
+// the range, 1 above it, 2 not finite). The same code for every planner; also a flag other
+// than 0 or 1 or an enumeration code outside its set (`limit` the largest code, `detail` 1).
+#define RECONFIG_ERR_SETTING_OUT_OF_RANGE -6
+
+// Refused: the request asks for more work or less safety than the built-in limits allow (the
+// same limits as the flight service's, checked before the planner's own validation, as the
+// service checks them): `field` = `RECONFIG_FIELD_SETTINGS`, `index` the setting's code (a
+// problem quantity's code is 128 and up), named by `reconfig_setting_name`, `value`, `limit`,
+// `detail` the rule (0 at most, 1 at least, 2 must be on, 3 must be off, 4 below). Nothing was
+// solved.
+#define RECONFIG_ERR_LIMIT_EXCEEDED -7
 
 // Planner A refused: a number is NaN or infinite.
 #define RECONFIG_A_ERR_NOT_FINITE -101
@@ -135,8 +157,9 @@
 // `detail` axis).
 #define RECONFIG_A_ERR_MANOEUVRE_INFEASIBLE -107
 
-// Planner A refused: a setting is out of range (`detail` = settings error class).
-#define RECONFIG_A_ERR_INVALID_SETTINGS -108
+// Planner A refused: a warm start does not match the problem (not reachable from C, which has
+// no warm start; kept so that every core refusal has a code).
+#define RECONFIG_A_ERR_WARM_START_MISMATCH -108
 
 // Planner A refused: a number is outside the accepted magnitude range (`limit`).
 #define RECONFIG_A_ERR_OUT_OF_RANGE -110
@@ -167,9 +190,6 @@
 
 // Planner B refused: no impulse in the plan.
 #define RECONFIG_B_ERR_NO_IMPULSES -209
-
-// Planner B refused: a setting is out of range (`detail` = settings error class).
-#define RECONFIG_B_ERR_INVALID_SETTINGS -210
 
 // Planner B refused: a perigee altitude is below the limit.
 #define RECONFIG_B_ERR_PERIGEE_TOO_LOW -211
@@ -214,7 +234,8 @@
 // Planner A: `spacecraft[index].initial_state` or `final_state`.
 #define RECONFIG_FIELD_BOUNDARY_STATE 5
 
-// A settings field (`detail` = the settings error class).
+// A setting (`index` = its code in the planner's settings table, named by
+// `reconfig_setting_name`).
 #define RECONFIG_FIELD_SETTINGS 6
 
 // Planner A: `spacecraft_count`.
@@ -256,9 +277,6 @@
 // Planner B: `search` (0 or 1).
 #define RECONFIG_FIELD_SEARCH 28
 
-// Settings flag or enumeration (`index` names it, see docs/c-api.md).
-#define RECONFIG_FIELD_SETTINGS_CODE 29
-
 // GEO tour: `start_lon_rad`.
 #define RECONFIG_FIELD_GEO_START_LONGITUDE 50
 
@@ -270,51 +288,6 @@
 
 // GEO tour: `max_burn_mps`.
 #define RECONFIG_FIELD_GEO_MAX_BURN 53
-
-// GEO tour settings: `lambert_max_revolutions`.
-#define RECONFIG_FIELD_GEO_LAMBERT_MAX_REVOLUTIONS 54
-
-// GEO tour settings: `lambert_max_iter`.
-#define RECONFIG_FIELD_GEO_LAMBERT_MAX_ITER 55
-
-// GEO tour settings: `lambert_tol`.
-#define RECONFIG_FIELD_GEO_LAMBERT_TOL 56
-
-// GEO tour settings: `well_iterations`.
-#define RECONFIG_FIELD_GEO_WELL_ITERATIONS 57
-
-// GEO tour settings: `root_max_iter`.
-#define RECONFIG_FIELD_GEO_ROOT_MAX_ITER 58
-
-// GEO tour settings: `price_max_iter`.
-#define RECONFIG_FIELD_GEO_PRICE_MAX_ITER 59
-
-// GEO tour settings: `time_tol_s`.
-#define RECONFIG_FIELD_GEO_TIME_TOL 60
-
-// GEO tour settings: `gap_max_legs`.
-#define RECONFIG_FIELD_GEO_GAP_MAX_LEGS 61
-
-// GEO tour settings: `min_radius_km`.
-#define RECONFIG_FIELD_GEO_MIN_RADIUS 62
-
-// GEO tour settings: `rule_drift_above_rad`.
-#define RECONFIG_FIELD_GEO_RULE_DRIFT_ABOVE 63
-
-// GEO tour settings: `rule_hohmann_above_rad`.
-#define RECONFIG_FIELD_GEO_RULE_HOHMANN_ABOVE 64
-
-// GEO tour settings: `rule_radial_above_rad`.
-#define RECONFIG_FIELD_GEO_RULE_RADIAL_ABOVE 65
-
-// GEO tour settings: `lambert_direct_time_s`.
-#define RECONFIG_FIELD_GEO_LAMBERT_DIRECT_TIME 66
-
-// GEO tour settings: `exchange_rounds`.
-#define RECONFIG_FIELD_GEO_EXCHANGE_ROUNDS 67
-
-// GEO tour settings: `exchange_margin_mps`.
-#define RECONFIG_FIELD_GEO_EXCHANGE_MARGIN 68
 
 // GEO tour: `target_count`.
 #define RECONFIG_FIELD_GEO_TARGET_COUNT 69
@@ -384,6 +357,9 @@
 // says why; the plan itself is unaffected, its status says whether it is usable).
 #define RECONFIG_B_END_UNAVAILABLE 5
 
+// No end state: the plan's nonlinear check could not be flown (a numerical failure).
+#define RECONFIG_B_END_NOT_FLOWN 6
+
 // Why a form could not be converted (`error.detail` of `RECONFIG_B_ERR_INPUT_FORM`, and
 // `unavailable_reason`): a number is not finite.
 #define RECONFIG_B_FORM_NOT_FINITE 0
@@ -445,8 +421,8 @@
 // Direction code: no sweep was returned.
 #define RECONFIG_GEO_DIRECTION_NONE 2
 
-// Loop bounds, tolerances and the paper's rule (`reconfig_core::geo_tour::Settings`, same
-// names).
+// Loop bounds, tolerances, the paper's rule and the work budget
+// (`reconfig_core::geo_tour::Settings`, same names).
 typedef struct {
   // Lambert tolerance on Izzo's x.
   double lambert_tol;
@@ -464,6 +440,9 @@ typedef struct {
   double rule_radial_above_rad;
   // Transfer time of a direct Lambert leg (and of the paper's rule), s.
   double lambert_direct_time_s;
+  // Work units a solve may use; the best plan so far is returned, checked, when they run
+  // out (`RECONFIG_GEO_BUDGET_EXHAUSTED_*`).
+  uint64_t work_budget;
   // Most whole revolutions of a Lambert transfer.
   uint16_t lambert_max_revolutions;
   // Householder steps per Lambert solve.
@@ -568,8 +547,12 @@ typedef struct {
   int32_t status_leg;
   // Why the request was refused (all zero when it was not).
   ReconfigError error;
-  // 1 when the plan may be flown (SOLVED).
+  // 1 when the plan may be flown (SOLVED, BUDGET_EXHAUSTED_VERIFIED).
   uint8_t usable;
+  // 1 when `fastest_tour_s` holds a value: no tour is admissible at all (a leg has no
+  // method within the cap), or the solve stopped before every leg's options were known,
+  // leaves it 0 (and `fastest_tour_s` 0).
+  uint8_t has_fastest_tour_s;
   // `RECONFIG_GEO_DIRECTION_*` of the returned sweep.
   uint8_t direction;
   // Legs in `legs`.
@@ -588,8 +571,11 @@ typedef struct {
   double max_burn_mps;
   // Time price at the returned allocation, m/s per s.
   double price_mps_per_s;
-  // Duration of the fastest admissible tour of this sweep, s.
+  // Duration of the fastest admissible tour of this sweep, s, when `has_fastest_tour_s`;
+  // else 0.
   double fastest_tour_s;
+  // Work units used (`work_budget`), the final checks included.
+  uint64_t work_units;
   // Legs in visiting order; the first `leg_count` are used.
   ReconfigGeoLeg legs[RECONFIG_GEO_MAX_TARGETS];
 } ReconfigGeoSolution;
@@ -765,6 +751,15 @@ typedef struct {
   uint8_t min_fuel_used;
   // 1: the nonlinear correction was applied.
   uint8_t correction_used;
+  // 1: `condition_number` holds a value; 0: absent (F rank-deficient, or not computed).
+  uint8_t has_condition_number;
+  // 1: `min_norm_total_dv_mps` holds a value; 0: absent (it came out non-finite).
+  uint8_t has_min_norm_total_dv_mps;
+  // 1: `linear_total_dv_mps` holds a value; 0: absent (it came out non-finite).
+  uint8_t has_linear_total_dv_mps;
+  // 1: the `terminal_*` fields hold the nonlinear check; 0: absent (the check could not be
+  // flown: a numerical failure), and they are 0.
+  uint8_t has_terminal_error;
   // Fixed-point iterations of the returned plan.
   uint16_t iterations;
   // Interior-point iterations, all told.
@@ -775,15 +770,15 @@ typedef struct {
   uint32_t evaluations;
   // Work units used.
   uint64_t work_units;
-  // Condition number of F at the returned plan.
+  // Condition number of F at the returned plan (when `has_condition_number`, else 0).
   double condition_number;
   // Certified least-fuel gap, m/s.
   double min_fuel_gap_mps;
   // sum |dv_k|, m/s.
   double total_dv_mps;
-  // Total of the minimum-norm fixed point, m/s.
+  // Total of the minimum-norm fixed point, m/s (when `has_min_norm_total_dv_mps`, else 0).
   double min_norm_total_dv_mps;
-  // Total of the linear-model fixed point, m/s.
+  // Total of the linear-model fixed point, m/s (when `has_linear_total_dv_mps`, else 0).
   double linear_total_dv_mps;
   // Time of the last impulse, s.
   double final_time_s;
@@ -1063,7 +1058,9 @@ int32_t reconfig_geo_tour_init(void *workspace, size_t size);
 int32_t reconfig_geo_tour_default_settings(ReconfigGeoSettings *out);
 
 // Plan the tour `problem` with `settings` in the initialised `workspace`; write the result
-// into `out`.
+// into `out`. The request is answered by the core's request path with the built-in limits
+// (the flight service's): a setting outside them is refused `RECONFIG_ERR_LIMIT_EXCEEDED`,
+// named.
 //
 // Returns the status code (also in `out->status`): `>= 0` a solve status (only
 // `RECONFIG_GEO_SOLVED` may be flown), `< 0` a refusal whose field, index, value and limit are
@@ -1101,6 +1098,9 @@ int32_t reconfig_impulsive_init(void *workspace, size_t size);
 int32_t reconfig_impulsive_default_settings(ReconfigBSettings *out);
 
 // Plan `problem` with `settings` in the initialised `workspace`; write the result into `out`.
+// The request is answered by the core's request path with the built-in limits (the flight
+// service's): a setting outside them is refused `RECONFIG_ERR_LIMIT_EXCEEDED`, named (the
+// limits require `nonlinear_correction = 1`).
 //
 // Returns the status code (also in `out->status`): `>= 0` a solve status, `< 0` a refusal
 // whose field, index, value and limit are in `out->error` (when `out` is usable).
@@ -1118,7 +1118,9 @@ int32_t reconfig_impulsive_solve(void *workspace,
 // elements or an osculating ECI state; the relative state as element differences, ROE or the
 // deputy's own orbits) with `settings` in the initialised planner-B `workspace`; write the plan
 // and its end state, in the form the target was given in, into `out`. The conversion runs on
-// board (the core's `impulsive::solve_form`) and is charged to the same work budget.
+// board (the core's `impulsive::solve_form`) and is charged to the same work budget; the
+// built-in limits also bound the orbits as given (eccentricity below 1, perigee altitude, the
+// chief's `|sin i|` under ROE: `RECONFIG_ERR_LIMIT_EXCEEDED` with `index` 128 and up).
 //
 // Returns the status code (also in `out->plan.status`): `>= 0` a solve status, `< 0` a
 // refusal whose field, index, value and limit are in `out->plan.error`
@@ -1130,6 +1132,13 @@ int32_t reconfig_impulsive_solve_form(void *workspace,
                                       const ReconfigBFormProblem *problem,
                                       const ReconfigBSettings *settings,
                                       ReconfigBFormSolution *out);
+
+// The name of the setting or problem quantity a refusal names: `planner` a
+// `RECONFIG_PLANNER_*` code, `code` the refusal's `error.index` (a setting's code in its
+// planner's settings table, or 128 plus a problem quantity's code). Returns a static
+// NUL-terminated string (never to be freed; the same pointer every call), or NULL for a code
+// the planner has no setting for.
+const char *reconfig_setting_name(int32_t planner, int32_t code);
 
 // Bytes of caller memory one planner-A workspace needs.
 size_t reconfig_pseudospectral_workspace_size(void);
@@ -1154,6 +1163,8 @@ int32_t reconfig_pseudospectral_init(void *workspace, size_t size);
 int32_t reconfig_pseudospectral_default_settings(ReconfigASettings *out);
 
 // Plan `problem` with `settings` in the initialised `workspace`; write the result into `out`.
+// The request is answered by the core's request path with the built-in limits (the flight
+// service's): a setting outside them is refused `RECONFIG_ERR_LIMIT_EXCEEDED`, named.
 //
 // Returns the status code (also in `out->status`): `>= 0` a solve status, `< 0` a refusal
 // whose field, index, value and limit are in `out->error` (when `out` is usable).

@@ -4,8 +4,8 @@ use crate::status::*;
 use crate::types_a::*;
 use reconfig_core::capacity::MAX_SPACECRAFT;
 use reconfig_core::pseudospectral::{
-    ActiveConstraint, Boundary, Capacity, PlanError, Problem, Quantity, Settings, SettingsError,
-    Solution, SolveStatus, Spacecraft, Stage, UnmetConstraint, MAX_MAGNITUDE, MIN_POSITIVE,
+    ActiveConstraint, Boundary, Capacity, PlanError, Problem, Quantity, SettingId, Settings,
+    Solution, SolveStatus, Spacecraft, Stage, UnmetConstraint, MAX_MAGNITUDE,
 };
 
 /// A C flag (0 or 1) as a bool, or the refusal naming it.
@@ -19,54 +19,21 @@ pub(crate) fn flag(value: u8, field: i32, index: i32) -> Result<bool, ReconfigEr
     }
 }
 
-/// Index of each settings flag in `RECONFIG_FIELD_SETTINGS_CODE` refusals.
-pub const RECONFIG_SETTINGS_CODE_CONTINUOUS_VERIFICATION: i32 = 0;
-
-/// The core's settings from the C struct (flags checked here; ranges by the core's own
-/// `Settings::validate` inside the solve).
-///
-/// # Errors
-/// A flag other than 0 or 1.
-pub fn settings_from_c(c: &ReconfigASettings) -> Result<Settings, ReconfigError> {
-    Ok(Settings {
-        sqp_max_iter: c.sqp_max_iter,
-        sqp_tol_cost: c.sqp_tol_cost,
-        sqp_tol_step_lu: c.sqp_tol_step_lu,
-        acceleration_memory: c.acceleration_memory,
-        continuous_verification: flag(
-            c.continuous_verification,
-            RECONFIG_FIELD_SETTINGS_CODE,
-            RECONFIG_SETTINGS_CODE_CONTINUOUS_VERIFICATION,
-        )?,
-        qp_max_iter: c.qp_max_iter,
-        qp_tol_feas: c.qp_tol_feas,
-        verify_max_rounds: c.verify_max_rounds,
-        verify_tol_lu: c.verify_tol_lu,
-        keep_out_margin_lu: c.keep_out_margin_lu,
-        newton_max_iter: c.newton_max_iter,
-        refine_max_iter: c.refine_max_iter,
-        work_budget: c.work_budget,
-    })
-}
-
-/// The C struct of the core's settings (for `_default_settings`).
-pub fn settings_to_c(s: &Settings) -> ReconfigASettings {
-    ReconfigASettings {
-        work_budget: s.work_budget,
-        sqp_tol_cost: s.sqp_tol_cost,
-        sqp_tol_step_lu: s.sqp_tol_step_lu,
-        qp_tol_feas: s.qp_tol_feas,
-        verify_tol_lu: s.verify_tol_lu,
-        keep_out_margin_lu: s.keep_out_margin_lu,
-        sqp_max_iter: s.sqp_max_iter,
-        qp_max_iter: s.qp_max_iter,
-        newton_max_iter: s.newton_max_iter,
-        refine_max_iter: s.refine_max_iter,
-        acceleration_memory: s.acceleration_memory,
-        continuous_verification: u8::from(s.continuous_verification),
-        verify_max_rounds: s.verify_max_rounds,
-    }
-}
+crate::mirror_settings!(ReconfigASettings => Settings, SettingId {
+    work_budget,
+    sqp_tol_cost,
+    sqp_tol_step_lu,
+    qp_tol_feas,
+    verify_tol_lu,
+    keep_out_margin_lu,
+    sqp_max_iter,
+    qp_max_iter,
+    newton_max_iter,
+    refine_max_iter,
+    acceleration_memory,
+    continuous_verification,
+    verify_max_rounds,
+});
 
 /// The core's problem from the C struct, written into `out` (kept in the caller's workspace).
 ///
@@ -118,26 +85,30 @@ fn capacity_error(field: i32, requested: usize, capacity: usize) -> ReconfigErro
 /// is read back from the request the core refused.
 pub fn error_to_c(e: &PlanError, problem: &ReconfigAProblem) -> ReconfigError {
     match *e {
-        PlanError::NotFinite { what, spacecraft } => {
+        PlanError::NotFinite {
+            what, spacecraft, ..
+        } => {
             let (field, value, component) = quantity(what, spacecraft, problem, |v| !v.is_finite());
             ReconfigError::new(RECONFIG_A_ERR_NOT_FINITE, field, value, 0.0)
                 .at(i32::from(spacecraft))
                 .with_detail(component)
         }
-        PlanError::NotPositive { what, spacecraft } => {
+        PlanError::NotPositive {
+            what, spacecraft, ..
+        } => {
             let (field, value, component) = quantity(what, spacecraft, problem, |v| v <= 0.0);
             ReconfigError::new(RECONFIG_A_ERR_NOT_POSITIVE, field, value, 0.0)
                 .at(i32::from(spacecraft))
                 .with_detail(component)
         }
-        PlanError::OutOfRange { what, spacecraft } => {
+        PlanError::OutOfRange {
+            what,
+            spacecraft,
+            limit,
+            ..
+        } => {
             let (field, value, component) =
                 quantity(what, spacecraft, problem, |v| v.abs() > MAX_MAGNITUDE);
-            let limit = if value.abs() > MAX_MAGNITUDE {
-                MAX_MAGNITUDE
-            } else {
-                MIN_POSITIVE
-            };
             ReconfigError::new(RECONFIG_A_ERR_OUT_OF_RANGE, field, value, limit)
                 .at(i32::from(spacecraft))
                 .with_detail(component)
@@ -191,29 +162,14 @@ pub fn error_to_c(e: &PlanError, problem: &ReconfigAProblem) -> ReconfigError {
         )
         .at(i32::from(spacecraft))
         .with_detail(i32::from(axis)),
-        PlanError::InvalidSettings(s) => ReconfigError::new(
-            RECONFIG_A_ERR_INVALID_SETTINGS,
-            RECONFIG_FIELD_SETTINGS,
-            0.0,
-            0.0,
-        )
-        .with_detail(settings_class(s)),
+        PlanError::InvalidSetting(s) => setting_error_to_c(&s),
         // The C interface has no warm start; kept so that every core refusal maps to a code.
         PlanError::WarmStartMismatch => ReconfigError::new(
-            RECONFIG_A_ERR_INVALID_SETTINGS,
+            RECONFIG_A_ERR_WARM_START_MISMATCH,
             RECONFIG_FIELD_NONE,
             0.0,
             0.0,
         ),
-    }
-}
-
-fn settings_class(s: SettingsError) -> i32 {
-    match s {
-        SettingsError::ZeroIterationLimit => 0,
-        SettingsError::BadTolerance => 1,
-        SettingsError::TooManyVerifyRounds => 2,
-        SettingsError::AccelerationMemory => 3,
     }
 }
 
@@ -253,31 +209,18 @@ fn quantity(
     }
 }
 
-/// The C status code of a core status, and the numerical stage where one applies.
+/// The C status code of a core status (`status::status_code`), and the numerical stage where
+/// one applies.
 pub fn status_to_c(s: SolveStatus) -> (i32, i32) {
-    match s {
-        SolveStatus::Unsolved => (RECONFIG_UNSOLVED, 0),
-        SolveStatus::Solved => (RECONFIG_A_SOLVED, 0),
-        SolveStatus::SeparationNotVerified => (RECONFIG_A_SEPARATION_NOT_VERIFIED, 0),
-        SolveStatus::MaxIterations => (RECONFIG_A_MAX_ITERATIONS, 0),
-        SolveStatus::Infeasible => (RECONFIG_A_INFEASIBLE, 0),
-        SolveStatus::QpLimit => (RECONFIG_A_QP_LIMIT, 0),
-        SolveStatus::NumericalFailure(stage) => (
-            RECONFIG_A_NUMERICAL_FAILURE,
-            match stage {
-                Stage::Transcription => 0,
-                Stage::Basis => 1,
-                Stage::QpFactor => 2,
-            },
-        ),
-        SolveStatus::Feasible => (RECONFIG_A_FEASIBLE, 0),
-        SolveStatus::BudgetExhausted { verified: true } => {
-            (RECONFIG_A_BUDGET_EXHAUSTED_VERIFIED, 0)
-        }
-        SolveStatus::BudgetExhausted { verified: false } => {
-            (RECONFIG_A_BUDGET_EXHAUSTED_UNVERIFIED, 0)
-        }
-    }
+    let stage = match s {
+        SolveStatus::NumericalFailure(stage) => match stage {
+            Stage::Transcription => 0,
+            Stage::Basis => 1,
+            Stage::QpFactor => 2,
+        },
+        _ => 0,
+    };
+    (status_code(A_STATUS_BASE, &s), stage)
 }
 
 /// Write the core's solution into the C one, field by field (no large temporary).

@@ -5,98 +5,39 @@ use crate::status::*;
 use crate::types_b::*;
 use reconfig_core::capacity::MAX_IMPULSES;
 use reconfig_core::impulsive::{
-    ElementSet, EquinoctialElements, ImpulsePlan, ImpulsePoint, MeanElements, Orbit, PlanError,
-    Problem, Quantity, RelativeElements, Settings, SettingsError, Solution, SolveStatus, Stage,
+    EquinoctialElements, ImpulsePlan, ImpulsePoint, MeanElements, Orbit, PlanError, Problem,
+    Quantity, RelativeElements, SettingId, Settings, Solution, SolveStatus, Stage,
 };
 
-/// Index of each settings flag or code in `RECONFIG_FIELD_SETTINGS_CODE` refusals.
-pub const RECONFIG_SETTINGS_CODE_MIN_FUEL: i32 = 0;
-/// See [`RECONFIG_SETTINGS_CODE_MIN_FUEL`].
-pub const RECONFIG_SETTINGS_CODE_NONLINEAR_CORRECTION: i32 = 1;
-/// See [`RECONFIG_SETTINGS_CODE_MIN_FUEL`].
-pub const RECONFIG_SETTINGS_CODE_ELEMENT_SET: i32 = 2;
-
-/// The core's settings from the C struct (flags and codes checked here; ranges by the core's
-/// own `Settings::validate` inside the solve).
-///
-/// # Errors
-/// A flag other than 0 or 1, an element set other than 0 or 1.
-pub fn settings_from_c(c: &ReconfigBSettings) -> Result<Settings, ReconfigError> {
-    let code = RECONFIG_FIELD_SETTINGS_CODE;
-    Ok(Settings {
-        fixed_point_max_iter: c.fixed_point_max_iter,
-        fixed_point_tol_mps: c.fixed_point_tol_mps,
-        min_fuel: flag(c.min_fuel, code, RECONFIG_SETTINGS_CODE_MIN_FUEL)?,
-        min_fuel_max_iter: c.min_fuel_max_iter,
-        min_fuel_step_tol_mps: c.min_fuel_step_tol_mps,
-        min_fuel_tol_mps: c.min_fuel_tol_mps,
-        nonlinear_correction: flag(
-            c.nonlinear_correction,
-            code,
-            RECONFIG_SETTINGS_CODE_NONLINEAR_CORRECTION,
-        )?,
-        correction_max_iter: c.correction_max_iter,
-        correction_tol: c.correction_tol,
-        kepler_max_iter: c.kepler_max_iter,
-        svd_max_iter: c.svd_max_iter,
-        rank_rcond: c.rank_rcond,
-        min_eccentricity: c.min_eccentricity,
-        min_sin_inclination: c.min_sin_inclination,
-        max_total_revolutions: c.max_total_revolutions,
-        min_perigee_altitude_km: c.min_perigee_altitude_km,
-        search_samples: c.search_samples,
-        search_starts: c.search_starts,
-        search_max_evaluations: c.search_max_evaluations,
-        search_seed: c.search_seed,
-        search_step_rad: c.search_step_rad,
-        search_min_step_rad: c.search_min_step_rad,
-        search_fixed_point_max_iter: c.search_fixed_point_max_iter,
-        search_screen_tol_mps: c.search_screen_tol_mps,
-        search_tol_mps: c.search_tol_mps,
-        element_set: if flag(c.element_set, code, RECONFIG_SETTINGS_CODE_ELEMENT_SET)? {
-            ElementSet::Equinoctial
-        } else {
-            ElementSet::Classical
-        },
-        work_budget: c.work_budget,
-    })
-}
-
-/// The C struct of the core's settings (for `_default_settings`).
-pub fn settings_to_c(s: &Settings) -> ReconfigBSettings {
-    ReconfigBSettings {
-        work_budget: s.work_budget,
-        search_seed: s.search_seed,
-        fixed_point_tol_mps: s.fixed_point_tol_mps,
-        min_fuel_step_tol_mps: s.min_fuel_step_tol_mps,
-        min_fuel_tol_mps: s.min_fuel_tol_mps,
-        correction_tol: s.correction_tol,
-        rank_rcond: s.rank_rcond,
-        min_eccentricity: s.min_eccentricity,
-        min_sin_inclination: s.min_sin_inclination,
-        min_perigee_altitude_km: s.min_perigee_altitude_km,
-        search_step_rad: s.search_step_rad,
-        search_min_step_rad: s.search_min_step_rad,
-        search_screen_tol_mps: s.search_screen_tol_mps,
-        search_tol_mps: s.search_tol_mps,
-        max_total_revolutions: s.max_total_revolutions,
-        search_samples: s.search_samples,
-        search_max_evaluations: s.search_max_evaluations,
-        fixed_point_max_iter: s.fixed_point_max_iter,
-        min_fuel_max_iter: s.min_fuel_max_iter,
-        correction_max_iter: s.correction_max_iter,
-        kepler_max_iter: s.kepler_max_iter,
-        svd_max_iter: s.svd_max_iter,
-        search_fixed_point_max_iter: s.search_fixed_point_max_iter,
-        search_starts: s.search_starts,
-        min_fuel: u8::from(s.min_fuel),
-        nonlinear_correction: u8::from(s.nonlinear_correction),
-        element_set: match s.element_set {
-            ElementSet::Classical => 0,
-            ElementSet::Equinoctial => 1,
-        },
-    }
-}
+crate::mirror_settings!(ReconfigBSettings => Settings, SettingId {
+    work_budget,
+    search_seed,
+    fixed_point_tol_mps,
+    min_fuel_step_tol_mps,
+    min_fuel_tol_mps,
+    correction_tol,
+    rank_rcond,
+    min_eccentricity,
+    min_sin_inclination,
+    min_perigee_altitude_km,
+    search_step_rad,
+    search_min_step_rad,
+    search_screen_tol_mps,
+    search_tol_mps,
+    max_total_revolutions,
+    search_samples,
+    search_max_evaluations,
+    fixed_point_max_iter,
+    min_fuel_max_iter,
+    correction_max_iter,
+    kepler_max_iter,
+    svd_max_iter,
+    search_fixed_point_max_iter,
+    search_starts,
+    min_fuel,
+    nonlinear_correction,
+    element_set,
+});
 
 pub(crate) fn mean_from_c(c: &ReconfigBMeanElements) -> MeanElements {
     MeanElements {
@@ -253,15 +194,6 @@ fn input_value(what: Quantity, index: u8, problem: &Problem) -> (i32, f64) {
     }
 }
 
-fn settings_class(s: SettingsError) -> i32 {
-    match s {
-        SettingsError::ZeroIterationLimit => 0,
-        SettingsError::BadTolerance => 1,
-        SettingsError::BadThreshold => 2,
-        SettingsError::BadSearchBudget => 3,
-    }
-}
-
 /// The C refusal of a core refusal: field, element index, value and limit from the core's
 /// variant (the value read back from the request where the core does not carry it: `problem`
 /// is the core's problem as planned).
@@ -335,13 +267,7 @@ pub fn error_to_c(e: &PlanError, problem: &Problem) -> ReconfigError {
             0.0,
             1.0,
         ),
-        PlanError::InvalidSettings(s) => ReconfigError::new(
-            RECONFIG_B_ERR_INVALID_SETTINGS,
-            RECONFIG_FIELD_SETTINGS,
-            0.0,
-            0.0,
-        )
-        .with_detail(settings_class(s)),
+        PlanError::InvalidSetting(s) => setting_error_to_c(&s),
         PlanError::PerigeeTooLow {
             orbit,
             perigee_altitude_km,
@@ -381,19 +307,13 @@ pub fn error_to_c(e: &PlanError, problem: &Problem) -> ReconfigError {
     }
 }
 
-/// The C status code of a core status, and its payload: (code, numerical stage, unsafe arc,
-/// unsafe perigee altitude km, linearised miss m).
+/// The C status code of a core status (`status::status_code`), and its payload: (code,
+/// numerical stage, unsafe arc, unsafe perigee altitude km, linearised miss m).
 pub fn status_to_c(s: SolveStatus) -> (i32, i32, i32, f64, f64) {
+    let code = status_code(B_STATUS_BASE, &s);
     match s {
-        SolveStatus::Unsolved => (RECONFIG_UNSOLVED, 0, 0, 0.0, 0.0),
-        SolveStatus::Solved => (RECONFIG_B_SOLVED, 0, 0, 0.0, 0.0),
-        SolveStatus::RankDeficient => (RECONFIG_B_RANK_DEFICIENT, 0, 0, 0.0, 0.0),
-        SolveStatus::MaxIterations => (RECONFIG_B_MAX_ITERATIONS, 0, 0, 0.0, 0.0),
-        SolveStatus::CorrectionNotConverged => {
-            (RECONFIG_B_CORRECTION_NOT_CONVERGED, 0, 0, 0.0, 0.0)
-        }
         SolveStatus::NumericalFailure(stage) => (
-            RECONFIG_B_NUMERICAL_FAILURE,
+            code,
             match stage {
                 Stage::Kepler => 0,
                 Stage::Svd => 1,
@@ -407,20 +327,9 @@ pub fn status_to_c(s: SolveStatus) -> (i32, i32, i32, f64, f64) {
         SolveStatus::UnsafePerigee {
             arc,
             perigee_altitude_km,
-        } => (
-            RECONFIG_B_UNSAFE_PERIGEE,
-            0,
-            i32::from(arc),
-            perigee_altitude_km,
-            0.0,
-        ),
-        SolveStatus::Linearised { miss_m } => (RECONFIG_B_LINEARISED, 0, 0, 0.0, miss_m),
-        SolveStatus::BudgetExhausted { verified: true } => {
-            (RECONFIG_B_BUDGET_EXHAUSTED_VERIFIED, 0, 0, 0.0, 0.0)
-        }
-        SolveStatus::BudgetExhausted { verified: false } => {
-            (RECONFIG_B_BUDGET_EXHAUSTED_UNVERIFIED, 0, 0, 0.0, 0.0)
-        }
+        } => (code, 0, i32::from(arc), perigee_altitude_km, 0.0),
+        SolveStatus::Linearised { miss_m } => (code, 0, 0, 0.0, miss_m),
+        _ => (code, 0, 0, 0.0, 0.0),
     }
 }
 
@@ -428,6 +337,7 @@ pub fn status_to_c(s: SolveStatus) -> (i32, i32, i32, f64, f64) {
 pub fn solution_to_c(s: &Solution) -> ReconfigBSolution {
     let (status, numerical_stage, unsafe_arc, unsafe_perigee_altitude_km, linearised_miss_m) =
         status_to_c(s.info.status);
+    let terminal = s.terminal_error.as_ref();
     let mut impulses = [ReconfigBImpulse::default(); RECONFIG_B_MAX_IMPULSES];
     for (slot, i) in impulses.iter_mut().zip(s.impulses.iter()) {
         *slot = ReconfigBImpulse {
@@ -456,16 +366,25 @@ pub fn solution_to_c(s: &Solution) -> ReconfigBSolution {
         correction_iterations: s.info.correction_iterations,
         evaluations: s.info.evaluations,
         work_units: s.info.work_units,
-        condition_number: s.info.condition_number,
+        has_condition_number: u8::from(s.info.condition_number.is_some()),
+        has_min_norm_total_dv_mps: u8::from(s.min_norm_total_dv_mps.is_some()),
+        has_linear_total_dv_mps: u8::from(s.linear_total_dv_mps.is_some()),
+        has_terminal_error: u8::from(terminal.is_some()),
+        condition_number: s.info.condition_number.unwrap_or_default(),
         min_fuel_gap_mps: s.info.min_fuel_gap_mps,
         total_dv_mps: s.total_dv_mps,
-        min_norm_total_dv_mps: s.min_norm_total_dv_mps,
-        linear_total_dv_mps: s.linear_total_dv_mps,
+        min_norm_total_dv_mps: s.min_norm_total_dv_mps.unwrap_or_default(),
+        linear_total_dv_mps: s.linear_total_dv_mps.unwrap_or_default(),
         final_time_s: s.final_time_s,
-        terminal_error_m: s.terminal_error_m,
-        terminal_position_error_m: s.terminal_position_error_m,
-        terminal_error_elements: relative_to_c(&s.terminal_error_elements),
-        terminal_error_equinoctial: equinoctial_to_c(&s.terminal_error_equinoctial),
+        terminal_error_m: terminal.map_or(0.0, |t| t.along_track_m),
+        terminal_position_error_m: terminal.map_or(0.0, |t| t.position_m),
+        terminal_error_elements: terminal.map_or_else(ReconfigBRelativeElements::default, |t| {
+            relative_to_c(&t.elements)
+        }),
+        terminal_error_equinoctial: terminal
+            .map_or_else(ReconfigBEquinoctialElements::default, |t| {
+                equinoctial_to_c(&t.equinoctial)
+            }),
         impulses,
     }
 }

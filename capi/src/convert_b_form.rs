@@ -187,5 +187,9 @@ pub fn end_state_to_c(e: &EndState) -> ReconfigBEndState {
             unavailable_reason: form_error_to_c(*error).0,
             ..empty
         },
+        EndState::NotFlown => ReconfigBEndState {
+            form: RECONFIG_B_END_NOT_FLOWN,
+            ..empty
+        },
     }
 }

@@ -3,51 +3,28 @@
 use crate::status::*;
 use crate::types_geo::*;
 use reconfig_core::geo_tour::{
-    Direction, Field, Leg, Method, MethodPolicy, PlanError, Problem, Settings, Solution,
+    Direction, Field, Leg, Method, MethodPolicy, PlanError, Problem, SettingId, Settings, Solution,
     SolveStatus, SweepChoice, MAX_TARGETS,
 };
 
-/// The core's settings from the C struct (every range is the core's own check in the solve).
-pub fn settings_from_c(c: &ReconfigGeoSettings) -> Settings {
-    Settings {
-        lambert_max_revolutions: c.lambert_max_revolutions,
-        lambert_max_iter: c.lambert_max_iter,
-        lambert_tol: c.lambert_tol,
-        well_iterations: c.well_iterations,
-        root_max_iter: c.root_max_iter,
-        price_max_iter: c.price_max_iter,
-        time_tol_s: c.time_tol_s,
-        gap_max_legs: c.gap_max_legs,
-        exchange_rounds: c.exchange_rounds,
-        exchange_margin_mps: c.exchange_margin_mps,
-        min_radius_km: c.min_radius_km,
-        rule_drift_above_rad: c.rule_drift_above_rad,
-        rule_hohmann_above_rad: c.rule_hohmann_above_rad,
-        rule_radial_above_rad: c.rule_radial_above_rad,
-        lambert_direct_time_s: c.lambert_direct_time_s,
-    }
-}
-
-/// The C struct of the core's settings (for `_default_settings`).
-pub fn settings_to_c(s: &Settings) -> ReconfigGeoSettings {
-    ReconfigGeoSettings {
-        lambert_tol: s.lambert_tol,
-        time_tol_s: s.time_tol_s,
-        exchange_margin_mps: s.exchange_margin_mps,
-        min_radius_km: s.min_radius_km,
-        rule_drift_above_rad: s.rule_drift_above_rad,
-        rule_hohmann_above_rad: s.rule_hohmann_above_rad,
-        rule_radial_above_rad: s.rule_radial_above_rad,
-        lambert_direct_time_s: s.lambert_direct_time_s,
-        lambert_max_revolutions: s.lambert_max_revolutions,
-        lambert_max_iter: s.lambert_max_iter,
-        well_iterations: s.well_iterations,
-        root_max_iter: s.root_max_iter,
-        price_max_iter: s.price_max_iter,
-        exchange_rounds: s.exchange_rounds,
-        gap_max_legs: s.gap_max_legs,
-    }
-}
+crate::mirror_settings!(ReconfigGeoSettings => Settings, SettingId {
+    lambert_tol,
+    time_tol_s,
+    exchange_margin_mps,
+    min_radius_km,
+    rule_drift_above_rad,
+    rule_hohmann_above_rad,
+    rule_radial_above_rad,
+    lambert_direct_time_s,
+    work_budget,
+    lambert_max_revolutions,
+    lambert_max_iter,
+    well_iterations,
+    root_max_iter,
+    price_max_iter,
+    exchange_rounds,
+    gap_max_legs,
+});
 
 fn code_error(field: i32, value: u8, largest: u8) -> ReconfigError {
     ReconfigError::new(
@@ -101,21 +78,6 @@ fn field_to_c(field: Field) -> i32 {
         Field::TargetLongitude => RECONFIG_FIELD_GEO_TARGET_LONGITUDE,
         Field::MissionTime => RECONFIG_FIELD_GEO_MISSION_TIME,
         Field::MaxBurn => RECONFIG_FIELD_GEO_MAX_BURN,
-        Field::LambertMaxRevolutions => RECONFIG_FIELD_GEO_LAMBERT_MAX_REVOLUTIONS,
-        Field::LambertMaxIter => RECONFIG_FIELD_GEO_LAMBERT_MAX_ITER,
-        Field::LambertTol => RECONFIG_FIELD_GEO_LAMBERT_TOL,
-        Field::WellIterations => RECONFIG_FIELD_GEO_WELL_ITERATIONS,
-        Field::RootMaxIter => RECONFIG_FIELD_GEO_ROOT_MAX_ITER,
-        Field::PriceMaxIter => RECONFIG_FIELD_GEO_PRICE_MAX_ITER,
-        Field::TimeTol => RECONFIG_FIELD_GEO_TIME_TOL,
-        Field::GapMaxLegs => RECONFIG_FIELD_GEO_GAP_MAX_LEGS,
-        Field::MinRadius => RECONFIG_FIELD_GEO_MIN_RADIUS,
-        Field::RuleDriftAbove => RECONFIG_FIELD_GEO_RULE_DRIFT_ABOVE,
-        Field::RuleHohmannAbove => RECONFIG_FIELD_GEO_RULE_HOHMANN_ABOVE,
-        Field::RuleRadialAbove => RECONFIG_FIELD_GEO_RULE_RADIAL_ABOVE,
-        Field::LambertDirectTime => RECONFIG_FIELD_GEO_LAMBERT_DIRECT_TIME,
-        Field::ExchangeRounds => RECONFIG_FIELD_GEO_EXCHANGE_ROUNDS,
-        Field::ExchangeMargin => RECONFIG_FIELD_GEO_EXCHANGE_MARGIN,
     }
 }
 
@@ -156,10 +118,13 @@ pub fn error_to_c(e: &PlanError) -> ReconfigError {
             0.0,
             1.0,
         ),
+        PlanError::InvalidSetting(s) => setting_error_to_c(&s),
     }
 }
 
-/// The C status code of a core status and the leg it names (-1 when none).
+/// The C status code of a core status and the leg it names (-1 when none). Written out: the
+/// GEO tour's status does not implement `contract::Status` yet (planners A and B take theirs
+/// from `status::status_code`).
 pub fn status_to_c(s: SolveStatus) -> (i32, i32) {
     match s {
         SolveStatus::Unsolved => (RECONFIG_UNSOLVED, -1),
@@ -170,6 +135,12 @@ pub fn status_to_c(s: SolveStatus) -> (i32, i32) {
             (RECONFIG_GEO_RULE_METHOD_INADMISSIBLE, i32::from(leg))
         }
         SolveStatus::CheckFailed { leg } => (RECONFIG_GEO_CHECK_FAILED, i32::from(leg)),
+        SolveStatus::BudgetExhausted { verified: true } => {
+            (RECONFIG_GEO_BUDGET_EXHAUSTED_VERIFIED, -1)
+        }
+        SolveStatus::BudgetExhausted { verified: false } => {
+            (RECONFIG_GEO_BUDGET_EXHAUSTED_UNVERIFIED, -1)
+        }
     }
 }
 
@@ -183,71 +154,135 @@ fn method_to_c(m: Method) -> u8 {
     }
 }
 
-fn leg_to_c(leg: &Leg) -> ReconfigGeoLeg {
-    let mut burns = [ReconfigGeoBurn::default(); RECONFIG_GEO_MAX_BURNS];
+/// Write one leg into its C slot, field by field (every field named).
+fn leg_to_c(leg: &Leg, out: &mut ReconfigGeoLeg) {
+    let ReconfigGeoLeg {
+        from_lon_rad,
+        to_lon_rad,
+        phase_rad,
+        start_s,
+        duration_s,
+        transfer_s,
+        wait_s,
+        dv_mps,
+        max_burn_mps,
+        orbit_sma_km,
+        revolutions,
+        target_index,
+        method,
+        burn_count,
+        burns,
+    } = out;
+    *from_lon_rad = leg.from_lon_rad;
+    *to_lon_rad = leg.to_lon_rad;
+    *phase_rad = leg.phase_rad;
+    *start_s = leg.start_s;
+    *duration_s = leg.duration_s;
+    *transfer_s = leg.transfer_s;
+    *wait_s = leg.wait_s;
+    *dv_mps = leg.dv_mps;
+    *max_burn_mps = leg.max_burn_mps;
+    *orbit_sma_km = leg.orbit_sma_km;
+    *revolutions = leg.revolutions;
+    *target_index = leg.target_index;
+    *method = method_to_c(leg.method);
+    // At most MAX_BURNS (4): the vector's capacity.
+    *burn_count = u8::try_from(leg.burns.len()).unwrap_or(u8::MAX);
+    *burns = [ReconfigGeoBurn::default(); RECONFIG_GEO_MAX_BURNS];
     for (slot, b) in burns.iter_mut().zip(leg.burns.iter()) {
         *slot = ReconfigGeoBurn {
             offset_s: b.offset_s,
             dv_rtn_mps: b.dv_rtn_mps,
         };
     }
-    ReconfigGeoLeg {
-        from_lon_rad: leg.from_lon_rad,
-        to_lon_rad: leg.to_lon_rad,
-        phase_rad: leg.phase_rad,
-        start_s: leg.start_s,
-        duration_s: leg.duration_s,
-        transfer_s: leg.transfer_s,
-        wait_s: leg.wait_s,
-        dv_mps: leg.dv_mps,
-        max_burn_mps: leg.max_burn_mps,
-        orbit_sma_km: leg.orbit_sma_km,
-        revolutions: leg.revolutions,
-        target_index: leg.target_index,
-        method: method_to_c(leg.method),
-        // At most MAX_BURNS (4): the vector's capacity.
-        burn_count: u8::try_from(leg.burns.len()).unwrap_or(u8::MAX),
-        burns,
-    }
 }
 
-/// The C solution of the core's solution.
-pub fn solution_to_c(s: &Solution) -> ReconfigGeoSolution {
-    let (status, status_leg) = status_to_c(s.info.status);
-    let mut legs = [ReconfigGeoLeg::default(); RECONFIG_GEO_MAX_TARGETS];
-    for (slot, leg) in legs.iter_mut().zip(s.legs.iter()) {
-        *slot = leg_to_c(leg);
-    }
-    ReconfigGeoSolution {
+/// Write the core's solution into the C one, field by field (no temporary of the C solution's
+/// 3.5 KB on the stack). The destructuring names every field: a field added to the C struct
+/// fails to compile here until it is written.
+pub fn solution_to_c(s: &Solution, out: &mut ReconfigGeoSolution) {
+    let ReconfigGeoSolution {
         status,
         status_leg,
-        error: ReconfigError::default(),
-        usable: u8::from(s.info.status == SolveStatus::Solved),
-        direction: match s.info.direction {
-            Some(Direction::East) => RECONFIG_GEO_DIRECTION_EAST,
-            Some(Direction::West) => RECONFIG_GEO_DIRECTION_WEST,
-            None => RECONFIG_GEO_DIRECTION_NONE,
-        },
-        // At most MAX_TARGETS (16): the vector's capacity.
-        leg_count: u8::try_from(s.legs.len()).unwrap_or(u8::MAX),
-        refined_legs: s.info.refined_legs,
-        price_iterations: s.info.price_iterations,
-        gap_assignments: s.info.gap_assignments,
-        total_dv_mps: s.total_dv_mps,
-        mission_time_s: s.mission_time_s,
-        max_burn_mps: s.max_burn_mps,
-        price_mps_per_s: s.info.price_mps_per_s,
-        fastest_tour_s: s.info.fastest_tour_s,
+        error,
+        usable,
+        has_fastest_tour_s,
+        direction,
+        leg_count,
+        refined_legs,
+        price_iterations,
+        gap_assignments,
+        total_dv_mps,
+        mission_time_s,
+        max_burn_mps,
+        price_mps_per_s,
+        fastest_tour_s,
+        work_units,
         legs,
+    } = out;
+    (*status, *status_leg) = status_to_c(s.info.status);
+    *error = ReconfigError::default();
+    *usable = u8::from(s.info.status.is_usable());
+    *has_fastest_tour_s = u8::from(s.info.fastest_tour_s.is_some());
+    *direction = match s.info.direction {
+        Some(Direction::East) => RECONFIG_GEO_DIRECTION_EAST,
+        Some(Direction::West) => RECONFIG_GEO_DIRECTION_WEST,
+        None => RECONFIG_GEO_DIRECTION_NONE,
+    };
+    // At most MAX_TARGETS (16): the vector's capacity.
+    *leg_count = u8::try_from(s.legs.len()).unwrap_or(u8::MAX);
+    *refined_legs = s.info.refined_legs;
+    *price_iterations = s.info.price_iterations;
+    *gap_assignments = s.info.gap_assignments;
+    *total_dv_mps = s.total_dv_mps;
+    *mission_time_s = s.mission_time_s;
+    *max_burn_mps = s.max_burn_mps;
+    *price_mps_per_s = s.info.price_mps_per_s;
+    *fastest_tour_s = s.info.fastest_tour_s.unwrap_or(0.0);
+    *work_units = s.info.work_units;
+    for leg in legs.iter_mut() {
+        *leg = ReconfigGeoLeg::default();
+    }
+    for (slot, leg) in legs.iter_mut().zip(s.legs.iter()) {
+        leg_to_c(leg, slot);
     }
 }
 
-/// A C solution holding only a refusal.
-pub fn refusal_to_c(error: ReconfigError) -> ReconfigGeoSolution {
-    ReconfigGeoSolution {
-        status: error.code,
-        status_leg: -1,
+/// Reset a C solution to "unsolved" with a refusal in it, field by field (every field named, as
+/// in [`solution_to_c`]).
+pub fn refusal_to_c(e: ReconfigError, out: &mut ReconfigGeoSolution) {
+    let ReconfigGeoSolution {
+        status,
+        status_leg,
         error,
-        ..ReconfigGeoSolution::default()
+        usable,
+        direction,
+        leg_count,
+        refined_legs,
+        price_iterations,
+        gap_assignments,
+        total_dv_mps,
+        mission_time_s,
+        max_burn_mps,
+        price_mps_per_s,
+        fastest_tour_s,
+        has_fastest_tour_s,
+        work_units,
+        legs,
+    } = out;
+    *status = e.code;
+    *status_leg = -1;
+    *error = e;
+    (*usable, *direction, *leg_count, *refined_legs) = (0, 0, 0, 0);
+    (*price_iterations, *gap_assignments) = (0, 0);
+    *total_dv_mps = 0.0;
+    *mission_time_s = 0.0;
+    *max_burn_mps = 0.0;
+    *price_mps_per_s = 0.0;
+    *fastest_tour_s = 0.0;
+    *has_fastest_tour_s = 0;
+    *work_units = 0;
+    for leg in legs.iter_mut() {
+        *leg = ReconfigGeoLeg::default();
     }
 }

@@ -1,47 +1,101 @@
-//! The GEO servicing tour's entry points: `reconfig_geo_tour_*`.
+//! The GEO servicing tour's entry points: `reconfig_geo_tour_*` (bodies in [`crate::shell`]).
 
-use crate::boundary::{block_mut, check_pointer, init_block, Block};
-use crate::convert_geo::{
-    error_to_c, problem_from_c, refusal_to_c, settings_from_c, settings_to_c, solution_to_c,
-};
-use crate::status::*;
+use crate::convert_geo::{error_to_c, problem_from_c, refusal_to_c, solution_to_c};
+use crate::settings::SettingsMirror;
+use crate::shell::{self, not_initialised, Entry, Shell, Slot};
+use crate::status::ReconfigError;
 use crate::types_geo::{ReconfigGeoProblem, ReconfigGeoSettings, ReconfigGeoSolution};
 use core::ffi::c_void;
-use reconfig_core::geo_tour::{
-    self, MethodPolicy, Problem, Settings, Solution, SweepChoice, Workspace,
-};
+use reconfig_core::geo_tour::{MethodPolicy, Problem, Settings, Solution, SweepChoice, Workspace};
+use reconfig_core::wire::{OutcomeRef, Request};
 
-/// The GEO tour's workspace block.
-type BlockGeo = Block<Workspace, Problem, Solution>;
+/// The GEO tour in the C shell.
+pub struct GeoTour;
 
-/// "RCFG-GEO" in ASCII: the tag of an initialised GEO-tour workspace.
-const TAG_GEO: u64 = 0x5243_4647_2d47_454f;
-
-/// The initial block (a `static`, copied from its one place by `_init`; see planner B's).
-static TEMPLATE_GEO: BlockGeo = Block {
-    tag: 0,
+/// The initial slot (a `static`: see [`Shell::template`]).
+static TEMPLATE_GEO: Slot<Workspace, Solution> = Slot {
     workspace: Workspace::new(),
-    problem: Problem {
-        start_lon_rad: 0.0,
-        targets_lon_rad: heapless::Vec::new(),
-        mission_time_s: 0.0,
-        max_burn_mps: 0.0,
-        sweep: SweepChoice::Cheaper,
-        policy: MethodPolicy::ByCost,
-    },
     solution: Solution::new(),
 };
+
+const EMPTY_PROBLEM: Problem = Problem {
+    start_lon_rad: 0.0,
+    targets_lon_rad: heapless::Vec::new(),
+    mission_time_s: 0.0,
+    max_burn_mps: 0.0,
+    sweep: SweepChoice::Cheaper,
+    policy: MethodPolicy::ByCost,
+};
+
+impl Shell for GeoTour {
+    type Slot = Slot<Workspace, Solution>;
+    /// "RCFG-GEO" in ASCII.
+    const TAG: u64 = 0x5243_4647_2d47_454f;
+    fn template() -> &'static Self::Slot {
+        &TEMPLATE_GEO
+    }
+    fn empty_request() -> Request {
+        Request::GeoTour {
+            problem: EMPTY_PROBLEM,
+            settings: Settings::default(),
+        }
+    }
+}
+
+impl Entry for GeoTour {
+    type Planner = Self;
+    type Problem = ReconfigGeoProblem;
+    type Settings = ReconfigGeoSettings;
+    type Out = ReconfigGeoSolution;
+
+    fn fill(
+        request: &mut Request,
+        problem: &ReconfigGeoProblem,
+        settings: &ReconfigGeoSettings,
+    ) -> Result<(), ReconfigError> {
+        let Request::GeoTour {
+            problem: core_problem,
+            settings: core_settings,
+        } = request
+        else {
+            return Err(not_initialised());
+        };
+        settings.to_core(core_settings)?;
+        problem_from_c(problem, core_problem)
+    }
+
+    fn write(
+        outcome: OutcomeRef<'_>,
+        _request: &Request,
+        _problem: &ReconfigGeoProblem,
+        out: &mut ReconfigGeoSolution,
+    ) -> Result<i32, ReconfigError> {
+        match outcome {
+            OutcomeRef::GeoTour(solution) => {
+                solution_to_c(solution, out);
+                Ok(out.status)
+            }
+            OutcomeRef::GeoTourRejected(e) => Err(error_to_c(&e)),
+            _ => Err(not_initialised()),
+        }
+    }
+
+    fn refuse(error: ReconfigError, out: &mut ReconfigGeoSolution) -> i32 {
+        refusal_to_c(error, out);
+        out.status
+    }
+}
 
 /// Bytes of caller memory one GEO-tour workspace needs.
 #[no_mangle]
 pub extern "C" fn reconfig_geo_tour_workspace_size() -> usize {
-    core::mem::size_of::<BlockGeo>()
+    shell::workspace_size::<GeoTour>()
 }
 
 /// Alignment, in bytes, a GEO-tour workspace needs.
 #[no_mangle]
 pub extern "C" fn reconfig_geo_tour_workspace_align() -> usize {
-    core::mem::align_of::<BlockGeo>()
+    shell::workspace_align::<GeoTour>()
 }
 
 /// Initialise a GEO-tour workspace in `size` bytes of caller memory at `workspace`.
@@ -55,18 +109,7 @@ pub extern "C" fn reconfig_geo_tour_workspace_align() -> usize {
 #[no_mangle]
 pub unsafe extern "C" fn reconfig_geo_tour_init(workspace: *mut c_void, size: usize) -> i32 {
     // SAFETY: forwarded caller contract.
-    match unsafe {
-        init_block(
-            workspace,
-            size,
-            &TEMPLATE_GEO,
-            TAG_GEO,
-            RECONFIG_FIELD_WORKSPACE,
-        )
-    } {
-        Ok(()) => 0,
-        Err(e) => e.code,
-    }
+    unsafe { shell::init::<GeoTour>(workspace, size) }
 }
 
 /// Write the default settings into `out`. Returns 0, or a null/misaligned refusal.
@@ -75,16 +118,14 @@ pub unsafe extern "C" fn reconfig_geo_tour_init(workspace: *mut c_void, size: us
 /// `out` is null or points to writable memory for one `ReconfigGeoSettings`.
 #[no_mangle]
 pub unsafe extern "C" fn reconfig_geo_tour_default_settings(out: *mut ReconfigGeoSettings) -> i32 {
-    if let Err(e) = check_pointer(out.cast_const(), RECONFIG_FIELD_SETTINGS_ARG) {
-        return e.code;
-    }
-    // SAFETY: non-null and aligned (checked); writable by the caller's contract.
-    unsafe { out.write(settings_to_c(&Settings::default())) };
-    0
+    // SAFETY: forwarded caller contract.
+    unsafe { shell::default_settings(out) }
 }
 
 /// Plan the tour `problem` with `settings` in the initialised `workspace`; write the result
-/// into `out`.
+/// into `out`. The request is answered by the core's request path with the built-in limits
+/// (the flight service's): a setting outside them is refused `RECONFIG_ERR_LIMIT_EXCEEDED`,
+/// named.
 ///
 /// Returns the status code (also in `out->status`): `>= 0` a solve status (only
 /// `RECONFIG_GEO_SOLVED` may be flown), `< 0` a refusal whose field, index, value and limit are
@@ -101,43 +142,6 @@ pub unsafe extern "C" fn reconfig_geo_tour_solve(
     settings: *const ReconfigGeoSettings,
     out: *mut ReconfigGeoSolution,
 ) -> i32 {
-    if let Err(e) = check_pointer(out.cast_const(), RECONFIG_FIELD_NONE) {
-        return e.code;
-    }
     // SAFETY: forwarded caller contract.
-    let written = match unsafe { plan(workspace, problem, settings) } {
-        Ok(block) => solution_to_c(&block.solution),
-        Err(e) => refusal_to_c(e),
-    };
-    // SAFETY: non-null and aligned (checked); writable and exclusive by the caller's contract.
-    unsafe { out.write(written) };
-    written.status
-}
-
-/// The checks and the core solve behind [`reconfig_geo_tour_solve`].
-///
-/// # Safety
-/// As [`reconfig_geo_tour_solve`].
-unsafe fn plan<'a>(
-    workspace: *mut c_void,
-    problem: *const ReconfigGeoProblem,
-    settings: *const ReconfigGeoSettings,
-) -> Result<&'a BlockGeo, ReconfigError> {
-    // SAFETY: forwarded caller contract.
-    let block: &mut BlockGeo = unsafe { block_mut(workspace, TAG_GEO, RECONFIG_FIELD_WORKSPACE)? };
-    check_pointer(problem, RECONFIG_FIELD_PROBLEM)?;
-    check_pointer(settings, RECONFIG_FIELD_SETTINGS_ARG)?;
-    // SAFETY: non-null and aligned (checked), valid by the caller's contract; plain numbers.
-    let (problem, settings) = unsafe { (&*problem, &*settings) };
-    let settings = settings_from_c(settings);
-    problem_from_c(problem, &mut block.problem)?;
-    block.solution = Solution::new();
-    geo_tour::solve(
-        &block.problem,
-        &settings,
-        &mut block.workspace,
-        &mut block.solution,
-    )
-    .map_err(|e| error_to_c(&e))?;
-    Ok(block)
+    unsafe { shell::solve::<GeoTour>(workspace, problem, settings, out) }
 }

@@ -1,25 +1,41 @@
 //! Planner B's entry points: `reconfig_impulsive_*`, the mean-element problem form
-//! (`_solve`) and the other input forms (`_solve_form`), in the same workspace.
+//! (`_solve`) and the other input forms (`_solve_form`), in the same workspace (bodies in
+//! [`crate::shell`]).
 
-use crate::boundary::{block_mut, check_pointer, init_block, Block};
-use crate::convert_b::{
-    error_to_c, problem_from_c, refusal_to_c, settings_from_c, settings_to_c, solution_to_c,
-};
+use crate::convert_b::{error_to_c, problem_from_c, refusal_to_c, solution_to_c};
 use crate::convert_b_form::{end_state_to_c, form_problem_from_c, input_form_error_to_c};
-use crate::status::*;
+use crate::settings::SettingsMirror;
+use crate::shell::{self, not_initialised, Entry, Shell, Slot};
+use crate::status::ReconfigError;
 use crate::types_b::{ReconfigBProblem, ReconfigBSettings, ReconfigBSolution};
 use crate::types_b_form::{ReconfigBEndState, ReconfigBFormProblem, ReconfigBFormSolution};
 use core::ffi::c_void;
 use reconfig_core::impulsive::{
-    self, EndState, ImpulsePlan, MeanElements, PlanError, Problem, RelativeElements, Settings,
-    Solution, Workspace,
+    FormProblem, ImpulsePlan, MeanElements, OrbitForm, PlanError, Problem, RelativeElements,
+    RelativeForm, Settings, Solution, Workspace,
+};
+use reconfig_core::wire::{OutcomeRef, Request};
+
+/// Planner B in the C shell, and its mean-element entry point (`_solve`).
+pub struct PlannerB;
+
+/// Planner B's other input forms (`_solve_form`), in planner B's block.
+pub struct PlannerBForm;
+
+/// The initial slot (a `static`: see [`Shell::template`]).
+static TEMPLATE_B: Slot<Workspace, Solution> = Slot {
+    workspace: Workspace::new(),
+    solution: Solution::new(),
 };
 
-/// Planner B's workspace block.
-type BlockB = Block<Workspace, Problem, Solution>;
-
-/// "RCFG-IMB" in ASCII: the tag of an initialised planner-B workspace.
-const TAG_B: u64 = 0x5243_4647_2d49_4d42;
+const ZERO_MEAN: MeanElements = MeanElements {
+    sma_km: 0.0,
+    ecc: 0.0,
+    inc_rad: 0.0,
+    raan_rad: 0.0,
+    argp_rad: 0.0,
+    mean_anomaly_rad: 0.0,
+};
 
 const ZERO_RELATIVE: RelativeElements = RelativeElements {
     dsma_km: 0.0,
@@ -30,38 +46,183 @@ const ZERO_RELATIVE: RelativeElements = RelativeElements {
     dmean_anomaly_rad: 0.0,
 };
 
-/// The initial block. A `static`, not a `const`: `_init` copies it from its one place, where
-/// `&CONST` compiled a stack temporary of the whole block in the dev profile (the test
-/// `init_builds_no_workspace_on_the_stack` caught it).
-static TEMPLATE_B: BlockB = Block {
-    tag: 0,
-    workspace: Workspace::new(),
-    problem: Problem {
-        chief: MeanElements {
-            sma_km: 0.0,
-            ecc: 0.0,
-            inc_rad: 0.0,
-            raan_rad: 0.0,
-            argp_rad: 0.0,
-            mean_anomaly_rad: 0.0,
-        },
+const EMPTY_PROBLEM: Problem = Problem {
+    chief: ZERO_MEAN,
+    initial: ZERO_RELATIVE,
+    target: ZERO_RELATIVE,
+    plan: ImpulsePlan::Fixed(heapless::Vec::new()),
+};
+
+const EMPTY_FORM: FormProblem = FormProblem {
+    chief: OrbitForm::Classical(ZERO_MEAN),
+    relative: RelativeForm::Elements {
         initial: ZERO_RELATIVE,
         target: ZERO_RELATIVE,
-        plan: ImpulsePlan::Fixed(heapless::Vec::new()),
     },
-    solution: Solution::new(),
+    plan: ImpulsePlan::Fixed(heapless::Vec::new()),
 };
+
+/// Put planner B's empty request of the mean-element form or of the other forms into the
+/// block. Out of line, so that the request-sized value it builds lives in this call's frame
+/// only (the call returns before the solve), not in the frame under every solve.
+#[inline(never)]
+fn switch_request(request: &mut Request, form: bool) {
+    *request = if form {
+        Request::ImpulsiveForm {
+            problem: EMPTY_FORM,
+            settings: Settings::default(),
+        }
+    } else {
+        PlannerB::empty_request()
+    };
+}
+
+impl Shell for PlannerB {
+    type Slot = Slot<Workspace, Solution>;
+    /// "RCFG-IMB" in ASCII.
+    const TAG: u64 = 0x5243_4647_2d49_4d42;
+    fn template() -> &'static Self::Slot {
+        &TEMPLATE_B
+    }
+    fn empty_request() -> Request {
+        Request::Impulsive {
+            problem: EMPTY_PROBLEM,
+            settings: Settings::default(),
+        }
+    }
+}
+
+impl Entry for PlannerB {
+    type Planner = Self;
+    type Problem = ReconfigBProblem;
+    type Settings = ReconfigBSettings;
+    type Out = ReconfigBSolution;
+
+    fn fill(
+        request: &mut Request,
+        problem: &ReconfigBProblem,
+        settings: &ReconfigBSettings,
+    ) -> Result<(), ReconfigError> {
+        // The block's request may hold the other form (the last solve was `_solve_form`).
+        if !matches!(request, Request::Impulsive { .. }) {
+            switch_request(request, false);
+        }
+        let Request::Impulsive {
+            problem: core_problem,
+            settings: core_settings,
+        } = request
+        else {
+            return Err(not_initialised());
+        };
+        settings.to_core(core_settings)?;
+        problem_from_c(problem, core_problem)
+    }
+
+    fn write(
+        outcome: OutcomeRef<'_>,
+        request: &Request,
+        _problem: &ReconfigBProblem,
+        out: &mut ReconfigBSolution,
+    ) -> Result<i32, ReconfigError> {
+        match (outcome, request) {
+            (OutcomeRef::Impulsive(solution), _) => {
+                *out = solution_to_c(solution);
+                Ok(out.status)
+            }
+            // The value a refusal names is read back from the request as planned.
+            (OutcomeRef::ImpulsiveRejected(e), Request::Impulsive { problem, .. }) => {
+                Err(error_to_c(&e, problem))
+            }
+            _ => Err(not_initialised()),
+        }
+    }
+
+    fn refuse(error: ReconfigError, out: &mut ReconfigBSolution) -> i32 {
+        *out = refusal_to_c(error);
+        out.status
+    }
+}
+
+impl Entry for PlannerBForm {
+    type Planner = PlannerB;
+    type Problem = ReconfigBFormProblem;
+    type Settings = ReconfigBSettings;
+    type Out = ReconfigBFormSolution;
+
+    fn fill(
+        request: &mut Request,
+        problem: &ReconfigBFormProblem,
+        settings: &ReconfigBSettings,
+    ) -> Result<(), ReconfigError> {
+        if !matches!(request, Request::ImpulsiveForm { .. }) {
+            switch_request(request, true);
+        }
+        let Request::ImpulsiveForm {
+            problem: core_problem,
+            settings: core_settings,
+        } = request
+        else {
+            return Err(not_initialised());
+        };
+        settings.to_core(core_settings)?;
+        *core_problem = form_problem_from_c(problem)?;
+        Ok(())
+    }
+
+    fn write(
+        outcome: OutcomeRef<'_>,
+        request: &Request,
+        _problem: &ReconfigBFormProblem,
+        out: &mut ReconfigBFormSolution,
+    ) -> Result<i32, ReconfigError> {
+        match (outcome, request) {
+            (
+                OutcomeRef::ImpulsiveForm {
+                    solution,
+                    end_state,
+                },
+                _,
+            ) => {
+                *out = ReconfigBFormSolution {
+                    plan: solution_to_c(solution),
+                    end: end_state_to_c(&end_state),
+                };
+                Ok(out.plan.status)
+            }
+            (OutcomeRef::ImpulsiveRejected(PlanError::InputForm { part, error }), _) => {
+                Err(input_form_error_to_c(part, error))
+            }
+            // The conversion succeeded before the planner refused: convert again (the solve
+            // was refused, so the time is there) to read the refused value back as planned.
+            (OutcomeRef::ImpulsiveRejected(e), Request::ImpulsiveForm { problem, settings }) => {
+                Err(match problem.to_problem(settings) {
+                    Ok(converted) => error_to_c(&e, &converted),
+                    Err((part, error)) => input_form_error_to_c(part, error),
+                })
+            }
+            _ => Err(not_initialised()),
+        }
+    }
+
+    fn refuse(error: ReconfigError, out: &mut ReconfigBFormSolution) -> i32 {
+        *out = ReconfigBFormSolution {
+            plan: refusal_to_c(error),
+            end: ReconfigBEndState::default(),
+        };
+        out.plan.status
+    }
+}
 
 /// Bytes of caller memory one planner-B workspace needs.
 #[no_mangle]
 pub extern "C" fn reconfig_impulsive_workspace_size() -> usize {
-    core::mem::size_of::<BlockB>()
+    shell::workspace_size::<PlannerB>()
 }
 
 /// Alignment, in bytes, a planner-B workspace needs.
 #[no_mangle]
 pub extern "C" fn reconfig_impulsive_workspace_align() -> usize {
-    core::mem::align_of::<BlockB>()
+    shell::workspace_align::<PlannerB>()
 }
 
 /// Initialise a planner-B workspace in `size` bytes of caller memory at `workspace`.
@@ -75,18 +236,7 @@ pub extern "C" fn reconfig_impulsive_workspace_align() -> usize {
 #[no_mangle]
 pub unsafe extern "C" fn reconfig_impulsive_init(workspace: *mut c_void, size: usize) -> i32 {
     // SAFETY: forwarded caller contract.
-    match unsafe {
-        init_block(
-            workspace,
-            size,
-            &TEMPLATE_B,
-            TAG_B,
-            RECONFIG_FIELD_WORKSPACE,
-        )
-    } {
-        Ok(()) => 0,
-        Err(e) => e.code,
-    }
+    unsafe { shell::init::<PlannerB>(workspace, size) }
 }
 
 /// Write the default settings into `out`. Returns 0, or a null/misaligned refusal.
@@ -95,15 +245,14 @@ pub unsafe extern "C" fn reconfig_impulsive_init(workspace: *mut c_void, size: u
 /// `out` is null or points to writable memory for one `ReconfigBSettings`.
 #[no_mangle]
 pub unsafe extern "C" fn reconfig_impulsive_default_settings(out: *mut ReconfigBSettings) -> i32 {
-    if let Err(e) = check_pointer(out.cast_const(), RECONFIG_FIELD_SETTINGS_ARG) {
-        return e.code;
-    }
-    // SAFETY: non-null and aligned (checked); writable by the caller's contract.
-    unsafe { out.write(settings_to_c(&Settings::default())) };
-    0
+    // SAFETY: forwarded caller contract.
+    unsafe { shell::default_settings(out) }
 }
 
 /// Plan `problem` with `settings` in the initialised `workspace`; write the result into `out`.
+/// The request is answered by the core's request path with the built-in limits (the flight
+/// service's): a setting outside them is refused `RECONFIG_ERR_LIMIT_EXCEEDED`, named (the
+/// limits require `nonlinear_correction = 1`).
 ///
 /// Returns the status code (also in `out->status`): `>= 0` a solve status, `< 0` a refusal
 /// whose field, index, value and limit are in `out->error` (when `out` is usable).
@@ -119,52 +268,17 @@ pub unsafe extern "C" fn reconfig_impulsive_solve(
     settings: *const ReconfigBSettings,
     out: *mut ReconfigBSolution,
 ) -> i32 {
-    if let Err(e) = check_pointer(out.cast_const(), RECONFIG_FIELD_NONE) {
-        return e.code;
-    }
     // SAFETY: forwarded caller contract.
-    let written = match unsafe { plan(workspace, problem, settings) } {
-        Ok(block) => solution_to_c(&block.solution),
-        Err(e) => refusal_to_c(e),
-    };
-    // SAFETY: non-null and aligned (checked); writable and exclusive by the caller's contract.
-    unsafe { out.write(written) };
-    written.status
-}
-
-/// The checks and the core solve behind [`reconfig_impulsive_solve`].
-///
-/// # Safety
-/// As [`reconfig_impulsive_solve`].
-unsafe fn plan<'a>(
-    workspace: *mut c_void,
-    problem: *const ReconfigBProblem,
-    settings: *const ReconfigBSettings,
-) -> Result<&'a BlockB, ReconfigError> {
-    // SAFETY: forwarded caller contract.
-    let block: &mut BlockB = unsafe { block_mut(workspace, TAG_B, RECONFIG_FIELD_WORKSPACE)? };
-    check_pointer(problem, RECONFIG_FIELD_PROBLEM)?;
-    check_pointer(settings, RECONFIG_FIELD_SETTINGS_ARG)?;
-    // SAFETY: non-null and aligned (checked), valid by the caller's contract; plain numbers.
-    let (problem, settings) = unsafe { (&*problem, &*settings) };
-    let settings = settings_from_c(settings)?;
-    problem_from_c(problem, &mut block.problem)?;
-    block.solution = Solution::new();
-    impulsive::solve(
-        &block.problem,
-        &settings,
-        &mut block.workspace,
-        &mut block.solution,
-    )
-    .map_err(|e| error_to_c(&e, &block.problem))?;
-    Ok(block)
+    unsafe { shell::solve::<PlannerB>(workspace, problem, settings, out) }
 }
 
 /// Plan a request given in other forms (`problem`: the chief as mean classical or equinoctial
 /// elements or an osculating ECI state; the relative state as element differences, ROE or the
 /// deputy's own orbits) with `settings` in the initialised planner-B `workspace`; write the plan
 /// and its end state, in the form the target was given in, into `out`. The conversion runs on
-/// board (the core's `impulsive::solve_form`) and is charged to the same work budget.
+/// board (the core's `impulsive::solve_form`) and is charged to the same work budget; the
+/// built-in limits also bound the orbits as given (eccentricity below 1, perigee altitude, the
+/// chief's `|sin i|` under ROE: `RECONFIG_ERR_LIMIT_EXCEEDED` with `index` 128 and up).
 ///
 /// Returns the status code (also in `out->plan.status`): `>= 0` a solve status, `< 0` a
 /// refusal whose field, index, value and limit are in `out->plan.error`
@@ -179,52 +293,6 @@ pub unsafe extern "C" fn reconfig_impulsive_solve_form(
     settings: *const ReconfigBSettings,
     out: *mut ReconfigBFormSolution,
 ) -> i32 {
-    if let Err(e) = check_pointer(out.cast_const(), RECONFIG_FIELD_NONE) {
-        return e.code;
-    }
     // SAFETY: forwarded caller contract.
-    let written = match unsafe { plan_form(workspace, problem, settings) } {
-        Ok((block, end)) => ReconfigBFormSolution {
-            plan: solution_to_c(&block.solution),
-            end: end_state_to_c(&end),
-        },
-        Err(e) => ReconfigBFormSolution {
-            plan: refusal_to_c(e),
-            end: ReconfigBEndState::default(),
-        },
-    };
-    // SAFETY: non-null and aligned (checked); writable and exclusive by the caller's contract.
-    unsafe { out.write(written) };
-    written.plan.status
-}
-
-/// The checks and the core solve behind [`reconfig_impulsive_solve_form`].
-///
-/// # Safety
-/// As [`reconfig_impulsive_solve_form`].
-unsafe fn plan_form<'a>(
-    workspace: *mut c_void,
-    problem: *const ReconfigBFormProblem,
-    settings: *const ReconfigBSettings,
-) -> Result<(&'a BlockB, EndState), ReconfigError> {
-    // SAFETY: forwarded caller contract.
-    let block: &mut BlockB = unsafe { block_mut(workspace, TAG_B, RECONFIG_FIELD_WORKSPACE)? };
-    check_pointer(problem, RECONFIG_FIELD_PROBLEM)?;
-    check_pointer(settings, RECONFIG_FIELD_SETTINGS_ARG)?;
-    // SAFETY: non-null and aligned (checked), valid by the caller's contract; plain numbers.
-    let (problem, settings) = unsafe { (&*problem, &*settings) };
-    let settings = settings_from_c(settings)?;
-    let form = form_problem_from_c(problem)?;
-    block.solution = Solution::new();
-    let end = impulsive::solve_form(&form, &settings, &mut block.workspace, &mut block.solution)
-        .map_err(|e| match e {
-            PlanError::InputForm { part, error } => input_form_error_to_c(part, error),
-            // The conversion succeeded before the planner refused: convert again (the solve
-            // was refused, so the time is there) to read the refused value back as planned.
-            other => match form.to_problem(&settings) {
-                Ok(converted) => error_to_c(&other, &converted),
-                Err((part, error)) => input_form_error_to_c(part, error),
-            },
-        })?;
-    Ok((block, end))
+    unsafe { shell::solve::<PlannerBForm>(workspace, problem, settings, out) }
 }

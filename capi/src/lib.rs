@@ -8,16 +8,23 @@
 //! servicing tour):
 //! `reconfig_<planner>_workspace_size()`, `_workspace_align()`, `_init(workspace, size)`,
 //! `_default_settings(out)` and `_solve(workspace, problem, settings, out)`; planner B also
-//! `_solve_form` for its other input forms.
+//! `_solve_form` for its other input forms. `reconfig_setting_name(planner, code)` names the
+//! setting a refusal's `error.index` carries ([`names`]).
+//!
+//! Every `_solve` answers through the core's one request path, `wire::answer`, with the
+//! built-in limits (the flight service's): the shell ([`shell`]) is written once, generic over
+//! the planner; each planner's module keeps its `extern "C"` one-liners (for cbindgen), its
+//! buffers and how its C structs meet the request.
 //!
 //! ## Boundary rules
 //! * Every pointer is checked for null and alignment; a workspace also for size and for having
 //!   been initialised by `_init`.
 //! * C structs ([`types_a`], [`types_b`], [`types_b_form`], [`types_geo`]) are converted to the
 //!   core's types in one place each ([`convert_a`], [`convert_b`], [`convert_b_form`],
-//!   [`convert_geo`]); the core's own validation decides what is refused, and its
-//!   refusal (field, index, value, limit) is copied to the caller's error detail.
-//! * Unsafe code only in the `extern "C"` functions and [`boundary`], each block with a
+//!   [`convert_geo`]; the settings by one [`mirror_settings!`] line each, [`settings`]); the
+//!   built-in limits and the core's own validation decide what is refused, and the refusal
+//!   (field, index, value, limit) is copied to the caller's error detail.
+//! * Unsafe code only in the `extern "C"` functions and [`shell`], each block with a
 //!   `// SAFETY:` comment.
 //! * No allocation, no globals, no callbacks: reentrant given one workspace per task.
 #![no_std]
@@ -33,7 +40,10 @@ pub mod convert_b_form;
 pub mod convert_geo;
 pub mod geo_tour;
 pub mod impulsive;
+pub mod names;
 pub mod pseudospectral;
+pub mod settings;
+pub mod shell;
 pub mod status;
 pub mod types_a;
 pub mod types_b;

@@ -1,47 +1,101 @@
-//! Planner A's entry points: `reconfig_pseudospectral_*`.
+//! Planner A's entry points: `reconfig_pseudospectral_*` (bodies in [`crate::shell`]).
 
-use crate::boundary::{block_mut, check_pointer, init_block, Block};
-use crate::convert_a::{
-    error_to_c, problem_from_c, refusal_to_c, settings_from_c, settings_to_c, solution_to_c,
-};
-use crate::status::*;
+use crate::convert_a::{error_to_c, problem_from_c, refusal_to_c, solution_to_c};
+use crate::settings::SettingsMirror;
+use crate::shell::{self, not_initialised, Entry, Shell, Slot};
+use crate::status::ReconfigError;
 use crate::types_a::{ReconfigAProblem, ReconfigASettings, ReconfigASolution};
 use core::ffi::c_void;
-use reconfig_core::pseudospectral::{self, Problem, Settings, Solution, Workspace};
+use reconfig_core::pseudospectral::{Problem, Settings, Solution, Workspace};
+use reconfig_core::wire::{OutcomeRef, Request};
 
-/// Planner A's workspace block.
-type BlockA = Block<Workspace, Problem, Solution>;
+/// Planner A in the C shell.
+pub struct PlannerA;
 
-/// "RCFG-PSA" in ASCII: the tag of an initialised planner-A workspace.
-const TAG_A: u64 = 0x5243_4647_2d50_5341;
-
-/// The initial block. A `static`, not a `const`: `_init` copies it from its one place, where
-/// `&CONST` compiled a stack temporary of the whole block in the dev profile (the test
-/// `init_builds_no_workspace_on_the_stack` caught it).
-static TEMPLATE_A: BlockA = Block {
-    tag: 0,
+/// The initial slot (a `static`: see [`Shell::template`]).
+static TEMPLATE_A: Slot<Workspace, Solution> = Slot {
     workspace: Workspace::new(),
-    problem: Problem {
-        horizon_tu: 0.0,
-        max_control_fu: 0.0,
-        keep_out_lu: 0.0,
-        degree: 0,
-        test_points: false,
-        spacecraft: heapless::Vec::new(),
-    },
     solution: Solution::new(),
 };
+
+const EMPTY_PROBLEM: Problem = Problem {
+    horizon_tu: 0.0,
+    max_control_fu: 0.0,
+    keep_out_lu: 0.0,
+    degree: 0,
+    test_points: false,
+    spacecraft: heapless::Vec::new(),
+};
+
+impl Shell for PlannerA {
+    type Slot = Slot<Workspace, Solution>;
+    /// "RCFG-PSA" in ASCII.
+    const TAG: u64 = 0x5243_4647_2d50_5341;
+    fn template() -> &'static Self::Slot {
+        &TEMPLATE_A
+    }
+    fn empty_request() -> Request {
+        Request::Pseudospectral {
+            problem: EMPTY_PROBLEM,
+            settings: Settings::default(),
+        }
+    }
+}
+
+impl Entry for PlannerA {
+    type Planner = Self;
+    type Problem = ReconfigAProblem;
+    type Settings = ReconfigASettings;
+    type Out = ReconfigASolution;
+
+    fn fill(
+        request: &mut Request,
+        problem: &ReconfigAProblem,
+        settings: &ReconfigASettings,
+    ) -> Result<(), ReconfigError> {
+        let Request::Pseudospectral {
+            problem: core_problem,
+            settings: core_settings,
+        } = request
+        else {
+            return Err(not_initialised());
+        };
+        settings.to_core(core_settings)?;
+        problem_from_c(problem, core_problem)
+    }
+
+    fn write(
+        outcome: OutcomeRef<'_>,
+        _request: &Request,
+        problem: &ReconfigAProblem,
+        out: &mut ReconfigASolution,
+    ) -> Result<i32, ReconfigError> {
+        match outcome {
+            OutcomeRef::Pseudospectral(solution) => {
+                solution_to_c(solution, out);
+                Ok(out.status)
+            }
+            OutcomeRef::PseudospectralRejected(e) => Err(error_to_c(&e, problem)),
+            _ => Err(not_initialised()),
+        }
+    }
+
+    fn refuse(error: ReconfigError, out: &mut ReconfigASolution) -> i32 {
+        refusal_to_c(error, out);
+        out.status
+    }
+}
 
 /// Bytes of caller memory one planner-A workspace needs.
 #[no_mangle]
 pub extern "C" fn reconfig_pseudospectral_workspace_size() -> usize {
-    core::mem::size_of::<BlockA>()
+    shell::workspace_size::<PlannerA>()
 }
 
 /// Alignment, in bytes, a planner-A workspace needs.
 #[no_mangle]
 pub extern "C" fn reconfig_pseudospectral_workspace_align() -> usize {
-    core::mem::align_of::<BlockA>()
+    shell::workspace_align::<PlannerA>()
 }
 
 /// Initialise a planner-A workspace in `size` bytes of caller memory at `workspace`.
@@ -55,18 +109,7 @@ pub extern "C" fn reconfig_pseudospectral_workspace_align() -> usize {
 #[no_mangle]
 pub unsafe extern "C" fn reconfig_pseudospectral_init(workspace: *mut c_void, size: usize) -> i32 {
     // SAFETY: forwarded caller contract.
-    match unsafe {
-        init_block(
-            workspace,
-            size,
-            &TEMPLATE_A,
-            TAG_A,
-            RECONFIG_FIELD_WORKSPACE,
-        )
-    } {
-        Ok(()) => 0,
-        Err(e) => e.code,
-    }
+    unsafe { shell::init::<PlannerA>(workspace, size) }
 }
 
 /// Write the default settings into `out`. Returns 0, or a null/misaligned refusal.
@@ -77,15 +120,13 @@ pub unsafe extern "C" fn reconfig_pseudospectral_init(workspace: *mut c_void, si
 pub unsafe extern "C" fn reconfig_pseudospectral_default_settings(
     out: *mut ReconfigASettings,
 ) -> i32 {
-    if let Err(e) = check_pointer(out.cast_const(), RECONFIG_FIELD_SETTINGS_ARG) {
-        return e.code;
-    }
-    // SAFETY: non-null and aligned (checked); writable by the caller's contract.
-    unsafe { out.write(settings_to_c(&Settings::default())) };
-    0
+    // SAFETY: forwarded caller contract.
+    unsafe { shell::default_settings(out) }
 }
 
 /// Plan `problem` with `settings` in the initialised `workspace`; write the result into `out`.
+/// The request is answered by the core's request path with the built-in limits (the flight
+/// service's): a setting outside them is refused `RECONFIG_ERR_LIMIT_EXCEEDED`, named.
 ///
 /// Returns the status code (also in `out->status`): `>= 0` a solve status, `< 0` a refusal
 /// whose field, index, value and limit are in `out->error` (when `out` is usable).
@@ -101,47 +142,6 @@ pub unsafe extern "C" fn reconfig_pseudospectral_solve(
     settings: *const ReconfigASettings,
     out: *mut ReconfigASolution,
 ) -> i32 {
-    if let Err(e) = check_pointer(out.cast_const(), RECONFIG_FIELD_NONE) {
-        return e.code;
-    }
-    // SAFETY: non-null and aligned (checked); valid and exclusive by the caller's contract;
-    // every field is a plain number, valid for any bits.
-    let out = unsafe { &mut *out };
     // SAFETY: forwarded caller contract.
-    let planned = unsafe { plan(workspace, problem, settings) };
-    match planned {
-        Ok(block) => {
-            solution_to_c(&block.solution, out);
-        }
-        Err(e) => refusal_to_c(e, out),
-    }
-    out.status
-}
-
-/// The checks and the core solve behind [`reconfig_pseudospectral_solve`].
-///
-/// # Safety
-/// As [`reconfig_pseudospectral_solve`].
-unsafe fn plan<'a>(
-    workspace: *mut c_void,
-    problem: *const ReconfigAProblem,
-    settings: *const ReconfigASettings,
-) -> Result<&'a BlockA, ReconfigError> {
-    // SAFETY: forwarded caller contract.
-    let block: &mut BlockA = unsafe { block_mut(workspace, TAG_A, RECONFIG_FIELD_WORKSPACE)? };
-    check_pointer(problem, RECONFIG_FIELD_PROBLEM)?;
-    check_pointer(settings, RECONFIG_FIELD_SETTINGS_ARG)?;
-    // SAFETY: non-null and aligned (checked), valid by the caller's contract; plain numbers.
-    let (problem, settings) = unsafe { (&*problem, &*settings) };
-    let settings = settings_from_c(settings)?;
-    problem_from_c(problem, &mut block.problem)?;
-    block.solution.reset();
-    pseudospectral::solve(
-        &block.problem,
-        &settings,
-        &mut block.workspace,
-        &mut block.solution,
-    )
-    .map_err(|e| error_to_c(&e, problem))?;
-    Ok(block)
+    unsafe { shell::solve::<PlannerA>(workspace, problem, settings, out) }
 }

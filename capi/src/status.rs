@@ -3,6 +3,12 @@
 //! Codes `>= 0` are the core's solve statuses (the solution is written); codes `< 0` are
 //! refusals (nothing was solved; the solution's `error` says why when the solution pointer is
 //! usable). Each core status and each refusal has its own code; the table is in docs/c-api.md.
+//!
+//! A status code is the planner's base (A 0, B 100, GEO 200) plus the core status's own code
+//! (`contract::Status::code`), plus one for a budget stop whose plan is not verified (the core
+//! has one `BudgetExhausted { verified }` variant, C one code for each answer to "may it be
+//! flown?"); `Unsolved` is 0 for every planner ([`status_code`]; the unit test
+//! `c_codes_are_base_plus_the_core_code` checks every constant below against it).
 
 /// No solve has written this solution.
 pub const RECONFIG_UNSOLVED: i32 = 0;
@@ -50,7 +56,8 @@ pub const RECONFIG_B_BUDGET_EXHAUSTED_UNVERIFIED: i32 = 109;
 /// GEO tour: the plan meets the mission time and the burn cap, checked. May be flown.
 pub const RECONFIG_GEO_SOLVED: i32 = 201;
 /// GEO tour: even the fastest admissible tour overruns the mission time (`status_leg` the leg
-/// that needs the most time, `fastest_tour_s` how long the fastest tour takes).
+/// that needs the most time, `fastest_tour_s` how long the fastest tour takes when
+/// `has_fastest_tour_s`).
 pub const RECONFIG_GEO_MISSION_TOO_SHORT: i32 = 202;
 /// GEO tour: the tour fits without the burn cap but not with it (`status_leg`).
 pub const RECONFIG_GEO_CAP_TOO_LOW: i32 = 203;
@@ -58,6 +65,12 @@ pub const RECONFIG_GEO_CAP_TOO_LOW: i32 = 203;
 pub const RECONFIG_GEO_RULE_METHOD_INADMISSIBLE: i32 = 204;
 /// GEO tour: the final check failed at `status_leg`; the plan is for inspection only.
 pub const RECONFIG_GEO_CHECK_FAILED: i32 = 205;
+/// GEO tour: the work budget ran out; the returned plan (the best found) meets every condition
+/// of SOLVED. May be flown.
+pub const RECONFIG_GEO_BUDGET_EXHAUSTED_VERIFIED: i32 = 206;
+/// GEO tour: the work budget ran out; the returned plan is not verified (or there is none:
+/// `leg_count` 0). Not usable.
+pub const RECONFIG_GEO_BUDGET_EXHAUSTED_UNVERIFIED: i32 = 207;
 
 /// Refused: a pointer argument is null (`error.field` names it when the solution is usable).
 pub const RECONFIG_ERR_NULL_POINTER: i32 = -1;
@@ -67,9 +80,23 @@ pub const RECONFIG_ERR_MISALIGNED: i32 = -2;
 pub const RECONFIG_ERR_WORKSPACE_TOO_SMALL: i32 = -3;
 /// Refused: the workspace was not initialised by this planner's `_init`.
 pub const RECONFIG_ERR_WORKSPACE_NOT_INITIALISED: i32 = -4;
-/// Refused: a flag or enumeration field holds a value outside its set (`value`; `limit` is the
-/// largest accepted value).
+/// Refused: a flag or enumeration field of the problem holds a value outside its set (`value`;
+/// `limit` is the largest accepted value). A setting's flag or code outside its set is
+/// `RECONFIG_ERR_SETTING_OUT_OF_RANGE` naming the setting.
 pub const RECONFIG_ERR_INVALID_CODE: i32 = -5;
+/// Refused: a setting is outside the range the planner accepts (`field` =
+/// `RECONFIG_FIELD_SETTINGS`, `index` the setting's code in its planner's settings table, named
+/// by `reconfig_setting_name`; `value`; `limit` the end of the range it broke; `detail` 0 below
+/// the range, 1 above it, 2 not finite). The same code for every planner; also a flag other
+/// than 0 or 1 or an enumeration code outside its set (`limit` the largest code, `detail` 1).
+pub const RECONFIG_ERR_SETTING_OUT_OF_RANGE: i32 = -6;
+/// Refused: the request asks for more work or less safety than the built-in limits allow (the
+/// same limits as the flight service's, checked before the planner's own validation, as the
+/// service checks them): `field` = `RECONFIG_FIELD_SETTINGS`, `index` the setting's code (a
+/// problem quantity's code is 128 and up), named by `reconfig_setting_name`, `value`, `limit`,
+/// `detail` the rule (0 at most, 1 at least, 2 must be on, 3 must be off, 4 below). Nothing was
+/// solved.
+pub const RECONFIG_ERR_LIMIT_EXCEEDED: i32 = -7;
 
 /// Planner A refused: a number is NaN or infinite.
 pub const RECONFIG_A_ERR_NOT_FINITE: i32 = -101;
@@ -87,8 +114,9 @@ pub const RECONFIG_A_ERR_BOUNDARY_TOO_CLOSE: i32 = -106;
 /// Planner A refused: bang-bang control at the bound cannot meet one axis (`index` spacecraft,
 /// `detail` axis).
 pub const RECONFIG_A_ERR_MANOEUVRE_INFEASIBLE: i32 = -107;
-/// Planner A refused: a setting is out of range (`detail` = settings error class).
-pub const RECONFIG_A_ERR_INVALID_SETTINGS: i32 = -108;
+/// Planner A refused: a warm start does not match the problem (not reachable from C, which has
+/// no warm start; kept so that every core refusal has a code).
+pub const RECONFIG_A_ERR_WARM_START_MISMATCH: i32 = -108;
 /// Planner A refused: a number is outside the accepted magnitude range (`limit`).
 pub const RECONFIG_A_ERR_OUT_OF_RANGE: i32 = -110;
 
@@ -110,8 +138,6 @@ pub const RECONFIG_B_ERR_REVOLUTIONS_OVER_LIMIT: i32 = -207;
 pub const RECONFIG_B_ERR_CAPACITY_EXCEEDED: i32 = -208;
 /// Planner B refused: no impulse in the plan.
 pub const RECONFIG_B_ERR_NO_IMPULSES: i32 = -209;
-/// Planner B refused: a setting is out of range (`detail` = settings error class).
-pub const RECONFIG_B_ERR_INVALID_SETTINGS: i32 = -210;
 /// Planner B refused: a perigee altitude is below the limit.
 pub const RECONFIG_B_ERR_PERIGEE_TOO_LOW: i32 = -211;
 /// Planner B refused: inclination not in [0, pi].
@@ -144,7 +170,8 @@ pub const RECONFIG_FIELD_KEEP_OUT_LU: i32 = 3;
 pub const RECONFIG_FIELD_MASS_MU: i32 = 4;
 /// Planner A: `spacecraft[index].initial_state` or `final_state`.
 pub const RECONFIG_FIELD_BOUNDARY_STATE: i32 = 5;
-/// A settings field (`detail` = the settings error class).
+/// A setting (`index` = its code in the planner's settings table, named by
+/// `reconfig_setting_name`).
 pub const RECONFIG_FIELD_SETTINGS: i32 = 6;
 /// Planner A: `spacecraft_count`.
 pub const RECONFIG_FIELD_SPACECRAFT_COUNT: i32 = 7;
@@ -172,8 +199,6 @@ pub const RECONFIG_FIELD_IMPULSE_COUNT: i32 = 26;
 pub const RECONFIG_FIELD_REVOLUTIONS: i32 = 27;
 /// Planner B: `search` (0 or 1).
 pub const RECONFIG_FIELD_SEARCH: i32 = 28;
-/// Settings flag or enumeration (`index` names it, see docs/c-api.md).
-pub const RECONFIG_FIELD_SETTINGS_CODE: i32 = 29;
 /// GEO tour: `start_lon_rad`.
 pub const RECONFIG_FIELD_GEO_START_LONGITUDE: i32 = 50;
 /// GEO tour: `targets_lon_rad[index]`.
@@ -182,36 +207,6 @@ pub const RECONFIG_FIELD_GEO_TARGET_LONGITUDE: i32 = 51;
 pub const RECONFIG_FIELD_GEO_MISSION_TIME: i32 = 52;
 /// GEO tour: `max_burn_mps`.
 pub const RECONFIG_FIELD_GEO_MAX_BURN: i32 = 53;
-/// GEO tour settings: `lambert_max_revolutions`.
-pub const RECONFIG_FIELD_GEO_LAMBERT_MAX_REVOLUTIONS: i32 = 54;
-/// GEO tour settings: `lambert_max_iter`.
-pub const RECONFIG_FIELD_GEO_LAMBERT_MAX_ITER: i32 = 55;
-/// GEO tour settings: `lambert_tol`.
-pub const RECONFIG_FIELD_GEO_LAMBERT_TOL: i32 = 56;
-/// GEO tour settings: `well_iterations`.
-pub const RECONFIG_FIELD_GEO_WELL_ITERATIONS: i32 = 57;
-/// GEO tour settings: `root_max_iter`.
-pub const RECONFIG_FIELD_GEO_ROOT_MAX_ITER: i32 = 58;
-/// GEO tour settings: `price_max_iter`.
-pub const RECONFIG_FIELD_GEO_PRICE_MAX_ITER: i32 = 59;
-/// GEO tour settings: `time_tol_s`.
-pub const RECONFIG_FIELD_GEO_TIME_TOL: i32 = 60;
-/// GEO tour settings: `gap_max_legs`.
-pub const RECONFIG_FIELD_GEO_GAP_MAX_LEGS: i32 = 61;
-/// GEO tour settings: `min_radius_km`.
-pub const RECONFIG_FIELD_GEO_MIN_RADIUS: i32 = 62;
-/// GEO tour settings: `rule_drift_above_rad`.
-pub const RECONFIG_FIELD_GEO_RULE_DRIFT_ABOVE: i32 = 63;
-/// GEO tour settings: `rule_hohmann_above_rad`.
-pub const RECONFIG_FIELD_GEO_RULE_HOHMANN_ABOVE: i32 = 64;
-/// GEO tour settings: `rule_radial_above_rad`.
-pub const RECONFIG_FIELD_GEO_RULE_RADIAL_ABOVE: i32 = 65;
-/// GEO tour settings: `lambert_direct_time_s`.
-pub const RECONFIG_FIELD_GEO_LAMBERT_DIRECT_TIME: i32 = 66;
-/// GEO tour settings: `exchange_rounds`.
-pub const RECONFIG_FIELD_GEO_EXCHANGE_ROUNDS: i32 = 67;
-/// GEO tour settings: `exchange_margin_mps`.
-pub const RECONFIG_FIELD_GEO_EXCHANGE_MARGIN: i32 = 68;
 /// GEO tour: `target_count`.
 pub const RECONFIG_FIELD_GEO_TARGET_COUNT: i32 = 69;
 /// GEO tour: `sweep` (`RECONFIG_GEO_SWEEP_*`).
@@ -273,5 +268,116 @@ impl ReconfigError {
     /// The same refusal with its refusal-specific code.
     pub const fn with_detail(self, detail: i32) -> Self {
         Self { detail, ..self }
+    }
+}
+
+/// The C refusal of a setting outside its range.
+pub fn setting_error_to_c(e: &reconfig_core::contract::SettingError) -> ReconfigError {
+    let r = e.range;
+    let (detail, limit) = if !e.value.is_finite() {
+        (2, r.max)
+    } else if e.value < r.min || (r.min_open && e.value <= r.min) {
+        (0, r.min)
+    } else {
+        (1, r.max)
+    };
+    ReconfigError::new(
+        RECONFIG_ERR_SETTING_OUT_OF_RANGE,
+        RECONFIG_FIELD_SETTINGS,
+        e.value,
+        limit,
+    )
+    .at(i32::from(e.setting.code()))
+    .with_detail(detail)
+}
+
+/// The C refusal of a request outside the built-in limits.
+pub fn limit_violation_to_c(v: &reconfig_core::limits::LimitViolation) -> ReconfigError {
+    ReconfigError::new(
+        RECONFIG_ERR_LIMIT_EXCEEDED,
+        RECONFIG_FIELD_SETTINGS,
+        v.value,
+        v.limit,
+    )
+    .at(i32::from(v.setting.code()))
+    .with_detail(i32::from(v.rule as u8))
+}
+
+/// First status code of planner A (its statuses are this plus the core's code).
+pub(crate) const A_STATUS_BASE: i32 = 0;
+/// First status code of planner B.
+pub(crate) const B_STATUS_BASE: i32 = 100;
+
+/// The C status code of a core status: `base` plus the status's code, plus one for a budget
+/// stop whose plan is not verified; `RECONFIG_UNSOLVED` for `Unsolved`.
+pub fn status_code<S: reconfig_core::contract::Status>(base: i32, status: &S) -> i32 {
+    match status.code() {
+        0 => RECONFIG_UNSOLVED,
+        code => base
+            .saturating_add(i32::from(code))
+            .saturating_add(i32::from(status.budget_exhausted() == Some(false))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use reconfig_core::{impulsive, pseudospectral};
+
+    #[test]
+    fn c_codes_are_base_plus_the_core_code() {
+        use pseudospectral::{SolveStatus as A, Stage as AS};
+        let a = [
+            (A::Unsolved, RECONFIG_UNSOLVED),
+            (A::Solved, RECONFIG_A_SOLVED),
+            (A::SeparationNotVerified, RECONFIG_A_SEPARATION_NOT_VERIFIED),
+            (A::MaxIterations, RECONFIG_A_MAX_ITERATIONS),
+            (A::Infeasible, RECONFIG_A_INFEASIBLE),
+            (A::QpLimit, RECONFIG_A_QP_LIMIT),
+            (A::NumericalFailure(AS::Basis), RECONFIG_A_NUMERICAL_FAILURE),
+            (A::Feasible, RECONFIG_A_FEASIBLE),
+            (
+                A::BudgetExhausted { verified: true },
+                RECONFIG_A_BUDGET_EXHAUSTED_VERIFIED,
+            ),
+            (
+                A::BudgetExhausted { verified: false },
+                RECONFIG_A_BUDGET_EXHAUSTED_UNVERIFIED,
+            ),
+        ];
+        for (s, c) in a {
+            assert_eq!(status_code(A_STATUS_BASE, &s), c, "{s:?}");
+        }
+        use impulsive::{SolveStatus as B, Stage as BS};
+        let b = [
+            (B::Unsolved, RECONFIG_UNSOLVED),
+            (B::Solved, RECONFIG_B_SOLVED),
+            (B::RankDeficient, RECONFIG_B_RANK_DEFICIENT),
+            (B::MaxIterations, RECONFIG_B_MAX_ITERATIONS),
+            (
+                B::CorrectionNotConverged,
+                RECONFIG_B_CORRECTION_NOT_CONVERGED,
+            ),
+            (B::NumericalFailure(BS::Svd), RECONFIG_B_NUMERICAL_FAILURE),
+            (
+                B::UnsafePerigee {
+                    arc: 1,
+                    perigee_altitude_km: 50.0,
+                },
+                RECONFIG_B_UNSAFE_PERIGEE,
+            ),
+            (B::Linearised { miss_m: 1.0 }, RECONFIG_B_LINEARISED),
+            (
+                B::BudgetExhausted { verified: true },
+                RECONFIG_B_BUDGET_EXHAUSTED_VERIFIED,
+            ),
+            (
+                B::BudgetExhausted { verified: false },
+                RECONFIG_B_BUDGET_EXHAUSTED_UNVERIFIED,
+            ),
+        ];
+        for (s, c) in b {
+            assert_eq!(status_code(B_STATUS_BASE, &s), c, "{s:?}");
+        }
     }
 }

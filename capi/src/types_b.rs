@@ -197,6 +197,15 @@ pub struct ReconfigBSolution {
     pub min_fuel_used: u8,
     /// 1: the nonlinear correction was applied.
     pub correction_used: u8,
+    /// 1: `condition_number` holds a value; 0: absent (F rank-deficient, or not computed).
+    pub has_condition_number: u8,
+    /// 1: `min_norm_total_dv_mps` holds a value; 0: absent (it came out non-finite).
+    pub has_min_norm_total_dv_mps: u8,
+    /// 1: `linear_total_dv_mps` holds a value; 0: absent (it came out non-finite).
+    pub has_linear_total_dv_mps: u8,
+    /// 1: the `terminal_*` fields hold the nonlinear check; 0: absent (the check could not be
+    /// flown: a numerical failure), and they are 0.
+    pub has_terminal_error: u8,
     /// Fixed-point iterations of the returned plan.
     pub iterations: u16,
     /// Interior-point iterations, all told.
@@ -207,15 +216,15 @@ pub struct ReconfigBSolution {
     pub evaluations: u32,
     /// Work units used.
     pub work_units: u64,
-    /// Condition number of F at the returned plan.
+    /// Condition number of F at the returned plan (when `has_condition_number`, else 0).
     pub condition_number: f64,
     /// Certified least-fuel gap, m/s.
     pub min_fuel_gap_mps: f64,
     /// sum |dv_k|, m/s.
     pub total_dv_mps: f64,
-    /// Total of the minimum-norm fixed point, m/s.
+    /// Total of the minimum-norm fixed point, m/s (when `has_min_norm_total_dv_mps`, else 0).
     pub min_norm_total_dv_mps: f64,
-    /// Total of the linear-model fixed point, m/s.
+    /// Total of the linear-model fixed point, m/s (when `has_linear_total_dv_mps`, else 0).
     pub linear_total_dv_mps: f64,
     /// Time of the last impulse, s.
     pub final_time_s: f64,

@@ -37,6 +37,8 @@ pub const RECONFIG_B_END_DEPUTY_STATE: u8 = 4;
 /// End-state form code: the end state could not be written in the form (`unavailable_reason`
 /// says why; the plan itself is unaffected, its status says whether it is usable).
 pub const RECONFIG_B_END_UNAVAILABLE: u8 = 5;
+/// No end state: the plan's nonlinear check could not be flown (a numerical failure).
+pub const RECONFIG_B_END_NOT_FLOWN: u8 = 6;
 
 /// Why a form could not be converted (`error.detail` of `RECONFIG_B_ERR_INPUT_FORM`, and
 /// `unavailable_reason`): a number is not finite.

@@ -64,8 +64,8 @@ pub struct ReconfigGeoProblem {
     pub targets_lon_rad: [f64; RECONFIG_GEO_MAX_TARGETS],
 }
 
-/// Loop bounds, tolerances and the paper's rule (`reconfig_core::geo_tour::Settings`, same
-/// names).
+/// Loop bounds, tolerances, the paper's rule and the work budget
+/// (`reconfig_core::geo_tour::Settings`, same names).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ReconfigGeoSettings {
@@ -85,6 +85,9 @@ pub struct ReconfigGeoSettings {
     pub rule_radial_above_rad: f64,
     /// Transfer time of a direct Lambert leg (and of the paper's rule), s.
     pub lambert_direct_time_s: f64,
+    /// Work units a solve may use; the best plan so far is returned, checked, when they run
+    /// out (`RECONFIG_GEO_BUDGET_EXHAUSTED_*`).
+    pub work_budget: u64,
     /// Most whole revolutions of a Lambert transfer.
     pub lambert_max_revolutions: u16,
     /// Householder steps per Lambert solve.
@@ -158,8 +161,12 @@ pub struct ReconfigGeoSolution {
     pub status_leg: i32,
     /// Why the request was refused (all zero when it was not).
     pub error: ReconfigError,
-    /// 1 when the plan may be flown (SOLVED).
+    /// 1 when the plan may be flown (SOLVED, BUDGET_EXHAUSTED_VERIFIED).
     pub usable: u8,
+    /// 1 when `fastest_tour_s` holds a value: no tour is admissible at all (a leg has no
+    /// method within the cap), or the solve stopped before every leg's options were known,
+    /// leaves it 0 (and `fastest_tour_s` 0).
+    pub has_fastest_tour_s: u8,
     /// `RECONFIG_GEO_DIRECTION_*` of the returned sweep.
     pub direction: u8,
     /// Legs in `legs`.
@@ -178,8 +185,11 @@ pub struct ReconfigGeoSolution {
     pub max_burn_mps: f64,
     /// Time price at the returned allocation, m/s per s.
     pub price_mps_per_s: f64,
-    /// Duration of the fastest admissible tour of this sweep, s.
+    /// Duration of the fastest admissible tour of this sweep, s, when `has_fastest_tour_s`;
+    /// else 0.
     pub fastest_tour_s: f64,
+    /// Work units used (`work_budget`), the final checks included.
+    pub work_units: u64,
     /// Legs in visiting order; the first `leg_count` are used.
     pub legs: [ReconfigGeoLeg; RECONFIG_GEO_MAX_TARGETS],
 }

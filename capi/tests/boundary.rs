@@ -16,6 +16,18 @@ use reconfig_capi::types_a::*;
 use reconfig_capi::types_b::*;
 use reconfig_core::pseudospectral;
 
+/// The name `reconfig_setting_name` gives, as a Rust string.
+fn setting_name(planner: i32, code: i32) -> Option<String> {
+    let p = reconfig_capi::names::reconfig_setting_name(planner, code);
+    // SAFETY: null or a static NUL-terminated string.
+    (!p.is_null()).then(|| {
+        unsafe { std::ffi::CStr::from_ptr(p) }
+            .to_str()
+            .unwrap()
+            .to_owned()
+    })
+}
+
 /// Caller memory of `size` bytes aligned to 8 (a `u64` vector).
 fn memory(size: usize) -> Vec<u64> {
     vec![0; size.div_ceil(8) + 1]
@@ -160,11 +172,24 @@ fn refusals_name_field_index_value_and_limit() {
         s.sqp_max_iter = 0;
         assert_eq!(
             reconfig_pseudospectral_solve(ws, &three_sats(), &s, &mut *out),
-            RECONFIG_A_ERR_INVALID_SETTINGS
+            RECONFIG_ERR_SETTING_OUT_OF_RANGE
         );
+        // Named: the setting's code, the value and the end of the range it broke.
         assert_eq!(
-            (out.error.field, out.error.detail),
-            (RECONFIG_FIELD_SETTINGS, 0)
+            (
+                out.error.field,
+                out.error.index,
+                out.error.detail,
+                out.error.value,
+                out.error.limit
+            ),
+            (
+                RECONFIG_FIELD_SETTINGS,
+                reconfig_core::pseudospectral::SettingId::SqpMaxIter as i32,
+                0,
+                0.0,
+                1.0
+            )
         );
     }
 }
@@ -322,20 +347,45 @@ fn form_refusals_name_the_part_and_the_reason() {
     unsafe {
         assert_eq!(reconfig_impulsive_default_settings(&mut settings), 0);
         assert_eq!(reconfig_impulsive_init(ws, size), 0);
+        // The built-in limits bound the chief's |sin i| under ROE (as the flight service's
+        // do), before the conversion: refused by name, the value and the limit.
         assert_eq!(
             reconfig_impulsive_solve_form(ws, &problem, &settings, &mut out),
+            RECONFIG_ERR_LIMIT_EXCEEDED
+        );
+        let e = out.plan.error;
+        assert_eq!(
+            (e.code, e.field, e.index, e.detail, e.value, e.limit),
+            (
+                RECONFIG_ERR_LIMIT_EXCEEDED,
+                RECONFIG_FIELD_SETTINGS,
+                128 + 10,
+                1,
+                0.0,
+                settings.min_sin_inclination
+            )
+        );
+        assert_eq!(
+            setting_name(reconfig_capi::names::RECONFIG_PLANNER_IMPULSIVE, e.index),
+            Some("relative.roe chief |sin i|".to_owned())
+        );
+        // A part the limits pass but the conversion cannot take (a NaN in the chief's state)
+        // is the conversion's refusal: the part and the reason.
+        let mut nan_chief = problem;
+        nan_chief.chief.form = RECONFIG_B_ORBIT_STATE;
+        nan_chief.chief.state = ReconfigBCartesianState {
+            pos_km: [7000.0, 0.0, f64::NAN],
+            vel_km_s: [0.0, 7.5, 1.0],
+        };
+        nan_chief.relative.form = RECONFIG_B_RELATIVE_ELEMENTS;
+        assert_eq!(
+            reconfig_impulsive_solve_form(ws, &nan_chief, &settings, &mut out),
             RECONFIG_B_ERR_INPUT_FORM
         );
         let e = out.plan.error;
         assert_eq!(
-            (e.code, e.field, e.detail, e.value, e.limit),
-            (
-                RECONFIG_B_ERR_INPUT_FORM,
-                RECONFIG_FIELD_INITIAL,
-                RECONFIG_B_FORM_ROE_EQUATORIAL_CHIEF,
-                0.0,
-                settings.min_sin_inclination
-            )
+            (e.field, e.detail),
+            (RECONFIG_FIELD_CHIEF, RECONFIG_B_FORM_NOT_FINITE)
         );
         // A form code outside its set names the field that holds it and the largest code.
         let mut bad = problem;
@@ -357,7 +407,7 @@ fn form_refusals_name_the_part_and_the_reason() {
             RECONFIG_ERR_INVALID_CODE
         );
         assert_eq!(out.plan.error.field, RECONFIG_FIELD_DEPUTY_TARGET);
-        // A hyperbolic osculating chief state: not an ellipse, named as the chief's.
+        // A hyperbolic osculating chief state.
         let mut bad = problem;
         bad.chief.form = RECONFIG_B_ORBIT_STATE;
         bad.chief.state = ReconfigBCartesianState {
@@ -365,14 +415,17 @@ fn form_refusals_name_the_part_and_the_reason() {
             vel_km_s: [0.0, 12.0, 1.0],
         };
         bad.relative.form = RECONFIG_B_RELATIVE_ELEMENTS;
+        // The limits bound the orbits as given: eccentricity below 1, named as the chief's.
         assert_eq!(
             reconfig_impulsive_solve_form(ws, &bad, &settings, &mut out),
-            RECONFIG_B_ERR_INPUT_FORM
+            RECONFIG_ERR_LIMIT_EXCEEDED
         );
         let e = out.plan.error;
+        assert_eq!((e.index, e.detail, e.limit), (128 + 4, 4, 1.0));
+        assert!(e.value > 1.0, "{}", e.value);
         assert_eq!(
-            (e.field, e.detail),
-            (RECONFIG_FIELD_CHIEF, RECONFIG_B_FORM_NOT_AN_ELLIPSE)
+            setting_name(reconfig_capi::names::RECONFIG_PLANNER_IMPULSIVE, e.index),
+            Some("chief.eccentricity".to_owned())
         );
         // A null problem is refused like the mean-element form's.
         assert_eq!(
@@ -446,11 +499,15 @@ fn geo_tour_refusals_name_field_index_value_and_limit() {
         bad.lambert_tol = f64::NAN;
         assert_eq!(
             reconfig_geo_tour_solve(ws, &problem, &bad, &mut out),
-            RECONFIG_GEO_ERR_OUT_OF_RANGE
+            RECONFIG_ERR_SETTING_OUT_OF_RANGE
         );
         assert_eq!(
-            (out.error.field, out.error.detail),
-            (RECONFIG_FIELD_GEO_LAMBERT_TOL, 2)
+            (out.error.field, out.error.index, out.error.detail),
+            (
+                RECONFIG_FIELD_SETTINGS,
+                reconfig_core::geo_tour::SettingId::LambertTol as i32,
+                2
+            )
         );
         // A plannable tour: solved, through the C structs as through the core.
         assert_eq!(

@@ -49,9 +49,9 @@ pub enum LambertError {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LambertSolution {
     /// Velocity just after departure at `r1`.
-    pub v1_kmps: Vec3,
+    pub v1_km_s: Vec3,
     /// Velocity just before arrival at `r2`.
-    pub v2_kmps: Vec3,
+    pub v2_km_s: Vec3,
     /// Householder steps used.
     pub iterations: u16,
     /// Izzo's x at the solution: a starting point for a nearby solve ([`solve_from`]).
@@ -125,23 +125,60 @@ fn tof_derivatives(x: f64, y: f64, t: f64, lam: f64) -> (f64, f64, f64) {
     (d1, d2, d3)
 }
 
+/// One Halley step of the least-time search on dT/dx = 0 from `x`: the next x (clamped
+/// inside (-1, 1)) and whether the step was within the tolerance; `None` when the step is not
+/// defined. Exposed (hidden) so that its cost can be measured alone (`geo_tour::kernels`).
+#[doc(hidden)]
+#[inline(always)]
+pub fn halley_step(x: f64, lam: f64, revs: f64, tol: f64) -> Option<(f64, bool)> {
+    let y = compute_y(x, lam);
+    let t = tof(x, y, lam, revs);
+    let (d1, d2, d3) = tof_derivatives(x, y, t, lam);
+    let den = 2.0 * d2 * d2 - d1 * d3;
+    if den == 0.0 || !den.is_finite() {
+        return None;
+    }
+    let next = x - 2.0 * d1 * d2 / den;
+    let done = (next - x).abs() <= tol * (1.0 + x.abs());
+    Some((next.clamp(-0.999_999, 0.999_999), done))
+}
+
+/// One Householder step (Izzo eq. 22-23) on T(x) = `t_nd` from `x`: the next x and the
+/// step's size; `None` when the step is not defined. Exposed (hidden) so that its cost can be
+/// measured alone (`geo_tour::kernels`).
+#[doc(hidden)]
+#[inline(always)]
+pub fn householder_step(x: f64, lam: f64, m: f64, t_nd: f64) -> Option<(f64, f64)> {
+    let y = compute_y(x, lam);
+    let t = tof(x, y, lam, m);
+    let f = t - t_nd;
+    let (d1, d2, d3) = tof_derivatives(x, y, t, lam);
+    let den = d1 * (d1 * d1 - f * d2) + d3 * f * f / 6.0;
+    if den == 0.0 || !den.is_finite() {
+        return None;
+    }
+    let next = x - f * (d1 * d1 - f * d2 * 0.5) / den;
+    Some((next, (next - x).abs()))
+}
+
 /// Least non-dimensional time of a `revs`-revolution family (Halley on dT/dx = 0).
-fn min_tof(lam: f64, revs: f64, max_iter: u16, tol: f64) -> Option<f64> {
+fn min_tof<S: FnMut() -> bool>(
+    lam: f64,
+    revs: f64,
+    max_iter: u16,
+    tol: f64,
+    step: &mut S,
+) -> Option<f64> {
     let mut x = 0.1;
     if lam >= 1.0 {
         x = 0.0;
     } else {
         for _ in 0..max_iter {
-            let y = compute_y(x, lam);
-            let t = tof(x, y, lam, revs);
-            let (d1, d2, d3) = tof_derivatives(x, y, t, lam);
-            let den = 2.0 * d2 * d2 - d1 * d3;
-            if den == 0.0 || !den.is_finite() {
+            if !step() {
                 return None;
             }
-            let next = x - 2.0 * d1 * d2 / den;
-            let done = (next - x).abs() <= tol * (1.0 + x.abs());
-            x = next.clamp(-0.999_999, 0.999_999);
+            let (next, done) = halley_step(x, lam, revs, tol)?;
+            x = next;
             if done {
                 break;
             }
@@ -233,6 +270,40 @@ pub fn solve_from(
     tol: f64,
     guess: Option<f64>,
 ) -> Result<LambertSolution, LambertError> {
+    solve_from_stepped(
+        mu_km3_s2,
+        r1_km,
+        r2_km,
+        tof_s,
+        revs,
+        branch,
+        normal,
+        (max_iter, tol),
+        guess,
+        &mut || true,
+    )
+}
+
+/// [`solve_from`] with `step` asked before every Householder and Halley step: when it
+/// returns `false` the solve stops (`NotConverged`). A caller meters the solve's work this
+/// way (the GEO tour charges each step to its work budget); the answer is otherwise the one
+/// [`solve_from`] gives, bit for bit.
+///
+/// # Errors
+/// As [`solve`].
+#[allow(clippy::too_many_arguments)]
+pub fn solve_from_stepped<S: FnMut() -> bool>(
+    mu_km3_s2: f64,
+    r1_km: &Vec3,
+    r2_km: &Vec3,
+    tof_s: f64,
+    revs: u16,
+    branch: Branch,
+    normal: &Vec3,
+    (max_iter, tol): (u16, f64),
+    guess: Option<f64>,
+    step: &mut S,
+) -> Result<LambertSolution, LambertError> {
     let r1n = norm(r1_km);
     let r2n = norm(r2_km);
     let nn = norm(normal);
@@ -280,20 +351,14 @@ pub fn solve_from(
     let m = f64::from(revs);
     let pi = core::f64::consts::PI;
     // Householder from x0 (Izzo eq. 22-23): the converged x, or None.
-    let householder = |x0: f64, used: &mut u16| -> Option<f64> {
+    let householder = |x0: f64, used: &mut u16, step: &mut S| -> Option<f64> {
         let mut x = x0;
         for _ in 0..max_iter {
-            *used = used.saturating_add(1);
-            let y = compute_y(x, lam);
-            let t = tof(x, y, lam, m);
-            let f = t - t_nd;
-            let (d1, d2, d3) = tof_derivatives(x, y, t, lam);
-            let den = d1 * (d1 * d1 - f * d2) + d3 * f * f / 6.0;
-            if den == 0.0 || !den.is_finite() {
+            if !step() {
                 return None;
             }
-            let next = x - f * (d1 * d1 - f * d2 * 0.5) / den;
-            let step = (next - x).abs();
+            *used = used.saturating_add(1);
+            let (next, step) = householder_step(x, lam, m, t_nd)?;
             x = next;
             if !x.is_finite() {
                 return None;
@@ -310,7 +375,7 @@ pub fn solve_from(
     // shows the K-revolution family reaches this time, so no least-time search is needed).
     let warm = guess
         .filter(|g| g.is_finite() && *g > -1.0)
-        .and_then(|g| householder(g, &mut used))
+        .and_then(|g| householder(g, &mut used, step))
         .filter(|&x| {
             revs == 0 || {
                 let y = compute_y(x, lam);
@@ -336,12 +401,13 @@ pub fn solve_from(
             }
             let t_00 = libm::acos(lam) + lam * libm::sqrt((1.0 - lam * lam).max(0.0)) + m * pi;
             if revs > 0 && t_nd < t_00 {
-                let t_min = min_tof(lam, m, max_iter, tol).ok_or(LambertError::NotConverged)?;
+                let t_min =
+                    min_tof(lam, m, max_iter, tol, step).ok_or(LambertError::NotConverged)?;
                 if t_nd < t_min {
                     return Err(LambertError::NoSolution);
                 }
             }
-            householder(izzo_guess(lam, t_nd, revs, branch), &mut used)
+            householder(izzo_guess(lam, t_nd, revs, branch), &mut used, step)
                 .ok_or(LambertError::NotConverged)?
         }
     };
@@ -363,8 +429,8 @@ pub fn solve_from(
     let v2 = add(&scale(&ir2, vr2), &scale(&it2, vt2));
     if finite(&v1) && finite(&v2) {
         Ok(LambertSolution {
-            v1_kmps: v1,
-            v2_kmps: v2,
+            v1_km_s: v1,
+            v2_km_s: v2,
             iterations: used,
             x,
         })
@@ -379,14 +445,14 @@ pub fn solve_from(
 pub fn propagate(
     mu_km3_s2: f64,
     r_km: &Vec3,
-    v_kmps: &Vec3,
+    v_km_s: &Vec3,
     dt_s: f64,
     max_iter: u16,
 ) -> Option<(Vec3, Vec3)> {
     let r0 = norm(r_km);
-    let v0 = norm(v_kmps);
+    let v0 = norm(v_km_s);
     let sqmu = libm::sqrt(mu_km3_s2);
-    let rv = dot(r_km, v_kmps) / sqmu;
+    let rv = dot(r_km, v_km_s) / sqmu;
     let alpha = 2.0 / r0 - v0 * v0 / mu_km3_s2;
     let mut chi = sqmu * alpha.abs() * dt_s;
     if alpha <= 0.0 {
@@ -430,11 +496,11 @@ pub fn propagate(
     let (c2, c3) = stumpff(z);
     let f = 1.0 - chi * chi / r0 * c2;
     let g = dt_s - chi * chi * chi / sqmu * c3;
-    let r = add(&scale(r_km, f), &scale(v_kmps, g));
+    let r = add(&scale(r_km, f), &scale(v_km_s, g));
     let rn = norm(&r);
     let fdot = sqmu / (rn * r0) * (alpha * chi * chi * chi * c3 - chi);
     let gdot = 1.0 - chi * chi / rn * c2;
-    let v = add(&scale(r_km, fdot), &scale(v_kmps, gdot));
+    let v = add(&scale(r_km, fdot), &scale(v_km_s, gdot));
     (finite(&r) && finite(&v)).then_some((r, v))
 }
 
@@ -448,7 +514,7 @@ pub fn propagate(
 mod tests {
     use super::*;
 
-    const MU: f64 = 398_600.441_8;
+    const MU: f64 = crate::astro::EARTH_MU_KM3_S2;
 
     fn check_arc(r1: Vec3, r2: Vec3, tof_s: f64, revs: u16, branch: Branch) -> LambertSolution {
         let sol = solve(
@@ -463,7 +529,7 @@ mod tests {
             1e-13,
         )
         .unwrap();
-        let (r, _) = propagate(MU, &r1, &sol.v1_kmps, tof_s, 60).unwrap();
+        let (r, _) = propagate(MU, &r1, &sol.v1_km_s, tof_s, 60).unwrap();
         let miss = norm(&sub(&r, &r2));
         assert!(miss < 1e-6, "miss {miss} km (revs {revs}, {branch:?})");
         sol
@@ -513,15 +579,15 @@ mod tests {
         );
         let (left, right) = (left.unwrap(), right.unwrap());
         // One branch is the tangential phasing orbit, the other the rectilinear fall.
-        let sol = if left.v1_kmps[0].abs() < right.v1_kmps[0].abs() {
+        let sol = if left.v1_km_s[0].abs() < right.v1_km_s[0].abs() {
             left
         } else {
             right
         };
-        assert!(sol.v1_kmps[0].abs() < 1e-9, "radial {}", sol.v1_kmps[0]);
+        assert!(sol.v1_km_s[0].abs() < 1e-9, "radial {}", sol.v1_km_s[0]);
         let a_m = libm::cbrt(MU * (tof_s / (2.0 * core::f64::consts::PI)).powi(2));
         let v_apo = libm::sqrt(MU * (2.0 / a0 - 1.0 / a_m));
-        assert!((sol.v1_kmps[1] - v_apo).abs() < 1e-9);
+        assert!((sol.v1_km_s[1] - v_apo).abs() < 1e-9);
     }
 
     #[test]

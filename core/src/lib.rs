@@ -25,7 +25,9 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
+pub mod astro;
 pub mod capacity;
+pub mod contract;
 pub mod geo_tour;
 pub mod impulsive;
 pub mod indexed;

@@ -13,6 +13,10 @@
  *
  * The workspaces are caller memory: here static arrays (one per planner, this program is one
  * task), sized at run time against reconfig_*_workspace_size().
+ *
+ * A request outside the built-in limits (the flight service's) is refused, not solved: the
+ * `+fixed-point` runs ask for nonlinear_correction = 0, and print the refusal with the name
+ * reconfig_setting_name gives its error.index.
  */
 #include <inttypes.h>
 #include <stdio.h>
@@ -43,6 +47,19 @@ static uint64_t bits(double x) {
 /* FNV-style mix of 64-bit words; the test computes the same over the Rust solution. */
 static uint64_t mix(uint64_t h, double x) {
     return (h ^ bits(x)) * UINT64_C(0x100000001b3);
+}
+
+/* A refusal: its code, field and index, the setting's name when the refusal names a setting
+ * (reconfig_setting_name), and the bits of the value and the limit. */
+static void print_refusal(char kind, const char *name, int32_t planner, int32_t status,
+                          const ReconfigError *e) {
+    const char *setting = 0;
+    if (status == RECONFIG_ERR_SETTING_OUT_OF_RANGE || status == RECONFIG_ERR_LIMIT_EXCEEDED)
+        setting = reconfig_setting_name(planner, e->index);
+    printf("%c %s status=%" PRId32 " field=%" PRId32 " index=%" PRId32 " setting=%s value_bits=%016"
+           PRIx64 " limit_bits=%016" PRIx64 "\n",
+           kind, name, status, e->field, e->index, setting ? setting : "-", bits(e->value),
+           bits(e->limit));
 }
 
 /* Checksum over the numbers of the end state's member its form names (the test computes the
@@ -92,9 +109,8 @@ static int plan_a(void) {
                 for (int k = 0; k < 3; k++) h = mix(h, a_solution.controls_fu[s][n][k]);
             }
         if (status < 0) {
-            printf("A %s status=%" PRId32 " field=%" PRId32 " index=%" PRId32 " value=%a limit=%a\n",
-                   A_CASES[c].name, status, a_solution.error.field, a_solution.error.index,
-                   a_solution.error.value, a_solution.error.limit);
+            print_refusal('A', A_CASES[c].name, RECONFIG_PLANNER_PSEUDOSPECTRAL, status,
+                          &a_solution.error);
             continue;
         }
         printf("A %s status=%" PRId32 " usable=%u J=%.9f J_bits=%016" PRIx64
@@ -118,9 +134,8 @@ static int plan_b(void) {
         int32_t status = reconfig_impulsive_solve(b_workspace, &B_CASES[c].problem, &settings,
                                                   &b_solution);
         if (status < 0) {
-            printf("B %s status=%" PRId32 " field=%" PRId32 " index=%" PRId32 " value=%a limit=%a\n",
-                   B_CASES[c].name, status, b_solution.error.field, b_solution.error.index,
-                   b_solution.error.value, b_solution.error.limit);
+            print_refusal('B', B_CASES[c].name, RECONFIG_PLANNER_IMPULSIVE, status,
+                          &b_solution.error);
             continue;
         }
         uint64_t h = UINT64_C(0xcbf29ce484222325);
@@ -152,9 +167,7 @@ static int plan_f(void) {
                                                        &settings, &f_solution);
         const ReconfigBSolution *p = &f_solution.plan;
         if (status < 0) {
-            printf("F %s status=%" PRId32 " field=%" PRId32 " index=%" PRId32 " value=%a limit=%a\n",
-                   F_CASES[c].name, status, p->error.field, p->error.index, p->error.value,
-                   p->error.limit);
+            print_refusal('F', F_CASES[c].name, RECONFIG_PLANNER_IMPULSIVE, status, &p->error);
             continue;
         }
         uint64_t h = UINT64_C(0xcbf29ce484222325);
@@ -179,16 +192,22 @@ static int plan_g(void) {
         int32_t status = reconfig_geo_tour_solve(geo_workspace, &G_CASES[c].problem,
                                                  &G_CASES[c].settings, &g_solution);
         if (status < 0) {
-            printf("G %s status=%" PRId32 " field=%" PRId32 " index=%" PRId32 " value=%a limit=%a\n",
-                   G_CASES[c].name, status, g_solution.error.field, g_solution.error.index,
-                   g_solution.error.value, g_solution.error.limit);
+            print_refusal('G', G_CASES[c].name, RECONFIG_PLANNER_GEO_TOUR, status,
+                          &g_solution.error);
             continue;
         }
+        /* The fastest tour is printed only when the solution has one (has_fastest_tour_s). */
         printf("G %s status=%" PRId32 " usable=%u legs=%u dv_mps=%.9f dv_bits=%016" PRIx64
-               " checksum=%016" PRIx64 "\n",
+               " work_units=%" PRIu64 " fastest_tour=",
                G_CASES[c].name, status, (unsigned)g_solution.usable,
                (unsigned)g_solution.leg_count, g_solution.total_dv_mps,
-               bits(g_solution.total_dv_mps), geo_checksum(&g_solution));
+               bits(g_solution.total_dv_mps), g_solution.work_units);
+        if (g_solution.has_fastest_tour_s) {
+            printf("%016" PRIx64, bits(g_solution.fastest_tour_s));
+        } else {
+            printf("none");
+        }
+        printf(" checksum=%016" PRIx64 "\n", geo_checksum(&g_solution));
     }
     return 0;
 }

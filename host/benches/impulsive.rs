@@ -6,7 +6,7 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use reconfig_core::impulsive::{solve, Problem, Settings, Solution, Workspace};
-use reconfig_host::fixture::{load, Fixture};
+use reconfig_host::fixture::{impulsive::ImpulsiveFixture, load_as};
 use std::hint::black_box;
 use std::path::PathBuf;
 use std::time::Duration;
@@ -15,10 +15,9 @@ fn problem(name: &str) -> Problem {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../fixtures")
         .join(format!("{name}.toml"));
-    match load(&path).expect("fixture") {
-        Fixture::Impulsive(f) => f.problem,
-        Fixture::Pseudospectral(_) => panic!("{name} is not an impulsive fixture"),
-    }
+    load_as::<ImpulsiveFixture>(&path)
+        .expect("a planner-B fixture")
+        .problem
 }
 
 fn fixed(c: &mut Criterion) {

@@ -1,14 +1,15 @@
-//! The LEO tour's on-board part timed in one thread: the core's sequencing (for a fixture with
-//! a `[sequence]` table) and every arc of the order planned (`solve_leo_tour::plan`), as
-//! `reconfig solve` runs them but without the truth-model checks. Prints each run and the
+//! The LEO tour's on-board part timed in one thread: the sequencing request (for a fixture with
+//! a `[sequence]` table) and every arc's request of the order (`drivers::leo_tour`), answered
+//! through the request path as `reconfig solve` answers them but without the truth-model
+//! checks. Prints each run and the
 //! fastest of the runs (the figure docs/leo-tour.md quotes).
 //!
 //! `cargo run --release -p reconfig-host --example leo_onboard -- FIXTURE [RUNS]`
 
 use anyhow::{anyhow, Context, Result};
-use reconfig_core::leo_tour::Status;
-use reconfig_host::cli::leo_tour_sequence::choose_order;
-use reconfig_host::cli::solve_leo_tour::plan;
+use reconfig_core::leo_tour::SolveStatus;
+use reconfig_core::limits::Limits;
+use reconfig_host::drivers::leo_tour::{choose_order, plan};
 use reconfig_host::fixture::leo_tour::load;
 use std::time::Instant;
 
@@ -26,7 +27,7 @@ fn main() -> Result<()> {
         (f64::INFINITY, f64::INFINITY, f64::INFINITY);
     for _ in 0..runs {
         let started = Instant::now();
-        let (tour, seq_s) = match choose_order(&f)? {
+        let (tour, seq_s) = match choose_order(&f, &Limits::default())? {
             Some((chosen, c)) => {
                 let q = &c.sequence;
                 let order: Vec<u8> = q
@@ -37,19 +38,24 @@ fn main() -> Result<()> {
                     .collect();
                 print!(
                     "sequencing {:?} {:?} {:.3} m/s, {} / {} arcs, {:.4} s | ",
-                    order, q.status, q.total_dv_mps, q.arcs_planned, q.arcs_in_tree, c.time_s
+                    order,
+                    q.info.status,
+                    q.total_dv_mps.unwrap_or(0.0),
+                    q.info.arcs_planned,
+                    q.info.arcs_in_tree,
+                    c.time_s
                 );
                 (chosen, c.time_s)
             }
             None => (f.clone(), 0.0),
         };
         let arcs_started = Instant::now();
-        let arcs = plan(&tour)?;
+        let arcs = plan(&tour, &Limits::default())?;
         let total_mps: f64 = arcs.iter().map(|a| a.solution.total_dv_mps).sum();
         let dvs: Vec<String> = arcs
             .iter()
             .map(|a| {
-                let flag = if a.solution.status == Status::Solved {
+                let flag = if a.solution.info.status == SolveStatus::Solved {
                     ""
                 } else {
                     " (not Solved)"

@@ -3,7 +3,7 @@
 //! and, for an `Infeasible` answer, the constraints it names:
 //! `cargo run --release -p reconfig-host --example one_family -- INDEX [WORK_BUDGET [QP_MAX_ITER]]`.
 use reconfig_core::pseudospectral::{self, Settings, Solution, Workspace};
-use reconfig_host::cli::sweep_oracle;
+use reconfig_host::drivers::sweep_oracle;
 use std::path::Path;
 
 fn main() -> anyhow::Result<()> {

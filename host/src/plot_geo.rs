@@ -1,12 +1,12 @@
 //! GEO tour plots: the servicer's longitude and radius over the mission (sampled by two-body
 //! propagation through the planned burns), and total Δv against mission time.
 
-use crate::cli::solve_geo_tour::solve_fixture;
+use crate::drivers::geo_tour::plan;
 use crate::fixture::geo_tour::{GeoTourFixture, DAY_S};
-use crate::plot::range;
+use crate::plot::{chart, range};
 use anyhow::{anyhow, Result};
 use plotters::prelude::*;
-use reconfig_core::geo_tour::{rtn_to_inertial, Geo, MethodPolicy, Solution, SolveStatus};
+use reconfig_core::geo_tour::{rtn_to_inertial, Geo, MethodPolicy, Solution};
 use reconfig_core::lambert::propagate;
 use std::path::Path;
 
@@ -68,7 +68,7 @@ pub fn track(s: &Solution, per_leg: usize) -> Vec<(f64, f64, f64)> {
 
 /// Longitude and radius over time of the fixture's plan.
 pub fn tour_svg(f: &GeoTourFixture, out: &Path) -> Result<()> {
-    let (s, _) = solve_fixture(f, None).map_err(|e| anyhow!("{}: rejected: {e}", f.name))?;
+    let s = plan(f, None)?;
     let pts = track(&s, 400);
     let root = SVGBackend::new(out, (1400, 900)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
@@ -84,18 +84,13 @@ pub fn tour_svg(f: &GeoTourFixture, out: &Path) -> Result<()> {
         s.mission_time_s / DAY_S,
         s.max_burn_mps
     );
-    let mut c = ChartBuilder::on(&top)
-        .caption(title, ("sans-serif", 18))
-        .margin(10)
-        .x_label_area_size(35)
-        .y_label_area_size(60)
-        .build_cartesian_2d(t0..t1, l0..l1)
-        .map_err(|e| anyhow!("{e}"))?;
-    c.configure_mesh()
-        .x_desc("time [d]")
-        .y_desc("longitude [deg E]")
-        .draw()
-        .map_err(|e| anyhow!("{e}"))?;
+    let mut c = chart(
+        &top,
+        Some((&title, 18)),
+        (10, 35, 60),
+        (t0..t1, l0..l1),
+        ("time [d]", "longitude [deg E]"),
+    )?;
     c.draw_series(LineSeries::new(
         pts.iter().map(|p| (p.0, p.1)),
         BLUE.stroke_width(2),
@@ -113,17 +108,13 @@ pub fn tour_svg(f: &GeoTourFixture, out: &Path) -> Result<()> {
         .collect();
     c.draw_series(clients.iter().map(|&p| Circle::new(p, 4, RED.filled())))
         .map_err(|e| anyhow!("{e}"))?;
-    let mut c = ChartBuilder::on(&bottom)
-        .margin(10)
-        .x_label_area_size(35)
-        .y_label_area_size(60)
-        .build_cartesian_2d(t0..t1, h0..h1)
-        .map_err(|e| anyhow!("{e}"))?;
-    c.configure_mesh()
-        .x_desc("time [d]")
-        .y_desc("radius - GEO [km]")
-        .draw()
-        .map_err(|e| anyhow!("{e}"))?;
+    let mut c = chart(
+        &bottom,
+        None,
+        (10, 35, 60),
+        (t0..t1, h0..h1),
+        ("time [d]", "radius - GEO [km]"),
+    )?;
     c.draw_series(LineSeries::new(
         pts.iter().map(|p| (p.0, p.2)),
         BLUE.stroke_width(1),
@@ -153,10 +144,10 @@ pub fn pareto_svg(f: &GeoTourFixture, days: &[f64], out: &Path) -> Result<Vec<Pa
         let mut by_cost = f.clone();
         by_cost.problem.policy = MethodPolicy::ByCost;
         let solved = |x: &GeoTourFixture| {
-            solve_fixture(x, Some(d))
+            plan(x, Some(d))
                 .ok()
-                .filter(|(s, _)| s.info.status == SolveStatus::Solved)
-                .map(|(s, _)| s.total_dv_mps)
+                .filter(|s| s.info.status.is_usable())
+                .map(|s| s.total_dv_mps)
         };
         curve.push((d, solved(&by_cost), solved(&by_rule)));
     }
@@ -164,24 +155,17 @@ pub fn pareto_svg(f: &GeoTourFixture, days: &[f64], out: &Path) -> Result<Vec<Pa
     root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
     let (d0, d1) = range(curve.iter().map(|c| c.0), 0.05);
     let (v0, v1) = range(curve.iter().flat_map(|c| [c.1, c.2]).flatten(), 0.05);
-    let mut c = ChartBuilder::on(&root)
-        .caption(
-            format!(
-                "{}: total dv against mission time (cap {} m/s)",
-                f.name, f.problem.max_burn_mps
-            ),
-            ("sans-serif", 18),
-        )
-        .margin(10)
-        .x_label_area_size(35)
-        .y_label_area_size(60)
-        .build_cartesian_2d(d0..d1, v0.max(0.0)..v1)
-        .map_err(|e| anyhow!("{e}"))?;
-    c.configure_mesh()
-        .x_desc("mission time [d]")
-        .y_desc("total dv [m/s]")
-        .draw()
-        .map_err(|e| anyhow!("{e}"))?;
+    let caption = format!(
+        "{}: total dv against mission time (cap {} m/s)",
+        f.name, f.problem.max_burn_mps
+    );
+    let mut c = chart(
+        &root,
+        Some((&caption, 18)),
+        (10, 35, 60),
+        (d0..d1, v0.max(0.0)..v1),
+        ("mission time [d]", "total dv [m/s]"),
+    )?;
     c.draw_series(LineSeries::new(
         curve.iter().filter_map(|p| p.1.map(|v| (p.0, v))),
         BLUE.stroke_width(2),

@@ -3,10 +3,9 @@
 //! both through the plan in the core's planning model (`reconfig_core::leo_tour::propagate`,
 //! each burn's inertial Δv added at its epoch).
 
-use crate::cli::leo_tour_sequence::prepare;
-use crate::cli::solve_leo_tour::{plan, PlannedArc};
+use crate::drivers::leo_tour::{plan, prepare, PlannedArc};
 use crate::fixture::leo_tour::LeoTourFixture;
-use crate::plot::range;
+use crate::plot::{chart, range};
 use crate::truth::propagate::EciState;
 use anyhow::{anyhow, Result};
 use plotters::prelude::*;
@@ -88,7 +87,7 @@ pub fn arc_geometry(
         s.burns
             .iter()
             .take(usize::from(s.impulses))
-            .map(|b| (b.epoch_s, Some(b.dv_kmps))),
+            .map(|b| (b.epoch_s, Some(b.dv_km_s))),
     );
     // Burns after the even sample of the same epoch.
     events.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.is_some().cmp(&b.1.is_some())));
@@ -151,18 +150,13 @@ where
 {
     let (x0, x1) = range(pts.iter().map(|p| xy(p).0), 0.05);
     let (y0, y1) = range(pts.iter().map(|p| xy(p).1), 0.05);
-    let mut c = ChartBuilder::on(area)
-        .caption(caption, ("sans-serif", 15))
-        .margin(8)
-        .x_label_area_size(30)
-        .y_label_area_size(60)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(|e| anyhow!("{e}"))?;
-    c.configure_mesh()
-        .x_desc(x_desc)
-        .y_desc(y_desc)
-        .draw()
-        .map_err(|e| anyhow!("{e}"))?;
+    let mut c = chart(
+        area,
+        Some((caption, 15)),
+        (8, 30, 60),
+        (x0..x1, y0..y1),
+        (x_desc, y_desc),
+    )?;
     c.draw_series(LineSeries::new(pts.iter().map(&xy), BLUE.stroke_width(1)))
         .map_err(|e| anyhow!("{e}"))?;
     c.draw_series(
@@ -174,14 +168,16 @@ where
     Ok(())
 }
 
-/// Plan the fixture (its order and durations chosen first when it asks) and draw Δv per arc
-/// and each arc's relative geometry into `out` (SVG).
+/// Plan the fixture (its order and durations chosen first when it asks; its requests answered
+/// under the built-in limits) and draw Δv per arc and each arc's relative geometry into `out`
+/// (SVG).
 ///
 /// # Errors
-/// A fixture the core refuses, an arc it cannot plan, or a drawing error.
+/// A request refused or rejected, an arc it cannot plan, or a drawing error.
 pub fn tour_svg(f: &LeoTourFixture, out: &Path) -> Result<TourPlot> {
-    let fixture = prepare(f)?.fixture;
-    let arcs = plan(&fixture)?;
+    let limits = reconfig_core::limits::Limits::default();
+    let fixture = prepare(f, &limits)?.fixture;
+    let arcs = plan(&fixture, &limits)?;
     let geometry = arcs
         .iter()
         .map(|a| arc_geometry(a, &fixture.settings, 600))

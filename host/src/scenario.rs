@@ -10,11 +10,12 @@
 //!   target relative elements scaled by 0.8..1.2 each, and 2-4 fixed impulse points at random
 //!   arguments of latitude with at most 14 revolutions in all.
 
-use crate::harness::feeder::{Item, Payload};
+use crate::harness::feeder::Item;
+use crate::harness::items::request_item;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use reconfig_core::capacity::{MAX_DEGREE, MAX_SPACECRAFT};
-use reconfig_core::wire::{Planner, Request};
+use reconfig_core::wire::Request;
 use reconfig_core::{impulsive, pseudospectral};
 use std::f64::consts::PI;
 
@@ -181,27 +182,15 @@ pub fn generate(count: usize, seed: u64) -> Vec<Item> {
                 let m = rng.random_range(2..=MAX_SPACECRAFT);
                 let n = [10u16, 16][rng.random_range(0..2)];
                 let problem = crossing(&mut rng, m, n);
-                Item {
-                    label: format!("random-{i}"),
-                    planner: Some(Planner::Pseudospectral),
-                    size: format!("M{m} N{n}"),
-                    payload: Payload::Request(Box::new(Request::Pseudospectral {
-                        problem,
-                        settings: pseudospectral::Settings::default(),
-                    })),
-                }
+                let settings = pseudospectral::Settings::default();
+                let request = Request::Pseudospectral { problem, settings };
+                request_item(format!("random-{i}"), format!("M{m} N{n}"), request)
             } else {
                 let k = rng.random_range(2..=4);
                 let problem = perturbed_impulsive(&mut rng, k);
-                Item {
-                    label: format!("random-{i}"),
-                    planner: Some(Planner::Impulsive),
-                    size: format!("K{k}"),
-                    payload: Payload::Request(Box::new(Request::Impulsive {
-                        problem,
-                        settings: impulsive::Settings::default(),
-                    })),
-                }
+                let settings = impulsive::Settings::default();
+                let request = Request::Impulsive { problem, settings };
+                request_item(format!("random-{i}"), format!("K{k}"), request)
             }
         })
         .collect()

@@ -36,7 +36,7 @@ fn bad_frames_and_invalid_problems_get_error_responses_and_the_service_keeps_run
     assert!(status_of("fault: spacecraft count 9 (over capacity)").contains("malformed body"));
     // The core's own error comes back as a response, naming what was wrong.
     for (label, names) in [
-        ("invalid: NaN horizon", "Horizon is NaN or infinite"),
+        ("invalid: NaN horizon", "Horizon = NaN is NaN or infinite"),
         ("invalid: degree over capacity", "exceeds capacity 24"),
         (
             "invalid: manoeuvre infeasible",
@@ -95,23 +95,27 @@ fn a_killed_feeder_does_not_stop_the_service_and_the_next_feeder_is_served() {
 #[test]
 fn a_killed_service_loses_the_requests_in_flight_and_the_feeder_goes_on_with_a_new_one() {
     let inst = instance("servkill");
-    // One worker that takes 300 ms per request, so requests are surely in flight at each kill.
-    let mut service = serve(&inst, &["--debug-delay-ms", "300"]);
+    // One worker and genuinely slow requests (a planner-B search over 10 000 samples, 0.7 s
+    // each here under load, allowed by a limits file), so requests are surely in flight at each kill.
+    let (slow, limits) = slow_search("servkill", 10_000);
+    let (slow, limits) = (slow.display().to_string(), limits.display().to_string());
+    let mut service = serve(&inst, &["--limits", &limits]);
     let json = temp("servkill", "report.json");
     let total = 24;
     let mut args: Vec<String> = [
         "feed",
         "--verbose",
-        "--random",
-        &total.to_string(),
+        "--limits",
+        &limits,
         "--window",
         "2",
         "--timeout-ms",
         // Long enough that a live but loaded service (a restarted one's first answers, CI
         // running the other fault tests beside this one) is never declared lost: only the
         // kills may lose requests, which is what the bound below counts. At 1500 ms a CI run
-        // lost 7 (one slow answer taken for a loss).
-        "4000",
+        // lost 7 (one slow answer taken for a loss); a search here takes up to 0.7 s, and a
+        // request may wait for one before its own.
+        "8000",
         "--wait-service-ms",
         "60000",
         "--json",
@@ -120,6 +124,9 @@ fn a_killed_service_loses_the_requests_in_flight_and_the_feeder_goes_on_with_a_n
     .map(|s| s.to_string())
     .collect();
     args.push(json.display().to_string());
+    for _ in 0..total {
+        args.extend(["--fixture".to_string(), slow.clone()]);
+    }
     args.extend(instance_args(&inst));
     let started = std::time::Instant::now();
     let mut events: Vec<String> = Vec::new();
@@ -143,7 +150,7 @@ fn a_killed_service_loses_the_requests_in_flight_and_the_feeder_goes_on_with_a_n
             "cycle {cycle}: the feeder did not notice the loss"
         );
         events.push(format!("{} restart", started.elapsed().as_millis()));
-        service = serve(&inst, &["--debug-delay-ms", "300"]);
+        service = serve(&inst, &["--limits", &limits]);
         events.push(format!("{} ready", started.elapsed().as_millis()));
     }
     let status = feeder.wait(Duration::from_secs(120));
@@ -181,6 +188,8 @@ fn a_killed_service_loses_the_requests_in_flight_and_the_feeder_goes_on_with_a_n
             "{r}"
         );
     }
-    let _ = std::fs::remove_file(&json);
+    for path in [json.display().to_string(), slow, limits] {
+        let _ = std::fs::remove_file(path);
+    }
     stop_and_check_clean(service, &inst);
 }

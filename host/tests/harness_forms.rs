@@ -10,7 +10,7 @@ use harness_common::*;
 use reconfig_core::impulsive::{self, end_state, EndState, OrbitForm, RelativeForm};
 use reconfig_core::limits::{Rule, Setting};
 use reconfig_core::wire::{self, Outcome, Request};
-use reconfig_host::fixture::{self, Fixture};
+use reconfig_host::fixture;
 use reconfig_host::harness::worker::Worker;
 
 const FORM_FIXTURES: [&str; 2] = [
@@ -23,10 +23,13 @@ fn fixture_path(name: &str) -> String {
 }
 
 fn load(name: &str) -> reconfig_host::fixture::impulsive::ImpulsiveFixture {
-    match fixture::load(std::path::Path::new(&fixture_path(name))).expect("fixture loads") {
-        Fixture::Impulsive(f) => f,
-        Fixture::Pseudospectral(_) => panic!("{name} is not a planner-B fixture"),
-    }
+    fixture::load_as(std::path::Path::new(&fixture_path(name))).expect("a planner-B fixture")
+}
+
+/// The fixture's one request (`Fixture::requests`).
+fn request(name: &str) -> Request {
+    let f = fixture::load(std::path::Path::new(&fixture_path(name))).expect("fixture loads");
+    f.requests().expect("requests").remove(0).request
 }
 
 /// The worker's outcome for `request` (the code the service runs, in process).
@@ -43,7 +46,7 @@ fn the_worker_converts_in_the_core_and_answers_in_the_users_form() {
     let mut worker = Worker::new();
     for name in FORM_FIXTURES {
         let f = load(name);
-        let request = f.request();
+        let request = request(name);
         assert!(
             matches!(request, Request::ImpulsiveForm { .. }),
             "{name} goes on the wire in its own forms"
@@ -136,9 +139,13 @@ fn a_hyperbolic_state_is_refused_by_the_service_naming_the_field() {
         Outcome::LimitExceeded(v) => {
             assert_eq!(
                 (v.setting, v.limit, v.rule),
-                (Setting::ImpDeputyTargetEccentricity, 1.0, Rule::Below)
+                (
+                    Setting::Problem(reconfig_core::limits::ProblemLimit::DeputyTargetEccentricity),
+                    1.0,
+                    Rule::Below
+                )
             );
-            let e = 7078.137 * 144.0 / impulsive::EARTH_MU_KM3_S2 - 1.0;
+            let e = 7078.137 * 144.0 / reconfig_core::astro::EARTH_MU_KM3_S2 - 1.0;
             assert!((v.value - e).abs() < 1e-12, "{v}");
             assert!(
                 v.to_string()

@@ -7,7 +7,7 @@ mod harness_common;
 
 use harness_common::*;
 use reconfig_core::limits::Limits;
-use reconfig_host::cli::demo_leo_onboard;
+use reconfig_host::harness::leo_onboard;
 use std::path::PathBuf;
 
 #[test]
@@ -15,7 +15,7 @@ fn the_on_board_part_goes_through_the_service_and_matches_the_local_solves() {
     let inst = instance("leoonboard");
     let service = serve(&inst, &[]);
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../fixtures");
-    let run = demo_leo_onboard::run(&inst, &dir, 1, 1, &Limits::default());
+    let run = leo_onboard::run(&inst, &dir, 1, 1, &Limits::default());
     stop_and_check_clean(service, &inst);
     let run = run.expect("the on-board part through the service");
     // The order of `reconfig solve fixtures/leo-tour-example1-sequence.toml` and its four arcs

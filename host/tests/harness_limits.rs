@@ -6,7 +6,7 @@
 mod harness_common;
 
 use harness_common::*;
-use std::time::Duration;
+use std::path::Path;
 
 fn result<'a>(report: &'a serde_json::Value, label: &str) -> &'a serde_json::Value {
     report["results"]
@@ -87,26 +87,28 @@ fn requests_outside_the_limits_are_refused_by_name_and_a_limits_file_tightens_th
 #[test]
 fn a_request_queued_past_its_deadline_is_answered_expired_unsolved() {
     let inst = instance("expire");
-    // One worker, 1000 ms per request: with four in flight and a 100 ms deadline, the requests
-    // behind the first one wait past their deadline. (At 400 ms per request the bound below had
-    // 10 ms of room over the deadline's answer; 1000 ms leaves 100 ms to 900 ms for a loaded
-    // machine's scheduling while still telling an expired answer from a solved one.)
-    let service = serve(&inst, &["--debug-delay-ms", "1000"]);
+    // One worker and four genuinely slow requests (a planner-B search over 60 000 samples,
+    // 1.9 s here under load, allowed by a limits file) sent at once with a 100 ms deadline: the first
+    // one occupies the worker, the three behind it wait past their deadline. The feeder's
+    // timeout is a safety net for a loaded machine, not a bound.
+    let (slow, limits) = slow_search("expire", 60_000);
+    let (slow, limits) = (slow.display().to_string(), limits.display().to_string());
+    let service = serve(&inst, &["--limits", &limits]);
     let json = temp("expire", "report.json");
-    let (code, report) = feed(
-        &inst,
-        &[
-            "--random",
-            "4",
-            "--seed",
-            "5",
-            "--window",
-            "4",
-            "--deadline-ms",
-            "100",
-        ],
-        &json,
-    );
+    let mut args = vec![
+        "--window",
+        "4",
+        "--deadline-ms",
+        "100",
+        "--timeout-ms",
+        "120000",
+        "--limits",
+        &limits,
+    ];
+    for _ in 0..4 {
+        args.extend(["--fixture", slow.as_str()]);
+    }
+    let (code, report) = feed(&inst, &args, &json);
     // Expired answers are truthful but not plans, so the feed does not pass.
     assert_eq!(code, Some(1), "{report}");
     let results = report["results"].as_array().expect("results");
@@ -118,16 +120,27 @@ fn a_request_queued_past_its_deadline_is_answered_expired_unsolved() {
                 .is_some_and(|s| s.starts_with("expired"))
         })
         .collect();
-    let solved = results.iter().filter(|r| r["correct"] == true).count();
+    let solved: Vec<_> = results.iter().filter(|r| r["correct"] == true).collect();
     assert_eq!(
-        solved, 1,
+        solved.len(),
+        1,
         "only the first request reaches the worker: {report}"
     );
     assert_eq!(expired.len(), 3, "{report}");
+    // The solved one had a turn; the expired ones were answered outside the turns.
+    assert!(solved[0]["turn"].is_u64(), "{report}");
+    let solved_rtt = solved[0]["rtt_us"].as_f64().expect("rtt");
     for r in expired {
-        // Answered at its deadline, not after the worker got round to it.
+        assert!(r["turn"].is_null(), "{r}");
+        // Answered at its deadline, not after the worker got round to it: no sooner than the
+        // deadline, and while the worker was still solving the first request (an order, on
+        // any machine on which the search takes longer than 100 ms).
         let rtt = r["rtt_us"].as_f64().expect("rtt");
-        assert!((100_000.0..900_000.0).contains(&rtt), "{r}");
+        assert!(rtt >= 100_000.0, "{r}");
+        assert!(
+            rtt < solved_rtt,
+            "{r} answered after the solve ({solved_rtt} us)"
+        );
         assert!(
             r["status"]
                 .as_str()
@@ -137,18 +150,39 @@ fn a_request_queued_past_its_deadline_is_answered_expired_unsolved() {
         );
     }
     assert_eq!(report["reports"][0]["counters"]["lost"], 0);
-    let _ = std::fs::remove_file(&json);
+    for path in [&json, Path::new(&slow), Path::new(&limits)] {
+        let _ = std::fs::remove_file(path);
+    }
     stop_and_check_clean(service, &inst);
+}
+
+/// For each of one client's answers `[received_at_turn, turn]`: (turns of its own earlier
+/// requests, turns of other clients) between the request's receipt and its turn.
+fn waits(served: &[(u64, u64)]) -> Vec<(u64, u64)> {
+    served
+        .iter()
+        .map(|&(received, turn)| {
+            let own = served
+                .iter()
+                .filter(|(_, t)| (received..turn).contains(t))
+                .count() as u64;
+            (own, turn - received - own)
+        })
+        .collect()
 }
 
 #[test]
 fn two_feeders_are_served_in_turn() {
     // `reconfig fairness` starts its own service (one worker here) and two feeders per phase:
-    // expensive + cheap, then two alike (neither below half of the other's throughput); every
-    // answer checked, nothing lost. This test asserts behaviour, not speed: the cheap client's
-    // bound is a starvation bound (a starved client waits out the whole 2 s phase), not the
-    // 100 ms on-board budget, which `reconfig fairness --seconds 60` measures on a quiet
-    // machine (docs/harness.md). A 250 ms bound failed here with the two cores loaded.
+    // expensive (crossings, 2 in flight) + cheap (planner-B fixed points, one at a time), then
+    // two alike (crossings, 2 in flight each); every answer is checked against a local solve.
+    // This test asserts the order of service, not a speed (issue 29: a count of the cheap
+    // client's answers in a 2 s window failed once on a loaded machine): every answer carries
+    // its request's turn (counted over all clients) and the number of turns given when the
+    // request arrived. Round-robin means that while a request waits, the other client gets at
+    // most one turn more than the waiting client's own earlier requests. The command's own
+    // verdict also holds latency and throughput, which a loaded machine may miss; they are not
+    // asserted here (`reconfig fairness --seconds 60` measures them, docs/harness.md).
     let json = temp("fair", "fair.json");
     let out = std::process::Command::new(exe())
         .args([
@@ -160,8 +194,6 @@ fn two_feeders_are_served_in_turn() {
             "--cpus",
             "0",
             "--no-pin",
-            "--budget-ms",
-            "1900",
             "--json",
         ])
         .arg(&json)
@@ -171,12 +203,53 @@ fn two_feeders_are_served_in_turn() {
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap_or_default())
             .unwrap_or(serde_json::Value::Null);
-    assert!(out.status.success(), "{stdout}\n{report}");
-    assert_eq!(report["passed"], true, "{report}");
-    let cheap = &report["mixed"][1];
-    // Served throughout the phase, not only after the expensive client's queue drained.
-    assert!(cheap["correct"].as_u64().unwrap_or(0) >= 10, "{report}");
-    assert!(report["same_kind_throughput_ratio"].as_f64().unwrap_or(0.0) >= 0.5);
+    let checks = &report["checks"];
+    assert_eq!(checks["all_correct"], true, "{stdout}\n{report}");
+    assert_eq!(checks["stopped_cleanly"], true, "{stdout}\n{report}");
+    for phase in ["mixed", "same_kind"] {
+        let clients = report[phase].as_array().expect("clients");
+        assert_eq!(clients.len(), 2, "{report}");
+        let mut all_turns = Vec::new();
+        for c in clients {
+            let served: Vec<(u64, u64)> = c["served"]
+                .as_array()
+                .expect("served")
+                .iter()
+                .map(|p| (p[0].as_u64().expect("turn"), p[1].as_u64().expect("turn")))
+                .collect();
+            // Every answer was given in a turn (none expired), and there was one.
+            assert_eq!(Some(served.len() as u64), c["correct"].as_u64(), "{c}");
+            assert!(!served.is_empty(), "{phase}: {c}");
+            for (k, (own, others)) in waits(&served).into_iter().enumerate() {
+                assert!(
+                    others <= own + 1,
+                    "{phase}, {}: request {k} waited for {others} turns of the other client \
+                     and {own} of its own: {c}",
+                    c["client"]
+                );
+            }
+            all_turns.extend(served.iter().map(|(_, t)| *t));
+        }
+        // Each turn served one request of one client.
+        let n = all_turns.len();
+        all_turns.sort_unstable();
+        all_turns.dedup();
+        assert_eq!(all_turns.len(), n, "{phase}: a turn given twice: {report}");
+    }
+    // Both clients of the second phase keep two requests in flight on one worker, so each of
+    // them has requests that waited for a turn of the other: the clients took turns.
+    for c in report["same_kind"].as_array().expect("clients") {
+        let served: Vec<(u64, u64)> = c["served"]
+            .as_array()
+            .expect("served")
+            .iter()
+            .map(|p| (p[0].as_u64().unwrap_or(0), p[1].as_u64().unwrap_or(0)))
+            .collect();
+        assert!(
+            waits(&served).iter().any(|(_, others)| *others >= 1),
+            "{}: never waited for the other client: {report}",
+            c["client"]
+        );
+    }
     let _ = std::fs::remove_file(&json);
-    let _ = Duration::ZERO;
 }

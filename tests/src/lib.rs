@@ -1,7 +1,9 @@
 //! Helpers shared by the regression tests in `tests/tests/`.
 
 use reconfig_core::pseudospectral::{self, Settings, Solution, Workspace};
-use reconfig_host::fixture::{self, Fixture};
+use reconfig_host::fixture::{
+    self, impulsive::ImpulsiveFixture, pseudospectral::PseudospectralFixture,
+};
 use std::path::PathBuf;
 
 /// The repository's `fixtures/` folder.
@@ -25,10 +27,9 @@ pub fn fixture_paths() -> Vec<PathBuf> {
 /// Load a planner-A fixture by file stem.
 pub fn pseudospectral_fixture(stem: &str) -> pseudospectral::Problem {
     let path = fixtures_dir().join(format!("{stem}.toml"));
-    match fixture::load(&path).expect("fixture loads") {
-        Fixture::Pseudospectral(f) => f.problem,
-        Fixture::Impulsive(_) => panic!("{stem} is not a planner-A fixture"),
-    }
+    fixture::load_as::<PseudospectralFixture>(&path)
+        .expect("a planner-A fixture")
+        .problem
 }
 
 /// Solve a planner-A problem in a fresh boxed workspace.
@@ -52,10 +53,9 @@ pub fn golden(file: &str, name: &str, key: &str) -> f64 {
 /// Load a planner-B fixture by file stem.
 pub fn impulsive_fixture(stem: &str) -> reconfig_core::impulsive::Problem {
     let path = fixtures_dir().join(format!("{stem}.toml"));
-    match fixture::load(&path).expect("fixture loads") {
-        Fixture::Impulsive(f) => f.problem,
-        Fixture::Pseudospectral(_) => panic!("{stem} is not a planner-B fixture"),
-    }
+    fixture::load_as::<ImpulsiveFixture>(&path)
+        .expect("a planner-B fixture")
+        .problem
 }
 
 /// A global allocator that counts the allocations made on threads that opted in, for the

@@ -3,19 +3,26 @@
 //! Rust API's solve of the same fixture (status, cost or total delta-v bits, work units, and a
 //! checksum over the bits of the whole trajectory or plan): bit-identical or the test fails.
 //!
-//! The problems come from `firmware/fixture_set.rs` (the same decoded bytes the firmware and
-//! the QEMU tests use), planner A with default settings, planner B with default settings or
+//! The problems come from `firmware/fixture_set.rs` (the same decoded request bytes the firmware
+//! and the QEMU tests use), planner A with default settings, planner B with default settings or
 //! `Settings::fixed_point_only()` (`+fixed-point` runs), and planner B's other input forms
 //! (ROE, osculating states, the deputy's orbits) through `reconfig_impulsive_solve_form`, whose
 //! end state in the request's form is compared too, and the GEO tour's fixtures with their own
-//! settings through `reconfig_geo_tour_solve`. Needs `cc`; skipped with a notice when it
-//! is missing unless `RECONFIG_REQUIRE_CC=1`.
+//! settings through `reconfig_geo_tour_solve`. The Rust side answers each through the one
+//! request path, `wire::answer` with the built-in limits, as the C interface does: the
+//! `+fixed-point` runs ask for `nonlinear_correction = 0`, which the limits refuse, and both
+//! sides print the refusal (code, field, the setting's code and name, the bits of the value and
+//! the limit). Needs `cc`; skipped with a notice when it is missing unless
+//! `RECONFIG_REQUIRE_CC=1`.
 
 #[path = "../../firmware/fixture_set.rs"]
 mod fixture_set;
+#[path = "../../firmware/image_limits.rs"]
+mod image_limits;
 
-use fixture_set::Planner;
-use reconfig_core::{geo_tour, impulsive, pseudospectral};
+use reconfig_core::limits::{LimitViolation, Limits};
+use reconfig_core::wire::Request;
+use reconfig_core::{geo_tour, impulsive, pseudospectral, wire};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -253,7 +260,7 @@ fn g_case(name: &str, p: &geo_tour::Problem, st: &geo_tour::Settings) -> String 
          .rule_drift_above_rad = {}, .rule_hohmann_above_rad = {}, .rule_radial_above_rad = {}, \
          .lambert_direct_time_s = {}, .lambert_max_revolutions = {}, .lambert_max_iter = {}, \
          .well_iterations = {}, .root_max_iter = {}, .price_max_iter = {}, .exchange_rounds = {}, \
-         .gap_max_legs = {}}}}},\n",
+         .gap_max_legs = {}, .work_budget = {}ULL}}}},\n",
         hexf(p.start_lon_rad),
         hexf(p.mission_time_s),
         hexf(p.max_burn_mps),
@@ -274,6 +281,7 @@ fn g_case(name: &str, p: &geo_tour::Problem, st: &geo_tour::Settings) -> String 
         st.price_max_iter,
         st.exchange_rounds,
         st.gap_max_legs,
+        st.work_budget,
     )
 }
 
@@ -284,127 +292,192 @@ fn mix(h: u64, x: f64) -> u64 {
     (h ^ x.to_bits()).wrapping_mul(FNV_PRIME)
 }
 
+/// The Rust API's answer to `request`: the one request path every front end answers through,
+/// with the built-in limits (the flight service's, and the C interface's).
+fn answer_with<T>(request: &wire::Request, line: impl FnOnce(wire::OutcomeRef<'_>) -> T) -> T {
+    thread_local! {
+        static BUFFERS: std::cell::RefCell<Box<wire::AllPlanners>> =
+            std::cell::RefCell::new(Box::new(wire::AllPlanners::new()));
+    }
+    BUFFERS.with(|b| {
+        let mut buffers = b.borrow_mut();
+        line(wire::answer(request, &Limits::default(), &mut **buffers))
+    })
+}
+
+/// The line the C example must print for a request the limits refuse: the refusal's code,
+/// field, index, the setting's name (`reconfig_setting_name` in C, the core's table here), and
+/// the bits of the value and the limit.
+fn refusal_line(kind: char, name: &str, v: &LimitViolation) -> String {
+    let e = reconfig_capi::status::limit_violation_to_c(v);
+    format!(
+        "{kind} {name} status={} field={} index={} setting={} value_bits={:016x} limit_bits={:016x}",
+        e.code,
+        e.field,
+        e.index,
+        v.setting.name(),
+        e.value.to_bits(),
+        e.limit.to_bits()
+    )
+}
+
 /// The line the C example must print for a planner-A fixture, from the Rust API.
 fn a_expected(name: &str, p: &pseudospectral::Problem) -> String {
-    let mut workspace = Box::new(pseudospectral::Workspace::new());
-    let mut s = Box::new(pseudospectral::Solution::new());
-    let result = pseudospectral::solve(
-        p,
-        &pseudospectral::Settings::default(),
-        &mut workspace,
-        &mut s,
-    );
-    assert!(result.is_ok(), "{name}: every planner-A fixture is planned");
-    let mut h = FNV_OFFSET;
-    for (states, controls) in s.states.iter().zip(s.controls_fu.iter()) {
-        for (x, u) in states.iter().zip(controls.iter()) {
-            h = x.iter().chain(u.iter()).fold(h, |h, v| mix(h, *v));
+    let request = wire::Request::Pseudospectral {
+        problem: p.clone(),
+        settings: pseudospectral::Settings::default(),
+    };
+    answer_with(&request, |outcome| {
+        let s = match outcome {
+            wire::OutcomeRef::Pseudospectral(s) => s,
+            wire::OutcomeRef::LimitExceeded(v) => return refusal_line('A', name, &v),
+            other => panic!("{name}: every planner-A fixture is planned ({other:?})"),
+        };
+        let mut h = FNV_OFFSET;
+        for (states, controls) in s.states.iter().zip(s.controls_fu.iter()) {
+            for (x, u) in states.iter().zip(controls.iter()) {
+                h = x.iter().chain(u.iter()).fold(h, |h, v| mix(h, *v));
+            }
         }
+        let (status, _) = reconfig_capi::convert_a::status_to_c(s.info.status);
+        format!(
+            "A {name} status={status} usable={} J={:.9} J_bits={:016x} min_sep_bits={:016x} work_units={} checksum={h:016x}",
+            u8::from(s.info.status.is_usable()),
+            s.cost,
+            s.cost.to_bits(),
+            s.min_separation_lu.to_bits(),
+            s.info.work_units
+        )
+    })
+}
+
+/// Planner B's settings of a run: the defaults, or `+fixed-point` (the C example's
+/// `min_fuel = 0`, `nonlinear_correction = 0`, which the built-in limits refuse: they require
+/// the nonlinear correction).
+fn b_settings(fixed_point_only: bool) -> impulsive::Settings {
+    if fixed_point_only {
+        impulsive::Settings::fixed_point_only()
+    } else {
+        impulsive::Settings::default()
     }
-    let (status, _) = reconfig_capi::convert_a::status_to_c(s.info.status);
-    format!(
-        "A {name} status={status} usable={} J={:.9} J_bits={:016x} min_sep_bits={:016x} work_units={} checksum={h:016x}",
-        u8::from(s.info.status.is_usable()),
-        s.cost,
-        s.cost.to_bits(),
-        s.min_separation_lu.to_bits(),
-        s.info.work_units
-    )
 }
 
 /// The line the C example must print for a planner-B fixture, from the Rust API.
 fn b_expected(name: &str, fixed_point_only: bool, p: &impulsive::Problem) -> String {
-    let settings = if fixed_point_only {
-        impulsive::Settings::fixed_point_only()
-    } else {
-        impulsive::Settings::default()
+    let request = wire::Request::Impulsive {
+        problem: p.clone(),
+        settings: b_settings(fixed_point_only),
     };
-    let mut workspace = Box::new(impulsive::Workspace::new());
-    let mut s = Box::new(impulsive::Solution::new());
-    let result = impulsive::solve(p, &settings, &mut workspace, &mut s);
-    assert!(result.is_ok(), "{name}: every planner-B fixture is planned");
-    let mut h = FNV_OFFSET;
-    for i in &s.impulses {
-        h = mix(h, i.time_s);
-        h = i.dv_rtn_mps.iter().fold(h, |h, v| mix(h, *v));
-    }
-    h = mix(h, s.terminal_position_error_m);
-    let (status, ..) = reconfig_capi::convert_b::status_to_c(s.info.status);
-    format!(
-        "B {name} status={status} usable={} impulses={} dv_mps={:.9} dv_bits={:016x} work_units={} checksum={h:016x}",
-        u8::from(s.info.status.is_usable()),
-        s.impulses.len(),
-        s.total_dv_mps,
-        s.total_dv_mps.to_bits(),
-        s.info.work_units
-    )
+    answer_with(&request, |outcome| {
+        let s = match outcome {
+            wire::OutcomeRef::Impulsive(s) => s,
+            wire::OutcomeRef::LimitExceeded(v) => return refusal_line('B', name, &v),
+            other => panic!("{name}: every planner-B fixture is planned ({other:?})"),
+        };
+        let mut h = FNV_OFFSET;
+        for i in &s.impulses {
+            h = mix(h, i.time_s);
+            h = i.dv_rtn_mps.iter().fold(h, |h, v| mix(h, *v));
+        }
+        // C writes 0 with has_terminal_error = 0 when the check was not flown.
+        h = mix(h, s.terminal_error.map_or(0.0, |t| t.position_m));
+        let (status, ..) = reconfig_capi::convert_b::status_to_c(s.info.status);
+        format!(
+            "B {name} status={status} usable={} impulses={} dv_mps={:.9} dv_bits={:016x} work_units={} checksum={h:016x}",
+            u8::from(s.info.status.is_usable()),
+            s.impulses.len(),
+            s.total_dv_mps,
+            s.total_dv_mps.to_bits(),
+            s.info.work_units
+        )
+    })
 }
 
 /// The line the C example must print for a fixture in other forms, from the Rust API
-/// (`solve_form`): as planner B's, plus the end state's form and a checksum over its numbers.
+/// (`Request::ImpulsiveForm`): as planner B's, plus the end state's form and a checksum over
+/// its numbers.
 fn f_expected(name: &str, fixed_point_only: bool, p: &impulsive::FormProblem) -> String {
-    let settings = if fixed_point_only {
-        impulsive::Settings::fixed_point_only()
-    } else {
-        impulsive::Settings::default()
+    let request = wire::Request::ImpulsiveForm {
+        problem: p.clone(),
+        settings: b_settings(fixed_point_only),
     };
-    let mut workspace = Box::new(impulsive::Workspace::new());
-    let mut s = Box::new(impulsive::Solution::new());
-    let end = impulsive::solve_form(p, &settings, &mut workspace, &mut s)
-        .unwrap_or_else(|e| panic!("{name}: every form fixture is planned ({e})"));
-    let mut h = FNV_OFFSET;
-    for i in &s.impulses {
-        h = mix(h, i.time_s);
-        h = i.dv_rtn_mps.iter().fold(h, |h, v| mix(h, *v));
-    }
-    h = mix(h, s.terminal_position_error_m);
-    let c_end = reconfig_capi::convert_b_form::end_state_to_c(&end);
-    let values: Option<[f64; 6]> = match &end {
-        impulsive::EndState::Elements(r) => Some(relative_values(r)),
-        impulsive::EndState::Roe(r) => Some(roe_values(r)),
-        impulsive::EndState::DeputyClassical(m) => Some(mean_values(m)),
-        impulsive::EndState::DeputyEquinoctial(q) => Some(equinoctial_values(q)),
-        impulsive::EndState::DeputyState(st) => Some(state_values(st)),
-        impulsive::EndState::Unavailable(_) => None,
-    };
-    let end_checksum = values.iter().flatten().fold(FNV_OFFSET, |h, v| mix(h, *v));
-    let (status, ..) = reconfig_capi::convert_b::status_to_c(s.info.status);
-    format!(
-        "F {name} status={status} usable={} impulses={} dv_mps={:.9} dv_bits={:016x} work_units={} checksum={h:016x} end_form={} end_checksum={end_checksum:016x}",
-        u8::from(s.info.status.is_usable()),
-        s.impulses.len(),
-        s.total_dv_mps,
-        s.total_dv_mps.to_bits(),
-        s.info.work_units,
-        c_end.form,
-    )
+    answer_with(&request, |outcome| {
+        let (s, end) = match outcome {
+            wire::OutcomeRef::ImpulsiveForm {
+                solution,
+                end_state,
+            } => (solution, end_state),
+            wire::OutcomeRef::LimitExceeded(v) => return refusal_line('F', name, &v),
+            other => panic!("{name}: every form fixture is planned ({other:?})"),
+        };
+        let mut h = FNV_OFFSET;
+        for i in &s.impulses {
+            h = mix(h, i.time_s);
+            h = i.dv_rtn_mps.iter().fold(h, |h, v| mix(h, *v));
+        }
+        // C writes 0 with has_terminal_error = 0 when the check was not flown.
+        h = mix(h, s.terminal_error.map_or(0.0, |t| t.position_m));
+        let c_end = reconfig_capi::convert_b_form::end_state_to_c(&end);
+        let values: Option<[f64; 6]> = match &end {
+            impulsive::EndState::Elements(r) => Some(relative_values(r)),
+            impulsive::EndState::Roe(r) => Some(roe_values(r)),
+            impulsive::EndState::DeputyClassical(m) => Some(mean_values(m)),
+            impulsive::EndState::DeputyEquinoctial(q) => Some(equinoctial_values(q)),
+            impulsive::EndState::DeputyState(st) => Some(state_values(st)),
+            impulsive::EndState::Unavailable(_) | impulsive::EndState::NotFlown => None,
+        };
+        let end_checksum = values.iter().flatten().fold(FNV_OFFSET, |h, v| mix(h, *v));
+        let (status, ..) = reconfig_capi::convert_b::status_to_c(s.info.status);
+        format!(
+            "F {name} status={status} usable={} impulses={} dv_mps={:.9} dv_bits={:016x} work_units={} checksum={h:016x} end_form={} end_checksum={end_checksum:016x}",
+            u8::from(s.info.status.is_usable()),
+            s.impulses.len(),
+            s.total_dv_mps,
+            s.total_dv_mps.to_bits(),
+            s.info.work_units,
+            c_end.form,
+        )
+    })
 }
 
 /// The line the C example must print for a GEO tour fixture, from the Rust API.
 fn g_expected(name: &str, p: &geo_tour::Problem, settings: &geo_tour::Settings) -> String {
-    let mut workspace = Box::new(geo_tour::Workspace::new());
-    let mut s = Box::new(geo_tour::Solution::new());
-    geo_tour::solve(p, settings, &mut workspace, &mut s)
-        .unwrap_or_else(|e| panic!("{name}: every GEO fixture is planned ({e})"));
-    let mut h = FNV_OFFSET;
-    for leg in &s.legs {
-        h = mix(mix(mix(h, leg.start_s), leg.duration_s), leg.dv_mps);
-        for b in &leg.burns {
-            h = b
-                .dv_rtn_mps
-                .iter()
-                .fold(mix(h, b.offset_s), |h, v| mix(h, *v));
+    let request = wire::Request::GeoTour {
+        problem: p.clone(),
+        settings: *settings,
+    };
+    answer_with(&request, |outcome| {
+        let s = match outcome {
+            wire::OutcomeRef::GeoTour(s) => s,
+            wire::OutcomeRef::LimitExceeded(v) => return refusal_line('G', name, &v),
+            other => panic!("{name}: every GEO fixture is planned ({other:?})"),
+        };
+        let mut h = FNV_OFFSET;
+        for leg in &s.legs {
+            h = mix(mix(mix(h, leg.start_s), leg.duration_s), leg.dv_mps);
+            for b in &leg.burns {
+                h = b
+                    .dv_rtn_mps
+                    .iter()
+                    .fold(mix(h, b.offset_s), |h, v| mix(h, *v));
+            }
         }
-    }
-    h = mix(h, s.mission_time_s);
-    let (status, _) = reconfig_capi::convert_geo::status_to_c(s.info.status);
-    format!(
-        "G {name} status={status} usable={} legs={} dv_mps={:.9} dv_bits={:016x} checksum={h:016x}",
-        u8::from(s.info.status == geo_tour::SolveStatus::Solved),
-        s.legs.len(),
-        s.total_dv_mps,
-        s.total_dv_mps.to_bits(),
-    )
+        h = mix(h, s.mission_time_s);
+        let (status, _) = reconfig_capi::convert_geo::status_to_c(s.info.status);
+        let fastest = s
+            .info
+            .fastest_tour_s
+            .map_or_else(|| "none".to_owned(), |t| format!("{:016x}", t.to_bits()));
+        format!(
+            "G {name} status={status} usable={} legs={} dv_mps={:.9} dv_bits={:016x} \
+             work_units={} fastest_tour={fastest} checksum={h:016x}",
+            u8::from(s.info.status.is_usable()),
+            s.legs.len(),
+            s.total_dv_mps,
+            s.total_dv_mps.to_bits(),
+            s.info.work_units,
+        )
+    })
 }
 
 fn run(cmd: &mut Command, what: &str) -> String {
@@ -430,39 +503,47 @@ struct Prepared {
 fn prepared() -> &'static Prepared {
     static PREPARED: OnceLock<Prepared> = OnceLock::new();
     PREPARED.get_or_init(|| {
-        let fixtures = fixture_set::encode_all(&root().join("fixtures")).expect("fixtures load");
+        let fixtures =
+            fixture_set::encode_all(&root().join("fixtures"), &image_limits::IMAGE_LIMITS)
+                .expect("fixtures load");
         let mut a_cases = String::new();
         let mut b_cases = String::new();
         let mut f_cases = String::new();
         let mut g_cases = String::new();
         let mut expected = Vec::new();
         for f in &fixtures {
-            match f.planner {
-                Planner::Pseudospectral => {
-                    let p: pseudospectral::Problem = postcard::from_bytes(&f.problem).unwrap();
-                    a_cases.push_str(&a_case(&f.name, &p));
-                    expected.push(a_expected(&f.name, &p));
+            let request: Request = postcard::from_bytes(&f.request).unwrap();
+            let fixed = |settings: &impulsive::Settings| {
+                *settings == impulsive::Settings::fixed_point_only()
+            };
+            match &request {
+                Request::Pseudospectral { problem: p, .. } => {
+                    a_cases.push_str(&a_case(&f.name, p));
+                    expected.push(a_expected(&f.name, p));
                 }
-                Planner::Impulsive | Planner::ImpulsiveFixedPoint => {
-                    let fixed = f.planner == Planner::ImpulsiveFixedPoint;
-                    let p: impulsive::Problem = postcard::from_bytes(&f.problem).unwrap();
-                    b_cases.push_str(&b_case(&f.name, fixed, &p));
-                    expected.push(b_expected(&f.name, fixed, &p));
+                Request::Impulsive {
+                    problem: p,
+                    settings,
+                } => {
+                    b_cases.push_str(&b_case(&f.name, fixed(settings), p));
+                    expected.push(b_expected(&f.name, fixed(settings), p));
                 }
-                Planner::ImpulsiveForm | Planner::ImpulsiveFormFixedPoint => {
-                    let fixed = f.planner == Planner::ImpulsiveFormFixedPoint;
-                    let p: impulsive::FormProblem = postcard::from_bytes(&f.problem).unwrap();
-                    f_cases.push_str(&f_case(&f.name, fixed, &p));
-                    expected.push(f_expected(&f.name, fixed, &p));
+                Request::ImpulsiveForm {
+                    problem: p,
+                    settings,
+                } => {
+                    f_cases.push_str(&f_case(&f.name, fixed(settings), p));
+                    expected.push(f_expected(&f.name, fixed(settings), p));
                 }
-                Planner::GeoTour => {
-                    let (p, st): (geo_tour::Problem, geo_tour::Settings) =
-                        postcard::from_bytes(&f.problem).unwrap();
-                    g_cases.push_str(&g_case(&f.name, &p, &st));
-                    expected.push(g_expected(&f.name, &p, &st));
+                Request::GeoTour {
+                    problem: p,
+                    settings: st,
+                } => {
+                    g_cases.push_str(&g_case(&f.name, p, st));
+                    expected.push(g_expected(&f.name, p, st));
                 }
                 // The LEO tour has no C interface yet.
-                Planner::LeoArc | Planner::LeoOnboard => {}
+                Request::LeoArc { .. } | Request::LeoSequence { .. } => {}
             }
         }
         // Planner A lines first, then planner B, its other forms and the GEO tour, as the
@@ -487,6 +568,20 @@ fn prepared() -> &'static Prepared {
                 .any(|l| l.contains("huang2012-three-sats-n10 "))
                 && expected.iter().any(|l| l.starts_with("B wang2018")),
             "the paper cases are among the fixtures"
+        );
+        // The built-in limits require the nonlinear correction: the `+fixed-point` runs are
+        // refused (in C as by the flight service), naming the setting, its value and limit.
+        let refused: Vec<&String> = expected
+            .iter()
+            .filter(|l| l.contains(" status=-7 "))
+            .collect();
+        assert!(
+            !refused.is_empty()
+                && refused
+                    .iter()
+                    .all(|l| l.contains("+fixed-point ")
+                        && l.contains(" setting=nonlinear_correction ")),
+            "the +fixed-point runs and only they are refused by the limits: {refused:#?}"
         );
         let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("c_api");
         std::fs::create_dir_all(&dir).unwrap();
@@ -566,7 +661,7 @@ fn first_tool(candidates: &[&'static str]) -> Option<&'static str> {
 /// The expected M7 line: the host line's fields that do not need `printf` (status, bits, work
 /// units, checksum).
 fn m7_fields(host_line: &str) -> String {
-    const KEPT: [&str; 8] = [
+    const KEPT: [&str; 13] = [
         "status=",
         "J_bits=",
         "min_sep_bits=",
@@ -575,6 +670,11 @@ fn m7_fields(host_line: &str) -> String {
         "checksum=",
         "end_form=",
         "end_checksum=",
+        "field=",
+        "index=",
+        "setting=",
+        "value_bits=",
+        "limit_bits=",
     ];
     host_line
         .split(' ')

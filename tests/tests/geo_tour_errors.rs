@@ -3,8 +3,8 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use reconfig_core::geo_tour::{
-    solve, Field, MethodPolicy, PlanError, Problem, Settings, Solution, SolveStatus, SweepChoice,
-    Workspace,
+    solve, Field, MethodPolicy, PlanError, Problem, SettingId, Settings, Solution, SolveStatus,
+    SweepChoice, Workspace,
 };
 
 type ProblemEdit = Box<dyn Fn(&mut Problem)>;
@@ -47,7 +47,7 @@ fn field_of(e: PlanError) -> (Field, u8, f64) {
             assert!(min <= max);
             (field, index, value)
         }
-        PlanError::NoTargets => panic!("unexpected NoTargets"),
+        other => panic!("unexpected {other:?}"),
     }
 }
 
@@ -95,49 +95,66 @@ fn every_bad_input_is_named() {
 #[test]
 fn every_bad_setting_is_named() {
     let p = base();
-    let cases: Vec<(SettingsEdit, Field)> = vec![
+    let cases: Vec<(SettingsEdit, SettingId)> = vec![
         (
             Box::new(|s| s.lambert_max_revolutions = 9),
-            Field::LambertMaxRevolutions,
+            SettingId::LambertMaxRevolutions,
         ),
-        (Box::new(|s| s.lambert_max_iter = 0), Field::LambertMaxIter),
-        (Box::new(|s| s.lambert_tol = f64::NAN), Field::LambertTol),
-        (Box::new(|s| s.well_iterations = 0), Field::WellIterations),
-        (Box::new(|s| s.root_max_iter = 5), Field::RootMaxIter),
-        (Box::new(|s| s.price_max_iter = 0), Field::PriceMaxIter),
-        (Box::new(|s| s.time_tol_s = 0.0), Field::TimeTol),
-        (Box::new(|s| s.gap_max_legs = 7), Field::GapMaxLegs),
+        (
+            Box::new(|s| s.lambert_max_iter = 0),
+            SettingId::LambertMaxIter,
+        ),
+        (
+            Box::new(|s| s.lambert_tol = f64::NAN),
+            SettingId::LambertTol,
+        ),
+        (
+            Box::new(|s| s.well_iterations = 0),
+            SettingId::WellIterations,
+        ),
+        (Box::new(|s| s.root_max_iter = 5), SettingId::RootMaxIter),
+        (Box::new(|s| s.price_max_iter = 0), SettingId::PriceMaxIter),
+        (Box::new(|s| s.time_tol_s = 0.0), SettingId::TimeTolS),
+        (Box::new(|s| s.gap_max_legs = 7), SettingId::GapMaxLegs),
         (
             Box::new(|s| s.exchange_rounds = 1000),
-            Field::ExchangeRounds,
+            SettingId::ExchangeRounds,
         ),
         (
             Box::new(|s| s.exchange_margin_mps = -1.0),
-            Field::ExchangeMargin,
+            SettingId::ExchangeMarginMps,
         ),
-        (Box::new(|s| s.min_radius_km = 100.0), Field::MinRadius),
+        (
+            Box::new(|s| s.min_radius_km = 100.0),
+            SettingId::MinRadiusKm,
+        ),
         (
             Box::new(|s| s.rule_drift_above_rad = 4.0),
-            Field::RuleDriftAbove,
+            SettingId::RuleDriftAboveRad,
         ),
         (
             Box::new(|s| s.rule_hohmann_above_rad = 1.0),
-            Field::RuleHohmannAbove,
+            SettingId::RuleHohmannAboveRad,
         ),
         (
             Box::new(|s| s.rule_radial_above_rad = 0.5),
-            Field::RuleRadialAbove,
+            SettingId::RuleRadialAboveRad,
         ),
         (
             Box::new(|s| s.lambert_direct_time_s = 1.0),
-            Field::LambertDirectTime,
+            SettingId::LambertDirectTimeS,
         ),
     ];
-    for (edit, field) in cases {
+    for (edit, id) in cases {
         let mut s = Settings::default();
         edit(&mut s);
         let e = run(&p, &s).expect_err("refused");
-        assert_eq!(field_of(e).0, field, "{e}");
+        let PlanError::InvalidSetting(refusal) = e else {
+            panic!("{id:?}: {e:?}")
+        };
+        assert_eq!(refusal.setting, id.into(), "{e}");
+        assert!(e.to_string().contains(id.name()), "{e}");
+        assert!(!refusal.range.contains(refusal.value), "{e}");
     }
 }
 
@@ -151,7 +168,10 @@ fn infeasible_requests_name_the_leg() {
     p.sweep = SweepChoice::East;
     let out = run(&p, &s).unwrap();
     assert_eq!(out.info.status, SolveStatus::MissionTooShort { leg: 5 });
-    assert!(out.info.fastest_tour_s > p.mission_time_s);
+    assert!(out
+        .info
+        .fastest_tour_s
+        .is_some_and(|t| t > p.mission_time_s && t.is_finite()));
     // Five days fit without the cap (large burns), not with 5 m/s: CapTooLow names the leg
     // the cap slows most.
     let mut p = base();
@@ -179,6 +199,10 @@ fn infeasible_requests_name_the_leg() {
         "{:?}",
         out.info.status
     );
+    // No tour is admissible at all (a leg has no method within the cap): the fastest tour
+    // does not exist, and is absent rather than infinite.
+    assert_eq!(out.info.fastest_tour_s, None, "{:?}", out.info);
+    assert!(!out.info.status.is_usable());
 }
 
 #[test]
@@ -196,6 +220,8 @@ fn odd_but_valid_requests_never_give_nan() {
             p.mission_time_s = days * DAY;
             let out = run(&p, &s).unwrap();
             assert!(out.total_dv_mps.is_finite() && out.mission_time_s.is_finite());
+            assert!(out.info.price_mps_per_s.is_finite());
+            assert!(out.info.fastest_tour_s.is_none_or(f64::is_finite));
             if out.info.status == SolveStatus::Solved {
                 assert_eq!(out.legs.len(), p.targets_lon_rad.len());
                 assert!(out.mission_time_s <= p.mission_time_s);

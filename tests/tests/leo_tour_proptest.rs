@@ -7,7 +7,7 @@
 use proptest::prelude::*;
 use reconfig_core::leo_tour::flight::Model;
 use reconfig_core::leo_tour::j2::State;
-use reconfig_core::leo_tour::{solve_arc, ArcProblem, Settings};
+use reconfig_core::leo_tour::{solve_arc, ArcProblem, ArcSolution, Settings, Workspace};
 use reconfig_core::work::Meter;
 
 fn any_f64() -> impl Strategy<Value = f64> {
@@ -85,14 +85,21 @@ proptest! {
             duration_s: duration,
             impulses,
         };
-        let out = solve_arc(&problem, &settings);
-        if let Ok(sol) = out {
+        let mut sol = ArcSolution::new();
+        if solve_arc(&problem, &settings, &mut Box::new(Workspace::new()), &mut sol).is_ok() {
             let burns = sol.burns.iter().flat_map(|b| {
-                [b.epoch_s].into_iter().chain(b.dv_kmps).chain(b.rtn_mps)
+                [b.epoch_s].into_iter().chain(b.dv_km_s).chain(b.rtn_mps)
             });
-            let numbers: Vec<f64> = burns.chain([sol.total_dv_mps, sol.miss_m]).collect();
+            let numbers: Vec<f64> = burns.chain([sol.total_dv_mps]).chain(sol.miss_m).collect();
             prop_assert!(numbers.iter().all(|x| x.is_finite()), "{sol:?}");
-            prop_assert!((2..=4).contains(&sol.impulses));
+            // A plan has its burns and its miss; no plan has neither.
+            if sol.impulses == 0 {
+                prop_assert!(sol.miss_m.is_none() && !sol.info.status.is_usable(), "{sol:?}");
+            } else {
+                prop_assert!((2..=4).contains(&sol.impulses));
+                prop_assert!(sol.miss_m.is_some());
+            }
+            prop_assert!(sol.info.status != reconfig_core::leo_tour::SolveStatus::Unsolved);
         }
     }
 }

@@ -3,9 +3,9 @@
 //! intervals and against other schedules of the same grid.
 
 use reconfig_core::leo_tour::schedule::ScheduleStatus;
-use reconfig_core::leo_tour::{estimate_arc_mps, propagate, ArcProblem, Status};
-use reconfig_host::cli::leo_tour_sequence::{choose_order, choose_schedule};
-use reconfig_host::cli::solve_leo_tour::plan;
+use reconfig_core::leo_tour::{estimate_arc_mps, propagate, ArcProblem, SolveStatus, Workspace};
+use reconfig_core::limits::Limits;
+use reconfig_host::drivers::leo_tour::{choose_order, choose_schedule, plan};
 use reconfig_host::fixture::leo_tour::{load, LeoTourFixture};
 use reconfig_tests::fixtures_dir;
 
@@ -14,6 +14,7 @@ fn estimate(f: &LeoTourFixture, units: &[u8], unit_s: f64) -> f64 {
     let spec = f.schedule.unwrap();
     let mut start = 0_u8;
     let mut total = 0.0;
+    let mut workspace = Box::new(Workspace::new());
     for (pair, &d) in f.order.windows(2).zip(units) {
         let t0 = f64::from(start) * unit_s;
         let at = |k: usize| propagate(&spec.arc_settings, &f.clients[k], t0).unwrap();
@@ -23,7 +24,10 @@ fn estimate(f: &LeoTourFixture, units: &[u8], unit_s: f64) -> f64 {
             duration_s: f64::from(d) * unit_s,
             impulses: f.impulses,
         };
-        total += estimate_arc_mps(&problem, &spec.arc_settings).unwrap();
+        total += estimate_arc_mps(&problem, &spec.arc_settings, &mut workspace)
+            .unwrap()
+            .dv_mps
+            .unwrap();
         start += d;
     }
     total
@@ -32,7 +36,7 @@ fn estimate(f: &LeoTourFixture, units: &[u8], unit_s: f64) -> f64 {
 #[test]
 fn example_one_printed_order_gets_a_cheaper_and_shorter_schedule_than_the_printed_intervals() {
     let f = load(&fixtures_dir().join("leo-tour-example1-schedule.toml")).unwrap();
-    let (scheduled, c) = choose_schedule(&f).unwrap().unwrap();
+    let (scheduled, c) = choose_schedule(&f, &Limits::default()).unwrap().unwrap();
     let q = c.schedule;
     // Every schedule of the grid (arcs of 4..=8 eighths of Δt_max = 30 revolutions of S1,
     // 166608.84 s; at most the printed 28 eighths in all) planned by the dynamic programme.
@@ -63,11 +67,11 @@ fn example_one_printed_order_gets_a_cheaper_and_shorter_schedule_than_the_printe
     assert_eq!(again.to_bits(), q.total_dv_mps.to_bits());
     // Planned with the full search: below the printed intervals' 1240.673 m/s (measured
     // 1218.707), every arc Solved and below its published value.
-    let arcs = plan(&scheduled).unwrap();
+    let arcs = plan(&scheduled, &Limits::default()).unwrap();
     let total: f64 = arcs.iter().map(|a| a.solution.total_dv_mps).sum();
     assert!((total - 1218.707).abs() < 0.01, "{total}");
     for (a, published) in arcs.iter().zip(&f.published.arc_dv_mps) {
-        assert_eq!(a.solution.status, Status::Solved);
+        assert_eq!(a.solution.info.status, SolveStatus::Solved);
         assert!(a.solution.total_dv_mps < *published);
     }
     let end = arcs.last().unwrap().end_s;
@@ -77,17 +81,21 @@ fn example_one_printed_order_gets_a_cheaper_and_shorter_schedule_than_the_printe
 #[test]
 fn the_sequencings_order_with_a_schedule_is_cheaper_than_with_the_intervals_by_position() {
     let f = load(&fixtures_dir().join("leo-tour-example1-sequence-schedule.toml")).unwrap();
-    let (ordered, _) = choose_order(&f).unwrap().unwrap();
+    let (ordered, _) = choose_order(&f, &Limits::default()).unwrap().unwrap();
     assert_eq!(ordered.order, vec![3, 2, 0, 4, 1]);
-    let (scheduled, c) = choose_schedule(&ordered).unwrap().unwrap();
+    let (scheduled, c) = choose_schedule(&ordered, &Limits::default())
+        .unwrap()
+        .unwrap();
     let q = c.schedule;
     assert_eq!(q.status, ScheduleStatus::Optimal);
     // Δt_max of the order's first client (client 4, 7078.14 km).
     assert!((q.unit_s - 22_223.935_6).abs() < 1e-3, "{}", q.unit_s);
     assert_eq!(&q.duration_units[..4], &[7, 5, 5, 4]);
     // Measured 1057.209 m/s, against 1095.939 with the printed intervals by position.
-    let arcs = plan(&scheduled).unwrap();
+    let arcs = plan(&scheduled, &Limits::default()).unwrap();
     let total: f64 = arcs.iter().map(|a| a.solution.total_dv_mps).sum();
-    assert!(arcs.iter().all(|a| a.solution.status == Status::Solved));
+    assert!(arcs
+        .iter()
+        .all(|a| a.solution.info.status == SolveStatus::Solved));
     assert!((total - 1057.209).abs() < 0.01, "{total}");
 }

@@ -4,25 +4,36 @@
 //! planner's ranges is answered with the planner's error naming the field.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use reconfig_core::leo_tour::{solve_arc, ArcProblem, Field, PlanError, Settings, Status};
+use reconfig_core::leo_tour::{
+    solve_arc, ArcProblem, ArcSolution, Field, PlanError, Settings, SolveStatus, Workspace,
+};
+use reconfig_core::limits::Limits;
 use reconfig_core::limits::{Rule, Setting};
 use reconfig_core::wire::{
     decode_request, decode_response, encode_request, encode_response, Outcome, OutcomeRef, Request,
     REQUEST_MAX_BYTES, RESPONSE_MAX_BYTES,
 };
-use reconfig_host::cli::feed::leo_sequence_request;
-use reconfig_host::cli::leo_tour_sequence::choose_order;
-use reconfig_host::cli::solve_leo_tour::arc_problems;
-use reconfig_host::fixture::leo_tour;
+use reconfig_host::drivers::leo_tour::choose_order;
+use reconfig_host::fixture::leo_tour::{self, LeoTourFixture};
 use reconfig_host::harness::worker::Worker;
 use reconfig_tests::fixtures_dir;
 
 /// The paper's single arc (client 1 -> 2, Example I) as the fixture gives it.
 fn paper_arc() -> (ArcProblem, Settings) {
     let f = leo_tour::load(&fixtures_dir().join("leo-tour-example1-single-arc.toml")).unwrap();
-    let arcs = arc_problems(&f).unwrap();
-    assert_eq!(arcs.len(), 1);
-    (arcs[0].3, f.settings)
+    let mut requests = f.requests().unwrap();
+    assert_eq!(requests.len(), 1);
+    let Request::LeoArc { problem, settings } = requests.remove(0).request else {
+        panic!("an arc request");
+    };
+    (problem, settings)
+}
+
+/// The sequencing request of a `[sequence]` fixture (`Fixture::requests`).
+fn leo_sequence_request(f: &LeoTourFixture) -> Request {
+    let mut requests = f.requests().unwrap();
+    assert_eq!(requests.len(), 1);
+    requests.remove(0).request
 }
 
 /// The outcome the worker answers to `request`.
@@ -44,8 +55,15 @@ fn the_paper_arc_round_trips_and_the_worker_answers_the_direct_solve() {
     let n = encode_request(7, &request, &mut buf).unwrap();
     assert_eq!(decode_request(&buf[..n]).unwrap().request, request);
 
-    let direct = solve_arc(&problem, &settings).unwrap();
-    assert_eq!(direct.status, Status::Solved);
+    let mut direct = ArcSolution::new();
+    solve_arc(
+        &problem,
+        &settings,
+        &mut Box::new(Workspace::new()),
+        &mut direct,
+    )
+    .unwrap();
+    assert_eq!(direct.info.status, SolveStatus::Solved);
     // The published arc costs 418.445 m/s; ours is below it (docs/leo-tour.md).
     assert!(direct.total_dv_mps < 418.445, "{}", direct.total_dv_mps);
     let mut rbuf = vec![0u8; RESPONSE_MAX_BYTES];
@@ -76,7 +94,7 @@ fn a_setting_above_the_service_limits_is_refused_by_name_unsolved() {
             assert_eq!(
                 (v.setting, v.value, v.limit, v.rule),
                 (
-                    Setting::LeoSearchMaxEvals,
+                    Setting::LeoArc(reconfig_core::leo_tour::SettingId::SearchMaxEvals),
                     1e6,
                     f64::from(Settings::default().search_max_evals),
                     Rule::AtMost
@@ -120,11 +138,11 @@ fn a_request_outside_the_planners_ranges_is_answered_with_the_field() {
 #[test]
 fn the_sequencing_request_is_answered_with_the_hosts_order() {
     let f = leo_tour::load(&fixtures_dir().join("leo-tour-example1-sequence.toml")).unwrap();
-    let request = leo_sequence_request(&f).unwrap();
+    let request = leo_sequence_request(&f);
     let mut buf = vec![0u8; REQUEST_MAX_BYTES];
     let n = encode_request(3, &request, &mut buf).unwrap();
     println!("LEO sequencing request: {n} bytes");
-    let (_, chosen) = choose_order(&f).unwrap().unwrap();
+    let (_, chosen) = choose_order(&f, &Limits::default()).unwrap().unwrap();
     let mut worker = Worker::new();
     let Outcome::LeoSequence(q) = answer(&mut worker, &request) else {
         panic!("expected LeoSequence");
@@ -132,25 +150,23 @@ fn the_sequencing_request_is_answered_with_the_hosts_order() {
     // The one implementation: the service's answer is the host command's, bit for bit.
     assert_eq!(q, chosen.sequence);
     assert_eq!(&q.order[..5], &[3, 2, 0, 4, 1]);
-    assert_eq!((q.arcs_planned, q.arcs_in_tree), (123, 320));
+    assert_eq!((q.info.arcs_planned, q.info.arcs_in_tree), (123, 320));
 }
 
 #[test]
 fn a_sequencing_with_a_thinner_bound_margin_is_refused_by_name() {
     let f = leo_tour::load(&fixtures_dir().join("leo-tour-example1-sequence.toml")).unwrap();
     let Request::LeoSequence {
-        clients,
-        impulses,
+        problem,
         mut settings,
         arc_settings,
-    } = leo_sequence_request(&f).unwrap()
+    } = leo_sequence_request(&f)
     else {
         panic!("a sequencing request");
     };
-    settings.bound.margin = 0.0;
+    settings.bound_margin = 0.0;
     let request = Request::LeoSequence {
-        clients: clients.clone(),
-        impulses,
+        problem,
         settings,
         arc_settings,
     };
@@ -159,9 +175,14 @@ fn a_sequencing_with_a_thinner_bound_margin_is_refused_by_name() {
         Outcome::LimitExceeded(v) => {
             assert_eq!(
                 (v.setting, v.value, v.limit, v.rule),
-                (Setting::LeoBoundMargin, 0.0, 0.05, Rule::AtLeast)
+                (
+                    Setting::LeoSequence(reconfig_core::leo_tour::sequence::SettingId::BoundMargin),
+                    0.0,
+                    0.05,
+                    Rule::AtLeast
+                )
             );
-            assert!(v.to_string().contains("bound.margin"), "{v}");
+            assert!(v.to_string().contains("bound_margin"), "{v}");
         }
         other => panic!("expected LimitExceeded, got {other:?}"),
     }

@@ -1,8 +1,8 @@
 //! Every class of bad planner-A input gets its own error (or status), never a panic.
 
 use reconfig_core::pseudospectral::{
-    Boundary, Capacity, PlanError, Problem, Quantity, Settings, SettingsError, SolveStatus,
-    Spacecraft,
+    Boundary, Capacity, PlanError, Problem, Quantity, SettingId, Settings, SolveStatus, Spacecraft,
+    MAX_MAGNITUDE, MIN_POSITIVE,
 };
 use reconfig_tests::{pseudospectral_fixture, solve_pseudospectral};
 
@@ -14,52 +14,49 @@ fn rejected(problem: &Problem) -> PlanError {
     solve_pseudospectral(problem, &Settings::default()).expect_err("must be rejected")
 }
 
+/// The refused quantity, spacecraft and value (as bits: a NaN is named as given).
+fn not_finite(e: PlanError) -> (Quantity, u8, u64) {
+    match e {
+        PlanError::NotFinite {
+            what,
+            spacecraft,
+            value,
+        } => (what, spacecraft, value.to_bits()),
+        other => panic!("expected NotFinite, got {other:?}"),
+    }
+}
+
 #[test]
 fn nan_and_infinity_anywhere() {
     let mut p = paper();
     p.horizon_tu = f64::NAN;
     assert_eq!(
-        rejected(&p),
-        PlanError::NotFinite {
-            what: Quantity::Horizon,
-            spacecraft: 0
-        }
+        not_finite(rejected(&p)),
+        (Quantity::Horizon, 0, f64::NAN.to_bits())
     );
     let mut p = paper();
     p.max_control_fu = f64::INFINITY;
     assert_eq!(
-        rejected(&p),
-        PlanError::NotFinite {
-            what: Quantity::MaxControl,
-            spacecraft: 0
-        }
+        not_finite(rejected(&p)),
+        (Quantity::MaxControl, 0, f64::INFINITY.to_bits())
     );
     let mut p = paper();
     p.keep_out_lu = f64::NEG_INFINITY;
     assert_eq!(
-        rejected(&p),
-        PlanError::NotFinite {
-            what: Quantity::KeepOut,
-            spacecraft: 0
-        }
+        not_finite(rejected(&p)),
+        (Quantity::KeepOut, 0, f64::NEG_INFINITY.to_bits())
     );
     let mut p = paper();
     p.spacecraft[1].mass_mu = f64::NAN;
     assert_eq!(
-        rejected(&p),
-        PlanError::NotFinite {
-            what: Quantity::Mass,
-            spacecraft: 1
-        }
+        not_finite(rejected(&p)),
+        (Quantity::Mass, 1, f64::NAN.to_bits())
     );
     let mut p = paper();
     p.spacecraft[2].final_state[4] = f64::NAN;
     assert_eq!(
-        rejected(&p),
-        PlanError::NotFinite {
-            what: Quantity::BoundaryState,
-            spacecraft: 2
-        }
+        not_finite(rejected(&p)),
+        (Quantity::BoundaryState, 2, f64::NAN.to_bits())
     );
 }
 
@@ -80,7 +77,14 @@ fn non_positive_horizon_keep_out_bound_and_mass() {
                 2 => p.keep_out_lu = value,
                 _ => p.spacecraft[1].mass_mu = value,
             }
-            assert_eq!(rejected(&p), PlanError::NotPositive { what, spacecraft });
+            assert_eq!(
+                rejected(&p),
+                PlanError::NotPositive {
+                    what,
+                    spacecraft,
+                    value
+                }
+            );
         }
     }
 }
@@ -170,23 +174,35 @@ fn manoeuvre_impossible_within_the_bound() {
 }
 
 #[test]
-fn invalid_settings() {
+fn invalid_settings_name_the_setting_the_value_and_the_range() {
     let p = paper();
     let zero = Settings {
         qp_max_iter: 0,
         ..Settings::default()
     };
+    let PlanError::InvalidSetting(e) = solve_pseudospectral(&p, &zero).expect_err("zero limit")
+    else {
+        panic!("a setting refusal")
+    };
     assert_eq!(
-        solve_pseudospectral(&p, &zero).expect_err("zero limit"),
-        PlanError::InvalidSettings(SettingsError::ZeroIterationLimit)
+        (e.setting, e.value, e.range.min),
+        (SettingId::QpMaxIter.into(), 0.0, 1.0)
     );
+    assert_eq!(e.setting.name(), "qp_max_iter");
     let nan = Settings {
         qp_tol_feas: f64::NAN,
         ..Settings::default()
     };
-    assert_eq!(
-        solve_pseudospectral(&p, &nan).expect_err("nan tolerance"),
-        PlanError::InvalidSettings(SettingsError::BadTolerance)
+    let PlanError::InvalidSetting(e) = solve_pseudospectral(&p, &nan).expect_err("nan tolerance")
+    else {
+        panic!("a setting refusal")
+    };
+    assert_eq!(e.setting, SettingId::QpTolFeas.into());
+    assert!(e.value.is_nan());
+    assert!(
+        e.to_string()
+            .starts_with("setting qp_tol_feas = NaN is outside (0"),
+        "{e}"
     );
 }
 
@@ -260,7 +276,9 @@ fn magnitudes_beyond_the_planners_range() {
         rejected(&p),
         PlanError::OutOfRange {
             what: Quantity::Horizon,
-            spacecraft: 0
+            spacecraft: 0,
+            value: 1e300,
+            limit: MAX_MAGNITUDE
         }
     );
     let mut p = paper();
@@ -269,7 +287,9 @@ fn magnitudes_beyond_the_planners_range() {
         rejected(&p),
         PlanError::OutOfRange {
             what: Quantity::MaxControl,
-            spacecraft: 0
+            spacecraft: 0,
+            value: 1e-12,
+            limit: MIN_POSITIVE
         }
     );
     let mut p = paper();
@@ -278,7 +298,9 @@ fn magnitudes_beyond_the_planners_range() {
         rejected(&p),
         PlanError::OutOfRange {
             what: Quantity::BoundaryState,
-            spacecraft: 0
+            spacecraft: 0,
+            value: 1e300,
+            limit: MAX_MAGNITUDE
         }
     );
     let message = rejected(&p).to_string();

@@ -22,7 +22,7 @@ use reconfig_core::pseudospectral::{
     solve_with_alternative_starts, ActiveConstraint, AlternativeStarts, Settings, Solution,
     SolveStatus, Workspace,
 };
-use reconfig_host::cli::sweep_oracle::{self, relative_gap, GAP_REPORT_REL};
+use reconfig_host::drivers::sweep_oracle::{self, relative_gap, GAP_REPORT_REL};
 use reconfig_tests::{fixtures_dir, solve_pseudospectral};
 use std::collections::BTreeMap;
 

@@ -133,7 +133,14 @@ fn planner_b_search_stops_at_its_budget_and_still_returns_a_verified_plan() {
             "{percent} %"
         );
         assert!(cut.info.status.is_usable());
-        assert!(cut.terminal_position_error_m.abs() < 1e-3, "{percent} %");
+        assert!(
+            cut.terminal_error
+                .expect("nonlinear check flown")
+                .position_m
+                .abs()
+                < 1e-3,
+            "{percent} %"
+        );
         assert!(cut.info.work_units <= settings.work_budget);
         assert!(cut.total_dv_mps >= full.total_dv_mps - 1e-6, "{percent} %");
         assert_eq!(cut.info.work_units, again.info.work_units);
@@ -169,7 +176,12 @@ fn planner_b_fixed_point_cut_short_is_not_usable() {
     let cut = solve_impulsive(&problem, &settings);
     println!(
         "B fixed point: {:?}, units {} of {}, miss {} m",
-        cut.info.status, cut.info.work_units, settings.work_budget, cut.terminal_position_error_m
+        cut.info.status,
+        cut.info.work_units,
+        settings.work_budget,
+        cut.terminal_error
+            .expect("nonlinear check flown")
+            .position_m
     );
     assert_eq!(
         cut.info.status,
@@ -177,7 +189,13 @@ fn planner_b_fixed_point_cut_short_is_not_usable() {
     );
     assert!(!cut.info.status.is_usable());
     // Not usable because it is not there: the linear plan misses the target by metres.
-    assert!(cut.terminal_position_error_m.abs() > 1.0);
+    assert!(
+        cut.terminal_error
+            .expect("nonlinear check flown")
+            .position_m
+            .abs()
+            > 1.0
+    );
     assert!(cut.info.work_units <= settings.work_budget);
     assert_eq!(solve_impulsive(&problem, &settings), cut);
 }

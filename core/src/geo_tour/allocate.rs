@@ -17,7 +17,9 @@ use super::lambert_phasing::well_minimum;
 use super::root::illinois;
 use super::table::{bounds, direction_of, LegTable, Point, PointKind, MAX_POINTS};
 use super::types::{Settings, MAX_TARGETS};
+use super::work_units::{self, spend, Cut, Gauge};
 use crate::indexed::IndexedExt as _;
+use crate::work::Meter;
 
 /// What a leg does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -49,13 +51,15 @@ impl Pick {
     }
 }
 
-fn drift_pick(t: &LegTable, price: f64, s: &Settings) -> Option<Pick> {
+/// The leg's drift at `price`, its root's evaluations metered by `gauge` (its point is
+/// charged with the step that asks, `work_units::price_step`).
+fn drift_pick(t: &LegTable, price: f64, s: &Settings, gauge: &mut Gauge<'_>) -> Option<Pick> {
     let d = t.drift.as_ref()?;
     // Every table is finished (curve built) before the allocation runs.
     let x = d
         .curve
         .as_ref()?
-        .depth_for_price(&d.model, price, s.root_max_iter);
+        .depth_for_price(&d.model, price, s.root_max_iter, gauge);
     let p = d.model.at(x);
     Some(Pick {
         choice: Choice::Drift,
@@ -85,7 +89,7 @@ fn drift_beaten(t: &LegTable, price: f64, score: f64) -> bool {
 
 /// The leg's best option at `price` (ties: drift first, then the table's order). The drift's
 /// root is searched only when the best point does not provably beat it.
-fn pick(t: &LegTable, price: f64, s: &Settings) -> Option<Pick> {
+fn pick(t: &LegTable, price: f64, s: &Settings, gauge: &mut Gauge<'_>) -> Option<Pick> {
     let score = |b: &Pick| b.dv_mps + price * b.duration_s;
     let mut best_point: Option<Pick> = None;
     for (i, p) in t.points.iter().indexed() {
@@ -99,18 +103,49 @@ fn pick(t: &LegTable, price: f64, s: &Settings) -> Option<Pick> {
             return best_point;
         }
     }
-    match (drift_pick(t, price, s), best_point) {
+    match (drift_pick(t, price, s, gauge), best_point) {
         (Some(d), Some(bp)) if score(&bp) < score(&d) => Some(bp),
         (Some(d), _) => Some(d),
         (None, bp) => bp,
     }
 }
 
-/// Every leg's best option at `price` into `picks`; returns the tour's time.
-fn pick_all(tables: &[LegTable], price: f64, s: &Settings, picks: &mut [Pick]) -> f64 {
+/// Every leg's best option at `price` into `picks`; returns the tour's time. Charged first
+/// (the legs' scans and points), the drift roots' evaluations as they run; [`Cut`] when the
+/// budget runs out (`picks` then partly written: the caller discards them).
+pub(crate) fn pick_all(
+    tables: &[LegTable],
+    price: f64,
+    s: &Settings,
+    picks: &mut [Pick],
+    meter: &mut Meter,
+) -> Result<f64, Cut> {
+    let drift_legs = tables.iter().filter(|t| t.drift.is_some()).count();
+    spend(meter, work_units::price_step(tables.len(), drift_legs))?;
+    let mut gauge = Gauge::metered(meter);
+    let total = pick_all_metered(tables, price, s, picks, &mut gauge);
+    if gauge.stopped() {
+        Err(Cut)
+    } else {
+        Ok(total)
+    }
+}
+
+/// [`pick_all`] once its step is charged; stops at a refused evaluation.
+fn pick_all_metered(
+    tables: &[LegTable],
+    price: f64,
+    s: &Settings,
+    picks: &mut [Pick],
+    gauge: &mut Gauge<'_>,
+) -> f64 {
     let mut total = 0.0;
     for (t, slot) in tables.iter().zip(picks.iter_mut()) {
-        match pick(t, price, s) {
+        let picked = pick(t, price, s, gauge);
+        if gauge.stopped() {
+            return f64::NAN;
+        }
+        match picked {
             Some(p) => {
                 total += p.duration_s;
                 *slot = p;
@@ -136,6 +171,17 @@ pub(crate) struct Allocation {
     pub iterations: u32,
     pub gap_assignments: u32,
     pub refined: u8,
+    /// The work budget ran out: the picks are the best feasible assignment found before.
+    pub cut: bool,
+}
+
+/// Why an allocation returned no picks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum NoAllocation {
+    /// No feasible assignment was found (the fastest tour fits, so a numerical failure).
+    Failed,
+    /// The work budget ran out before any feasible assignment was found.
+    Cut,
 }
 
 /// Drift legs' time for the choices in `picks` (points fixed): the price at which their
@@ -143,6 +189,9 @@ pub(crate) struct Allocation {
 /// fastest durations exceed the budget. `hint` (a price near the answer, e.g. the current
 /// one when a single leg's choice changes) starts the bracket there, widening it
 /// geometrically, instead of from the fastest drifts.
+///
+/// Every step (one drift root per drift leg) is charged first; [`Cut`] when the budget runs
+/// out (`picks` then holds a partial re-allocation: the caller discards it).
 fn drift_allocate(
     tables: &[LegTable],
     picks: &mut [Pick],
@@ -150,7 +199,8 @@ fn drift_allocate(
     s: &Settings,
     iterations: &mut u32,
     hint: Option<f64>,
-) -> Option<f64> {
+    meter: &mut Meter,
+) -> Result<Option<f64>, Cut> {
     let mut fixed = 0.0;
     let mut fastest = 0.0;
     let mut top = 0.0_f64;
@@ -160,48 +210,60 @@ fn drift_allocate(
             (Choice::Drift, Some(d)) => {
                 any = true;
                 fastest += d.t_min_s;
-                top = top.max(d.curve.as_ref()?.top_price);
+                let Some(c) = d.curve.as_ref() else {
+                    return Ok(None);
+                };
+                top = top.max(c.top_price);
             }
-            (Choice::Drift, None) => return None,
+            (Choice::Drift, None) => return Ok(None),
             (Choice::Point(_), _) => fixed += p.duration_s,
         }
     }
     let budget = budget_s - fixed;
     if !any {
-        return (budget >= 0.0).then_some(0.0);
+        return Ok((budget >= 0.0).then_some(0.0));
     }
     if fastest > budget {
-        return None;
+        return Ok(None);
     }
-    let drift_time = |price: f64, picks: &mut [Pick]| -> f64 {
+    let drift_legs = picks.iter().filter(|p| p.choice == Choice::Drift).count();
+    let step_units = work_units::price_step(tables.len(), drift_legs);
+    // Every evaluation of the drift legs' time is charged first, its roots' evaluations as
+    // they run (`?`: the budget ran out).
+    let mut drift_time = |price: f64, picks: &mut [Pick]| -> Result<f64, Cut> {
+        spend(meter, step_units)?;
+        let mut gauge = Gauge::metered(meter);
         let mut sum = 0.0;
         for (t, p) in tables.iter().zip(picks.iter_mut()) {
             if p.choice == Choice::Drift {
-                if let Some(q) = drift_pick(t, price, s) {
+                let q = drift_pick(t, price, s, &mut gauge);
+                if gauge.stopped() {
+                    return Err(Cut);
+                }
+                if let Some(q) = q {
                     sum += q.duration_s;
                     *p = q;
                 }
             }
         }
-        sum
+        Ok(sum)
     };
     // w = 1/sqrt(price); the drift legs' time grows with w. w_top: every drift leg at its
     // fastest (time <= budget). The bracket [w_a, w_b] has time <= budget at w_a and above it
     // at w_b.
     let w_top = 1.0 / libm::sqrt(top);
-    let at_top = |picks: &mut [Pick]| drift_time(top, picks) - budget;
     let (mut w_a, mut fa, mut w_b, mut fb) = (w_top, f64::NAN, w_top, f64::NAN);
     let mut bracketed = false;
     if let Some(h) = hint.filter(|h| h.is_finite() && *h > 0.0 && *h < top) {
         // Widen from the hint by factors 1.001, 1.004, 1.016, ... until the sign changes.
         let w0 = 1.0 / libm::sqrt(h);
-        let f0 = drift_time(h, picks) - budget;
+        let f0 = drift_time(h, picks)? - budget;
         let mut step = 1.001;
         if f0 <= 0.0 {
             (w_a, fa) = (w0, f0);
             for _ in 0..64 {
                 let w = w_a * step;
-                let f = drift_time(1.0 / (w * w), picks) - budget;
+                let f = drift_time(1.0 / (w * w), picks)? - budget;
                 if f > 0.0 {
                     (w_b, fb, bracketed) = (w, f, true);
                     break;
@@ -216,7 +278,7 @@ fn drift_allocate(
                 if w <= w_top {
                     break;
                 }
-                let f = drift_time(1.0 / (w * w), picks) - budget;
+                let f = drift_time(1.0 / (w * w), picks)? - budget;
                 if f <= 0.0 {
                     (w_a, fa, bracketed) = (w, f, true);
                     break;
@@ -226,9 +288,9 @@ fn drift_allocate(
             }
             if !bracketed {
                 // Down to the fastest drifts: the bracket's lower end is w_top.
-                fa = at_top(picks);
+                fa = drift_time(top, picks)? - budget;
                 if fa >= -s.time_tol_s {
-                    return Some(top);
+                    return Ok(Some(top));
                 }
                 w_a = w_top;
                 bracketed = fa <= 0.0;
@@ -238,28 +300,32 @@ fn drift_allocate(
     if !bracketed {
         // From the fastest drifts up by factors of 4.
         w_a = w_top;
-        fa = at_top(picks);
+        fa = drift_time(top, picks)? - budget;
         if fa >= -s.time_tol_s {
-            return Some(top);
+            return Ok(Some(top));
         }
         w_b = w_a;
         fb = fa;
         for _ in 0..64 {
             w_b *= 4.0;
-            fb = drift_time(1.0 / (w_b * w_b), picks) - budget;
+            fb = drift_time(1.0 / (w_b * w_b), picks)? - budget;
             if fb > 0.0 {
                 break;
             }
         }
     }
     if fb.is_nan() || fb <= 0.0 || fa.is_nan() || fa > 0.0 {
-        return None;
+        return Ok(None);
     }
-    let mut n = 0u32;
+    // A refused step reads NaN, which stops the search; `cut` says so.
+    let mut cut = false;
     let (w, _, _, _, steps) = illinois(
-        |w| {
-            n = n.saturating_add(1);
-            drift_time(1.0 / (w * w), picks) - budget
+        |w| match drift_time(1.0 / (w * w), picks) {
+            Ok(t) => t - budget,
+            Err(Cut) => {
+                cut = true;
+                f64::NAN
+            }
         },
         w_a,
         fa,
@@ -269,66 +335,102 @@ fn drift_allocate(
         1e-9,
         s.time_tol_s,
     );
+    if cut {
+        return Err(Cut);
+    }
     *iterations = iterations.saturating_add(u32::from(steps));
     let price = 1.0 / (w * w);
-    drift_time(price, picks);
-    Some(price)
+    drift_time(price, picks)?;
+    Ok(Some(price))
 }
 
 /// Allocate the mission time `budget_s` over the legs. `picks` receives each leg's choice and
-/// duration; `scratch` and `trial` are working copies. `None` when the fastest tour does not
-/// fit (the caller has already checked that it does, so this means a numerical failure).
+/// duration; `lo_picks` and `trial` are working copies. Every step is charged to `meter`
+/// first; when the budget runs out the best feasible assignment found so far is returned
+/// (`cut`). [`NoAllocation::Failed`] when no feasible assignment is found (the caller has
+/// already checked that the fastest tour fits, so this means a numerical failure),
+/// [`NoAllocation::Cut`] when the budget ran out before one was.
 pub(crate) fn allocate(
     tables: &mut [LegTable],
     budget_s: f64,
     s: &Settings,
-    picks: &mut [Pick; MAX_TARGETS],
-    lo_picks: &mut [Pick; MAX_TARGETS],
-    trial: &mut [Pick; MAX_TARGETS],
-) -> Option<Allocation> {
+    (picks, lo_picks, trial): (
+        &mut [Pick; MAX_TARGETS],
+        &mut [Pick; MAX_TARGETS],
+        &mut [Pick; MAX_TARGETS],
+    ),
+    meter: &mut Meter,
+) -> Result<Allocation, NoAllocation> {
     let n = tables.len();
     let mut iterations = 0u32;
+    let cut = |_: Cut| NoAllocation::Cut;
     // Does time bind at all? With no drift leg the cheapest points may fit.
     let any_drift = tables.iter().any(|t| t.drift.is_some());
     if !any_drift {
-        let tt = pick_all(tables, 0.0, s, picks);
+        let tt = pick_all(tables, 0.0, s, picks, meter).map_err(cut)?;
         if tt <= budget_s {
-            let (time_s, dv_mps) = totals(picks.get(..n)?);
-            return Some(Allocation {
+            let (time_s, dv_mps) = totals(picks.get(..n).ok_or(NoAllocation::Failed)?);
+            return Ok(Allocation {
                 price: 0.0,
                 dv_mps,
                 time_s,
                 iterations,
                 gap_assignments: 0,
                 refined: 0,
+                cut: false,
             });
         }
     }
     // Bracket the critical price: w_a feasible (time <= budget), w_b not.
     let mut w_a = 1e3;
-    let mut fa = pick_all(tables, 1.0 / (w_a * w_a), s, picks) - budget_s;
+    let mut fa = pick_all(tables, 1.0 / (w_a * w_a), s, picks, meter).map_err(cut)? - budget_s;
     for _ in 0..64 {
         if fa <= 0.0 {
             break;
         }
         w_a *= 0.25;
-        fa = pick_all(tables, 1.0 / (w_a * w_a), s, picks) - budget_s;
+        fa = pick_all(tables, 1.0 / (w_a * w_a), s, picks, meter).map_err(cut)? - budget_s;
     }
     if fa.is_nan() || fa > 0.0 {
-        return None;
+        return Err(NoAllocation::Failed);
     }
+    // From here `picks` always holds a feasible assignment: a cut returns it.
+    let mut price = 1.0 / (w_a * w_a);
+    let stopped = |picks: &[Pick], price: f64, iterations: u32, assignments: u32, refined: u8| {
+        let (time_s, dv_mps) = totals(picks.get(..n).unwrap_or(&[]));
+        Allocation {
+            price,
+            dv_mps,
+            time_s,
+            iterations,
+            gap_assignments: assignments,
+            refined,
+            cut: true,
+        }
+    };
     let mut w_b = w_a;
     let mut fb = fa;
     for _ in 0..64 {
         w_b *= 4.0;
-        fb = pick_all(tables, 1.0 / (w_b * w_b), s, lo_picks) - budget_s;
+        fb = match pick_all(tables, 1.0 / (w_b * w_b), s, lo_picks, meter) {
+            Ok(t) => t - budget_s,
+            Err(Cut) => return Ok(stopped(picks, price, iterations, 0, 0)),
+        };
         if fb > 0.0 {
             break;
         }
     }
     let (wa, wb) = if fb > 0.0 {
+        // A refused step reads NaN, which stops the search.
+        let mut was_cut = false;
         let (a, _, b, _, steps) = illinois(
-            |w| pick_all(tables, 1.0 / (w * w), s, trial) - budget_s,
+            |w| match pick_all(tables, 1.0 / (w * w), s, trial, meter) {
+                Ok(t) => t - budget_s,
+                Err(Cut) => {
+                    was_cut = true;
+                    f64::NAN
+                }
+            },
             w_a,
             fa,
             w_b,
@@ -338,14 +440,23 @@ pub(crate) fn allocate(
             s.time_tol_s,
         );
         iterations = iterations.saturating_add(u32::from(steps));
+        if was_cut {
+            return Ok(stopped(picks, price, iterations, 0, 0));
+        }
         (a, b)
     } else {
         // Time never binds (points only and all fit at every price tried).
         (w_b, w_b)
     };
-    pick_all(tables, 1.0 / (wa * wa), s, picks);
-    pick_all(tables, 1.0 / (wb * wb), s, lo_picks);
-    let mut price = 1.0 / (wa * wa);
+    // Into `trial` first: a step cut short leaves its picks half written.
+    if pick_all(tables, 1.0 / (wa * wa), s, trial, meter).is_err() {
+        return Ok(stopped(picks, price, iterations, 0, 0));
+    }
+    *picks = *trial;
+    price = 1.0 / (wa * wa);
+    if pick_all(tables, 1.0 / (wb * wb), s, lo_picks, meter).is_err() {
+        return Ok(stopped(picks, price, iterations, 0, 0));
+    }
     // Duality gap: legs whose choice differs across the bracket, tried both ways.
     let mut switching = [0usize; MAX_TARGETS];
     let mut k = 0usize;
@@ -370,26 +481,40 @@ pub(crate) fn allocate(
     }
     let hi_copy = *picks;
     for mask in 0..combos {
-        *trial = hi_copy;
-        for (bit, &j) in switching.iter().take(k).indexed() {
-            if (mask >> bit) & 1 == 1 {
-                if let (Some(t), Some(l)) = (trial.get_mut(j), lo_picks.get(j)) {
-                    *t = *l;
+        let tried = spend(meter, work_units::ASSIGNMENT).and_then(|()| {
+            *trial = hi_copy;
+            for (bit, &j) in switching.iter().take(k).indexed() {
+                if (mask >> bit) & 1 == 1 {
+                    if let (Some(t), Some(l)) = (trial.get_mut(j), lo_picks.get(j)) {
+                        *t = *l;
+                    }
                 }
             }
-        }
-        assignments = assignments.saturating_add(1);
-        let Some(p) = drift_allocate(
-            tables,
-            trial.get_mut(..n)?,
-            budget_s,
-            s,
-            &mut iterations,
-            Some(price),
-        ) else {
-            continue;
+            assignments = assignments.saturating_add(1);
+            drift_allocate(
+                tables,
+                trial.get_mut(..n).unwrap_or(&mut []),
+                budget_s,
+                s,
+                &mut iterations,
+                Some(price),
+                meter,
+            )
+        });
+        let p = match tried {
+            Ok(Some(p)) => p,
+            Ok(None) => continue,
+            // `picks` holds the best assignment so far (the bracket's feasible end if none).
+            Err(Cut) => {
+                let at = if best_dv.is_finite() {
+                    best_price
+                } else {
+                    price
+                };
+                return Ok(stopped(picks, at, iterations, assignments, 0));
+            }
         };
-        let (time_s, dv) = totals(trial.get(..n)?);
+        let (time_s, dv) = totals(trial.get(..n).ok_or(NoAllocation::Failed)?);
         if time_s <= budget_s && dv < best_dv {
             best_dv = dv;
             best_price = p;
@@ -397,47 +522,48 @@ pub(crate) fn allocate(
         }
     }
     if !best_dv.is_finite() {
-        return None;
+        return Err(NoAllocation::Failed);
     }
     price = best_price;
     let mut exchanges = 0u32;
     let mut refined = 0u8;
+    let mut exchange_cut = false;
     if let Some((p, _)) = exchange(
         tables,
-        picks,
-        trial,
+        (picks, trial),
         budget_s,
         s,
-        price,
-        best_dv,
-        &mut iterations,
-        &mut exchanges,
-        &mut refined,
+        (price, best_dv),
+        (&mut iterations, &mut exchanges, &mut refined),
+        (meter, &mut exchange_cut),
     ) {
         price = p;
     }
-    let (time_s, dv_mps) = totals(picks.get(..n)?);
-    Some(Allocation {
+    let (time_s, dv_mps) = totals(picks.get(..n).ok_or(NoAllocation::Failed)?);
+    Ok(Allocation {
         price,
         dv_mps,
         time_s,
         iterations,
         gap_assignments: assignments.saturating_add(exchanges),
         refined,
+        cut: exchange_cut,
     })
 }
 
 /// A leg's alternatives in the exchange search (point index or drift, with time and cost).
 /// Lambert wells are first re-priced: moved to the minimum of `dv + price t` of their well
 /// (written into the table, so each well is searched again only when the price has moved by
-/// more than 1 %).
+/// more than 1 %), each well charged first. [`Cut`] when the budget runs out.
 fn alternatives(
     t: &mut LegTable,
     cur: &Pick,
     price: f64,
     s: &Settings,
     out: &mut heapless::Vec<Pick, { MAX_POINTS + 1 }>,
-) {
+    meter: &mut Meter,
+) -> Result<(), Cut> {
+    spend(meter, work_units::alternatives_leg())?;
     out.clear();
     let g = Geo::standard();
     let dir = direction_of(t);
@@ -447,7 +573,22 @@ fn alternatives(
             let est = (p.dv_mps - cur.dv_mps) + price * (p.duration_s - cur.duration_s);
             let stale = (p.price - price).abs() > 0.01 * price;
             if est < s.exchange_margin_mps && stale {
-                let w = well_minimum(&g, dir, phase, m, price, cap, s.well_iterations, bounds(s));
+                spend(meter, work_units::WELL)?;
+                let mut gauge = Gauge::metered(meter);
+                let w = well_minimum(
+                    &g,
+                    dir,
+                    phase,
+                    m,
+                    price,
+                    cap,
+                    s.well_iterations,
+                    bounds(s),
+                    &mut gauge,
+                );
+                if gauge.stopped() {
+                    return Err(Cut);
+                }
                 if let Some(mv) = w {
                     if mv.dv_mps + price * mv.transfer_s <= p.dv_mps + price * p.duration_s {
                         p.duration_s = mv.transfer_s;
@@ -467,13 +608,19 @@ fn alternatives(
     }
     let cur_score = cur.dv_mps + price * cur.duration_s;
     if cur.choice != Choice::Drift && !drift_beaten(t, price, cur_score) {
-        if let Some(d) = drift_pick(t, price, s) {
+        let mut gauge = Gauge::metered(meter);
+        let picked = drift_pick(t, price, s, &mut gauge);
+        if gauge.stopped() {
+            return Err(Cut);
+        }
+        if let Some(d) = picked {
             let est = (d.dv_mps - cur.dv_mps) + price * (d.duration_s - cur.duration_s);
             if est < 0.0 {
                 let _ = out.push(d);
             }
         }
     }
+    Ok(())
 }
 
 /// Exchange search after the price. The Lagrangian solution can miss the optimum where point
@@ -482,46 +629,57 @@ fn alternatives(
 /// price `lambda`, every alternative of every leg whose first-order effect
 /// `d(dv) + lambda d(t)` is negative (Lambert wells: below `exchange_margin_mps`, refined at
 /// `lambda` first) is evaluated exactly (drift time re-allocated) and kept when the total
-/// falls. At most `exchange_rounds` rounds, each at most `MAX_POINTS + 1` alternatives per leg.
-/// Returns the new price and total when anything changed.
-#[allow(clippy::too_many_arguments)]
+/// falls. At most `exchange_rounds` rounds, each at most `MAX_POINTS + 1` alternatives per leg,
+/// every step charged to the meter first; when the budget runs out the search stops (`cut`
+/// set) with the best assignment so far in `picks`. Returns the new price and total when
+/// anything changed.
 fn exchange(
     tables: &mut [LegTable],
-    picks: &mut [Pick; MAX_TARGETS],
-    trial: &mut [Pick; MAX_TARGETS],
+    (picks, trial): (&mut [Pick; MAX_TARGETS], &mut [Pick; MAX_TARGETS]),
     budget_s: f64,
     s: &Settings,
-    mut price: f64,
-    mut best_dv: f64,
-    iterations: &mut u32,
-    exchanges: &mut u32,
-    refined: &mut u8,
+    (mut price, mut best_dv): (f64, f64),
+    (iterations, exchanges, refined): (&mut u32, &mut u32, &mut u8),
+    (meter, cut): (&mut Meter, &mut bool),
 ) -> Option<(f64, f64)> {
     let n = tables.len();
     let mut changed = false;
     let mut alts = heapless::Vec::new();
-    for _ in 0..s.exchange_rounds {
+    'rounds: for _ in 0..s.exchange_rounds {
         let mut improved = false;
         for j in 0..n {
             let (Some(cur), Some(t)) = (picks.get(j).copied(), tables.get_mut(j)) else {
                 continue;
             };
-            alternatives(t, &cur, price, s, &mut alts);
+            if alternatives(t, &cur, price, s, &mut alts, meter).is_err() {
+                *cut = true;
+                break 'rounds;
+            }
             for alt in alts.iter() {
+                if spend(meter, work_units::ASSIGNMENT).is_err() {
+                    *cut = true;
+                    break 'rounds;
+                }
                 *trial = *picks;
                 if let Some(slot) = trial.get_mut(j) {
                     *slot = *alt;
                 }
                 *exchanges = exchanges.saturating_add(1);
-                let Some(p) = drift_allocate(
+                let p = match drift_allocate(
                     tables,
                     trial.get_mut(..n)?,
                     budget_s,
                     s,
                     iterations,
                     Some(price),
-                ) else {
-                    continue;
+                    meter,
+                ) {
+                    Ok(Some(p)) => p,
+                    Ok(None) => continue,
+                    Err(Cut) => {
+                        *cut = true;
+                        break 'rounds;
+                    }
                 };
                 let (time_s, dv) = totals(trial.get(..n)?);
                 if time_s <= budget_s && dv < best_dv - 1e-12 {

@@ -10,8 +10,10 @@
 //! bounded bisection on `x`, and the price problem `min D + lambda t` is the root of
 //! `-D'(x) / t'(x) = lambda` (marginal Δv per second of the leg), found by bisection too.
 
-use super::geo::{Dual, Geo, M_PER_KM, TWO_PI};
+use super::geo::{Dual, Geo};
 use super::maneuver::{Burn, Direction, Maneuver, Method};
+use super::work_units::{self, Gauge};
+use crate::astro::{M_PER_KM, TWO_PI};
 
 /// One leg's drift model.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -92,9 +94,16 @@ impl Drift {
     /// kinks where the binding constraint changes cannot stall it) and finished by bisection
     /// on the admissibility test itself down to adjacent floats: the deepest admissible double,
     /// as a plain bisection over the whole range finds it, in about a quarter of the
-    /// evaluations. At most `2 max_iter` evaluations. `None` when even an infinitesimal depth
-    /// fails (cannot happen for a positive cap).
-    pub fn max_depth_km(&self, cap_mps: f64, min_radius_km: f64, max_iter: u16) -> Option<f64> {
+    /// evaluations. At most `2 max_iter + 4` evaluations, each taken from `gauge` first
+    /// (`DRIFT_EVAL`; when one is refused the search stops and returns `None`). `None` when
+    /// even an infinitesimal depth fails (cannot happen for a positive cap).
+    pub fn max_depth_km(
+        &self,
+        cap_mps: f64,
+        min_radius_km: f64,
+        max_iter: u16,
+        gauge: &mut Gauge<'_>,
+    ) -> Option<f64> {
         let g = &self.g;
         let ok = |x: f64| {
             let p = self.at(x);
@@ -116,28 +125,66 @@ impl Drift {
             };
             burn.max(-p.drift_s / g.t0).max((min_radius_km - am) / g.a0)
         };
+        let eval = work_units::DRIFT_EVAL;
         // Upper end of the search: half the ring radius below (east) or above (west).
         let mut hi = 0.5 * g.a0;
+        if !gauge.take(eval) {
+            return None;
+        }
         if ok(hi) {
             return Some(hi);
         }
         let mut lo = 0.0;
+        if !gauge.take(eval) {
+            return None;
+        }
         let f_hi = violation(hi);
         if f_hi > 0.0 {
-            // The origin is admissible in the limit (violation -1 stands for it).
-            let (a, _, b, _, _) =
-                super::root::illinois(violation, lo, -1.0, hi, f_hi, max_iter, 1e-15, 0.0);
-            if a > 0.0 && ok(a) {
-                lo = a;
+            // The origin is admissible in the limit (violation -1 stands for it). A refused
+            // evaluation reads NaN, which stops the search.
+            let (a, _, b, _, _) = super::root::illinois(
+                |x| {
+                    if gauge.take(eval) {
+                        violation(x)
+                    } else {
+                        f64::NAN
+                    }
+                },
+                lo,
+                -1.0,
+                hi,
+                f_hi,
+                max_iter,
+                1e-15,
+                0.0,
+            );
+            if gauge.stopped() {
+                return None;
             }
-            if b > lo && !ok(b) {
-                hi = b;
+            if a > 0.0 {
+                if !gauge.take(eval) {
+                    return None;
+                }
+                if ok(a) {
+                    lo = a;
+                }
+            }
+            if b > lo {
+                if !gauge.take(eval) {
+                    return None;
+                }
+                if !ok(b) {
+                    hi = b;
+                }
             }
         }
         for _ in 0..max_iter {
             let mid = 0.5 * (lo + hi);
             if mid <= lo || mid >= hi {
                 break;
+            }
+            if !gauge.take(eval) {
+                return None;
             }
             if ok(mid) {
                 lo = mid;
@@ -149,12 +196,22 @@ impl Drift {
     }
 
     /// Depth whose leg takes `duration_s` (>= the duration at `x_max_km`); bisection, at most
-    /// `max_iter` steps.
-    pub fn depth_for_duration(&self, duration_s: f64, x_max_km: f64, max_iter: u16) -> f64 {
+    /// `max_iter` steps, each evaluation taken from `gauge` first (when one is refused the
+    /// search stops where it is).
+    pub fn depth_for_duration(
+        &self,
+        duration_s: f64,
+        x_max_km: f64,
+        max_iter: u16,
+        gauge: &mut Gauge<'_>,
+    ) -> f64 {
         let (mut lo, mut hi) = (0.0_f64, x_max_km);
         for _ in 0..max_iter {
             let mid = 0.5 * (lo + hi);
             if mid <= lo || mid >= hi {
+                break;
+            }
+            if !gauge.take(work_units::DRIFT_EVAL) {
                 break;
             }
             if self.at(mid).duration_s > duration_s {
@@ -247,11 +304,11 @@ pub fn drift_for_duration(
         dir,
         phase_rad,
     };
-    let x_max = d.max_depth_km(f64::INFINITY, min_radius_km, max_iter)?;
+    let x_max = d.max_depth_km(f64::INFINITY, min_radius_km, max_iter, &mut Gauge::paid())?;
     if duration_s.is_nan() || duration_s < d.at(x_max).duration_s {
         return None;
     }
-    Some(d.maneuver(d.depth_for_duration(duration_s, x_max, max_iter)))
+    Some(d.maneuver(d.depth_for_duration(duration_s, x_max, max_iter, &mut Gauge::paid())))
 }
 
 #[cfg(test)]

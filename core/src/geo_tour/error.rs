@@ -1,9 +1,10 @@
 //! Reasons a GEO tour request is refused before planning: every one names the field, the
 //! value and the limit.
 
+use crate::contract::SettingError;
 use serde::{Deserialize, Serialize};
 
-/// A field of the request or of the settings.
+/// A field of the request (a setting is named by its [`super::SettingId`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[repr(u8)]
 pub enum Field {
@@ -15,36 +16,6 @@ pub enum Field {
     MissionTime = 2,
     /// `Problem::max_burn_mps`.
     MaxBurn = 3,
-    /// `Settings::lambert_max_revolutions`.
-    LambertMaxRevolutions = 4,
-    /// `Settings::lambert_max_iter`.
-    LambertMaxIter = 5,
-    /// `Settings::lambert_tol`.
-    LambertTol = 6,
-    /// `Settings::well_iterations`.
-    WellIterations = 7,
-    /// `Settings::root_max_iter`.
-    RootMaxIter = 8,
-    /// `Settings::price_max_iter`.
-    PriceMaxIter = 9,
-    /// `Settings::time_tol_s`.
-    TimeTol = 10,
-    /// `Settings::gap_max_legs`.
-    GapMaxLegs = 11,
-    /// `Settings::min_radius_km`.
-    MinRadius = 12,
-    /// `Settings::rule_drift_above_rad`.
-    RuleDriftAbove = 13,
-    /// `Settings::rule_hohmann_above_rad`.
-    RuleHohmannAbove = 14,
-    /// `Settings::rule_radial_above_rad`.
-    RuleRadialAbove = 15,
-    /// `Settings::lambert_direct_time_s`.
-    LambertDirectTime = 16,
-    /// `Settings::exchange_rounds`.
-    ExchangeRounds = 17,
-    /// `Settings::exchange_margin_mps`.
-    ExchangeMargin = 18,
 }
 
 /// A request the planner refuses.
@@ -65,6 +36,8 @@ pub enum PlanError {
     },
     /// No clients.
     NoTargets,
+    /// A setting is out of its range: the setting, the value and the range.
+    InvalidSetting(SettingError),
 }
 
 impl core::fmt::Display for PlanError {
@@ -81,6 +54,7 @@ impl core::fmt::Display for PlanError {
                 "{field:?}[{index}] = {value} is outside [{min}, {max}] (or not finite)"
             ),
             Self::NoTargets => write!(f, "the tour has no clients"),
+            Self::InvalidSetting(e) => write!(f, "{e}"),
         }
     }
 }

@@ -3,14 +3,7 @@
 
 use crate::lambert::Vec3;
 
-/// Earth's gravitational parameter, km^3/s^2 (the value the servicing digest uses).
-pub const MU_KM3_S2: f64 = 398_600.441_8;
-/// Earth's sidereal rotation rate = the geostationary mean motion, rad/s.
-pub const EARTH_RATE_RAD_S: f64 = 7.292_115_9e-5;
-/// Metres per kilometre.
-pub const M_PER_KM: f64 = 1000.0;
-/// 2 pi.
-pub const TWO_PI: f64 = 2.0 * core::f64::consts::PI;
+use crate::astro::{EARTH_MU_KM3_S2, EARTH_ROTATION_RAD_S, TWO_PI};
 
 /// Derived geostationary quantities, computed once per solve.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -30,8 +23,8 @@ pub struct Geo {
 impl Geo {
     /// The standard ring (mu and Earth's rate above).
     pub fn standard() -> Self {
-        let mu = MU_KM3_S2;
-        let n0 = EARTH_RATE_RAD_S;
+        let mu = EARTH_MU_KM3_S2;
+        let n0 = EARTH_ROTATION_RAD_S;
         let a0 = libm::cbrt(mu / (n0 * n0));
         Self {
             mu,
@@ -64,16 +57,6 @@ impl Geo {
             [self.a0 * c, self.a0 * s, 0.0],
             [-self.v0 * s, self.v0 * c, 0.0],
         )
-    }
-}
-
-/// Wrap an angle to `[0, 2 pi)`.
-pub fn wrap_two_pi(x: f64) -> f64 {
-    let y = x - TWO_PI * libm::floor(x / TWO_PI);
-    if y >= TWO_PI {
-        0.0
-    } else {
-        y
     }
 }
 

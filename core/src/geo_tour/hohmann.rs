@@ -3,8 +3,9 @@
 //! ring); after one revolution it is back at the burn point with the client, and the opposite
 //! burn recircularises. Digest eqs. (1)-(4), exact in two-body.
 
-use super::geo::{Geo, M_PER_KM, TWO_PI};
+use super::geo::Geo;
 use super::maneuver::{Burn, Direction, Maneuver, Method};
+use crate::astro::{M_PER_KM, TWO_PI};
 
 /// The manoeuvre, or `None` when the phasing orbit would dip below `min_radius_km` or the
 /// phase cannot be made in one revolution.

@@ -14,8 +14,10 @@
 //! answer is not used. So well m is searched on `[tau_m - T0/2, tau_m)` with K = m - 1, both
 //! branches, by golden section (`well_iterations` steps, each 1 or 2 Lambert solves).
 
-use super::geo::{inertial_to_rtn, Geo, M_PER_KM, TWO_PI};
+use super::geo::{inertial_to_rtn, Geo};
 use super::maneuver::{Burn, Direction, Maneuver, Method};
+use super::work_units::{self, Gauge};
+use crate::astro::{M_PER_KM, TWO_PI};
 use crate::indexed::IndexedExt as _;
 use crate::lambert::{self, Branch, LambertSolution};
 
@@ -29,9 +31,10 @@ pub(crate) struct LambertBounds {
 /// The two burns of the K-revolution arc of duration `tau_s` on `branch`, inertial frame
 /// at the departure slot (longitude 0 at epoch 0, by symmetry of the ring), with its cost and
 /// Izzo's x (a warm start for a nearby arc of the same family, `guess`): `None` if the family
-/// has no solution for this time.
+/// has no solution for this time. The arc takes `LAMBERT_ARC` from `gauge` first and each of
+/// the solver's steps its step's units; when one is refused the arc is `None`.
 #[allow(clippy::too_many_arguments)]
-fn arc(
+pub(crate) fn arc(
     g: &Geo,
     dir: Direction,
     phase_rad: f64,
@@ -40,10 +43,15 @@ fn arc(
     branch: Branch,
     b: LambertBounds,
     guess: Option<f64>,
+    gauge: &mut Gauge<'_>,
 ) -> Option<(Maneuver, f64, f64)> {
+    if !gauge.take(work_units::LAMBERT_ARC) {
+        return None;
+    }
+    let step_units = work_units::lambert_step(revs);
     let (r1, v1c) = g.slot_state(0.0, 0.0);
     let (r2, v2c) = g.slot_state(dir.sign() * phase_rad, tau_s);
-    let sol: LambertSolution = lambert::solve_from(
+    let sol: LambertSolution = lambert::solve_from_stepped(
         g.mu,
         &r1,
         &r2,
@@ -51,20 +59,20 @@ fn arc(
         revs,
         branch,
         &[0.0, 0.0, 1.0],
-        b.max_iter,
-        b.tol,
+        (b.max_iter, b.tol),
         guess,
+        &mut || gauge.take(step_units),
     )
     .ok()?;
     let d1 = [
-        sol.v1_kmps[0] - v1c[0],
-        sol.v1_kmps[1] - v1c[1],
-        sol.v1_kmps[2] - v1c[2],
+        sol.v1_km_s[0] - v1c[0],
+        sol.v1_km_s[1] - v1c[1],
+        sol.v1_km_s[2] - v1c[2],
     ];
     let d2 = [
-        v2c[0] - sol.v2_kmps[0],
-        v2c[1] - sol.v2_kmps[1],
-        v2c[2] - sol.v2_kmps[2],
+        v2c[0] - sol.v2_km_s[0],
+        v2c[1] - sol.v2_km_s[1],
+        v2c[2] - sol.v2_km_s[2],
     ];
     let k = |a: [f64; 3]| [a[0] * M_PER_KM, a[1] * M_PER_KM, a[2] * M_PER_KM];
     let burns = [
@@ -77,7 +85,7 @@ fn arc(
             dv_rtn_mps: k(inertial_to_rtn(&r2, &v2c, &d2)),
         },
     ];
-    let v = sol.v1_kmps;
+    let v = sol.v1_km_s;
     let energy = 0.5 * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) - g.mu / g.a0;
     let sma = -g.mu / (2.0 * energy);
     let m = Maneuver::from_burns(Method::Lambert, tau_s, sma, revs, &burns);
@@ -86,7 +94,8 @@ fn arc(
 }
 
 /// Cheapest Lambert phasing of duration `tau_s` with exactly `revs` revolutions (both branches
-/// when `revs >= 1`) whose burns are all within `cap_mps`.
+/// when `revs >= 1`) whose burns are all within `cap_mps`, its arcs metered by `gauge`.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn lambert_revs(
     g: &Geo,
     dir: Direction,
@@ -95,6 +104,7 @@ pub(crate) fn lambert_revs(
     revs: u16,
     cap_mps: f64,
     b: LambertBounds,
+    gauge: &mut Gauge<'_>,
 ) -> Option<Maneuver> {
     let mut best: Option<Maneuver> = None;
     let branches: &[Branch] = if revs == 0 {
@@ -103,7 +113,7 @@ pub(crate) fn lambert_revs(
         &[Branch::Left, Branch::Right]
     };
     for &br in branches {
-        if let Some((m, dv, _)) = arc(g, dir, phase_rad, tau_s, revs, br, b, None) {
+        if let Some((m, dv, _)) = arc(g, dir, phase_rad, tau_s, revs, br, b, None, gauge) {
             let better = best.as_ref().is_none_or(|x| dv < x.dv_mps);
             if m.max_burn_mps <= cap_mps && better {
                 best = Some(m);
@@ -129,7 +139,7 @@ pub fn lambert_phasing(
     let b = LambertBounds { max_iter, tol };
     let mut best: Option<Maneuver> = None;
     for k in 0..=max_revs {
-        if let Some(m) = lambert_revs(g, dir, phase_rad, tau_s, k, cap_mps, b) {
+        if let Some(m) = lambert_revs(g, dir, phase_rad, tau_s, k, cap_mps, b, &mut Gauge::paid()) {
             if best.as_ref().is_none_or(|x| m.dv_mps < x.dv_mps) {
                 best = Some(m);
             }
@@ -185,6 +195,9 @@ pub(crate) fn well_skipped(g: &Geo, dir: Direction, phase_rad: f64, m: u16, cap_
 /// 1.25 times the cap; and the branch (for K >= 1) is chosen once, the cheaper at the window's
 /// two first golden points, since one branch is the near-tangential family across the whole
 /// window and the other the near-rectilinear one (tens to thousands of m/s dearer).
+///
+/// Every arc is metered by `gauge`; when one is refused the section stops (the caller sees
+/// `gauge.stopped()` and discards the result).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn well_minimum(
     g: &Geo,
@@ -195,6 +208,7 @@ pub(crate) fn well_minimum(
     cap_mps: f64,
     iterations: u16,
     b: LambertBounds,
+    gauge: &mut Gauge<'_>,
 ) -> Option<Maneuver> {
     let revs = m.saturating_sub(1);
     if well_skipped(g, dir, phase_rad, m, cap_mps) {
@@ -220,10 +234,11 @@ pub(crate) fn well_minimum(
     };
     // The two first golden points, on the branch chosen there (the arcs of the chosen branch
     // are the section's first two evaluations).
-    let at = |t: f64, br: Branch| arc(g, dir, phase_rad, t, revs, br, b, None);
+    let mut at = |t: f64, br: Branch| arc(g, dir, phase_rad, t, revs, br, b, None, gauge);
     let (branch, (mut fc, mut mc, mut xc), (mut fd, mut md, mut xd)) = if revs == 0 {
         let left = Branch::Left;
-        (left, score_arc(c, at(c, left)), score_arc(d, at(d, left)))
+        let (ac, ad) = (at(c, left), at(d, left));
+        (left, score_arc(c, ac), score_arc(d, ad))
     } else {
         let arcs = [
             (Branch::Left, at(c, Branch::Left), at(d, Branch::Left)),
@@ -249,9 +264,9 @@ pub(crate) fn well_minimum(
     // Later points start Lambert's iteration from the x of the interior point the section
     // keeps, the nearest solved arc of the same family (`lambert::solve_from`: the same root
     // to the tolerance, about half the Householder steps).
-    let score = |t: f64, guess: Option<f64>| {
-        score_arc(t, arc(g, dir, phase_rad, t, revs, branch, b, guess))
-    };
+    if gauge.stopped() {
+        return None;
+    }
     let mut best: Option<(f64, Maneuver)> = None;
     let keep = |f: f64, m: &Option<Maneuver>, best: &mut Option<(f64, Maneuver)>| {
         if let Some(mv) = m {
@@ -270,7 +285,10 @@ pub(crate) fn well_minimum(
             md = mc;
             xd = xc;
             c = hi - r * (hi - lo);
-            (fc, mc, xc) = score(c, xd);
+            (fc, mc, xc) = score_arc(c, arc(g, dir, phase_rad, c, revs, branch, b, xd, gauge));
+            if gauge.stopped() {
+                return None;
+            }
             keep(fc, &mc, &mut best);
         } else {
             lo = c;
@@ -279,7 +297,10 @@ pub(crate) fn well_minimum(
             mc = md;
             xc = xd;
             d = lo + r * (hi - lo);
-            (fd, md, xd) = score(d, xc);
+            (fd, md, xd) = score_arc(d, arc(g, dir, phase_rad, d, revs, branch, b, xc, gauge));
+            if gauge.stopped() {
+                return None;
+            }
             keep(fd, &md, &mut best);
         }
     }
@@ -342,7 +363,7 @@ mod tests {
         for dir in [Direction::East, Direction::West] {
             for m in 1..=3u16 {
                 let du = 0.5 * DEG;
-                let w = well_minimum(&g, dir, du, m, 0.0, 1e9, 40, b).unwrap();
+                let w = well_minimum(&g, dir, du, m, 0.0, 1e9, 40, b, &mut Gauge::paid()).unwrap();
                 // m-revolution tangential phasing orbit: period (2 pi m - s du) / (m n0).
                 let tm = coincidence_s(&g, dir, du, m) / f64::from(m);
                 let am = libm::cbrt(g.mu * (tm / TWO_PI) * (tm / TWO_PI));

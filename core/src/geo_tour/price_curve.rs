@@ -12,6 +12,7 @@
 
 use super::drift::Drift;
 use super::root::secant_root;
+use super::work_units::{self, Gauge};
 
 /// Depth nodes of a leg's price curve (the node at depth 0, price 0, is implicit).
 pub(crate) const PRICE_NODES: usize = 32;
@@ -108,9 +109,16 @@ impl PriceCurve {
 
     /// Depth minimising `D(x) + price * t(x)` on `(0, x_max]`: the root of
     /// `sqrt(price_at(x)) = sqrt(price)`, clipped to `x_max`, bracketed between two nodes and
-    /// found by Illinois regula falsi (at most `max_iter` steps, the same tolerance as an
-    /// untabulated search over the whole interval).
-    pub fn depth_for_price(&self, model: &Drift, price: f64, max_iter: u16) -> f64 {
+    /// found by secant steps kept in the bracket (at most `max_iter` evaluations, each taken
+    /// from `gauge` first: a refused one stops the search where it is; the same tolerance as
+    /// an untabulated search over the whole interval).
+    pub fn depth_for_price(
+        &self,
+        model: &Drift,
+        price: f64,
+        max_iter: u16,
+        gauge: &mut Gauge<'_>,
+    ) -> f64 {
         let top = self.top_price;
         if top.is_nan() || top <= price {
             return self.x_max_km;
@@ -133,8 +141,11 @@ impl PriceCurve {
                 break;
             }
         }
+        // A refused evaluation reads NaN, which stops the search.
         let f = |x: f64| {
-            if x <= 0.0 {
+            if !gauge.take(work_units::DRIFT_EVAL) {
+                f64::NAN
+            } else if x <= 0.0 {
                 -sp
             } else {
                 libm::sqrt(model.price_at(x).max(0.0)) - sp
@@ -161,12 +172,14 @@ mod tests {
                     dir,
                     phase_rad: phase,
                 };
-                let x_max = d.max_depth_km(5.0, 6578.137, 200).unwrap();
+                let x_max = d
+                    .max_depth_km(5.0, 6578.137, 200, &mut Gauge::paid())
+                    .unwrap();
                 let curve = PriceCurve::new(&d, x_max);
                 for k in 0..60 {
                     // Prices from far below the first node to beyond the top.
                     let price = curve.top_price * libm::pow(10.0, -f64::from(k) / 6.0) * 1.5;
-                    let x = curve.depth_for_price(&d, price, 200);
+                    let x = curve.depth_for_price(&d, price, 200, &mut Gauge::paid());
                     let y = d.depth_for_price(price, x_max, 200);
                     assert!(
                         (x - y).abs() <= 1e-11 * (1.0 + y),

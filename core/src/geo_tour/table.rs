@@ -10,8 +10,10 @@ use super::lambert_phasing::{
 };
 use super::maneuver::{Direction, Maneuver, Method};
 use super::price_curve::PriceCurve;
-use super::radial::radial;
+use super::radial::{radial, radial_gauged};
 use super::types::{MethodPolicy, Settings, MAX_LAMBERT_REVOLUTIONS};
+use super::work_units::{self, spend, Cut, Gauge};
+use crate::work::Meter;
 
 /// Most point options of a leg: Hohmann, radial, direct Lambert and one per Lambert well.
 pub(crate) const MAX_POINTS: usize = 4 + MAX_LAMBERT_REVOLUTIONS as usize;
@@ -123,7 +125,8 @@ pub(crate) fn rule_method(phase_rad: f64, s: &Settings) -> Method {
 }
 
 /// Rebuild the manoeuvre of a point option (deterministic: the same numbers as when the
-/// table was built).
+/// table was built). Not metered: the returned plan's legs are paid from the reserve, at
+/// their bound (`work_units::leg_assembly`).
 pub(crate) fn point_maneuver(
     g: &Geo,
     dir: Direction,
@@ -136,7 +139,16 @@ pub(crate) fn point_maneuver(
         PointKind::Stay => Some(Maneuver::none()),
         PointKind::Hohmann => hohmann(g, dir, phase_rad, s.min_radius_km),
         PointKind::Radial => radial(g, dir, phase_rad, s.min_radius_km, s.root_max_iter),
-        PointKind::Direct => lambert_revs(g, dir, phase_rad, p.duration_s, 0, p_cap, bounds(s)),
+        PointKind::Direct => lambert_revs(
+            g,
+            dir,
+            phase_rad,
+            p.duration_s,
+            0,
+            p_cap,
+            bounds(s),
+            &mut Gauge::paid(),
+        ),
         PointKind::Well(m) => lambert_revs(
             g,
             dir,
@@ -145,6 +157,7 @@ pub(crate) fn point_maneuver(
             m.saturating_sub(1),
             p_cap,
             bounds(s),
+            &mut Gauge::paid(),
         ),
     }
 }
@@ -165,7 +178,9 @@ fn push(t: &mut LegTable, kind: PointKind, m: Option<Maneuver>, cap: f64) {
     }
 }
 
-/// Build the table of one leg.
+/// Build the table of one leg, its roots' evaluations and its direct Lambert arc metered by
+/// `gauge` (its set-up is charged by the caller, `work_units::leg_table`). When a step is
+/// refused the table is incomplete: the caller sees `gauge.stopped()`.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn build(
     g: &Geo,
@@ -177,6 +192,7 @@ pub(crate) fn build(
     cap_mps: f64,
     policy: MethodPolicy,
     s: &Settings,
+    gauge: &mut Gauge<'_>,
 ) -> LegTable {
     let mut t = LegTable::empty();
     t.target_index = target_index;
@@ -200,7 +216,7 @@ pub(crate) fn build(
             dir,
             phase_rad,
         };
-        if let Some(x) = model.max_depth_km(cap_mps, s.min_radius_km, s.root_max_iter) {
+        if let Some(x) = model.max_depth_km(cap_mps, s.min_radius_km, s.root_max_iter, gauge) {
             let t_min = model.at(x).duration_s;
             t.fastest_s = t.fastest_s.min(t_min);
             t.drift = Some(DriftRange {
@@ -223,7 +239,7 @@ pub(crate) fn build(
         push(
             &mut t,
             PointKind::Radial,
-            radial(g, dir, phase_rad, s.min_radius_km, s.root_max_iter),
+            radial_gauged(g, dir, phase_rad, s.min_radius_km, s.root_max_iter, gauge),
             cap_mps,
         );
     }
@@ -236,6 +252,7 @@ pub(crate) fn build(
             0,
             f64::INFINITY,
             bounds(s),
+            gauge,
         );
         push(&mut t, PointKind::Direct, direct, cap_mps);
     }
@@ -244,7 +261,7 @@ pub(crate) fn build(
 
 /// Add the drift's fastest duration ignoring the cap to `t.fastest_uncapped_s` (a second
 /// search for the deepest drift orbit, left out of [`build`] because only an infeasible
-/// request needs it).
+/// request needs it). Not metered: paid from the reserve, at its bound.
 pub(crate) fn add_uncapped_drift(g: &Geo, t: &mut LegTable, s: &Settings) {
     if !t.drift_allowed {
         return;
@@ -254,7 +271,12 @@ pub(crate) fn add_uncapped_drift(g: &Geo, t: &mut LegTable, s: &Settings) {
         dir: direction_of(t),
         phase_rad: t.phase_rad,
     };
-    if let Some(x) = model.max_depth_km(f64::INFINITY, s.min_radius_km, s.root_max_iter) {
+    if let Some(x) = model.max_depth_km(
+        f64::INFINITY,
+        s.min_radius_km,
+        s.root_max_iter,
+        &mut Gauge::paid(),
+    ) {
         t.fastest_uncapped_s = t.fastest_uncapped_s.min(model.at(x).duration_s);
     }
 }
@@ -265,16 +287,32 @@ fn has_wells(t: &LegTable, policy: MethodPolicy) -> bool {
 }
 
 /// Complete a table from [`build`] with its dear parts, once the sweep is known to be needed:
-/// the drift's price curve and the Lambert wells (a golden section of Lambert solves per well).
-pub(crate) fn finish(g: &Geo, t: &mut LegTable, policy: MethodPolicy, s: &Settings) {
+/// the drift's price curve and the Lambert wells (a golden section of Lambert solves per well),
+/// each charged to `meter` first.
+///
+/// # Errors
+/// [`Cut`] when the work budget runs out (the table is then incomplete).
+pub(crate) fn finish(
+    g: &Geo,
+    t: &mut LegTable,
+    policy: MethodPolicy,
+    s: &Settings,
+    meter: &mut Meter,
+) -> Result<(), Cut> {
     if let Some(d) = t.drift.as_mut() {
+        spend(meter, work_units::price_curve())?;
         d.curve = Some(PriceCurve::new(&d.model, d.x_max_km));
     }
     if !has_wells(t, policy) {
-        return;
+        return Ok(());
     }
     let (dir, phase_rad, cap_mps) = (direction_of(t), t.phase_rad, t.cap_mps);
     for m in 1..=s.lambert_max_revolutions.saturating_add(1) {
+        spend(meter, work_units::WELL)?;
+        if well_skipped(g, dir, phase_rad, m, cap_mps) {
+            continue;
+        }
+        let mut gauge = Gauge::metered(meter);
         let w = well_minimum(
             g,
             dir,
@@ -284,9 +322,14 @@ pub(crate) fn finish(g: &Geo, t: &mut LegTable, policy: MethodPolicy, s: &Settin
             cap_mps,
             s.well_iterations,
             bounds(s),
+            &mut gauge,
         );
+        if gauge.stopped() {
+            return Err(Cut);
+        }
         push(t, PointKind::Well(m), w, cap_mps);
     }
+    Ok(())
 }
 
 /// A lower bound on the leg's fastest admissible duration once its wells are added: every
@@ -316,13 +359,15 @@ pub(crate) fn fastest_lower_bound_s(
 /// most `avail_s`: 0 when any of its wells may exist (a well is not priced before it is
 /// built), else the cheapest option that fits: a point of duration <= `avail_s` (a longer leg
 /// waits), or the drift at `avail_s` (its cost falls with its duration). Infinite when nothing
-/// fits.
+/// fits. The drift's root is metered by `gauge` (when a step is refused the bound is not one:
+/// the caller sees `gauge.stopped()`).
 pub(crate) fn dv_lower_bound_mps(
     g: &Geo,
     t: &LegTable,
     policy: MethodPolicy,
     s: &Settings,
     avail_s: f64,
+    gauge: &mut Gauge<'_>,
 ) -> f64 {
     if has_wells(t, policy) {
         let dir = direction_of(t);
@@ -342,7 +387,7 @@ pub(crate) fn dv_lower_bound_mps(
         if avail_s >= d.t_min_s {
             let x = d
                 .model
-                .depth_for_duration(avail_s, d.x_max_km, s.root_max_iter);
+                .depth_for_duration(avail_s, d.x_max_km, s.root_max_iter, gauge);
             // The root is bracketed to rounding; the margin keeps the bound below D(avail_s).
             best = best.min(d.model.at(x).dv_mps * (1.0 - 1e-9));
         }

@@ -1,5 +1,7 @@
 //! The GEO tour request and its settings.
 
+use crate::astro::EARTH_RADIUS_KM;
+use crate::contract::{check_range, Range, SettingError};
 use serde::{Deserialize, Serialize};
 
 /// Most clients of one tour.
@@ -55,68 +57,95 @@ pub struct Problem {
     pub policy: MethodPolicy,
 }
 
-/// Loop bounds, tolerances and the paper's rule. Worst case of a solve (per sweep, M legs,
-/// W = `lambert_max_revolutions + 1` wells): table building M (W (`well_iterations` + 3) + 2)
-/// Lambert pairs (<= 2 `lambert_max_iter` Householder steps each) and 4 M `root_max_iter`
-/// drift/radial bisection steps; allocation (1 + 2^`gap_max_legs`) `price_max_iter` price
-/// steps of M drift roots of at most `root_max_iter` steps each; the exchange search at most
-/// `exchange_rounds` x M x (`MAX_POINTS` + 1) exact re-allocations (each `price_max_iter` x M
-/// drift roots) and M x W well searches.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Settings {
-    /// Most whole revolutions of a Lambert transfer (wells 1..=this+1), <= 8.
-    pub lambert_max_revolutions: u16,
-    /// Householder steps per Lambert solve.
-    pub lambert_max_iter: u16,
-    /// Lambert tolerance on Izzo's x.
-    pub lambert_tol: f64,
-    /// Golden-section steps per Lambert well.
-    pub well_iterations: u16,
-    /// Bisection/secant steps of every 1-D root (drift depth, radial eccentricity).
-    pub root_max_iter: u16,
-    /// Steps of the time-price search.
-    pub price_max_iter: u16,
-    /// The price search stops when the tour's time is within this of the mission time, s.
-    pub time_tol_s: f64,
-    /// Legs switching at the critical price tried both ways, <= 6.
-    pub gap_max_legs: u8,
-    /// Rounds of the exchange search after the price (each tries every leg's options whose
-    /// first-order gain at the current price is positive).
-    pub exchange_rounds: u16,
-    /// A Lambert well is refined at the current price in the exchange search when its stored
-    /// bottom's first-order effect is below this, m/s.
-    pub exchange_margin_mps: f64,
-    /// No intermediate orbit may come closer to Earth's centre than this, km.
-    pub min_radius_km: f64,
-    /// Paper's rule: drift above this phase offset, rad (1.2 deg).
-    pub rule_drift_above_rad: f64,
-    /// Paper's rule: one-revolution Hohmann above this, rad (0.25 deg).
-    pub rule_hohmann_above_rad: f64,
-    /// Paper's rule: radial above this, rad (0.15 deg); Lambert at or below.
-    pub rule_radial_above_rad: f64,
-    /// Transfer time of a direct (0-revolution) Lambert leg, and of the paper's rule, s (9 h).
-    pub lambert_direct_time_s: f64,
+/// One degree, rad.
+const DEG_RAD: f64 = core::f64::consts::PI / 180.0;
+
+crate::settings_table! {
+    /// Loop bounds, tolerances, the paper's rule and the work budget. Every loop of a solve is
+    /// bounded by these and the capacities, and charged to the work meter at its worst case
+    /// (`work_units.rs`): a solve stops at `work_budget` units, which bounds its Cortex-M7
+    /// instructions (docs/geo-tour.md, "Work budget").
+    pub struct Settings;
+    /// The GEO tour's settings, by name (stable codes on the wire and in the C interface).
+    pub enum SettingId in crate::limits::Setting::GeoTour;
+    {
+        /// Most whole revolutions of a Lambert transfer (wells 1..=this+1), <= 8.
+        lambert_max_revolutions, LambertMaxRevolutions = 0: u16 = 3,
+        unit "", range Range::closed(0.0, MAX_LAMBERT_REVOLUTIONS as f64), limit AtMost;
+        /// Householder steps per Lambert solve.
+        lambert_max_iter, LambertMaxIter = 1: u16 = 40,
+        unit "", range Range::closed(1.0, 200.0), limit AtMost;
+        /// Lambert tolerance on Izzo's x.
+        lambert_tol, LambertTol = 2: f64 = 1e-13,
+        unit "", range Range::closed(1e-15, 1e-3), limit AtMost;
+        /// Golden-section steps per Lambert well.
+        well_iterations, WellIterations = 3: u16 = 20,
+        unit "", range Range::closed(1.0, 200.0), limit AtMost;
+        /// Bisection/secant steps of every 1-D root (drift depth, radial eccentricity).
+        root_max_iter, RootMaxIter = 4: u16 = 200,
+        unit "", range Range::closed(10.0, 1000.0), limit AtMost;
+        /// Steps of the time-price search.
+        price_max_iter, PriceMaxIter = 5: u16 = 100,
+        unit "", range Range::closed(1.0, 1000.0), limit AtMost;
+        /// The price search stops when the tour's time is within this of the mission time, s.
+        time_tol_s, TimeTolS = 6: f64 = 1e-3,
+        unit "s", range Range::closed(1e-9, 3600.0), limit AtMost;
+        /// Legs switching at the critical price tried both ways, <= 6.
+        gap_max_legs, GapMaxLegs = 7: u8 = 4,
+        unit "", range Range::closed(0.0, MAX_GAP_LEGS as f64), limit AtMost;
+        /// Rounds of the exchange search after the price (each tries every leg's options whose
+        /// first-order gain at the current price is positive).
+        exchange_rounds, ExchangeRounds = 8: u16 = 8,
+        unit "", range Range::closed(0.0, 100.0), limit AtMost;
+        /// A Lambert well is refined at the current price in the exchange search when its
+        /// stored bottom's first-order effect is below this, m/s.
+        exchange_margin_mps, ExchangeMarginMps = 9: f64 = 0.05,
+        unit "m/s", range Range::closed(0.0, 100.0), limit AtMost;
+        /// No intermediate orbit may come closer to Earth's centre than this, km.
+        min_radius_km, MinRadiusKm = 10: f64 = 6578.137,
+        unit "km", range Range::closed(EARTH_RADIUS_KM, 42_000.0), limit AtLeast;
+        /// Paper's rule: drift above this phase offset, rad (1.2 deg). A method choice: no
+        /// limit.
+        rule_drift_above_rad, RuleDriftAboveRad = 11: f64 = 1.2 * DEG_RAD,
+        unit "rad", range Range::closed(0.0, core::f64::consts::PI), limit Free;
+        /// Paper's rule: one-revolution Hohmann above this, rad (0.25 deg), at most
+        /// `rule_drift_above_rad`.
+        rule_hohmann_above_rad, RuleHohmannAboveRad = 12: f64 = 0.25 * DEG_RAD,
+        unit "rad", range Range::closed(0.0, core::f64::consts::PI), limit Free;
+        /// Paper's rule: radial above this, rad (0.15 deg), at most `rule_hohmann_above_rad`;
+        /// Lambert at or below.
+        rule_radial_above_rad, RuleRadialAboveRad = 13: f64 = 0.15 * DEG_RAD,
+        unit "rad", range Range::closed(0.0, core::f64::consts::PI), limit Free;
+        /// Transfer time of a direct (0-revolution) Lambert leg, and of the paper's rule, s
+        /// (9 h). A method choice: no limit.
+        lambert_direct_time_s, LambertDirectTimeS = 14: f64 = 9.0 * 3600.0,
+        unit "s", range Range::closed(60.0, 864_000.0), limit Free;
+        /// Work units a solve may use (`crate::work`); when they run out the best plan so far is
+        /// returned, checked, with `SolveStatus::BudgetExhausted`. Part of it is kept for the
+        /// checks of the returned plan. The default bounds every request within the default
+        /// limits to 400 M Cortex-M7 instructions (docs/geo-tour.md, "Work budget").
+        work_budget, WorkBudget = 15: u64 = super::work_units::DEFAULT_WORK_BUDGET,
+        unit "units", range Range::any(), limit AtMost;
+    }
 }
 
-impl Default for Settings {
-    fn default() -> Self {
-        let deg = core::f64::consts::PI / 180.0;
-        Self {
-            lambert_max_revolutions: 3,
-            lambert_max_iter: 40,
-            lambert_tol: 1e-13,
-            well_iterations: 20,
-            root_max_iter: 200,
-            price_max_iter: 100,
-            time_tol_s: 1e-3,
-            gap_max_legs: 4,
-            exchange_rounds: 8,
-            exchange_margin_mps: 0.05,
-            min_radius_km: 6578.137,
-            rule_drift_above_rad: 1.2 * deg,
-            rule_hohmann_above_rad: 0.25 * deg,
-            rule_radial_above_rad: 0.15 * deg,
-            lambert_direct_time_s: 9.0 * 3600.0,
-        }
+impl Settings {
+    /// Check every field against its range, then the paper's rule thresholds against each
+    /// other (radial <= Hohmann <= drift).
+    ///
+    /// # Errors
+    /// [`SettingError`] naming the first setting out of range, its value and its range.
+    pub fn validate(&self) -> Result<(), SettingError> {
+        self.check_ranges()?;
+        check_range(
+            SettingId::RuleHohmannAboveRad.into(),
+            self.rule_hohmann_above_rad,
+            Range::closed(0.0, self.rule_drift_above_rad),
+        )?;
+        check_range(
+            SettingId::RuleRadialAboveRad.into(),
+            self.rule_radial_above_rad,
+            Range::closed(0.0, self.rule_hohmann_above_rad),
+        )
     }
 }

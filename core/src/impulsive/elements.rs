@@ -1,20 +1,12 @@
-//! Mean orbital elements as a working 6-vector, the Earth constants, and angle wrapping.
+//! Mean orbital elements as a working 6-vector.
 //!
-//! Internal units (stated once for planner B): lengths in km, times in s, angles in rad,
-//! velocities in km/s. Impulses leave the core in m/s (`*_mps`).
+//! Units are the orbital planners' ([`crate::astro`]): km, s, rad, km/s; impulses leave the
+//! core in m/s (`*_mps`). The Earth constants and the angle wrapping are [`crate::astro`]'s.
 
 use super::types::{MeanElements, RelativeElements};
-
-/// Earth's gravitational parameter mu, km^3/s^2 (Wang 2018, section 1.2).
-pub const EARTH_MU_KM3_S2: f64 = 398_600.441_8;
-/// Earth's equatorial radius Re, km (Wang 2018, eq. 4).
-pub const EARTH_RADIUS_KM: f64 = 6378.137;
-/// Earth's second zonal harmonic J2 (dimensionless).
-pub const EARTH_J2: f64 = 1.082_63e-3;
-/// Metres per kilometre (for km/s to m/s and km to m).
-pub const M_PER_KM: f64 = 1000.0;
-/// 2 pi.
-pub const TWO_PI: f64 = core::f64::consts::TAU;
+pub(crate) use crate::astro::{
+    wrap_pi, wrap_two_pi, EARTH_J2, EARTH_MU_KM3_S2, EARTH_RADIUS_KM, M_PER_KM, TWO_PI,
+};
 
 /// Index of a in an element 6-vector.
 pub(crate) const A: usize = 0;
@@ -86,23 +78,6 @@ pub(crate) fn sub(a: &Elements, b: &Elements) -> Elements {
     out
 }
 
-/// `x` wrapped into `[0, 2 pi)`.
-pub fn wrap_two_pi(x: f64) -> f64 {
-    let r = libm::fmod(x, TWO_PI);
-    let r = if r < 0.0 { r + TWO_PI } else { r };
-    // fmod of a tiny negative value plus 2 pi can round up to exactly 2 pi.
-    if r >= TWO_PI {
-        0.0
-    } else {
-        r
-    }
-}
-
-/// `x` wrapped into `[-pi, pi]` (IEEE remainder).
-pub fn wrap_pi(x: f64) -> f64 {
-    libm::remainder(x, TWO_PI)
-}
-
 /// Mean motion `n = sqrt(mu / a^3)`, rad/s.
 pub(crate) fn mean_motion_rad_s(sma_km: f64) -> f64 {
     libm::sqrt(EARTH_MU_KM3_S2 / (sma_km * sma_km * sma_km))
@@ -117,16 +92,6 @@ pub(crate) fn mean_arg_latitude_rad(el: &Elements) -> f64 {
 #[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn wrapping() {
-        assert_eq!(wrap_two_pi(0.0), 0.0);
-        assert!((wrap_two_pi(-0.5) - (TWO_PI - 0.5)).abs() < 1e-15);
-        assert!((wrap_two_pi(7.0) - (7.0 - TWO_PI)).abs() < 1e-15);
-        assert!(wrap_two_pi(-1e-300) < TWO_PI);
-        assert!((wrap_pi(3.5) - (3.5 - TWO_PI)).abs() < 1e-15);
-        assert!((wrap_pi(-3.5) - (TWO_PI - 3.5)).abs() < 1e-15);
-    }
 
     #[test]
     fn constants_and_mean_motion() {

@@ -1,6 +1,7 @@
 //! Reasons a planner-B request is rejected before iterating. `out` and the workspace are then
 //! untouched.
 
+use crate::contract::SettingError;
 use serde::{Deserialize, Serialize};
 
 /// Which part of the request an error is about.
@@ -113,8 +114,8 @@ pub enum PlanError {
     } = 7,
     /// No impulse in the plan.
     NoImpulses = 8,
-    /// A setting is out of range.
-    InvalidSettings(SettingsError) = 9,
+    /// A setting is out of its range: the setting, the value and the range.
+    InvalidSetting(SettingError) = 9,
     /// Perigee altitude `a (1 - e) - Re` below `Settings::min_perigee_altitude_km`: the orbit
     /// enters the atmosphere (or the Earth).
     PerigeeTooLow {
@@ -151,20 +152,6 @@ pub enum PlanError {
         /// Why.
         error: super::forms::FormError,
     } = 13,
-}
-
-/// A setting out of its documented range.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[repr(u8)]
-pub enum SettingsError {
-    /// An iteration or evaluation limit is zero.
-    ZeroIterationLimit = 0,
-    /// A tolerance is not finite and positive.
-    BadTolerance = 1,
-    /// A singularity threshold or limit is out of range.
-    BadThreshold = 2,
-    /// The search budget cannot hold its samples and starts, or asks for too many starts.
-    BadSearchBudget = 3,
 }
 
 impl core::fmt::Display for PlanError {
@@ -219,7 +206,7 @@ impl core::fmt::Display for PlanError {
                 write!(f, "{requested} impulses exceed the capacity of {capacity}")
             }
             Self::NoImpulses => write!(f, "the plan has no impulses"),
-            Self::InvalidSettings(e) => write!(f, "invalid settings: {e:?}"),
+            Self::InvalidSetting(e) => write!(f, "{e}"),
             Self::PerigeeTooLow {
                 orbit,
                 perigee_altitude_km,

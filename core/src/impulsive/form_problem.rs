@@ -114,6 +114,9 @@ pub enum EndState {
     /// The end state could not be written in the form (the plan itself is unaffected; its
     /// status says whether it is usable).
     Unavailable(FormError),
+    /// The plan has no end state: its nonlinear check could not be flown (the status is a
+    /// numerical failure).
+    NotFlown,
 }
 
 impl OrbitForm {
@@ -233,7 +236,10 @@ pub fn end_state(
     solution: &Solution,
     form: EndForm,
 ) -> EndState {
-    let e = &solution.terminal_error_elements;
+    let Some(terminal) = &solution.terminal_error else {
+        return EndState::NotFlown;
+    };
+    let e = &terminal.elements;
     let achieved = RelativeElements {
         dsma_km: target.dsma_km + e.dsma_km,
         decc: target.decc + e.decc,
@@ -364,7 +370,23 @@ mod tests {
     fn end_state_of_a_perfect_plan_is_the_target_in_its_form() {
         let c = chief();
         let mut sol = Solution::new();
-        sol.terminal_error_elements = rel(0.0);
+        assert_eq!(
+            end_state(&chief(), &rel(1.0), &sol, EndForm::Roe),
+            EndState::NotFlown
+        );
+        sol.terminal_error = Some(crate::impulsive::TerminalError {
+            along_track_m: 0.0,
+            position_m: 0.0,
+            elements: rel(0.0),
+            equinoctial: EquinoctialElements {
+                sma_km: 0.0,
+                mean_longitude_rad: 0.0,
+                ex: 0.0,
+                ey: 0.0,
+                hx: 0.0,
+                hy: 0.0,
+            },
+        });
         let t = rel(1.0);
         match end_state(&c, &t, &sol, EndForm::Roe) {
             EndState::Roe(r) => assert_eq!(r, roe_of(&c, &t)),

@@ -55,10 +55,7 @@ mod validate;
 mod work_units;
 mod workspace;
 
-pub use elements::{
-    wrap_pi, wrap_two_pi, EARTH_J2, EARTH_MU_KM3_S2, EARTH_RADIUS_KM, M_PER_KM, TWO_PI,
-};
-pub use error::{Orbit, PlanError, Quantity, SettingsError, MAX_ANGLE_RAD, MAX_SMA_KM};
+pub use error::{Orbit, PlanError, Quantity, MAX_ANGLE_RAD, MAX_SMA_KM};
 pub use form_problem::{
     end_state, EndForm, EndState, FormPart, FormProblem, OrbitForm, RelativeForm,
 };
@@ -68,13 +65,24 @@ pub use forms::{
     relative_of_roe, roe_of, CartesianState, FormError, Roe, OSCULATING_MAX_ITER, OSCULATING_TOL,
 };
 pub use model::{point_phase, Phase};
-pub use settings::{ElementSet, Settings, MAX_SEARCH_STARTS};
+pub use settings::{ElementSet, SettingId, Settings, DEFAULT_WORK_BUDGET, MAX_SEARCH_STARTS};
 pub use socp::{least_fuel_rows, LeastFuel, SocpStatus};
-pub use solution::{Impulse, Solution};
+pub use solution::{Impulse, Solution, TerminalError};
 pub use status::{SolveInfo, SolveStatus, Stage};
 pub use trajectory::{formation_position_rtn_km, relative_position_rtn_km, TrajectoryError};
 pub use types::*;
 pub use workspace::Workspace;
+
+/// Planner B in the planners' contract ([`crate::contract::Planner`]): [`solve`]. (A
+/// request in the user's input forms goes through [`solve_form`], which writes the same
+/// solution.)
+#[derive(Clone, Copy, Debug)]
+pub struct Impulsive;
+
+crate::impl_planner!(
+    Impulsive: Problem, Settings, Workspace, Solution, PlanError, SolveStatus,
+    crate::wire::Planner::Impulsive, solve, reset |out| *out = Solution::new()
+);
 
 /// Plan the impulses of `problem`: at its fixed impulse points, or by a bounded search over
 /// them (`ImpulsePlan::Search`).
@@ -97,7 +105,7 @@ pub fn solve(
     workspace: &mut Workspace,
     out: &mut Solution,
 ) -> Result<(), PlanError> {
-    settings.validate().map_err(PlanError::InvalidSettings)?;
+    settings.validate().map_err(PlanError::InvalidSetting)?;
     let ctx = validate::validate(problem, settings)?;
     let impulses = match &problem.plan {
         ImpulsePlan::Fixed(points) => points.len(),
@@ -168,7 +176,7 @@ pub fn solve(
 /// `form_problem`).
 ///
 /// # Errors
-/// [`PlanError::InvalidSettings`], [`PlanError::InputForm`] naming the part that cannot be
+/// [`PlanError::InvalidSetting`], [`PlanError::InputForm`] naming the part that cannot be
 /// converted, or any [`PlanError`] of [`solve`]; `out` and `workspace` are then untouched.
 pub fn solve_form(
     problem: &FormProblem,
@@ -176,7 +184,7 @@ pub fn solve_form(
     workspace: &mut Workspace,
     out: &mut Solution,
 ) -> Result<EndState, PlanError> {
-    settings.validate().map_err(PlanError::InvalidSettings)?;
+    settings.validate().map_err(PlanError::InvalidSetting)?;
     let (converted, evaluations) = problem
         .to_problem_and_evaluations(settings)
         .map_err(|(part, error)| PlanError::InputForm { part, error })?;

@@ -6,7 +6,7 @@ use super::elements::{sub, to_relative, wrap_two_pi, Elements, A, M_PER_KM};
 use super::min_fuel::total;
 use super::model::Model;
 use super::settings::{ElementSet, Settings};
-use super::solution::{Impulse, Solution};
+use super::solution::{Impulse, Solution, TerminalError};
 use super::solver::{nonlinear_error, scaled_error, Report};
 use super::status::{SolveStatus, Stage};
 use super::transfer::{Context, Points, Sequence};
@@ -64,56 +64,28 @@ fn unsafe_arc(model: &Model, seq: &Sequence, n: usize, min_km: f64) -> Option<(u
     None
 }
 
-/// Replace a non-finite number by 0; true when it was not finite.
-fn scrub(x: &mut f64) -> bool {
-    if x.is_finite() {
-        false
-    } else {
-        *x = 0.0;
-        true
-    }
+/// Every number of the returned plan (impulses, total, final time) and of the status finite.
+fn plan_is_finite(out: &Solution) -> bool {
+    let impulses = out.impulses.iter().all(|imp| {
+        [imp.time_s, imp.arg_latitude_rad, imp.true_arg_latitude_rad]
+            .iter()
+            .chain(imp.dv_rtn_mps.iter())
+            .all(|x| x.is_finite())
+    });
+    let status = match out.info.status {
+        SolveStatus::Linearised { miss_m } => miss_m.is_finite(),
+        SolveStatus::UnsafePerigee {
+            perigee_altitude_km,
+            ..
+        } => perigee_altitude_km.is_finite(),
+        _ => true,
+    };
+    impulses && out.total_dv_mps.is_finite() && out.final_time_s.is_finite() && status
 }
 
-/// Every number of `out` finite: non-finite ones are written as 0. True when one was not.
-fn scrub_solution(out: &mut Solution) -> bool {
-    let mut bad = false;
-    for imp in out.impulses.iter_mut() {
-        bad |= scrub(&mut imp.time_s);
-        bad |= scrub(&mut imp.arg_latitude_rad);
-        bad |= scrub(&mut imp.true_arg_latitude_rad);
-        for x in imp.dv_rtn_mps.iter_mut() {
-            bad |= scrub(x);
-        }
-    }
-    let e = &mut out.terminal_error_elements;
-    for x in [
-        &mut out.total_dv_mps,
-        &mut out.min_norm_total_dv_mps,
-        &mut out.linear_total_dv_mps,
-        &mut out.final_time_s,
-        &mut out.terminal_error_m,
-        &mut out.terminal_position_error_m,
-        &mut e.dsma_km,
-        &mut e.decc,
-        &mut e.dinc_rad,
-        &mut e.draan_rad,
-        &mut e.dargp_rad,
-        &mut e.dmean_anomaly_rad,
-        &mut out.info.condition_number,
-    ] {
-        bad |= scrub(x);
-    }
-    if let SolveStatus::Linearised { miss_m } = &mut out.info.status {
-        bad |= scrub(miss_m);
-    }
-    if let SolveStatus::UnsafePerigee {
-        perigee_altitude_km,
-        ..
-    } = &mut out.info.status
-    {
-        bad |= scrub(perigee_altitude_km);
-    }
-    bad
+/// `Some(x)` when `x` is finite: a figure that came out NaN or infinite is absent.
+fn finite(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
 }
 
 /// Write a report into `out`: impulses (m/s, RTN), totals, nonlinear terminal errors. The
@@ -136,43 +108,53 @@ pub(crate) fn write_solution(
     let linear_steps = seq.steps;
     let linear_final_time_s = seq.final_time_s;
     // The terminal error in the classical and the equinoctial sets, and the position misses.
-    let (classical_err, eq_err, along_m, pos_m) =
-        match nonlinear_error(ctx, pts, &rep.dv, settings, seq) {
-            Ok(miss) => {
-                let (classical, equinoctial) =
-                    both_sets(&ctx.model, &seq.end, &miss.wanted, &miss.err);
-                match status {
-                    SolveStatus::Solved
-                        if scaled_error(&miss.err, ctx.chief0[A])
-                            .partial_cmp(&settings.correction_tol)
-                            .is_none_or(core::cmp::Ordering::is_gt) =>
-                    {
-                        status = SolveStatus::CorrectionNotConverged;
-                    }
-                    SolveStatus::Linearised { .. } => {
-                        status = SolveStatus::Linearised { miss_m: miss.pos_m };
-                    }
-                    _ => {}
+    let terminal = match nonlinear_error(ctx, pts, &rep.dv, settings, seq) {
+        Ok(miss) => {
+            let (classical, equinoctial) = both_sets(&ctx.model, &seq.end, &miss.wanted, &miss.err);
+            match status {
+                SolveStatus::Solved
+                    if scaled_error(&miss.err, ctx.chief0[A])
+                        .partial_cmp(&settings.correction_tol)
+                        .is_none_or(core::cmp::Ordering::is_gt) =>
+                {
+                    status = SolveStatus::CorrectionNotConverged;
                 }
-                if !failed(&status) {
-                    if let Some((arc, perigee)) =
-                        unsafe_arc(&ctx.model, seq, pts.n, settings.min_perigee_altitude_km)
-                    {
-                        status = SolveStatus::UnsafePerigee {
-                            arc,
-                            perigee_altitude_km: perigee,
-                        };
-                    }
+                SolveStatus::Linearised { .. } => {
+                    status = SolveStatus::Linearised { miss_m: miss.pos_m };
                 }
-                (classical, equinoctial, miss.along_m, miss.pos_m)
+                _ => {}
             }
-            Err(stage) => {
-                if !failed(&status) {
-                    status = SolveStatus::NumericalFailure(stage);
+            if !failed(&status) {
+                if let Some((arc, perigee)) =
+                    unsafe_arc(&ctx.model, seq, pts.n, settings.min_perigee_altitude_km)
+                {
+                    status = SolveStatus::UnsafePerigee {
+                        arc,
+                        perigee_altitude_km: perigee,
+                    };
                 }
-                ([f64::NAN; 6], [f64::NAN; 6], f64::NAN, f64::NAN)
             }
-        };
+            Some(TerminalError {
+                along_track_m: miss.along_m,
+                position_m: miss.pos_m,
+                elements: to_relative(&classical),
+                equinoctial: EquinoctialElements {
+                    sma_km: equinoctial[0],
+                    mean_longitude_rad: equinoctial[1],
+                    ex: equinoctial[2],
+                    ey: equinoctial[3],
+                    hx: equinoctial[4],
+                    hy: equinoctial[5],
+                },
+            })
+        }
+        Err(stage) => {
+            if !failed(&status) {
+                status = SolveStatus::NumericalFailure(stage);
+            }
+            None
+        }
+    };
     if !rep.correction_used {
         seq.steps = linear_steps;
         seq.final_time_s = linear_final_time_s;
@@ -203,20 +185,16 @@ pub(crate) fn write_solution(
         let _ = out.impulses.push(imp);
     }
     out.total_dv_mps = total(&rep.dv) * M_PER_KM;
-    out.min_norm_total_dv_mps = rep.min_norm_total_km_s * M_PER_KM;
-    out.linear_total_dv_mps = rep.linear_total_km_s * M_PER_KM;
+    out.min_norm_total_dv_mps = finite(rep.min_norm_total_km_s * M_PER_KM);
+    out.linear_total_dv_mps = finite(rep.linear_total_km_s * M_PER_KM);
     out.final_time_s = seq.final_time_s;
-    out.terminal_error_m = along_m;
-    out.terminal_position_error_m = pos_m;
-    out.terminal_error_elements = to_relative(&classical_err);
-    out.terminal_error_equinoctial = EquinoctialElements {
-        sma_km: eq_err[0],
-        mean_longitude_rad: eq_err[1],
-        ex: eq_err[2],
-        ey: eq_err[3],
-        hx: eq_err[4],
-        hy: eq_err[5],
-    };
+    out.terminal_error = terminal.filter(|t| {
+        [t.along_track_m, t.position_m]
+            .iter()
+            .chain(t.elements.as_array().iter())
+            .chain(t.equinoctial.as_array().iter())
+            .all(|x| x.is_finite())
+    });
     out.info.iterations = rep.iterations;
     out.info.min_fuel_iterations = rep.min_fuel_steps;
     out.info.min_fuel_gap_mps = if rep.min_fuel_used {
@@ -226,18 +204,23 @@ pub(crate) fn write_solution(
     };
     out.info.correction_iterations = rep.correction_steps;
     out.info.rank = rep.conditioning.rank;
-    // Rank-deficient F has no finite condition number; the largest f64 says so in a finite
-    // number (the rank field carries the fact).
+    // Rank-deficient F has no finite condition number: absent (the rank says why).
     out.info.condition_number = if rep.conditioning.rank < 6 {
-        f64::MAX
+        None
     } else {
-        rep.conditioning.condition_number
+        finite(rep.conditioning.condition_number)
     };
     out.info.min_fuel_used = rep.min_fuel_used;
     out.info.correction_used = rep.correction_used;
     out.info.evaluations = evaluations;
     out.info.status = status;
-    if scrub_solution(out) && !failed(&out.info.status) {
-        out.info.status = SolveStatus::NumericalFailure(Stage::NonFinite);
+    if !plan_is_finite(out) {
+        // No plan with a non-finite number leaves: none at all, and the status says why.
+        out.impulses.clear();
+        out.total_dv_mps = 0.0;
+        out.final_time_s = 0.0;
+        if !failed(&out.info.status) {
+            out.info.status = SolveStatus::NumericalFailure(Stage::NonFinite);
+        }
     }
 }

@@ -1,25 +1,15 @@
 //! J2 secular drift of mean elements, `D(sigma)` (Wang 2018, eq. 4-5), and its Jacobian `dD`
 //! (the paper's `M_3x3` block, eq. 8).
 
-use super::elements::{
-    mean_motion_rad_s, Elements, A, ARGP, E, EARTH_J2, EARTH_MU_KM3_S2, EARTH_RADIUS_KM, I, MA,
-    RAAN,
-};
+use super::elements::{mean_motion_rad_s, Elements, A, ARGP, E, I, MA, RAAN};
+use crate::astro::Gravity;
 use nalgebra::SMatrix;
 
-/// The constants of the secular theory (gravitational parameter, equatorial radius, J2):
-/// planner B uses the Earth's ([`EARTH`]); the LEO tour its settings'.
-pub(crate) type Constants = crate::leo_tour::j2::Gravity;
-
-/// The Earth constants of planner B.
-pub(crate) const EARTH: Constants = Constants {
-    mu_km3_s2: EARTH_MU_KM3_S2,
-    re_km: EARTH_RADIUS_KM,
-    j2: EARTH_J2,
-};
+// The constants of the secular theory (gravitational parameter, equatorial radius, J2):
+// planner B uses the Earth's (`Gravity::EARTH`); the LEO tour its settings'.
 
 /// `C = 3 J2 Re^2 / (2 (1 - e^2)^2) sqrt(mu / a^7)`, rad/s.
-fn j2_coefficient(k: &Constants, sma_km: f64, ecc: f64) -> f64 {
+fn j2_coefficient(k: &Gravity, sma_km: f64, ecc: f64) -> f64 {
     let one_minus_e2 = 1.0 - ecc * ecc;
     let a2 = sma_km * sma_km;
     let a7 = a2 * a2 * a2 * sma_km;
@@ -29,11 +19,11 @@ fn j2_coefficient(k: &Constants, sma_km: f64, ecc: f64) -> f64 {
 
 /// `D(sigma) = [0, 0, 0, n_Omega, n_omega, n + n_M]`, rad/s in the angle rows.
 pub(crate) fn rates(el: &Elements) -> Elements {
-    rates_with(&EARTH, el)
+    rates_with(&Gravity::EARTH, el)
 }
 
 /// [`rates`] with the constants `k`: the first-order secular J2 rates of mean elements.
-pub(crate) fn rates_with(k: &Constants, el: &Elements) -> Elements {
+pub(crate) fn rates_with(k: &Gravity, el: &Elements) -> Elements {
     let (a, e, i) = (el[A], el[E], el[I]);
     let c = j2_coefficient(k, a, e);
     let cos_i = libm::cos(i);
@@ -56,7 +46,7 @@ pub(crate) fn arg_latitude_rate_rad_s(el: &Elements) -> f64 {
 /// which hold the paper's `M_3x3` (checked against finite differences in the tests).
 pub(crate) fn rates_jacobian(el: &Elements) -> SMatrix<f64, 6, 6> {
     let (a, e, i) = (el[A], el[E], el[I]);
-    let c = j2_coefficient(&EARTH, a, e);
+    let c = j2_coefficient(&Gravity::EARTH, a, e);
     let one_minus_e2 = 1.0 - e * e;
     let eta = libm::sqrt(one_minus_e2);
     let (sin_i, cos_i) = (libm::sin(i), libm::cos(i));

@@ -24,34 +24,47 @@ pub struct Impulse {
     pub dv_rtn_mps: [f64; 3],
 }
 
+/// The nonlinear check of a plan (exact impulses, J2 secular drift) at its last impulse:
+/// achieved minus wanted.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TerminalError {
+    /// Deputy position error along the target's along-track direction, m.
+    pub along_track_m: f64,
+    /// Norm of the deputy position error, m.
+    pub position_m: f64,
+    /// Relative elements (angles wrapped to `[-pi, pi]`). In a solve in the equinoctial set
+    /// these are the differences of the two orbits' classical elements, whose node and perigee
+    /// angles are not defined at i = 0 and e = 0 (they are then 0 on each side): read
+    /// `equinoctial` there.
+    pub elements: RelativeElements,
+    /// Equinoctial elements (mean longitude wrapped to `[-pi, pi]`); regular at e = 0 and
+    /// i = 0.
+    pub equinoctial: EquinoctialElements,
+}
+
 /// A plan (or the best so far, with a status saying why), written into caller-owned memory.
+/// Every number is finite whatever the status; a value that does not exist is absent
+/// (`None`). A plan whose own numbers came out non-finite is not returned: the status is then
+/// `NumericalFailure(NonFinite)` with no impulses (totals and final time 0).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Solution {
     /// The impulses in time order.
     pub impulses: heapless::Vec<Impulse, MAX_IMPULSES>,
     /// `sum_k |dv_k|` of `impulses`, m/s.
     pub total_dv_mps: f64,
-    /// Total of the minimum-norm fixed point `F^+ dY` (eq. 14) at the same impulse points, m/s.
-    pub min_norm_total_dv_mps: f64,
+    /// Total of the minimum-norm fixed point `F^+ dY` (eq. 14) at the same impulse points, m/s
+    /// (absent when it came out non-finite).
+    pub min_norm_total_dv_mps: Option<f64>,
     /// Total of the linear-model fixed point before the nonlinear correction (the min-fuel one
-    /// when `info.min_fuel_used`, else equal to `min_norm_total_dv_mps`), m/s.
-    pub linear_total_dv_mps: f64,
+    /// when `info.min_fuel_used`, else equal to `min_norm_total_dv_mps`), m/s (absent when it
+    /// came out non-finite).
+    pub linear_total_dv_mps: Option<f64>,
     /// Time of the last impulse, s.
     pub final_time_s: f64,
-    /// Nonlinear check (exact impulses, J2 secular drift): deputy position error at the last
-    /// impulse along the target's along-track direction, m.
-    pub terminal_error_m: f64,
-    /// Nonlinear check: norm of the deputy position error at the last impulse, m.
-    pub terminal_position_error_m: f64,
-    /// Nonlinear check: achieved minus wanted relative elements at the last impulse (angles
-    /// wrapped to `[-pi, pi]`).
-    /// In a solve in the equinoctial set these are the differences of the two orbits' classical
-    /// elements, whose node and perigee angles are not defined at i = 0 and e = 0 (they are
-    /// then 0 on each side): read `terminal_error_equinoctial` there.
-    pub terminal_error_elements: RelativeElements,
-    /// Nonlinear check: achieved minus wanted equinoctial elements at the last impulse (mean
-    /// longitude wrapped to `[-pi, pi]`); regular at e = 0 and i = 0.
-    pub terminal_error_equinoctial: EquinoctialElements,
+    /// The nonlinear check of the returned impulses at the last impulse; absent when the check
+    /// could not be flown (a numerical failure: Kepler, a singular state) or gave non-finite
+    /// numbers.
+    pub terminal_error: Option<TerminalError>,
     /// Counters and status.
     pub info: SolveInfo,
 }
@@ -62,34 +75,17 @@ impl Solution {
         Self {
             impulses: heapless::Vec::new(),
             total_dv_mps: 0.0,
-            min_norm_total_dv_mps: 0.0,
-            linear_total_dv_mps: 0.0,
+            min_norm_total_dv_mps: None,
+            linear_total_dv_mps: None,
             final_time_s: 0.0,
-            terminal_error_m: 0.0,
-            terminal_position_error_m: 0.0,
-            terminal_error_elements: RelativeElements {
-                dsma_km: 0.0,
-                decc: 0.0,
-                dinc_rad: 0.0,
-                draan_rad: 0.0,
-                dargp_rad: 0.0,
-                dmean_anomaly_rad: 0.0,
-            },
-            terminal_error_equinoctial: EquinoctialElements {
-                sma_km: 0.0,
-                mean_longitude_rad: 0.0,
-                ex: 0.0,
-                ey: 0.0,
-                hx: 0.0,
-                hy: 0.0,
-            },
+            terminal_error: None,
             info: SolveInfo {
                 status: SolveStatus::Unsolved,
                 iterations: 0,
                 min_fuel_iterations: 0,
                 correction_iterations: 0,
                 rank: 0,
-                condition_number: 0.0,
+                condition_number: None,
                 min_fuel_used: false,
                 correction_used: false,
                 evaluations: 0,

@@ -568,12 +568,17 @@ mod tests {
         rep.min_norm_total_km_s = f64::NAN;
         let mut out = Solution::new();
         write_solution(&ctx, &pts, &settings, &mut seq, &rep, 1, &mut out);
-        assert_eq!(
-            out.info.status,
-            SolveStatus::NumericalFailure(Stage::NonFinite)
-        );
-        assert_eq!(out.min_norm_total_dv_mps, 0.0);
+        // A figure that came out non-finite is absent; the plan itself is finite and kept.
+        assert_eq!(out.min_norm_total_dv_mps, None);
         assert!(out.total_dv_mps > 8.0);
+        assert!(out.terminal_error.is_some());
+        // A plan number that came out non-finite: no plan at all, and the status says so.
+        rep.dv[0] = f64::INFINITY;
+        let mut out = Solution::new();
+        write_solution(&ctx, &pts, &settings, &mut seq, &rep, 1, &mut out);
+        assert!(matches!(out.info.status, SolveStatus::NumericalFailure(_)));
+        assert!(out.impulses.is_empty());
+        assert_eq!(out.total_dv_mps, 0.0);
     }
 
     #[test]

@@ -5,8 +5,9 @@ use serde::{Deserialize, Serialize};
 /// The state of the returned plan. Checked in this order: numerical failure, unsafe perigee,
 /// rank deficiency (at the returned plan), nonlinear correction not converged, fixed point not
 /// converged, linearised (correction off), solved. Every number in a returned [`Solution`] is
-/// finite whatever the status: a number a failed stage could not compute is written as 0 and
-/// the status is `NumericalFailure`.
+/// finite whatever the status: a value a failed stage could not compute is absent (`None`),
+/// and a plan whose own numbers are not finite is not returned (`NumericalFailure(NonFinite)`,
+/// no impulses).
 ///
 /// [`Solution`]: super::Solution
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -55,6 +56,33 @@ pub enum SolveStatus {
     } = 8,
 }
 
+impl crate::contract::Status for SolveStatus {
+    fn is_usable(&self) -> bool {
+        SolveStatus::is_usable(self)
+    }
+
+    fn code(&self) -> u8 {
+        match self {
+            Self::Unsolved => 0,
+            Self::Solved => 1,
+            Self::RankDeficient => 2,
+            Self::MaxIterations => 3,
+            Self::CorrectionNotConverged => 4,
+            Self::NumericalFailure(_) => 5,
+            Self::UnsafePerigee { .. } => 6,
+            Self::Linearised { .. } => 7,
+            Self::BudgetExhausted { .. } => 8,
+        }
+    }
+
+    fn budget_exhausted(&self) -> Option<bool> {
+        match *self {
+            Self::BudgetExhausted { verified } => Some(verified),
+            _ => None,
+        }
+    }
+}
+
 /// Where a numerical failure happened.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[repr(u8)]
@@ -66,7 +94,7 @@ pub enum Stage {
     Svd = 1,
     /// An iterate left the valid domain (e or sin i under threshold, e >= 1, a <= Re).
     SingularState = 2,
-    /// A number of the returned solution came out NaN or infinite (it is written as 0).
+    /// A number of the returned plan came out NaN or infinite: no plan is returned.
     NonFinite = 3,
 }
 
@@ -94,9 +122,9 @@ pub struct SolveInfo {
     pub correction_iterations: u16,
     /// Numerical rank of `F` at the returned plan (6 when full), from an SVD of F rebuilt there.
     pub rank: u8,
-    /// 2-norm condition number of `F` at the returned plan (ratio of extreme singular values;
-    /// `f64::MAX` when rank-deficient, the smallest singular value being zero).
-    pub condition_number: f64,
+    /// 2-norm condition number of `F` at the returned plan (ratio of extreme singular values);
+    /// absent when rank-deficient (the smallest singular value being zero) or not computed.
+    pub condition_number: Option<f64>,
     /// The min-fuel refinement was run and lowered the total (else the minimum-norm plan).
     pub min_fuel_used: bool,
     /// The nonlinear defect correction was applied to the returned impulses.

@@ -76,7 +76,7 @@ pub fn relative_position_rtn_km(
 ) -> Result<[f64; 3], TrajectoryError> {
     settings
         .validate()
-        .map_err(|e| TrajectoryError::Plan(PlanError::InvalidSettings(e)))?;
+        .map_err(|e| TrajectoryError::Plan(PlanError::InvalidSetting(e)))?;
     let ctx = validate::validate(problem, settings).map_err(TrajectoryError::Plan)?;
     let mut pts = Points::new();
     let mut dv = XVector::zeros();

@@ -40,6 +40,20 @@ pub struct EquinoctialElements {
     pub hy: f64,
 }
 
+impl EquinoctialElements {
+    /// The six numbers in declaration order.
+    pub const fn as_array(&self) -> [f64; 6] {
+        [
+            self.sma_km,
+            self.mean_longitude_rad,
+            self.ex,
+            self.ey,
+            self.hx,
+            self.hy,
+        ]
+    }
+}
+
 /// Deputy-minus-chief mean elements, same order and units as [`MeanElements`].
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RelativeElements {
@@ -55,6 +69,20 @@ pub struct RelativeElements {
     pub dargp_rad: f64,
     /// Delta mean anomaly, rad.
     pub dmean_anomaly_rad: f64,
+}
+
+impl RelativeElements {
+    /// The six numbers in declaration order.
+    pub const fn as_array(&self) -> [f64; 6] {
+        [
+            self.dsma_km,
+            self.decc,
+            self.dinc_rad,
+            self.draan_rad,
+            self.dargp_rad,
+            self.dmean_anomaly_rad,
+        ]
+    }
 }
 
 /// Where one impulse is applied: mean argument of latitude and whole revolutions since the

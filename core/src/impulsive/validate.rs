@@ -108,7 +108,7 @@ fn check_angles(v: &Elements, what: Quantity) -> Result<(), PlanError> {
 /// Check the request; on success the working context.
 ///
 /// # Errors
-/// Every [`PlanError`] class except `InvalidSettings` (checked by the caller first).
+/// Every [`PlanError`] class except `InvalidSetting` (checked by the caller first).
 pub(crate) fn validate(problem: &Problem, settings: &Settings) -> Result<Context, PlanError> {
     let chief0 = from_mean(&problem.chief);
     let initial = from_relative(&problem.initial);

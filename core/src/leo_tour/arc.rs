@@ -15,11 +15,12 @@
 //! it charged to the work budget, which stops the search first when smaller.
 
 use super::flight::{Flight, Model};
-use super::j2::{join, pos, vel, Gravity, State};
+use super::j2::{join, pos, vel, State};
 use super::mean_j2::{self, MeanOrbit};
 use super::shoot::{corrected_lambert_from, shoot, Family, Offset, Secant};
 use super::track::Track;
-use super::types::{ArcSolution, Burn, Settings, Status, MAX_IMPULSES, MAX_VARS};
+use super::types::{Burn, Settings, MAX_IMPULSES, MAX_VARS};
+use crate::astro::Gravity;
 use crate::indexed::IndexedExt as _;
 use crate::lambert::Branch;
 use crate::vec3::{add, cross, dot, norm, scale, sub, Vec3};
@@ -31,10 +32,10 @@ pub(crate) struct Ctx<'a> {
     pub g: Gravity,
     pub impulses: usize,
     pub tf: f64,
-    /// The clients' checkpoints in the planning model (`None` for an estimate, which never
-    /// flies in the planning model).
-    pub a: Option<Track>,
-    pub b: Option<Track>,
+    /// The clients' checkpoints in the planning model, in the caller's workspace (`None` for
+    /// an estimate, which never flies in the planning model).
+    pub a: Option<&'a Track>,
+    pub b: Option<&'a Track>,
     pub b_end: State,
     /// The model of the flights now (the search's, or the planning model's for the polish
     /// and the final check).
@@ -89,6 +90,23 @@ impl Point {
     }
 }
 
+/// A plan flown from scratch in the planning model with an exact shooting of its last leg
+/// ([`Ctx::finish`]): what the caller gets, and whether it arrives.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Flown {
+    /// The burns, `impulses` of them.
+    pub burns: [Burn; MAX_IMPULSES],
+    pub impulses: u8,
+    /// Sum of the burn sizes, m/s (finite).
+    pub total_dv_mps: f64,
+    /// Arrival miss, m (finite).
+    pub miss_m: f64,
+    /// The last leg's family.
+    pub fam: Family,
+    /// The miss is within `arrival_tol_km`.
+    pub arrives: bool,
+}
+
 pub(super) fn families(max_revs: u16) -> impl Iterator<Item = Family> {
     core::iter::once(Family {
         revs: 0,
@@ -132,11 +150,11 @@ impl Ctx<'_> {
 
     fn client_state_flown(&mut self, which: Client, t_s: f64) -> Option<State> {
         let (track, mean) = match which {
-            Client::A => (&self.a, self.mean_a),
-            Client::B => (&self.b, self.mean_b),
+            Client::A => (self.a, self.mean_a),
+            Client::B => (self.b, self.mean_b),
         };
         match self.flight.model {
-            Model::Planning => track.as_ref()?.state_at(&self.flight, t_s, &mut self.meter),
+            Model::Planning => track?.state_at(&self.flight, t_s, &mut self.meter),
             Model::MeanElements => {
                 if !self.meter.spend(mean_j2::STATE_UNITS) {
                     return None;
@@ -312,7 +330,7 @@ impl Ctx<'_> {
         let s = self.settings;
         self.refine_with(
             p,
-            (s.search_step_s, s.search_step_kmps),
+            (s.search_step_s, s.search_step_km_s),
             s.search_max_evals,
             true,
         )
@@ -325,7 +343,7 @@ impl Ctx<'_> {
         let s = self.settings;
         self.refine_with(
             p,
-            (s.search_step_s / 16.0, s.search_step_kmps / 16.0),
+            (s.search_step_s / 16.0, s.search_step_km_s / 16.0),
             s.polish_max_evals,
             false,
         )
@@ -336,7 +354,7 @@ impl Ctx<'_> {
     fn refine_with(
         &mut self,
         p: Point,
-        (first_step_s, first_step_kmps): (f64, f64),
+        (first_step_s, first_step_km_s): (f64, f64),
         budget: u32,
         pick_family: bool,
     ) -> Point {
@@ -366,7 +384,7 @@ impl Ctx<'_> {
         // frozen offset has led it where no J2 transfer of the family exists.
         let mut anchor = best;
         let mut step_t = first_step_s;
-        let mut step_v = first_step_kmps;
+        let mut step_v = first_step_km_s;
         let start_evals = self.evals;
         'levels: while step_t >= self.settings.search_min_step_s {
             let mut improved = true;
@@ -416,11 +434,11 @@ impl Ctx<'_> {
 
     /// Fly `p` in the planning model with an exact J2 shooting of the last leg, and check the
     /// arrival: the plan the caller gets.
-    pub fn finish(&mut self, p: &Point) -> Option<ArcSolution> {
+    pub(crate) fn finish(&mut self, p: &Point) -> Option<Flown> {
         self.in_model(Model::Planning, |ctx| ctx.finish_in_planning_model(p))
     }
 
-    fn finish_in_planning_model(&mut self, p: &Point) -> Option<ArcSolution> {
+    fn finish_in_planning_model(&mut self, p: &Point) -> Option<Flown> {
         let (pre, s, t) = self.fly_to_last_leg(&p.x)?;
         let last = self.impulses.checked_sub(2)?;
         let t_last = *t.get(last)?;
@@ -442,7 +460,7 @@ impl Ctx<'_> {
             if let Some(b) = burns.get_mut(k) {
                 *b = Burn {
                     epoch_s,
-                    dv_kmps: dv,
+                    dv_km_s: dv,
                     rtn_mps: scale(&rtn(state, &dv), 1e3),
                 };
             }
@@ -450,28 +468,20 @@ impl Ctx<'_> {
         for (k, ((state, dv), &epoch)) in pre.iter().zip(t.iter()).take(last).indexed() {
             fill(k, state, *dv, epoch);
         }
-        fill(last, &s, sub(&shot.v_dep_kmps, &vel(&s)), t_last);
+        fill(last, &s, sub(&shot.v_dep_km_s, &vel(&s)), t_last);
         let v_match = sub(&vel(&self.b_end), &vel(&shot.arrival));
         fill(last.checked_add(1)?, &shot.arrival, v_match, self.tf);
-        let total: f64 = burns.iter().map(|b| norm(&b.dv_kmps)).sum::<f64>() * 1e3;
+        let total: f64 = burns.iter().map(|b| norm(&b.dv_km_s)).sum::<f64>() * 1e3;
         let miss_m = shot.miss_km * 1e3;
-        let status = if miss_m > self.settings.arrival_tol_km * 1e3 {
-            Status::ArrivalMissed
-        } else if self.meter.exhausted() {
-            Status::BudgetExhaustedSolved
-        } else {
-            Status::Solved
-        };
-        (total.is_finite() && miss_m.is_finite()).then_some(ArcSolution {
-            status,
+        // Finite below (or no plan): the old `miss > tol` test's complement.
+        let arrives = miss_m <= self.settings.arrival_tol_km * 1e3;
+        (total.is_finite() && miss_m.is_finite()).then_some(Flown {
             burns,
             impulses: u8::try_from(self.impulses).ok()?,
             total_dv_mps: total,
             miss_m,
-            last_leg_revolutions: p.fam.revs,
-            last_leg_branch: p.fam.branch,
-            evaluations: self.evals,
-            work_units: self.meter.used(),
+            fam: p.fam,
+            arrives,
         })
     }
 }

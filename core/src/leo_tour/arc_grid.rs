@@ -76,14 +76,14 @@ impl Ctx<'_> {
         )?;
         Some(Offset {
             dr_km: sub(&r, &pos(&self.b_end)),
-            dv_kmps: sub(&vel(&self.b_end), &v),
+            dv_km_s: sub(&vel(&self.b_end), &v),
         })
     }
 
-    /// Coarse grid of the first epoch with two-impulse transfers; the best distinct
-    /// candidates, cheapest first.
-    pub fn grid(&mut self) -> [Option<Point>; MAX_CANDIDATES] {
-        let mut out: [Option<Point>; MAX_CANDIDATES] = [None; MAX_CANDIDATES];
+    /// Coarse grid of the first epoch with two-impulse transfers: the best distinct
+    /// candidates, cheapest first, written into `out` (emptied first).
+    pub fn grid(&mut self, out: &mut [Option<Point>; MAX_CANDIDATES]) {
+        *out = [None; MAX_CANDIDATES];
         let keep = usize::from(self.settings.candidates).min(MAX_CANDIDATES);
         let span = self.tf - self.settings.min_gap_s;
         let g = f64::from(self.settings.grid_points);
@@ -110,7 +110,7 @@ impl Ctx<'_> {
                     &mut self.meter,
                 ) else {
                     if self.meter.exhausted() {
-                        return out;
+                        return;
                     }
                     continue;
                 };
@@ -123,15 +123,14 @@ impl Ctx<'_> {
                     cheapest = Some((fam, c));
                 }
                 let p = self.initial_point(t1, &sa, dv1, fam, off, c);
-                insert(&mut out, keep, p, 1.5 * spacing);
+                insert(out, keep, p, 1.5 * spacing);
             }
             if self.impulses > 2 {
                 if let Some(p) = self.plane_seed(t1, &sa, cheapest.map(|(f, _)| f)) {
-                    insert(&mut out, keep, p, 1.5 * spacing);
+                    insert(out, keep, p, 1.5 * spacing);
                 }
             }
         }
-        out
     }
 
     /// A three-or-more-impulse seed at `t1`: a half-revolution leg to the point of the
@@ -167,7 +166,7 @@ impl Ctx<'_> {
             self.settings.lambert_tol,
         )
         .ok()?;
-        let dv1 = sub(&leg.v1_kmps, &vel(sa));
+        let dv1 = sub(&leg.v1_km_s, &vel(sa));
         let mut x = [0.0; MAX_VARS];
         let free = self.impulses.saturating_sub(1);
         let room = self.tf - self.settings.min_gap_s - t1;

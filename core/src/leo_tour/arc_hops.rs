@@ -13,12 +13,13 @@ impl Ctx<'_> {
     /// epoch alone, then all together, both ways), a moved impulse keeping its radial,
     /// along-track and normal components; each with its cheapest last-leg family. A plane
     /// change is cheapest at a node, and the nodes are half a revolution apart: the compass
-    /// search cannot cross that far from a basin, a hop can.
-    pub fn hops(&mut self, p: &Point) -> [Option<Point>; MAX_HOPS] {
-        let mut out = [None; MAX_HOPS];
+    /// search cannot cross that far from a basin, a hop can. Written into `out` (emptied
+    /// first).
+    pub fn hops(&mut self, p: &Point, out: &mut [Option<Point>; MAX_HOPS]) {
+        *out = [None; MAX_HOPS];
         let free = self.impulses.saturating_sub(1);
         let Some(s0) = self.client_state(Client::A, 0.0) else {
-            return out;
+            return;
         };
         let half = 0.5 * period_s(self.settings.mu_km3_s2, &s0);
         // Moves: epoch k alone for k < free, then every free epoch; each +half and -half.
@@ -76,7 +77,6 @@ impl Ctx<'_> {
                 break;
             }
         }
-        out
     }
 
     /// The chaser's state just before free impulse `j` of the plan `x` (on client A's orbit

@@ -9,11 +9,16 @@ use super::types::{ArcSolution, MAX_CANDIDATES, MAX_VARS};
 impl Ctx<'_> {
     /// `plan`'s free epochs and free impulse vectors as the one candidate (the cheapest
     /// last-leg family there, aimed with the offset of the client's own orbit), or none when
-    /// `plan` does not fit this arc (another impulse count, epochs out of order).
-    pub fn warm_candidates(&mut self, plan: &ArcSolution) -> [Option<Point>; MAX_CANDIDATES] {
-        let mut out = [None; MAX_CANDIDATES];
+    /// `plan` does not fit this arc (another impulse count, epochs out of order), written into
+    /// `out` (emptied first).
+    pub fn warm_candidates(
+        &mut self,
+        plan: &ArcSolution,
+        out: &mut [Option<Point>; MAX_CANDIDATES],
+    ) {
+        *out = [None; MAX_CANDIDATES];
         if usize::from(plan.impulses) != self.impulses {
-            return out;
+            return;
         }
         let free = self.impulses.saturating_sub(1);
         let mut x = [0.0; MAX_VARS];
@@ -27,17 +32,17 @@ impl Ctx<'_> {
                 .zip(plan.burns.iter())
                 .take(vectors)
             {
-                slot.copy_from_slice(&b.dv_kmps);
+                slot.copy_from_slice(&b.dv_km_s);
             }
         }
         let Some(t) = self.epochs(&x) else {
-            return out;
+            return;
         };
         let Some(&t_last) = t.get(self.impulses.saturating_sub(2)) else {
-            return out;
+            return;
         };
         let Some(off) = self.client_offset(t_last) else {
-            return out;
+            return;
         };
         let planned = Family {
             revs: plan.last_leg_revolutions,
@@ -58,6 +63,5 @@ impl Ctx<'_> {
                 secant: Secant::default(),
             });
         }
-        out
     }
 }

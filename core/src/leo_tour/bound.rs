@@ -25,7 +25,8 @@
 //! proven for every transfer; the sequencing checks it against every arc it plans and says
 //! so when one is cheaper than its bound (`SequenceStatus::BoundViolated`).
 
-use super::j2::{pos, vel, Gravity, State};
+use super::j2::{pos, vel, State};
+use crate::astro::Gravity;
 use crate::vec3::{cross, dot, norm};
 use core::f64::consts::PI;
 use serde::{Deserialize, Serialize};
@@ -133,7 +134,7 @@ fn closest_to_zero(lo: f64, hi: f64) -> f64 {
 }
 
 /// Hohmann's Δv between circular radii `r1`, `r2`, km/s.
-fn hohmann_kmps(mu: f64, r1: f64, r2: f64) -> f64 {
+fn hohmann_km_s(mu: f64, r1: f64, r2: f64) -> f64 {
     let s = r1 + r2;
     let d1 = libm::sqrt(mu / r1) * (libm::sqrt(2.0 * r2 / s) - 1.0);
     let d2 = libm::sqrt(mu / r2) * (1.0 - libm::sqrt(2.0 * r1 / s));
@@ -214,7 +215,7 @@ fn combine(g: &Gravity, a: &Plane, b: &Plane, d_raan: f64, a_hi: f64, bs: &Bound
     let e = a.e.max(b.e).min(0.99);
     let v_lo = libm::sqrt(g.mu_km3_s2 / a_hi) * libm::sqrt((1.0 - e) / (1.0 + e));
     let plane = v_lo * libm::sin(theta);
-    let size = hohmann_kmps(g.mu_km3_s2, a.a_km, b.a_km);
+    let size = hohmann_km_s(g.mu_km3_s2, a.a_km, b.a_km);
     let bound = (1.0 - bs.margin) * libm::sqrt(plane * plane + size * size) * 1e3;
     if bound.is_finite() {
         bound.max(0.0)
@@ -227,6 +228,7 @@ fn combine(g: &Gravity, a: &Plane, b: &Plane, d_raan: f64, a_hi: f64, bs: &Bound
 #[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
 mod tests {
     use super::*;
+    use crate::astro::EARTH_MU_KM3_S2;
 
     #[test]
     fn closest_to_zero_wraps() {
@@ -244,9 +246,8 @@ mod tests {
         // Two circular orbits of the same radius, 1 degree apart in inclination, no drift
         // difference: sin(1°) times the circular velocity, less the margins.
         let g = Gravity {
-            mu_km3_s2: 398_600.441_8,
-            re_km: 6378.137,
             j2: 0.0,
+            ..Gravity::EARTH
         };
         let p = |i: f64| Plane {
             a_km: 7000.0,
@@ -261,7 +262,7 @@ mod tests {
             margin: 0.0,
         };
         let b = arc_bound_mps(&g, &p(50.0), &p(51.0), 0.0, 1e5, &bs);
-        let v = (398_600.441_8_f64 / 7000.0).sqrt() * 1e3;
+        let v = (EARTH_MU_KM3_S2 / 7000.0).sqrt() * 1e3;
         assert!((b - v * 1.0_f64.to_radians().sin()).abs() < 1e-9, "{b}");
         // And a pure Hohmann when the planes agree.
         let q = Plane {
@@ -269,6 +270,6 @@ mod tests {
             ..p(50.0)
         };
         let h = arc_bound_mps(&g, &p(50.0), &q, 0.0, 1e5, &bs);
-        assert!((h - hohmann_kmps(398_600.441_8, 7000.0, 7100.0) * 1e3).abs() < 1e-9);
+        assert!((h - hohmann_km_s(EARTH_MU_KM3_S2, 7000.0, 7100.0) * 1e3).abs() < 1e-9);
     }
 }

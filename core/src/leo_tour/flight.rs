@@ -4,8 +4,9 @@
 //! unit per step, the closed form [`super::mean_j2::FLIGHT_UNITS`] per flight whatever its
 //! span.
 
-use super::j2::{propagate_steps, step_count, Gravity, State};
+use super::j2::{propagate_steps, step_count, State};
 use super::mean_j2;
+use crate::astro::Gravity;
 use crate::work::Meter;
 use serde::{Deserialize, Serialize};
 
@@ -17,6 +18,19 @@ pub enum Model {
     Planning = 0,
     /// The first-order J2 theory in closed form: the search model.
     MeanElements = 1,
+}
+
+impl crate::contract::SettingValue for Model {
+    fn to_f64(self) -> f64 {
+        f64::from(self as u8)
+    }
+    fn from_f64(value: f64) -> Option<Self> {
+        match u8::from_f64(value)? {
+            0 => Some(Self::Planning),
+            1 => Some(Self::MeanElements),
+            _ => None,
+        }
+    }
 }
 
 /// A flight model with its constants and step bounds.

@@ -10,21 +10,11 @@
 //! is refused beyond `Settings::max_steps` steps. Its error against the host truth model's
 //! J2-only mode is in `docs/leo-tour.md`.
 
+use crate::astro::Gravity;
 use crate::vec3::{add, dot, scale, Vec3};
 
 /// An inertial state: position km, velocity km/s.
 pub type State = [f64; 6];
-
-/// The physical constants of the planning model.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Gravity {
-    /// Gravitational parameter, km^3/s^2.
-    pub mu_km3_s2: f64,
-    /// Equatorial radius, km.
-    pub re_km: f64,
-    /// Second zonal harmonic (unnormalised), dimensionless.
-    pub j2: f64,
-}
 
 /// Position part of a state.
 pub fn pos(s: &State) -> Vec3 {
@@ -129,11 +119,7 @@ mod tests {
     use super::*;
     use crate::vec3::{cross, norm, sub};
 
-    const G: Gravity = Gravity {
-        mu_km3_s2: 398_600.441_8,
-        re_km: 6378.137,
-        j2: 1.082_63e-3,
-    };
+    const G: Gravity = Gravity::EARTH;
 
     #[test]
     fn energy_and_polar_angular_momentum_are_conserved_under_j2() {

@@ -19,7 +19,8 @@
 //! (`leo_tour::arc`), which decides the status.
 
 use super::elements::{state_of, Classical};
-use super::j2::{join, pos, vel, Gravity, State};
+use super::j2::{join, pos, vel, State};
+use crate::astro::Gravity;
 use crate::impulsive::elements::{wrap_pi, Elements, A, ARGP, E, I, MA, RAAN};
 use crate::impulsive::kepler::true_anomaly;
 use crate::impulsive::nonlinear::elements_and_true_anomaly_with;
@@ -32,8 +33,8 @@ const _: () = assert!(RAAN + 1 == ARGP && ARGP + 1 == MA && MA == 5);
 const KEPLER_MAX_ITER: u16 = 30;
 
 /// Work units charged for one flight: its cost in RK4 steps of the planning model, measured
-/// by `cargo test --release -p reconfig-core leo_tour::mean_j2 -- --ignored --nocapture`
-/// (0.72 us against 0.077 us per RK4 step on the development machine: 9.3).
+/// by `cargo bench -p reconfig-host --bench leo_flight` (0.72 us against 0.077 us per RK4 step
+/// on the development machine: 9.3).
 pub const FLIGHT_UNITS: u64 = 9;
 
 /// Work units charged for the state of a [`MeanOrbit`] at an epoch (the conversion to mean
@@ -232,11 +233,7 @@ mod tests {
     use crate::leo_tour::j2::{propagate_steps, step_count};
     use crate::vec3::{norm, sub};
 
-    const G: Gravity = Gravity {
-        mu_km3_s2: 398_600.441_8,
-        re_km: 6378.137,
-        j2: 1.082_63e-3,
-    };
+    const G: Gravity = Gravity::EARTH;
 
     fn orbit(a_km: f64, e: f64, i_deg: f64, raan_deg: f64, argp_deg: f64, nu_deg: f64) -> State {
         state_of(
@@ -316,37 +313,5 @@ mod tests {
             std::println!("{label}: {one:.4} km after one revolution, {day:.3} km after a day");
             assert!(one < one_max && day < day_max, "{label}: {one} {day}");
         }
-    }
-
-    #[test]
-    #[ignore = "timing: run with --release --ignored --nocapture"]
-    fn cost_of_a_flight_in_rk4_steps() {
-        let s = orbit(7078.0, 0.001, 98.2, 30.0, 0.0, 40.0);
-        let reps = 20_000;
-        let t0 = std::time::Instant::now();
-        let mut acc = 0.0;
-        for k in 0..reps {
-            acc += fly(&G, &s, 1000.0 + f64::from(k)).unwrap()[0];
-        }
-        let flight = t0.elapsed().as_secs_f64() / f64::from(reps);
-        let orbit = MeanOrbit::of_state(&G, &s).unwrap();
-        let t0 = std::time::Instant::now();
-        for k in 0..reps {
-            acc += orbit.state_at(&G, 1000.0 + f64::from(k)).unwrap()[0];
-        }
-        let state = t0.elapsed().as_secs_f64() / f64::from(reps);
-        let t0 = std::time::Instant::now();
-        let n = 200_000;
-        let x = propagate_steps(&G, &s, 20.0 * f64::from(n), n).unwrap();
-        let step = t0.elapsed().as_secs_f64() / f64::from(n);
-        std::println!(
-            "flight {:.3} us ({:.1} RK4 steps), state of a mean orbit {:.3} us ({:.1}), RK4 step {:.3} us ({acc} {})",
-            flight * 1e6,
-            flight / step,
-            state * 1e6,
-            state / step,
-            step * 1e6,
-            x[0]
-        );
     }
 }

@@ -18,7 +18,13 @@
 //! 4. hops: the best plan's free epochs moved by half revolutions, refined again;
 //! 5. the best plan polished in the planning model (shot there, a short compass search);
 //! 6. the polished plan flown again in the planning model with an exact J2 shooting: its
-//!    arrival miss decides the status ([`Status::Solved`] only when within `arrival_tol_km`).
+//!    arrival miss decides the status ([`SolveStatus::Solved`] only when within
+//!    `arrival_tol_km`).
+//!
+//! The contract's shape ([`crate::contract::Planner`], [`LeoArc`]): [`solve_arc`] plans an
+//! [`ArcProblem`] with [`Settings`] in a caller-owned [`Workspace`] into an [`ArcSolution`]
+//! whose `info` holds the [`SolveStatus`]; the sequencing ([`tour_order::solve_sequence`],
+//! [`tour_order::LeoSequence`]) likewise.
 //!
 //! See `docs/leo-tour.md`.
 
@@ -38,15 +44,17 @@ pub mod tour_order;
 pub mod track;
 mod types;
 pub mod validate;
+mod workspace;
 
 #[cfg(test)]
 mod tests;
 
 pub use arc::rtn;
 pub use types::*;
+pub use workspace::Workspace;
 
 use crate::work::Meter;
-use arc::{Ctx, Point};
+use arc::{Ctx, Flown, Point};
 use flight::Model;
 use j2::{propagate_steps, step_count};
 use track::Track;
@@ -58,18 +66,27 @@ pub fn propagate(settings: &Settings, state: &j2::State, dt_s: f64) -> Option<j2
     propagate_steps(&settings.gravity(), state, dt_s, n)
 }
 
-/// Plan one arc.
+/// Plan one arc into `out`, with `workspace`'s buffers.
+///
+/// Worst case: see `docs/leo-tour.md` (every loop bounded by a setting, the work budget
+/// stopping it first when smaller).
 ///
 /// # Errors
-/// [`PlanError`]: a field out of range, a client trajectory that cannot be propagated, no
-/// transfer found, or the budget spent before any plan.
-pub fn solve_arc(problem: &ArcProblem, settings: &Settings) -> Result<ArcSolution, PlanError> {
-    solve_arc_from(problem, settings, None)
+/// [`PlanError`] when the request is refused before planning (a field or a setting out of
+/// range, a client state that cannot be propagated over the arc); `out` is then untouched.
+/// Every plan that ends without a usable transfer is a [`SolveStatus`] in `out`.
+pub fn solve_arc(
+    problem: &ArcProblem,
+    settings: &Settings,
+    workspace: &mut Workspace,
+    out: &mut ArcSolution,
+) -> Result<(), PlanError> {
+    solve_arc_from(problem, settings, None, workspace, out)
 }
 
 /// Plan one arc warm-started from `plan`, an earlier plan of the same arc (same epochs from
 /// the arc start): it is the one candidate of the local search (then the hops) instead of the
-/// grid; where that gives no plan, the full search runs.
+/// grid; where that gives no plan (or `plan` has none), the full search runs.
 ///
 /// # Errors
 /// As [`solve_arc`].
@@ -77,48 +94,71 @@ pub fn solve_arc_warm(
     problem: &ArcProblem,
     settings: &Settings,
     plan: &ArcSolution,
-) -> Result<ArcSolution, PlanError> {
-    solve_arc_from(problem, settings, Some(plan))
+    workspace: &mut Workspace,
+    out: &mut ArcSolution,
+) -> Result<(), PlanError> {
+    solve_arc_from(problem, settings, Some(plan), workspace, out)
 }
 
-/// The search's context for `problem`: the request checked, the clients' checkpoints and
-/// mean orbits, the flights in `settings.search_model`.
+/// The per-arc rendezvous in the planners' contract ([`crate::contract::Planner`]):
+/// [`solve_arc`].
+#[derive(Clone, Copy, Debug)]
+pub struct LeoArc;
+
+crate::impl_planner!(
+    LeoArc: ArcProblem, Settings, Workspace, ArcSolution, PlanError, SolveStatus,
+    crate::wire::Planner::LeoArc, solve_arc, reset |out| out.reset()
+);
+
+/// Why the search's context could not be built.
+enum NoContext {
+    /// The request is refused.
+    Refused(PlanError),
+    /// The work budget was spent building it (units used).
+    Exhausted(u64),
+}
+
+impl From<PlanError> for NoContext {
+    fn from(e: PlanError) -> Self {
+        Self::Refused(e)
+    }
+}
+
+/// The search's context for `problem`: the request checked, the clients' checkpoints (built in
+/// `tracks` when given: the planning model is flown) and mean orbits, the flights in
+/// `settings.search_model`.
 fn context<'a>(
     problem: &ArcProblem,
     settings: &'a Settings,
-    with_planning_model: bool,
-) -> Result<Ctx<'a>, PlanError> {
+    tracks: Option<(&'a mut Track, &'a mut Track)>,
+) -> Result<Ctx<'a>, NoContext> {
     validate::check(problem, settings)?;
     let g = settings.gravity();
     let mut meter = Meter::new(settings.work_budget);
     let tf = problem.duration_s;
-    let exhausted = |m: &Meter| PlanError::BudgetExhausted {
-        used: m.used(),
-        budget: settings.work_budget,
-    };
     // The clients' mean orbits: one conversion each (charged as a flight).
     meter.charge(2 * mean_j2::FLIGHT_UNITS);
     let mean_a = mean_j2::MeanOrbit::of_state(&g, &problem.from);
     let mean_b = mean_j2::MeanOrbit::of_state(&g, &problem.to);
-    let (a, b, b_end) = if with_planning_model {
+    let (a, b, b_end) = if let Some((a, b)) = tracks {
         let planning = settings.flight(Model::Planning);
-        let a =
-            Track::new(&planning, &problem.from, tf, &mut meter).ok_or(if meter.exhausted() {
-                exhausted(&meter)
+        let failed = |m: &Meter, field: Field| {
+            if m.exhausted() {
+                NoContext::Exhausted(m.used())
             } else {
-                PlanError::Propagation { field: Field::From }
-            })?;
-        let b = Track::new(&planning, &problem.to, tf, &mut meter).ok_or(if meter.exhausted() {
-            exhausted(&meter)
-        } else {
-            PlanError::Propagation { field: Field::To }
-        })?;
+                NoContext::Refused(PlanError::Propagation { field })
+            }
+        };
+        a.fill(&planning, &problem.from, tf, &mut meter)
+            .ok_or_else(|| failed(&meter, Field::From))?;
+        b.fill(&planning, &problem.to, tf, &mut meter)
+            .ok_or_else(|| failed(&meter, Field::To))?;
         let n = step_count(tf, settings.step_s, settings.max_steps.saturating_mul(64))
             .ok_or(PlanError::Propagation { field: Field::To })?;
         meter.charge(u64::from(n));
         let b_end = propagate_steps(&g, &problem.to, tf, n)
             .ok_or(PlanError::Propagation { field: Field::To })?;
-        (Some(a), Some(b), b_end)
+        (Some(&*a), Some(&*b), b_end)
     } else {
         // An estimate aims at the client's arrival in the search model.
         meter.charge(mean_j2::STATE_UNITS);
@@ -148,46 +188,91 @@ fn context<'a>(
 
 /// The arc's Δv estimate, m/s: the cost of the best plan the search finds in
 /// `settings.search_model`, shot in that model, without the planning model's polish and
-/// check (with `search_model = Planning`, the planned arc's Δv), aimed at the client's
-/// arrival in the search model (no planning-model flight at all). The sequencing's arc cost:
-/// the order is chosen on these, and the chosen order planned with [`solve_arc`].
+/// check (with `search_model = Planning`, the planned arc's Δv when it is usable), aimed at
+/// the client's arrival in the search model (no planning-model flight at all). The
+/// sequencing's arc cost: the order is chosen on these, and the chosen order planned with
+/// [`solve_arc`]. `workspace` holds the search's candidates (and with `search_model =
+/// Planning` the clients' checkpoints).
 ///
 /// # Errors
-/// As [`solve_arc`]; [`PlanError::NoTransfer`] when no plan of the search was shot.
-pub fn estimate_arc_mps(problem: &ArcProblem, settings: &Settings) -> Result<f64, PlanError> {
+/// As [`solve_arc`]; a search that shot no plan is an estimate without `dv_mps`.
+pub fn estimate_arc_mps(
+    problem: &ArcProblem,
+    settings: &Settings,
+    workspace: &mut Workspace,
+) -> Result<ArcEstimate, PlanError> {
     if settings.search_model == Model::Planning {
-        return solve_arc(problem, settings).and_then(|s| {
-            if s.status == Status::ArrivalMissed {
-                Err(PlanError::NoTransfer)
-            } else {
-                Ok(s.total_dv_mps)
-            }
+        let mut planned = ArcSolution::new();
+        solve_arc(problem, settings, workspace, &mut planned)?;
+        let status = planned.info.status;
+        return Ok(ArcEstimate {
+            dv_mps: status.is_usable().then_some(planned.total_dv_mps),
+            status,
         });
     }
-    let mut ctx = context(problem, settings, false)?;
-    let kept = search(&mut ctx, None);
-    match kept.first().copied().flatten() {
-        Some(p) if p.shot && p.cost.is_finite() => Ok(p.cost * 1e3),
-        _ if ctx.meter.exhausted() => Err(PlanError::BudgetExhausted {
-            used: ctx.meter.used(),
-            budget: settings.work_budget,
-        }),
-        _ => Err(PlanError::NoTransfer),
-    }
+    let Workspace {
+        candidates, hops, ..
+    } = workspace;
+    let mut ctx = match context(problem, settings, None) {
+        Ok(ctx) => ctx,
+        Err(NoContext::Refused(e)) => return Err(e),
+        Err(NoContext::Exhausted(_)) => {
+            return Ok(ArcEstimate {
+                dv_mps: None,
+                status: SolveStatus::BudgetExhausted { verified: false },
+            })
+        }
+    };
+    let kept = search(&mut ctx, None, (candidates, hops));
+    let exhausted = ctx.meter.exhausted();
+    Ok(match kept.first().copied().flatten() {
+        Some(p) if p.shot && p.cost.is_finite() => ArcEstimate {
+            dv_mps: Some(p.cost * 1e3),
+            status: if exhausted {
+                SolveStatus::BudgetExhausted { verified: true }
+            } else {
+                SolveStatus::Solved
+            },
+        },
+        _ => ArcEstimate {
+            dv_mps: None,
+            status: if exhausted {
+                SolveStatus::BudgetExhausted { verified: false }
+            } else {
+                SolveStatus::NoTransfer
+            },
+        },
+    })
 }
 
 fn solve_arc_from(
     problem: &ArcProblem,
     settings: &Settings,
     warm: Option<&ArcSolution>,
-) -> Result<ArcSolution, PlanError> {
-    let mut ctx = context(problem, settings, true)?;
-    let exhausted = |m: &Meter| PlanError::BudgetExhausted {
-        used: m.used(),
-        budget: settings.work_budget,
+    workspace: &mut Workspace,
+    out: &mut ArcSolution,
+) -> Result<(), PlanError> {
+    let Workspace {
+        a,
+        b,
+        candidates,
+        hops,
+    } = workspace;
+    let mut ctx = match context(problem, settings, Some((a, b))) {
+        Ok(ctx) => ctx,
+        Err(NoContext::Refused(e)) => return Err(e),
+        Err(NoContext::Exhausted(used)) => {
+            out.reset();
+            out.info = SolveInfo {
+                status: SolveStatus::BudgetExhausted { verified: false },
+                evaluations: 0,
+                work_units: used,
+            };
+            return Ok(());
+        }
     };
-    let mut best: Option<(ArcSolution, Point)> = None;
-    let kept = search(&mut ctx, warm);
+    let mut best: Option<Flown> = None;
+    let kept = search(&mut ctx, warm, (candidates, hops));
     match settings.search_model {
         Model::Planning => {
             for q in kept.iter().flatten() {
@@ -205,45 +290,62 @@ fn solve_arc_from(
             // A warm plan is polished as it is too: the search model's optimum can lie a few
             // m/s from the planning model's, and the warm plan is near the latter.
             if let Some(plan) = warm {
-                for p in ctx.warm_candidates(plan).iter().flatten() {
+                ctx.warm_candidates(plan, candidates);
+                for p in candidates.iter().flatten() {
                     let polished = ctx.polish(*p);
                     consider(&mut ctx, polished, &mut best);
                 }
             }
             // Where that gives no arriving plan, the search runs again in the planning model.
-            let failed = best.is_none_or(|(b, _)| b.status == Status::ArrivalMissed);
+            let failed = best.is_none_or(|b| !b.arrives);
             if failed && !ctx.meter.exhausted() {
-                for q in search(&mut ctx, warm).iter().flatten() {
+                for q in search(&mut ctx, warm, (candidates, hops)).iter().flatten() {
                     consider(&mut ctx, *q, &mut best);
                 }
             }
         }
     }
-    let best = best.map(|(b, _)| b);
-    match best {
-        Some(mut sol) => {
-            sol.evaluations = ctx.evals;
-            sol.work_units = ctx.meter.used();
-            if sol.status == Status::Solved && ctx.meter.exhausted() {
-                sol.status = Status::BudgetExhaustedSolved;
+    let exhausted = ctx.meter.exhausted();
+    out.reset();
+    let status = match best {
+        Some(plan) => {
+            out.burns = plan.burns;
+            out.impulses = plan.impulses;
+            out.total_dv_mps = plan.total_dv_mps;
+            out.miss_m = Some(plan.miss_m);
+            out.last_leg_revolutions = plan.fam.revs;
+            out.last_leg_branch = plan.fam.branch;
+            if exhausted {
+                SolveStatus::BudgetExhausted {
+                    verified: plan.arrives,
+                }
+            } else if plan.arrives {
+                SolveStatus::Solved
+            } else {
+                SolveStatus::ArrivalMissed
             }
-            Ok(sol)
         }
-        None if ctx.meter.exhausted() => Err(exhausted(&ctx.meter)),
-        None => Err(PlanError::NoTransfer),
-    }
+        None if exhausted => SolveStatus::BudgetExhausted { verified: false },
+        None => SolveStatus::NoTransfer,
+    };
+    out.info = SolveInfo {
+        status,
+        evaluations: ctx.evals,
+        work_units: ctx.meter.used(),
+    };
+    Ok(())
 }
 
 /// Finish `q` in the planning model and keep it in `best` if it beats it (arriving first,
 /// then the cheaper).
-fn consider(ctx: &mut Ctx, q: Point, best: &mut Option<(ArcSolution, Point)>) {
-    if let Some(sol) = ctx.finish(&q) {
-        let better = best.as_ref().is_none_or(|(b, _)| {
-            let rank = |s: &ArcSolution| u8::from(s.status == Status::ArrivalMissed);
-            (rank(&sol), sol.total_dv_mps) < (rank(b), b.total_dv_mps)
+fn consider(ctx: &mut Ctx, q: Point, best: &mut Option<Flown>) {
+    if let Some(plan) = ctx.finish(&q) {
+        let better = best.as_ref().is_none_or(|b| {
+            let rank = |p: &Flown| u8::from(!p.arrives);
+            (rank(&plan), plan.total_dv_mps) < (rank(b), b.total_dv_mps)
         });
         if better {
-            *best = Some((sol, q));
+            *best = Some(plan);
         }
     }
 }
@@ -269,15 +371,26 @@ fn keep(kept: &mut [Option<Point>; KEPT], q: Point) -> bool {
     pos == 0
 }
 
+/// The candidate lists of a search, in the caller's workspace: the grid's (or the warm
+/// start's) and the hops'.
+type Lists<'w> = (
+    &'w mut [Option<Point>; MAX_CANDIDATES],
+    &'w mut [Option<Point>; MAX_HOPS],
+);
+
 /// The search in the model of `ctx`'s flights: the candidates (the grid, or the warm plan
 /// with the grid behind it when it gives no shot plan) refined, then the hops; the `KEPT`
 /// best refined points.
-fn search(ctx: &mut Ctx, warm: Option<&ArcSolution>) -> [Option<Point>; KEPT] {
+fn search(
+    ctx: &mut Ctx,
+    warm: Option<&ArcSolution>,
+    (candidates, hops): Lists<'_>,
+) -> [Option<Point>; KEPT] {
     let mut kept = [None; KEPT];
-    let candidates = match warm {
-        Some(plan) => ctx.warm_candidates(plan),
-        None => ctx.grid(),
-    };
+    match warm {
+        Some(plan) => ctx.warm_candidates(plan, candidates),
+        None => ctx.grid(candidates),
+    }
     for p in candidates.iter().flatten() {
         let q = ctx.refine(*p);
         keep(&mut kept, q);
@@ -285,7 +398,8 @@ fn search(ctx: &mut Ctx, warm: Option<&ArcSolution>) -> [Option<Point>; KEPT] {
     // A warm start that gives no shot plan falls back to the grid.
     let warm_failed = kept.first().copied().flatten().is_none_or(|b| !b.shot);
     if warm.is_some() && warm_failed && !ctx.meter.exhausted() {
-        for p in ctx.grid().iter().flatten() {
+        ctx.grid(candidates);
+        for p in candidates.iter().flatten() {
             let q = ctx.refine(*p);
             keep(&mut kept, q);
         }
@@ -297,7 +411,8 @@ fn search(ctx: &mut Ctx, warm: Option<&ArcSolution>) -> [Option<Point>; KEPT] {
             break;
         };
         let mut any = false;
-        for hop in ctx.hops(&q0).iter().flatten() {
+        ctx.hops(&q0, hops);
+        for hop in hops.iter().flatten() {
             let q = ctx.refine(*hop);
             any |= keep(&mut kept, q);
         }

@@ -18,7 +18,9 @@
 //! at most `N! (1 + 1/1! + 1/2! + ...) < e N!` arcs planned; `max_arcs` stops it first.
 
 use super::bound::{self, BoundSettings, Plane};
-use super::j2::Gravity;
+use super::j2::State;
+use crate::astro::Gravity;
+use crate::contract::{Range, SettingError};
 use crate::indexed::IndexedExt as _;
 use serde::{Deserialize, Serialize};
 
@@ -43,49 +45,116 @@ pub enum Intervals {
     },
 }
 
-/// Settings of the sequencing.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct SequenceSettings {
+/// A sequencing request: the clients, the impulses of every arc, the first client and how the
+/// arcs' durations are chosen.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SequenceProblem {
+    /// The clients' inertial states at the tour epoch, km and km/s.
+    pub clients: heapless::Vec<State, MAX_CLIENTS>,
+    /// Impulses per arc.
+    pub impulses: u8,
     /// The first client (0-based), or `None` for a free first client.
     pub first: Option<u8>,
     /// Arc durations.
     pub intervals: Intervals,
-    /// The bound's conservatism.
-    pub bound: BoundSettings,
-    /// Most arcs planned (the callback's calls); the enumeration stops there.
-    pub max_arcs: u32,
 }
 
-/// What the returned order is.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+crate::settings_table! {
+    /// Settings of the sequencing: the bound's conservatism and the arc limit. The per-arc
+    /// estimates' settings travel beside them ([`super::Settings`]).
+    pub struct SequenceSettings;
+    /// The sequencing's settings, by name (stable codes on the wire and in the C interface).
+    pub enum SettingId in crate::limits::Setting::LeoSequence;
+    {
+        /// Most arcs planned (the callback's calls); the enumeration stops there.
+        max_arcs, MaxArcs = 0: u32 = DEFAULT_MAX_ARCS,
+        unit "", range Range::any(), limit AtMost;
+        /// The bound's semi-major-axis band margin on each side of the two clients', km (a
+        /// smaller margin prunes more).
+        band_margin_km, BandMarginKm = 1: f64 = 100.0,
+        unit "km", range Range::at_least(0.0), limit AtLeast;
+        /// The bound's inclination band margin on each side, rad.
+        band_margin_rad, BandMarginRad = 2: f64 = 1.0_f64 * (core::f64::consts::PI / 180.0),
+        unit "rad", range Range::at_least(0.0), limit AtLeast;
+        /// The bound is multiplied by `1 - bound_margin`.
+        bound_margin, BoundMargin = 3: f64 = 0.05,
+        unit "", range Range::closed_open(0.0, 1.0), limit AtLeast;
+    }
+}
+
+/// The arcs a sequencing may estimate by default: the whole tree of five clients (320) with
+/// room, about 0.4 s on the development machine at 1.7 ms an arc.
+pub const DEFAULT_MAX_ARCS: u32 = 400;
+
+impl SequenceSettings {
+    /// The bound's margins.
+    pub fn bound(&self) -> BoundSettings {
+        BoundSettings {
+            band_margin_km: self.band_margin_km,
+            band_margin_rad: self.band_margin_rad,
+            margin: self.bound_margin,
+        }
+    }
+}
+
+/// What the returned order is (the contract's vocabulary, [`crate::contract::Status`]; the
+/// sequencing has no work budget of its own: `max_arcs` bounds it).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[repr(u8)]
 pub enum SequenceStatus {
+    /// No sequencing has written this outcome.
+    #[default]
+    Unsolved = 0,
     /// Every order was either planned or pruned by the bound, and no planned arc was cheaper
-    /// than its bound: the order is the cheapest for the arc planner given.
-    Optimal,
+    /// than its bound: the order is the cheapest for the arc costs given (the contract's
+    /// `Solved`).
+    Optimal = 1,
     /// The enumeration finished but some planned arc was cheaper than its bound: the order is
     /// the cheapest of those planned, and a pruned order might have been cheaper.
-    BoundViolated,
+    BoundViolated = 2,
     /// `max_arcs` stopped the enumeration: the best order planned so far.
-    ArcLimit,
-    /// No order could be planned (every one has an arc the planner refused).
-    NoOrder,
+    ArcLimit = 3,
+    /// No order was found: no `order`, no `total_dv_mps`. With `arc_limit`, `max_arcs` stopped
+    /// the enumeration before any complete order; without it, every order has an arc the
+    /// planner refused.
+    NoOrder {
+        /// `max_arcs` stopped the enumeration.
+        arc_limit: bool,
+    } = 4,
 }
 
-/// The outcome of a sequencing.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Sequence {
+impl SequenceStatus {
+    /// An order exists (`Optimal`, `BoundViolated`, `ArcLimit`).
+    pub const fn is_usable(&self) -> bool {
+        matches!(self, Self::Optimal | Self::BoundViolated | Self::ArcLimit)
+    }
+}
+
+impl crate::contract::Status for SequenceStatus {
+    fn is_usable(&self) -> bool {
+        SequenceStatus::is_usable(self)
+    }
+
+    fn code(&self) -> u8 {
+        match self {
+            Self::Unsolved => 0,
+            Self::Optimal => 1,
+            Self::BoundViolated => 2,
+            Self::ArcLimit => 3,
+            Self::NoOrder { .. } => 4,
+        }
+    }
+
+    fn budget_exhausted(&self) -> Option<bool> {
+        None
+    }
+}
+
+/// How a sequencing ended and what it took.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SequenceInfo {
     /// What the order is.
     pub status: SequenceStatus,
-    /// The order, 0-based client indices; `len` of them.
-    pub order: [u8; MAX_CLIENTS],
-    /// Clients in the order.
-    pub len: u8,
-    /// The planned Δv of the order, m/s.
-    pub total_dv_mps: f64,
-    /// The arcs' start epochs (from the tour epoch), s; `len - 1` of them.
-    pub starts_s: [f64; MAX_CLIENTS - 1],
-    /// The arcs' durations, s.
-    pub durations_s: [f64; MAX_CLIENTS - 1],
     /// Arcs planned (callback calls).
     pub arcs_planned: u32,
     /// Arcs in the whole enumeration tree (what planning every order would take with each
@@ -97,6 +166,57 @@ pub struct Sequence {
     pub orders_total: u32,
     /// Planned arcs cheaper than their bound.
     pub bound_violations: u32,
+}
+
+/// The outcome of a sequencing. Every number is finite whatever the status; with no order
+/// (`len == 0`) the order, starts and durations are zero and `total_dv_mps` is absent.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Sequence {
+    /// The order, 0-based client indices; `len` of them.
+    pub order: [u8; MAX_CLIENTS],
+    /// Clients in the order (0 when there is none).
+    pub len: u8,
+    /// The planned Δv of the order, m/s; absent when there is no order.
+    pub total_dv_mps: Option<f64>,
+    /// The arcs' start epochs (from the tour epoch), s; `len - 1` of them.
+    pub starts_s: [f64; MAX_CLIENTS - 1],
+    /// The arcs' durations, s.
+    pub durations_s: [f64; MAX_CLIENTS - 1],
+    /// The status and the counters.
+    pub info: SequenceInfo,
+}
+
+impl Sequence {
+    /// The empty `Unsolved` outcome (no order), for use as an output buffer (a `const fn`: it
+    /// can sit in a `static`).
+    pub const fn new() -> Self {
+        Self {
+            order: [0; MAX_CLIENTS],
+            len: 0,
+            total_dv_mps: None,
+            starts_s: [0.0; MAX_CLIENTS - 1],
+            durations_s: [0.0; MAX_CLIENTS - 1],
+            info: SequenceInfo {
+                status: SequenceStatus::Unsolved,
+                arcs_planned: 0,
+                arcs_in_tree: 0,
+                orders_completed: 0,
+                orders_total: 0,
+                bound_violations: 0,
+            },
+        }
+    }
+
+    /// Make this the empty `Unsolved` outcome, in place.
+    pub fn reset(&mut self) {
+        *self = Self::new();
+    }
+}
+
+impl Default for Sequence {
+    fn default() -> Self {
+        Self::new()
+    }
 }
 
 /// Why a sequencing was refused.
@@ -124,35 +244,8 @@ pub enum SequenceError {
         /// The value given, s.
         value_s: f64,
     },
-    /// A margin of the bound is not finite and non-negative (`margin` also below 1).
-    BoundMargin {
-        /// Which margin.
-        field: BoundField,
-        /// The value given.
-        value: f64,
-    },
-}
-
-/// A margin of [`BoundSettings`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub enum BoundField {
-    /// `band_margin_km`.
-    BandMarginKm,
-    /// `band_margin_rad`.
-    BandMarginRad,
-    /// `margin`.
-    Margin,
-}
-
-impl BoundField {
-    /// The margin's name in a request.
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::BandMarginKm => "band_margin_km",
-            Self::BandMarginRad => "band_margin_rad",
-            Self::Margin => "margin",
-        }
-    }
+    /// A setting is out of its range: the setting, the value and the range.
+    InvalidSetting(SettingError),
 }
 
 impl core::fmt::Display for SequenceError {
@@ -167,16 +260,7 @@ impl core::fmt::Display for SequenceError {
                 f,
                 "interval {position} = {value_s} s is not finite and positive"
             ),
-            Self::BoundMargin { field, value } => write!(
-                f,
-                "bound {} = {value} is not finite, non-negative{}",
-                field.name(),
-                if field == BoundField::Margin {
-                    " and below 1"
-                } else {
-                    ""
-                }
-            ),
+            Self::InvalidSetting(e) => write!(f, "{e}"),
         }
     }
 }
@@ -222,16 +306,27 @@ pub fn paper_rule_duration_s(
     dt.max(min_duration_s)
 }
 
+/// The cheapest complete order found so far.
+#[derive(Clone, Copy)]
+struct Best {
+    order: [u8; MAX_CLIENTS],
+    total_dv_mps: f64,
+    starts_s: [f64; MAX_CLIENTS - 1],
+    durations_s: [f64; MAX_CLIENTS - 1],
+}
+
 struct Search<'a, F> {
     g: &'a Gravity,
     planes: &'a [Plane],
     /// `planes.len()`, checked to be at most [`MAX_CLIENTS`]: client numbers are `u8`.
     count: u8,
-    settings: &'a SequenceSettings,
+    intervals: &'a Intervals,
+    bound: BoundSettings,
+    max_arcs: u32,
     /// Each client's cheapest entry bound from a given client: `any[j][i]`.
     any: [[f64; MAX_CLIENTS]; MAX_CLIENTS],
     plan_arc: F,
-    best: Option<Sequence>,
+    best: Option<Best>,
     path: [u8; MAX_CLIENTS],
     starts: [f64; MAX_CLIENTS - 1],
     durations: [f64; MAX_CLIENTS - 1],
@@ -253,7 +348,7 @@ fn tree_arcs(remaining: u8) -> u32 {
 
 impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
     fn duration(&self, position: usize, from: usize, to: usize, start_s: f64) -> Option<f64> {
-        match self.settings.intervals {
+        match *self.intervals {
             Intervals::ByPosition(list) => list.get(position).copied(),
             Intervals::PaperRule {
                 revolutions,
@@ -299,18 +394,11 @@ impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
         if depth == usize::from(self.count) {
             self.orders_completed = self.orders_completed.saturating_add(1);
             if cost < self.incumbent() {
-                self.best = Some(Sequence {
-                    status: SequenceStatus::Optimal,
+                self.best = Some(Best {
                     order: self.path,
-                    len: self.count,
                     total_dv_mps: cost,
                     starts_s: self.starts,
                     durations_s: self.durations,
-                    arcs_planned: 0,
-                    arcs_in_tree: 0,
-                    orders_completed: 0,
-                    orders_total: 0,
-                    bound_violations: 0,
                 });
             }
             return;
@@ -329,7 +417,7 @@ impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
             else {
                 continue;
             };
-            let lb = bound::arc_bound_mps(self.g, a, b, time_s, dt, &self.settings.bound);
+            let lb = bound::arc_bound_mps(self.g, a, b, time_s, dt, &self.bound);
             if let Some(slot) = kids.get_mut(count) {
                 *slot = (lb, j, dt);
                 count = count.saturating_add(1);
@@ -349,7 +437,7 @@ impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
             if cost + lb + self.rest_bound(j, next_visited) >= self.incumbent() {
                 continue;
             }
-            if self.arcs_planned >= self.settings.max_arcs {
+            if self.arcs_planned >= self.max_arcs {
                 self.stopped = true;
                 return;
             }
@@ -390,27 +478,29 @@ impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
 
 /// The cheapest visiting order of the clients (`planes`, from [`bound::plane_of`] of their
 /// states at the tour epoch), each arc planned by `plan_arc(from, to, start_s, duration_s)`
-/// (its Δv in m/s, or `None` when it cannot be planned).
+/// (its Δv in m/s, or `None` when it cannot be planned), written into `out`.
 ///
 /// # Errors
-/// [`SequenceError`] for a request outside the limits.
+/// [`SequenceError`] for a request outside the limits; `out` is then untouched.
 pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
     g: &Gravity,
     planes: &[Plane],
+    (first, intervals): (Option<u8>, &Intervals),
     settings: &SequenceSettings,
     plan_arc: F,
-) -> Result<Sequence, SequenceError> {
+    out: &mut Sequence,
+) -> Result<(), SequenceError> {
     let n = planes.len();
     let count = match u8::try_from(n) {
         Ok(count) if (2..=MAX_CLIENTS).contains(&n) => count,
         _ => return Err(SequenceError::Clients { count: n }),
     };
-    if let Some(f) = settings.first {
+    if let Some(f) = first {
         if f >= count {
             return Err(SequenceError::First { index: f });
         }
     }
-    if let Intervals::ByPosition(list) = settings.intervals {
+    if let Intervals::ByPosition(list) = *intervals {
         for (position, &value_s) in list.iter().take(n.saturating_sub(1)).indexed() {
             if !(value_s.is_finite() && value_s > 0.0) {
                 return Err(SequenceError::Interval { position, value_s });
@@ -420,7 +510,7 @@ pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
     if let Intervals::PaperRule {
         revolutions,
         min_duration_s,
-    } = settings.intervals
+    } = *intervals
     {
         for (position, value_s) in [(0, revolutions), (1, min_duration_s)] {
             if !(value_s.is_finite() && value_s > 0.0) {
@@ -429,18 +519,12 @@ pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
         }
     }
     // A negative or NaN margin would make the bound prune orders it must not.
-    let b = &settings.bound;
-    for (field, value, below) in [
-        (BoundField::BandMarginKm, b.band_margin_km, f64::INFINITY),
-        (BoundField::BandMarginRad, b.band_margin_rad, f64::INFINITY),
-        (BoundField::Margin, b.margin, 1.0),
-    ] {
-        if !(value.is_finite() && value >= 0.0 && value < below) {
-            return Err(SequenceError::BoundMargin { field, value });
-        }
-    }
+    settings
+        .check_ranges()
+        .map_err(SequenceError::InvalidSetting)?;
+    let bound_settings = settings.bound();
     // The whole tour lasts at most (n - 1) of the longest interval.
-    let longest = match settings.intervals {
+    let longest = match *intervals {
         Intervals::ByPosition(list) => list
             .iter()
             .take(n.saturating_sub(1))
@@ -459,14 +543,16 @@ pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
     let mut any = [[f64::INFINITY; MAX_CLIENTS]; MAX_CLIENTS];
     for (row, b) in any.iter_mut().zip(planes.iter()) {
         for (cell, a) in row.iter_mut().zip(planes.iter()) {
-            *cell = bound::arc_bound_any_mps(g, a, b, horizon_s, &settings.bound);
+            *cell = bound::arc_bound_any_mps(g, a, b, horizon_s, &bound_settings);
         }
     }
     let mut search = Search {
         g,
         planes,
         count,
-        settings,
+        intervals,
+        bound: bound_settings,
+        max_arcs: settings.max_arcs,
         any,
         plan_arc,
         best: None,
@@ -478,54 +564,49 @@ pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
         violations: 0,
         stopped: false,
     };
-    let firsts = settings.first.map_or(0..count, |f| f..f.saturating_add(1));
-    for first in firsts {
+    let firsts = first.map_or(0..count, |f| f..f.saturating_add(1));
+    for start in firsts {
         if search.stopped {
             break;
         }
         if let Some(p) = search.path.first_mut() {
-            *p = first;
+            *p = start;
         }
-        search.extend(1, usize::from(first), 0.0, 0.0, 1_u16 << first);
+        search.extend(1, usize::from(start), 0.0, 0.0, 1_u16 << start);
     }
-    let first_choices = u32::from(if settings.first.is_some() { 1 } else { count });
+    let first_choices = u32::from(if first.is_some() { 1 } else { count });
     let per_first = factorial(count.saturating_sub(1));
     let orders_total = per_first.saturating_mul(first_choices);
     let arcs_in_tree = tree_arcs(count.saturating_sub(1)).saturating_mul(first_choices);
-    let status = if search.stopped {
-        SequenceStatus::ArcLimit
-    } else if search.violations > 0 {
-        SequenceStatus::BoundViolated
-    } else {
-        SequenceStatus::Optimal
-    };
-    let mut out = match search.best {
-        Some(b) => b,
-        None => Sequence {
-            status: SequenceStatus::NoOrder,
-            order: [0; MAX_CLIENTS],
-            len: 0,
-            total_dv_mps: f64::INFINITY,
-            starts_s: [0.0; MAX_CLIENTS - 1],
-            durations_s: [0.0; MAX_CLIENTS - 1],
-            arcs_planned: 0,
-            arcs_in_tree: 0,
-            orders_completed: 0,
-            orders_total: 0,
-            bound_violations: 0,
+    out.reset();
+    let status = match search.best {
+        Some(b) => {
+            out.order = b.order;
+            out.len = count;
+            out.total_dv_mps = Some(b.total_dv_mps);
+            out.starts_s = b.starts_s;
+            out.durations_s = b.durations_s;
+            if search.stopped {
+                SequenceStatus::ArcLimit
+            } else if search.violations > 0 {
+                SequenceStatus::BoundViolated
+            } else {
+                SequenceStatus::Optimal
+            }
+        }
+        None => SequenceStatus::NoOrder {
+            arc_limit: search.stopped,
         },
     };
-    if out.status != SequenceStatus::NoOrder {
-        out.status = status;
-    } else if search.stopped {
-        out.status = SequenceStatus::ArcLimit;
-    }
-    out.arcs_planned = search.arcs_planned;
-    out.arcs_in_tree = arcs_in_tree;
-    out.orders_completed = search.orders_completed;
-    out.orders_total = orders_total;
-    out.bound_violations = search.violations;
-    Ok(out)
+    out.info = SequenceInfo {
+        status,
+        arcs_planned: search.arcs_planned,
+        arcs_in_tree,
+        orders_completed: search.orders_completed,
+        orders_total,
+        bound_violations: search.violations,
+    };
+    Ok(())
 }
 
 #[cfg(test)]
@@ -552,9 +633,8 @@ mod tests {
     }
 
     const G: Gravity = Gravity {
-        mu_km3_s2: 398_600.441_8,
-        re_km: 6378.137,
         j2: 0.0,
+        ..Gravity::EARTH
     };
 
     #[test]
@@ -574,12 +654,20 @@ mod tests {
                     + t * 1e-5
             };
             let settings = SequenceSettings {
-                first: None,
-                intervals: Intervals::ByPosition([8e4, 1.6e5, 1.6e5, 1.6e5, 1.6e5, 1.6e5, 1.6e5]),
-                bound: BoundSettings::default(),
                 max_arcs: 1_000_000,
+                ..SequenceSettings::default()
             };
-            let s = best_order(&G, &p, &settings, |i, j, t, d| Some(cost(i, j, t, d))).unwrap();
+            let intervals = Intervals::ByPosition([8e4, 1.6e5, 1.6e5, 1.6e5, 1.6e5, 1.6e5, 1.6e5]);
+            let mut s = Sequence::new();
+            best_order(
+                &G,
+                &p,
+                (None, &intervals),
+                &settings,
+                |i, j, t, d| Some(cost(i, j, t, d)),
+                &mut s,
+            )
+            .unwrap();
             // Brute force over every permutation.
             let mut idx: Vec<usize> = (0..n).collect();
             let mut best = f64::INFINITY;
@@ -593,21 +681,19 @@ mod tests {
                 }
                 best = best.min(c);
             });
-            assert_eq!(s.status, SequenceStatus::Optimal);
-            assert!(
-                (s.total_dv_mps - best).abs() < 1e-9,
-                "n {n}: {} vs {best}",
-                s.total_dv_mps
-            );
-            assert!(s.arcs_planned < s.arcs_in_tree, "n {n}: no pruning");
-            assert_eq!(s.orders_total, factorial(u8::try_from(n).unwrap()));
-            assert_eq!(s.arcs_in_tree, [0, 0, 2, 12, 60, 320, 1950][n]);
+            assert_eq!(s.info.status, SequenceStatus::Optimal);
+            let total = s.total_dv_mps.unwrap();
+            assert!((total - best).abs() < 1e-9, "n {n}: {total} vs {best}");
+            let i = s.info;
+            assert!(i.arcs_planned < i.arcs_in_tree, "n {n}: no pruning");
+            assert_eq!(i.orders_total, factorial(u8::try_from(n).unwrap()));
+            assert_eq!(i.arcs_in_tree, [0, 0, 2, 12, 60, 320, 1950][n]);
             std::println!(
                 "n {n}: planned {} of {} arcs, {} of {} orders",
-                s.arcs_planned,
-                s.arcs_in_tree,
-                s.orders_completed,
-                s.orders_total
+                i.arcs_planned,
+                i.arcs_in_tree,
+                i.orders_completed,
+                i.orders_total
             );
         }
     }
@@ -628,34 +714,63 @@ mod tests {
     fn a_cost_below_the_bound_is_reported_and_limits_stop_it() {
         let p = planes(4);
         let settings = SequenceSettings {
-            first: Some(0),
-            intervals: Intervals::ByPosition([8e4; MAX_CLIENTS - 1]),
-            bound: BoundSettings::default(),
             max_arcs: 1_000,
+            ..SequenceSettings::default()
         };
-        let s = best_order(&G, &p, &settings, |_, _, _, _| Some(0.0)).unwrap();
-        assert_eq!(s.status, SequenceStatus::BoundViolated);
-        assert!(s.bound_violations > 0);
+        let intervals = Intervals::ByPosition([8e4; MAX_CLIENTS - 1]);
+        let tour = (Some(0), &intervals);
+        let run = |settings: &SequenceSettings, cost: Option<f64>| {
+            let mut s = Sequence::new();
+            best_order(&G, &p, tour, settings, |_, _, _, _| cost, &mut s).map(|()| s)
+        };
+        let s = run(&settings, Some(0.0)).unwrap();
+        assert_eq!(s.info.status, SequenceStatus::BoundViolated);
+        assert!(s.info.bound_violations > 0);
         let few = SequenceSettings {
             max_arcs: 2,
             ..settings
         };
-        let s = best_order(&G, &p, &few, |_, _, _, _| Some(100.0)).unwrap();
-        assert_eq!(s.status, SequenceStatus::ArcLimit);
-        assert_eq!(s.arcs_planned, 2);
-        let s = best_order(&G, &p, &settings, |_, _, _, _| None).unwrap();
-        assert_eq!(s.status, SequenceStatus::NoOrder);
-        assert!(matches!(
-            best_order(&G, &p[..1], &settings, |_, _, _, _| None),
-            Err(SequenceError::Clients { count: 1 })
-        ));
-        let bad = SequenceSettings {
-            first: Some(9),
+        // Two arcs of a four-client tour: stopped before any complete order.
+        let s = run(&few, Some(100.0)).unwrap();
+        assert_eq!(s.info.status, SequenceStatus::NoOrder { arc_limit: true });
+        assert_eq!(s.info.arcs_planned, 2);
+        assert_eq!((s.len, s.total_dv_mps), (0, None));
+        // Three arcs: one complete order, stopped at the next arc (far above every bound, so
+        // never pruned).
+        let three = SequenceSettings {
+            max_arcs: 3,
             ..settings
         };
+        let s = run(&three, Some(1e6)).unwrap();
+        assert_eq!(s.info.status, SequenceStatus::ArcLimit);
+        assert!(s.info.status.is_usable());
+        assert_eq!((s.len, s.total_dv_mps), (4, Some(3e6)));
+        let s = run(&settings, None).unwrap();
+        assert_eq!(s.info.status, SequenceStatus::NoOrder { arc_limit: false });
+        assert!(!s.info.status.is_usable());
+        let mut untouched = Sequence::new();
         assert!(matches!(
-            best_order(&G, &p, &bad, |_, _, _, _| None),
+            best_order(
+                &G,
+                &p[..1],
+                tour,
+                &settings,
+                |_, _, _, _| None,
+                &mut untouched
+            ),
+            Err(SequenceError::Clients { count: 1 })
+        ));
+        assert!(matches!(
+            best_order(
+                &G,
+                &p,
+                (Some(9), &intervals),
+                &settings,
+                |_, _, _, _| None,
+                &mut untouched
+            ),
             Err(SequenceError::First { index: 9 })
         ));
+        assert_eq!(untouched, Sequence::new());
     }
 }

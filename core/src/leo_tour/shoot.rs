@@ -31,14 +31,14 @@ pub struct Family {
     pub branch: Branch,
 }
 
-/// The J2 correction of a two-body Lambert leg: aim at `target + dr_km`, and add `dv_kmps` to
+/// The J2 correction of a two-body Lambert leg: aim at `target + dr_km`, and add `dv_km_s` to
 /// the two-body arrival velocity.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Offset {
     /// Aim-point offset, km.
     pub dr_km: Vec3,
     /// Arrival velocity the J2 flight adds, km/s.
-    pub dv_kmps: Vec3,
+    pub dv_km_s: Vec3,
 }
 
 /// A two-body Lambert leg with the offset applied: (departure velocity, arrival velocity).
@@ -87,7 +87,7 @@ pub fn corrected_lambert_from(
         guess,
     )
     .ok()?;
-    Some((sol.v1_kmps, add(&sol.v2_kmps, &off.dv_kmps), sol.x))
+    Some((sol.v1_km_s, add(&sol.v2_km_s, &off.dv_km_s), sol.x))
 }
 
 /// Broyden's estimate of the inverse Jacobian of the arrival miss over the aim offset: the
@@ -139,7 +139,7 @@ pub struct Shot {
     /// The offset for the next solve: the one flown, moved against the miss.
     pub offset: Offset,
     /// Departure velocity, km/s.
-    pub v_dep_kmps: Vec3,
+    pub v_dep_km_s: Vec3,
     /// State at arrival (before the matching burn), flown in the J2 model.
     pub arrival: State,
     /// Arrival position miss, km.
@@ -179,7 +179,7 @@ pub fn shoot(
             fam,
             &Offset {
                 dr_km: off.dr_km,
-                dv_kmps: [0.0; 3],
+                dv_km_s: [0.0; 3],
             },
             meter,
         ) else {
@@ -209,9 +209,9 @@ pub fn shoot(
             best = Some(Shot {
                 offset: Offset {
                     dr_km: off.dr_km,
-                    dv_kmps: sub(&vel(&end), &v_arr_2b),
+                    dv_km_s: sub(&vel(&end), &v_arr_2b),
                 },
-                v_dep_kmps: v_dep,
+                v_dep_km_s: v_dep,
                 arrival: end,
                 miss_km,
             });
@@ -278,7 +278,7 @@ pub fn shoot_continued(
             } else {
                 off.dr_km
             },
-            dv_kmps: off.dv_kmps,
+            dv_km_s: off.dv_km_s,
         };
         let mut trial_secant = *secant;
         let shot = shoot(

@@ -1,11 +1,12 @@
-//! The tour's order from the clients' states, on board: [`sequence::best_order`] with each
-//! arc's cost the per-arc search's estimate ([`super::estimate_arc_mps`]), the clients flown to
-//! each arc start in the planning model ([`super::propagate`]).
+//! The tour's order from the clients' states, on board ([`solve_sequence`], the planners'
+//! contract as [`LeoSequence`]): [`super::sequence::best_order`] with each arc's cost the per-arc
+//! search's estimate ([`super::estimate_arc_mps`]), the clients flown to each arc start in the
+//! planning model ([`super::propagate`]).
 //!
 //! The enumeration meets the same arc (same clients, start and duration) under different
 //! prefixes, and the same client state at an arc start many times: both are kept in
-//! fixed-size caches, so each is computed once while the caches have room (and computed
-//! again, with the same result, once they are full).
+//! fixed-size caches in the caller's [`SequenceWorkspace`], so each is computed once while
+//! the caches have room (and computed again, with the same result, once they are full).
 //!
 //! Worst case: `settings.max_arcs` arc costs, each at most two propagations of at most
 //! `arc_settings.max_steps` RK4 steps and one estimate within `arc_settings.work_budget`.
@@ -14,9 +15,13 @@ use super::bound::{plane_of, Plane};
 use super::j2::State;
 use super::schedule::{best_schedule, Schedule, ScheduleError, ScheduleSettings, MAX_STEPS};
 use super::sequence::{
-    best_order, dt_max_s, Sequence, SequenceError, SequenceSettings, MAX_CLIENTS,
+    best_order, dt_max_s, Sequence, SequenceError, SequenceProblem, SequenceSettings,
+    SequenceStatus, MAX_CLIENTS,
 };
-use super::{estimate_arc_mps, propagate, solve_arc, ArcProblem, ArcSolution, PlanError, Settings};
+use super::{
+    estimate_arc_mps, propagate, solve_arc, ArcProblem, ArcSolution, PlanError, Settings, Workspace,
+};
+use serde::{Deserialize, Serialize};
 
 /// Client states at arc starts kept: every client at every start of a tour of
 /// [`MAX_CLIENTS`] with durations by position.
@@ -30,17 +35,23 @@ const ARC_CACHE: usize = MAX_CLIENTS * (MAX_CLIENTS - 1) * (MAX_CLIENTS - 1);
 
 /// A fixed-capacity memo of `K -> V` searched linearly (hundreds of entries, each lookup far
 /// cheaper than what it saves: an RK4 propagation or an arc estimate).
+#[derive(Clone, Debug)]
 struct Memo<K, V, const N: usize> {
     entries: [Option<(K, V)>; N],
     len: usize,
 }
 
 impl<K: Copy + PartialEq, V: Copy, const N: usize> Memo<K, V, N> {
-    fn new() -> Self {
+    const fn new() -> Self {
         Self {
             entries: [None; N],
             len: 0,
         }
+    }
+
+    /// Forget every entry (the next sequencing starts empty).
+    fn clear(&mut self) {
+        self.len = 0;
     }
 
     fn get(&self, key: &K) -> Option<V> {
@@ -61,20 +72,59 @@ impl<K: Copy + PartialEq, V: Copy, const N: usize> Memo<K, V, N> {
     }
 }
 
-/// The cheapest visiting order of the clients (`clients`: inertial states at the tour epoch,
-/// km and km/s, at most [`MAX_CLIENTS`]), with `impulses` per arc, each arc's cost the
-/// estimate of the per-arc search with `arc_settings` (which also give the planning model the
-/// clients are flown in).
+/// The sequencing's caller-owned buffers: the memo of the client states at arc starts, the
+/// memo of the arc estimates, and the arc search's [`Workspace`] the estimates run in (which
+/// [`plan_onboard`] also plans the chosen order's arcs in). Built once (`new()` is a `const
+/// fn`: it can sit in a `static`); every sequencing empties the memos first.
+#[derive(Clone, Debug)]
+pub struct SequenceWorkspace {
+    /// Client `k`'s state at a start epoch (bits): `None` when it could not be flown.
+    states: Memo<(usize, u64), Option<State>, STATE_CACHE>,
+    /// The arc (from, to, start bits, duration bits)'s estimate, m/s, or `None`.
+    arcs: Memo<(usize, usize, u64, u64), Option<f64>, ARC_CACHE>,
+    /// The arc search's buffers.
+    pub arc: Workspace,
+}
+
+impl SequenceWorkspace {
+    /// Empty buffers.
+    pub const fn new() -> Self {
+        Self {
+            states: Memo::new(),
+            arcs: Memo::new(),
+            arc: Workspace::new(),
+        }
+    }
+}
+
+impl Default for SequenceWorkspace {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// The cheapest visiting order of the clients (`problem.clients`: inertial states at the tour
+/// epoch, km and km/s, at most [`MAX_CLIENTS`]), with `problem.impulses` per arc, each arc's
+/// cost the estimate of the per-arc search with `arc_settings` (which also give the planning
+/// model the clients are flown in), written into `out`. An arc whose estimate has no Δv (no
+/// transfer, the budget spent, a refusal of that arc) is not taken.
+///
+/// Worst case: see the module docs.
 ///
 /// # Errors
-/// [`SequenceError`]: a client count outside `2..=MAX_CLIENTS`, a client state with no
-/// elliptic plane, or sequencing settings out of range.
-pub fn choose_order(
-    clients: &[State],
-    impulses: u8,
+/// [`SequenceError`] when the request is refused before planning: a client count outside
+/// `2..=MAX_CLIENTS`, a client state with no elliptic plane, a first client or an interval out
+/// of range, sequencing or arc settings out of range; `out` is then untouched. A sequencing
+/// that finds no order is [`SequenceStatus::NoOrder`] in `out`.
+pub fn solve_sequence(
+    problem: &SequenceProblem,
     settings: &SequenceSettings,
     arc_settings: &Settings,
-) -> Result<Sequence, SequenceError> {
+    workspace: &mut SequenceWorkspace,
+    out: &mut Sequence,
+) -> Result<(), SequenceError> {
+    let clients = problem.clients.as_slice();
+    let impulses = problem.impulses;
     let g = arc_settings.gravity();
     let count = SequenceError::Clients {
         count: clients.len(),
@@ -91,50 +141,96 @@ pub fn choose_order(
         *slot = plane_of(&g, s).ok_or(SequenceError::Client { index })?;
     }
     let planes = planes.get(..clients.len()).ok_or(count)?;
-    let mut states: Memo<(usize, u64), Option<State>, STATE_CACHE> = Memo::new();
-    let mut arcs: Memo<(usize, usize, u64, u64), Option<f64>, ARC_CACHE> = Memo::new();
-    best_order(&g, planes, settings, |i, j, t0, dt| {
-        let key = (i, j, t0.to_bits(), dt.to_bits());
-        if let Some(cost) = arcs.get(&key) {
-            return cost;
-        }
-        let mut at = |k: usize| -> Option<State> {
-            let key = (k, t0.to_bits());
-            if let Some(s) = states.get(&key) {
-                return s;
+    // The arcs' settings are every estimate's: out of range, each would be refused.
+    arc_settings
+        .check_ranges()
+        .map_err(SequenceError::InvalidSetting)?;
+    let SequenceWorkspace { states, arcs, arc } = workspace;
+    states.clear();
+    arcs.clear();
+    let tour = (problem.first, &problem.intervals);
+    best_order(
+        &g,
+        planes,
+        tour,
+        settings,
+        |i, j, t0, dt| {
+            let key = (i, j, t0.to_bits(), dt.to_bits());
+            if let Some(cost) = arcs.get(&key) {
+                return cost;
             }
-            let s = propagate(arc_settings, clients.get(k)?, t0);
-            states.put(key, s);
-            s
-        };
-        let cost = match (at(i), at(j)) {
-            (Some(from), Some(to)) => estimate_arc_mps(
-                &ArcProblem {
-                    from,
-                    to,
-                    duration_s: dt,
-                    impulses,
-                },
-                arc_settings,
-            )
-            .ok(),
-            _ => None,
-        };
-        arcs.put(key, cost);
-        cost
-    })
+            let mut at = |k: usize| -> Option<State> {
+                let key = (k, t0.to_bits());
+                if let Some(s) = states.get(&key) {
+                    return s;
+                }
+                let s = propagate(arc_settings, clients.get(k)?, t0);
+                states.put(key, s);
+                s
+            };
+            let cost = match (at(i), at(j)) {
+                (Some(from), Some(to)) => estimate_arc_mps(
+                    &ArcProblem {
+                        from,
+                        to,
+                        duration_s: dt,
+                        impulses,
+                    },
+                    arc_settings,
+                    arc,
+                )
+                .ok()
+                .and_then(|e| e.dv_mps),
+                _ => None,
+            };
+            arcs.put(key, cost);
+            cost
+        },
+        out,
+    )
+}
+
+/// The sequencing's settings in the planners' contract: its own and its arc estimates'
+/// (the wire's `Request::LeoSequence { settings, arc_settings }`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SequencePlanSettings {
+    /// The sequencing's settings.
+    pub order: SequenceSettings,
+    /// The arc estimates' settings.
+    pub arc: Settings,
+}
+
+/// The sequencing in the planners' contract ([`crate::contract::Planner`]):
+/// [`solve_sequence`].
+#[derive(Clone, Copy, Debug)]
+pub struct LeoSequence;
+
+crate::impl_planner!(
+    LeoSequence: SequenceProblem, SequencePlanSettings, SequenceWorkspace, Sequence,
+    SequenceError, SequenceStatus, crate::wire::Planner::LeoSequence, solve_with,
+    reset |out| out.reset()
+);
+
+/// [`solve_sequence`] with both settings in one value (the contract's shape).
+fn solve_with(
+    problem: &SequenceProblem,
+    settings: &SequencePlanSettings,
+    workspace: &mut SequenceWorkspace,
+    out: &mut Sequence,
+) -> Result<(), SequenceError> {
+    solve_sequence(problem, &settings.order, &settings.arc, workspace, out)
 }
 
 /// The arcs' durations for the visiting `order` (0-based client indices into `clients`,
-/// inertial states at the tour epoch): [`schedule::best_schedule`] on the grid of `Δt_max /
+/// inertial states at the tour epoch): [`super::schedule::best_schedule`] on the grid of `Δt_max /
 /// settings.steps` (`Δt_max` from the order's first client), each arc's cost the estimate of
-/// the per-arc search with `arc_settings`, the clients flown to each arc start in the planning
-/// model.
+/// the per-arc search with `arc_settings` in `workspace`, the clients flown to each arc start
+/// in the planning model.
 ///
 /// Each client is needed at the grid's starts of the arc that reaches it and of the arc that
 /// leaves it; both rows of states are kept (a client state is flown once per start).
 ///
-/// Worst case: [`schedule::best_schedule`]'s arcs, each one estimate within
+/// Worst case: [`super::schedule::best_schedule`]'s arcs, each one estimate within
 /// `arc_settings.work_budget`, and at most `2 × (horizon units + 1)` propagations per arc of
 /// at most `arc_settings.max_steps` RK4 steps.
 ///
@@ -148,6 +244,7 @@ pub fn choose_schedule(
     impulses: u8,
     settings: &ScheduleSettings,
     arc_settings: &Settings,
+    workspace: &mut Workspace,
 ) -> Result<Schedule, ScheduleError> {
     let g = arc_settings.gravity();
     let arcs = order.len().saturating_sub(1);
@@ -185,8 +282,10 @@ pub fn choose_schedule(
                 impulses,
             },
             arc_settings,
+            workspace,
         )
         .ok()
+        .and_then(|e| e.dv_mps)
     })
 }
 
@@ -232,10 +331,8 @@ impl StateRows {
 /// planned in full (what the LEO firmware image carries for a `[sequence]` fixture).
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct OnboardProblem {
-    /// The clients' inertial states at the tour epoch.
-    pub clients: heapless::Vec<State, MAX_CLIENTS>,
-    /// Impulses per arc.
-    pub impulses: u8,
+    /// The clients, the impulses per arc, the first client and the arcs' durations.
+    pub tour: SequenceProblem,
     /// The sequencing's settings.
     pub sequence: SequenceSettings,
     /// The arc estimates' settings while sequencing.
@@ -244,43 +341,68 @@ pub struct OnboardProblem {
     pub arcs: Settings,
 }
 
-/// The tour's on-board part: the order ([`choose_order`], arcs estimated with
+/// The tour's on-board part: the order ([`solve_sequence`], arcs estimated with
 /// `problem.estimates`) and each arc of it planned with [`solve_arc`] and `problem.arcs` (the
 /// full search), the clients flown to each arc start in the planning model of `problem.arcs`.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct OnboardPlan {
     /// The sequencing's outcome.
     pub sequence: Sequence,
-    /// Arc `k` of the order (`k < sequence.len - 1`): its plan, or why it has none; `None`
-    /// beyond the order's arcs.
+    /// Arc `k` of the order (`k < sequence.len - 1`): its plan (with its status), or why it
+    /// was refused; `None` beyond the order's arcs (all of them when there is no order).
     pub arcs: [Option<Result<ArcSolution, PlanError>>; MAX_CLIENTS - 1],
 }
 
-/// Choose the order and plan its arcs: what a flight computer runs before the tour (and what
-/// `reconfig solve` does for a `[sequence]` fixture, without the truth-model checks).
+impl OnboardPlan {
+    /// No order and no arcs, for use as an output buffer (a `const fn`: it can sit in a
+    /// `static`).
+    pub const fn new() -> Self {
+        Self {
+            sequence: Sequence::new(),
+            arcs: [None; MAX_CLIENTS - 1],
+        }
+    }
+}
+
+impl Default for OnboardPlan {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// Choose the order and plan its arcs into `out`, in `workspace` (its arc workspace serves the
+/// sequencing's estimates, then the arcs): what a flight computer runs before the tour (and
+/// what `reconfig solve` does for a `[sequence]` fixture, without the truth-model checks).
 ///
-/// Worst case: [`choose_order`]'s, then `clients.len() - 1` arcs, each two propagations of at
-/// most `problem.arcs.max_steps` RK4 steps and one [`solve_arc`] within
+/// Worst case: [`solve_sequence`]'s, then `clients.len() - 1` arcs, each two propagations of
+/// at most `problem.arcs.max_steps` RK4 steps and one [`solve_arc`] within
 /// `problem.arcs.work_budget`.
 ///
 /// # Errors
-/// As [`choose_order`]. An arc that cannot be planned is in [`OnboardPlan::arcs`].
-pub fn plan_onboard(problem: &OnboardProblem) -> Result<OnboardPlan, SequenceError> {
-    let clients = problem.clients.as_slice();
+/// As [`solve_sequence`] (`out` is then untouched). An arc that is refused is in
+/// [`OnboardPlan::arcs`].
+pub fn plan_onboard(
+    problem: &OnboardProblem,
+    workspace: &mut SequenceWorkspace,
+    out: &mut OnboardPlan,
+) -> Result<(), SequenceError> {
+    let clients = problem.tour.clients.as_slice();
     let settings = &problem.arcs;
-    let sequence = choose_order(
-        clients,
-        problem.impulses,
+    solve_sequence(
+        &problem.tour,
         &problem.sequence,
         &problem.estimates,
+        workspace,
+        &mut out.sequence,
     )?;
-    let mut arcs = [None; MAX_CLIENTS - 1];
+    let sequence = &out.sequence;
+    out.arcs = [None; MAX_CLIENTS - 1];
     let legs = sequence
         .order
         .windows(2)
         .zip(sequence.starts_s.iter().zip(sequence.durations_s.iter()))
         .take(usize::from(sequence.len).saturating_sub(1));
-    for (slot, (pair, (&start_s, &duration_s))) in arcs.iter_mut().zip(legs) {
+    for (slot, (pair, (&start_s, &duration_s))) in out.arcs.iter_mut().zip(legs) {
         let at = |k: u8| {
             clients
                 .get(usize::from(k))
@@ -289,29 +411,40 @@ pub fn plan_onboard(problem: &OnboardProblem) -> Result<OnboardPlan, SequenceErr
         let (Some(&a), Some(&b)) = (pair.first(), pair.get(1)) else {
             continue;
         };
-        *slot = Some(match (at(a), at(b)) {
-            (Some(from), Some(to)) => solve_arc(
-                &ArcProblem {
-                    from,
-                    to,
-                    duration_s,
-                    impulses: problem.impulses,
-                },
-                settings,
-            ),
-            (None, _) => Err(PlanError::Propagation {
-                field: super::Field::From,
-            }),
-            (_, None) => Err(PlanError::Propagation {
-                field: super::Field::To,
-            }),
-        });
+        let (from, to) = match (at(a), at(b)) {
+            (Some(from), Some(to)) => (from, to),
+            (None, _) => {
+                *slot = Some(Err(PlanError::Propagation {
+                    field: super::Field::From,
+                }));
+                continue;
+            }
+            (_, None) => {
+                *slot = Some(Err(PlanError::Propagation {
+                    field: super::Field::To,
+                }));
+                continue;
+            }
+        };
+        let problem = ArcProblem {
+            from,
+            to,
+            duration_s,
+            impulses: problem.tour.impulses,
+        };
+        // The plan is written in place, in its slot.
+        let planned = slot.insert(Ok(ArcSolution::new()));
+        if let Ok(solution) = planned {
+            if let Err(e) = solve_arc(&problem, settings, &mut workspace.arc, solution) {
+                *planned = Err(e);
+            }
+        }
     }
-    Ok(OnboardPlan { sequence, arcs })
+    Ok(())
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing)]
+#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::panic)]
 mod tests {
     extern crate std;
     use super::*;
@@ -330,47 +463,89 @@ mod tests {
         );
     }
 
+    fn tour(clients: &[State]) -> SequenceProblem {
+        SequenceProblem {
+            clients: heapless::Vec::from_slice(clients).unwrap(),
+            impulses: 3,
+            first: None,
+            intervals: super::super::sequence::Intervals::ByPosition([86_400.0; 7]),
+        }
+    }
+
+    fn choose_order(
+        problem: &SequenceProblem,
+        settings: &SequenceSettings,
+        arc_settings: &Settings,
+    ) -> Result<Sequence, SequenceError> {
+        let mut workspace = std::boxed::Box::new(SequenceWorkspace::new());
+        let mut out = Sequence::new();
+        solve_sequence(problem, settings, arc_settings, &mut workspace, &mut out).map(|()| out)
+    }
+
     #[test]
     fn too_few_or_degenerate_clients_are_named() {
         let s = SequenceSettings {
-            first: None,
-            intervals: super::super::sequence::Intervals::ByPosition([86_400.0; 7]),
-            bound: super::super::bound::BoundSettings::default(),
             max_arcs: 10,
+            ..SequenceSettings::default()
         };
         let a = [7000.0, 0.0, 0.0, 0.0, 7.546, 0.0];
         assert_eq!(
-            choose_order(&[a], 3, &s, &Settings::default()).unwrap_err(),
+            choose_order(&tour(&[a]), &s, &Settings::default()).unwrap_err(),
             SequenceError::Clients { count: 1 }
-        );
-        assert_eq!(
-            choose_order(&[a; 9], 3, &s, &Settings::default()).unwrap_err(),
-            SequenceError::Clients { count: 9 }
         );
         let b = [7100.0, 0.0, 0.0, 0.0, 7.49, 0.1];
         let nan_margin = SequenceSettings {
-            bound: super::super::bound::BoundSettings {
-                margin: f64::NAN,
-                ..s.bound
-            },
+            bound_margin: f64::NAN,
             ..s
         };
-        let e = choose_order(&[a, b], 3, &nan_margin, &Settings::default()).unwrap_err();
-        assert!(
-            matches!(
-                e,
-                SequenceError::BoundMargin {
-                    field: super::super::sequence::BoundField::Margin,
-                    ..
-                }
-            ),
-            "{e:?}"
+        let e = choose_order(&tour(&[a, b]), &nan_margin, &Settings::default()).unwrap_err();
+        let SequenceError::InvalidSetting(refusal) = e else {
+            panic!("{e:?}")
+        };
+        assert_eq!(
+            refusal.setting,
+            super::super::sequence::SettingId::BoundMargin.into()
         );
-        assert!(e.to_string().starts_with("bound margin = NaN"), "{e}");
+        assert!(refusal.value.is_nan());
+        assert!(
+            e.to_string().starts_with("setting bound_margin = NaN"),
+            "{e}"
+        );
         let radial = [7000.0, 0.0, 0.0, 7.5, 0.0, 0.0];
         assert_eq!(
-            choose_order(&[a, radial], 3, &s, &Settings::default()).unwrap_err(),
+            choose_order(&tour(&[a, radial]), &s, &Settings::default()).unwrap_err(),
             SequenceError::Client { index: 1 }
         );
+        // The arc estimates' settings are checked before planning too.
+        let bad_arc = Settings {
+            step_s: f64::NAN,
+            ..Settings::default()
+        };
+        let e = choose_order(&tour(&[a, b]), &s, &bad_arc).unwrap_err();
+        let SequenceError::InvalidSetting(refusal) = e else {
+            panic!("{e:?}")
+        };
+        assert_eq!(refusal.setting, super::super::SettingId::StepS.into());
+    }
+
+    #[test]
+    fn the_sequencing_is_a_planner_of_the_contract() {
+        use crate::contract::{Planner, Status};
+        assert_eq!(LeoSequence::KIND, crate::wire::Planner::LeoSequence);
+        assert_eq!(Sequence::new().info.status, SequenceStatus::Unsolved);
+        assert_eq!(SequenceStatus::default().code(), 0);
+        assert_eq!(SequenceStatus::Optimal.code(), 1);
+        assert_eq!(SequenceStatus::NoOrder { arc_limit: true }.code(), 4);
+        for (status, usable) in [
+            (SequenceStatus::Unsolved, false),
+            (SequenceStatus::Optimal, true),
+            (SequenceStatus::BoundViolated, true),
+            (SequenceStatus::ArcLimit, true),
+            (SequenceStatus::NoOrder { arc_limit: false }, false),
+            (SequenceStatus::NoOrder { arc_limit: true }, false),
+        ] {
+            assert_eq!(Status::is_usable(&status), usable, "{status:?}");
+            assert_eq!(status.budget_exhausted(), None);
+        }
     }
 }

@@ -15,18 +15,31 @@ pub struct Track {
 }
 
 impl Track {
-    /// The trajectory from `start` over `duration_s` flown by `flight` (the planning model):
-    /// `CHECKPOINTS` flights of `duration_s / CHECKPOINTS`. `None` when a flight is refused or
-    /// not finite.
-    pub fn new(flight: &Flight, start: &State, duration_s: f64, meter: &mut Meter) -> Option<Self> {
-        let spacing_s = duration_s / (CHECKPOINTS as f64);
-        let mut states = [*start; CHECKPOINTS];
-        let mut s = *start;
-        for slot in states.iter_mut() {
-            *slot = s;
-            s = flight.fly(&s, spacing_s, meter)?;
+    /// No trajectory yet (zero checkpoints), for a workspace's initial value.
+    pub const fn empty() -> Self {
+        Self {
+            states: [[0.0; 6]; CHECKPOINTS],
+            spacing_s: 0.0,
         }
-        Some(Self { states, spacing_s })
+    }
+
+    /// Make this the trajectory from `start` over `duration_s` flown by `flight` (the planning
+    /// model), in place: `CHECKPOINTS` flights of `duration_s / CHECKPOINTS`. `None` when a
+    /// flight is refused or not finite (the checkpoints are then partly written: unusable).
+    pub fn fill(
+        &mut self,
+        flight: &Flight,
+        start: &State,
+        duration_s: f64,
+        meter: &mut Meter,
+    ) -> Option<()> {
+        self.spacing_s = duration_s / (CHECKPOINTS as f64);
+        let mut s = *start;
+        for slot in self.states.iter_mut() {
+            *slot = s;
+            s = flight.fly(&s, self.spacing_s, meter)?;
+        }
+        Some(())
     }
 
     /// The state at `t_s` (clamped to the arc), from the checkpoint at or before it.

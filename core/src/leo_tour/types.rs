@@ -1,7 +1,9 @@
 //! Settings, problem, solution and errors of the per-arc rendezvous.
 
 use super::flight::{Flight, Model};
-use super::j2::{Gravity, State};
+use super::j2::State;
+use crate::astro::{Gravity, EARTH_J2, EARTH_MU_KM3_S2, EARTH_RADIUS_KM};
+use crate::contract::{Range, SettingError};
 use crate::vec3::Vec3;
 use serde::{Deserialize, Serialize};
 
@@ -16,83 +18,84 @@ pub const MAX_HOPS: usize = 2 * MAX_IMPULSES;
 /// Checkpoints of each client's trajectory (states stored at equal spacing over the arc).
 pub const CHECKPOINTS: usize = 64;
 
-/// Settings of the per-arc rendezvous; every loop is bounded by one of them.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Settings {
-    /// Gravitational parameter, km^3/s^2.
-    pub mu_km3_s2: f64,
-    /// Equatorial radius, km.
-    pub re_km: f64,
-    /// J2 (unnormalised).
-    pub j2: f64,
-    /// Largest RK4 step, s.
-    pub step_s: f64,
-    /// Most RK4 steps of one propagation.
-    pub max_steps: u32,
-    /// Householder steps of one Lambert solve.
-    pub lambert_max_iter: u16,
-    /// Lambert tolerance on Izzo's x.
-    pub lambert_tol: f64,
-    /// Most whole revolutions of a Lambert leg considered.
-    pub max_revolutions: u16,
-    /// Aim-point iterations of one J2 shooting.
-    pub shoot_max_iter: u16,
-    /// Arrival miss accepted by the shooting and by the final check, km.
-    pub arrival_tol_km: f64,
-    /// Points of the coarse grid of the first impulse epoch.
-    pub grid_points: u16,
-    /// Grid candidates refined locally (at most [`MAX_CANDIDATES`]).
-    pub candidates: u8,
-    /// Rounds of hops from the best refined plan (its intermediate impulse epochs moved by
-    /// half revolutions, refined again); a round that finds nothing better ends them.
-    pub hop_rounds: u8,
-    /// Cost evaluations of one local refinement.
-    pub search_max_evals: u32,
-    /// First compass step of an impulse epoch, s.
-    pub search_step_s: f64,
-    /// First compass step of an impulse component, km/s.
-    pub search_step_kmps: f64,
-    /// The refinement stops when the epoch step is below this, s.
-    pub search_min_step_s: f64,
-    /// Least time between two impulses (and before the arrival), s.
-    pub min_gap_s: f64,
-    /// Work budget (units: one RK4 step = 1 unit, one Lambert solve = 8 units, one flight
-    /// of the search model 9 units, one client state of the search model 4 units).
-    pub work_budget: u64,
-    /// The model of the grid, the local searches and the hops: `MeanElements` (the
-    /// first-order J2 theory in closed form, then a polish in the planning model) or
-    /// `Planning` (everything in the planning model, the slow reference).
-    pub search_model: Model,
-    /// Cost evaluations of the planning-model polish of the best search-model plan (and of
-    /// a warm start's plan), with `search_model = MeanElements`.
-    pub polish_max_evals: u32,
-}
-
-impl Default for Settings {
-    fn default() -> Self {
-        Self {
-            mu_km3_s2: 398_600.441_8,
-            re_km: 6378.137,
-            j2: 1.082_63e-3,
-            step_s: 20.0,
-            max_steps: 50_000,
-            lambert_max_iter: 40,
-            lambert_tol: 1e-13,
-            max_revolutions: 40,
-            shoot_max_iter: 30,
-            arrival_tol_km: 1e-6,
-            grid_points: 96,
-            candidates: 8,
-            hop_rounds: 6,
-            search_max_evals: 4000,
-            search_step_s: 600.0,
-            search_step_kmps: 0.02,
-            search_min_step_s: 0.5,
-            min_gap_s: 60.0,
-            work_budget: 400_000_000,
-            search_model: Model::MeanElements,
-            polish_max_evals: 600,
-        }
+crate::settings_table! {
+    /// Settings of the per-arc rendezvous; every loop is bounded by one of them. The physical
+    /// constants, the first compass steps, the least gap between impulses and the search
+    /// model choose the problem or the method (no service limit); the work budget bounds
+    /// their cost.
+    pub struct Settings;
+    /// The LEO arc's settings, by name (stable codes on the wire and in the C interface).
+    pub enum SettingId in crate::limits::Setting::LeoArc;
+    {
+        /// Gravitational parameter, km^3/s^2.
+        mu_km3_s2, MuKm3S2 = 0: f64 = EARTH_MU_KM3_S2,
+        unit "km^3/s^2", range Range::closed(1.0, 1e7), limit Free;
+        /// Equatorial radius, km.
+        re_km, ReKm = 1: f64 = EARTH_RADIUS_KM,
+        unit "km", range Range::closed(0.0, 1e5), limit Free;
+        /// J2 (unnormalised).
+        j2, J2 = 2: f64 = EARTH_J2,
+        unit "", range Range::closed(0.0, 1e-2), limit Free;
+        /// Largest RK4 step, s.
+        step_s, StepS = 3: f64 = 20.0,
+        unit "s", range Range::closed(0.1, 600.0), limit AtMost;
+        /// Most RK4 steps of one propagation.
+        max_steps, MaxSteps = 4: u32 = 50_000,
+        unit "", range Range::closed(1.0, 1e6), limit AtMost;
+        /// Householder steps of one Lambert solve.
+        lambert_max_iter, LambertMaxIter = 5: u16 = 40,
+        unit "", range Range::closed(1.0, 200.0), limit AtMost;
+        /// Lambert tolerance on Izzo's x.
+        lambert_tol, LambertTol = 6: f64 = 1e-13,
+        unit "", range Range::closed(1e-15, 1e-6), limit AtMost;
+        /// Most whole revolutions of a Lambert leg considered.
+        max_revolutions, MaxRevolutions = 7: u16 = 40,
+        unit "", range Range::closed(0.0, 200.0), limit AtMost;
+        /// Aim-point iterations of one J2 shooting.
+        shoot_max_iter, ShootMaxIter = 8: u16 = 30,
+        unit "", range Range::closed(1.0, 100.0), limit AtMost;
+        /// Arrival miss accepted by the shooting and by the final check, km.
+        arrival_tol_km, ArrivalTolKm = 9: f64 = 1e-6,
+        unit "km", range Range::closed(1e-9, 100.0), limit AtMost;
+        /// Points of the coarse grid of the first impulse epoch.
+        grid_points, GridPoints = 10: u16 = 96,
+        unit "", range Range::closed(1.0, 4096.0), limit AtMost;
+        /// Grid candidates refined locally (at most [`MAX_CANDIDATES`]).
+        candidates, Candidates = 11: u8 = 8,
+        unit "", range Range::closed(1.0, MAX_CANDIDATES as f64), limit AtMost;
+        /// Rounds of hops from the best refined plan (its intermediate impulse epochs moved by
+        /// half revolutions, refined again); a round that finds nothing better ends them.
+        hop_rounds, HopRounds = 12: u8 = 6,
+        unit "", range Range::closed(0.0, 16.0), limit AtMost;
+        /// Cost evaluations of one local refinement.
+        search_max_evals, SearchMaxEvals = 13: u32 = 4000,
+        unit "", range Range::closed(0.0, 1e6), limit AtMost;
+        /// First compass step of an impulse epoch, s.
+        search_step_s, SearchStepS = 14: f64 = 600.0,
+        unit "s", range Range::closed(0.0, 1e5), limit Free;
+        /// First compass step of an impulse component, km/s.
+        search_step_km_s, SearchStepKmS = 15: f64 = 0.02,
+        unit "km/s", range Range::closed(0.0, 1.0), limit Free;
+        /// The refinement stops when the epoch step is below this, s.
+        search_min_step_s, SearchMinStepS = 16: f64 = 0.5,
+        unit "s", range Range::closed(1e-6, 1e5), limit AtLeast;
+        /// Least time between two impulses (and before the arrival), s; at most an eighth of
+        /// the arc.
+        min_gap_s, MinGapS = 17: f64 = 60.0,
+        unit "s", range Range::closed(0.0, 3e6), limit Free;
+        /// Work budget (units: one RK4 step = 1 unit, one Lambert solve = 8 units, one flight
+        /// of the search model 9 units, one client state of the search model 4 units).
+        work_budget, WorkBudget = 18: u64 = 400_000_000,
+        unit "units", range Range::closed(1.0, 1e10), limit AtMost;
+        /// The model of the grid, the local searches and the hops: `MeanElements` (the
+        /// first-order J2 theory in closed form, then a polish in the planning model) or
+        /// `Planning` (everything in the planning model, the slow reference).
+        search_model, SearchModel = 19: Model = Model::MeanElements,
+        unit "", range Range::any(), limit Free;
+        /// Cost evaluations of the planning-model polish of the best search-model plan (and of
+        /// a warm start's plan), with `search_model = MeanElements`.
+        polish_max_evals, PolishMaxEvals = 20: u32 = 600,
+        unit "", range Range::closed(0.0, 1e6), limit AtMost;
     }
 }
 
@@ -137,45 +140,151 @@ pub struct Burn {
     /// Epoch from the arc start, s.
     pub epoch_s: f64,
     /// Inertial Δv, km/s.
-    pub dv_kmps: Vec3,
+    pub dv_km_s: Vec3,
     /// Δv in the chaser's RTN frame just before the burn (radial, along-track, normal), m/s.
     pub rtn_mps: Vec3,
 }
 
-/// What the returned plan is.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+/// How an arc's solve ended (the contract's vocabulary, [`crate::contract::Status`]). The
+/// plan in the solution, when there is one, was flown from scratch in the planning model with
+/// an exact shooting of its last leg; that flight decides the status.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[repr(u8)]
-pub enum Status {
+pub enum SolveStatus {
+    /// No solve has written this solution.
+    #[default]
+    Unsolved = 0,
     /// The plan, flown from scratch in the planning model, arrives within `arrival_tol_km` of
     /// the client with its velocity.
-    Solved = 0,
-    /// The best plan found misses by more than `arrival_tol_km` (its miss is returned).
-    ArrivalMissed = 1,
-    /// The work budget stopped the search; the plan returned is checked as for `Solved`.
-    BudgetExhaustedSolved = 2,
+    Solved = 1,
+    /// The best plan found misses by more than `arrival_tol_km` (its miss is returned). Not
+    /// usable.
+    ArrivalMissed = 2,
+    /// The work budget (`work_budget`) stopped the search. With `verified` the returned plan
+    /// arrives as for `Solved` (usable; a longer search might find less Δv); without it, the
+    /// plan returned misses (its burns and miss are returned), or the budget was spent before
+    /// any plan (no burns: `impulses == 0`, `miss_m` absent).
+    BudgetExhausted {
+        /// The returned plan arrives within `arrival_tol_km`.
+        verified: bool,
+    } = 3,
+    /// No transfer of the search reached the client (no Lambert leg converged): no burns.
+    NoTransfer = 4,
 }
 
-/// A planned arc.
+impl SolveStatus {
+    /// The plan may be flown: `Solved` or `BudgetExhausted { verified: true }`.
+    pub const fn is_usable(&self) -> bool {
+        matches!(
+            self,
+            Self::Solved | Self::BudgetExhausted { verified: true }
+        )
+    }
+}
+
+impl crate::contract::Status for SolveStatus {
+    fn is_usable(&self) -> bool {
+        SolveStatus::is_usable(self)
+    }
+
+    fn code(&self) -> u8 {
+        match self {
+            Self::Unsolved => 0,
+            Self::Solved => 1,
+            Self::ArrivalMissed => 2,
+            Self::BudgetExhausted { .. } => 3,
+            Self::NoTransfer => 4,
+        }
+    }
+
+    fn budget_exhausted(&self) -> Option<bool> {
+        match *self {
+            Self::BudgetExhausted { verified } => Some(verified),
+            _ => None,
+        }
+    }
+}
+
+/// How an arc's solve ended and what it cost.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SolveInfo {
+    /// The status.
+    pub status: SolveStatus,
+    /// Cost evaluations made.
+    pub evaluations: u32,
+    /// Work units used (`work_budget`).
+    pub work_units: u64,
+}
+
+/// A planned arc, or with a status other than `Solved`, what could be shown. Every number is
+/// finite whatever the status; a plan with no burns (`impulses == 0`: `NoTransfer`, a budget
+/// spent before any plan, `Unsolved`) has zero burns, `total_dv_mps = 0`, no `miss_m` and
+/// `last_leg_revolutions = 0` / `last_leg_branch = Left`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ArcSolution {
-    /// What the plan is.
-    pub status: Status,
     /// The burns, `impulses` of them in time order (the rest zero).
     pub burns: [Burn; MAX_IMPULSES],
-    /// How many of `burns` are used.
+    /// How many of `burns` are used (0 when no plan was found).
     pub impulses: u8,
-    /// Sum of the burn sizes, m/s.
+    /// Sum of the burn sizes, m/s (0 with no burns).
     pub total_dv_mps: f64,
-    /// Position miss at arrival when the plan is flown in the planning model, m.
-    pub miss_m: f64,
+    /// Position miss at arrival when the plan is flown in the planning model, m; absent when
+    /// no plan was flown.
+    pub miss_m: Option<f64>,
     /// Revolutions of the last Lambert leg.
     pub last_leg_revolutions: u16,
     /// Lambert branch of the last leg (for a re-plan of the same family).
     pub last_leg_branch: crate::lambert::Branch,
-    /// Cost evaluations made.
-    pub evaluations: u32,
-    /// Work units used.
-    pub work_units: u64,
+    /// The status and the counters.
+    pub info: SolveInfo,
+}
+
+impl ArcSolution {
+    /// The empty `Unsolved` answer (no burns), for use as an output buffer (a `const fn`: it
+    /// can sit in a `static`).
+    pub const fn new() -> Self {
+        const NO_BURN: Burn = Burn {
+            epoch_s: 0.0,
+            dv_km_s: [0.0; 3],
+            rtn_mps: [0.0; 3],
+        };
+        Self {
+            burns: [NO_BURN; MAX_IMPULSES],
+            impulses: 0,
+            total_dv_mps: 0.0,
+            miss_m: None,
+            last_leg_revolutions: 0,
+            last_leg_branch: crate::lambert::Branch::Left,
+            info: SolveInfo {
+                status: SolveStatus::Unsolved,
+                evaluations: 0,
+                work_units: 0,
+            },
+        }
+    }
+
+    /// Make this the empty `Unsolved` answer, in place.
+    pub fn reset(&mut self) {
+        *self = Self::new();
+    }
+}
+
+impl Default for ArcSolution {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// The sequencing's arc cost ([`super::estimate_arc_mps`]): the Δv of the best plan of the
+/// search shot in the search model, or why there is none.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ArcEstimate {
+    /// The estimate, m/s; absent when the search shot no plan (`status` says why).
+    pub dv_mps: Option<f64>,
+    /// `Solved` (an estimate), `BudgetExhausted { verified }` (the budget stopped the search;
+    /// `verified`: an estimate was shot before), `NoTransfer`; with `search_model =
+    /// Planning` the planned arc's status (an estimate only when it is usable).
+    pub status: SolveStatus,
 }
 
 /// A field of the request.
@@ -190,46 +299,6 @@ pub enum Field {
     Duration = 2,
     /// `ArcProblem::impulses`.
     Impulses = 3,
-    /// `Settings::mu_km3_s2`.
-    Mu = 4,
-    /// `Settings::re_km`.
-    EquatorialRadius = 5,
-    /// `Settings::j2`.
-    J2 = 6,
-    /// `Settings::step_s`.
-    Step = 7,
-    /// `Settings::max_steps`.
-    MaxSteps = 8,
-    /// `Settings::lambert_max_iter`.
-    LambertMaxIter = 9,
-    /// `Settings::lambert_tol`.
-    LambertTol = 10,
-    /// `Settings::max_revolutions`.
-    MaxRevolutions = 11,
-    /// `Settings::shoot_max_iter`.
-    ShootMaxIter = 12,
-    /// `Settings::arrival_tol_km`.
-    ArrivalTol = 13,
-    /// `Settings::grid_points`.
-    GridPoints = 14,
-    /// `Settings::candidates`.
-    Candidates = 15,
-    /// `Settings::search_max_evals`.
-    SearchMaxEvals = 16,
-    /// `Settings::search_step_s`.
-    SearchStep = 17,
-    /// `Settings::search_step_kmps`.
-    SearchStepKmps = 18,
-    /// `Settings::search_min_step_s`.
-    SearchMinStep = 19,
-    /// `Settings::min_gap_s`.
-    MinGap = 20,
-    /// `Settings::work_budget`.
-    WorkBudget = 21,
-    /// `Settings::hop_rounds`.
-    HopRounds = 22,
-    /// `Settings::polish_max_evals`.
-    PolishMaxEvals = 23,
 }
 
 impl Field {
@@ -240,33 +309,16 @@ impl Field {
             Self::To => "to",
             Self::Duration => "duration_s",
             Self::Impulses => "impulses",
-            Self::Mu => "mu_km3_s2",
-            Self::EquatorialRadius => "re_km",
-            Self::J2 => "j2",
-            Self::Step => "step_s",
-            Self::MaxSteps => "max_steps",
-            Self::LambertMaxIter => "lambert_max_iter",
-            Self::LambertTol => "lambert_tol",
-            Self::MaxRevolutions => "max_revolutions",
-            Self::ShootMaxIter => "shoot_max_iter",
-            Self::ArrivalTol => "arrival_tol_km",
-            Self::GridPoints => "grid_points",
-            Self::Candidates => "candidates",
-            Self::SearchMaxEvals => "search_max_evals",
-            Self::SearchStep => "search_step_s",
-            Self::SearchStepKmps => "search_step_kmps",
-            Self::SearchMinStep => "search_min_step_s",
-            Self::MinGap => "min_gap_s",
-            Self::WorkBudget => "work_budget",
-            Self::HopRounds => "hop_rounds",
-            Self::PolishMaxEvals => "polish_max_evals",
         }
     }
 }
 
-/// Why an arc was not planned.
+/// Why an arc was refused before planning (a plan that ends without a transfer is a
+/// [`SolveStatus`], not an error).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub enum PlanError {
+    /// A setting is out of its range: the setting, the value and the range.
+    InvalidSetting(SettingError),
     /// A value is NaN, infinite or outside `[min, max]`.
     OutOfRange {
         /// Which field.
@@ -284,15 +336,6 @@ pub enum PlanError {
         /// Which client (`From` or `To`).
         field: Field,
     },
-    /// No transfer of the grid reached the client (no Lambert leg converged).
-    NoTransfer,
-    /// The work budget was spent before any plan was found.
-    BudgetExhausted {
-        /// Units used.
-        used: u64,
-        /// The budget.
-        budget: u64,
-    },
 }
 
 impl core::fmt::Display for PlanError {
@@ -304,15 +347,11 @@ impl core::fmt::Display for PlanError {
                 min,
                 max,
             } => write!(f, "{} = {value} is outside [{min}, {max}]", field.name()),
+            Self::InvalidSetting(e) => write!(f, "{e}"),
             Self::Propagation { field } => write!(
                 f,
                 "client state `{}` cannot be propagated over the arc",
                 field.name()
-            ),
-            Self::NoTransfer => f.write_str("no transfer of the grid reached the client"),
-            Self::BudgetExhausted { used, budget } => write!(
-                f,
-                "work budget spent before any plan ({used} of {budget} units)"
             ),
         }
     }

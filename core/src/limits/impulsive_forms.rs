@@ -7,10 +7,9 @@
 //! here and is named by the conversion or the planner.
 
 use super::impulsive::Limits;
-use super::{at_least, below, LimitViolation, Setting};
-use crate::impulsive::{
-    osculating_shape, FormProblem, OrbitForm, RelativeForm, Settings, EARTH_RADIUS_KM,
-};
+use super::{at_least, below, LimitViolation, ProblemLimit, Setting};
+use crate::astro::EARTH_RADIUS_KM;
+use crate::impulsive::{osculating_shape, FormProblem, OrbitForm, RelativeForm, Settings};
 
 /// The two settings an orbit's checks are named by.
 struct Names {
@@ -19,16 +18,16 @@ struct Names {
 }
 
 const CHIEF: Names = Names {
-    eccentricity: Setting::ImpChiefEccentricity,
-    perigee_altitude_km: Setting::ImpChiefPerigeeAltitudeKm,
+    eccentricity: Setting::Problem(ProblemLimit::ChiefEccentricity),
+    perigee_altitude_km: Setting::Problem(ProblemLimit::ChiefPerigeeAltitudeKm),
 };
 const DEPUTY_INITIAL: Names = Names {
-    eccentricity: Setting::ImpDeputyInitialEccentricity,
-    perigee_altitude_km: Setting::ImpDeputyInitialPerigeeAltitudeKm,
+    eccentricity: Setting::Problem(ProblemLimit::DeputyInitialEccentricity),
+    perigee_altitude_km: Setting::Problem(ProblemLimit::DeputyInitialPerigeeAltitudeKm),
 };
 const DEPUTY_TARGET: Names = Names {
-    eccentricity: Setting::ImpDeputyTargetEccentricity,
-    perigee_altitude_km: Setting::ImpDeputyTargetPerigeeAltitudeKm,
+    eccentricity: Setting::Problem(ProblemLimit::DeputyTargetEccentricity),
+    perigee_altitude_km: Setting::Problem(ProblemLimit::DeputyTargetPerigeeAltitudeKm),
 };
 
 impl Limits {
@@ -51,7 +50,7 @@ impl Limits {
         match &problem.relative {
             RelativeForm::Elements { .. } => Ok(()),
             RelativeForm::Roe { .. } => at_least(
-                Setting::ImpRoeChiefSinInclination,
+                Setting::Problem(ProblemLimit::RoeChiefSinInclination),
                 sin_inclination(&problem.chief),
                 settings.min_sin_inclination,
             ),
@@ -188,10 +187,14 @@ mod tests {
         let e = check(&problem(OrbitForm::State(s), elements())).unwrap_err();
         assert_eq!(
             (e.setting, e.limit, e.rule),
-            (Setting::ImpChiefEccentricity, 1.0, Rule::Below)
+            (
+                Setting::Problem(ProblemLimit::ChiefEccentricity),
+                1.0,
+                Rule::Below
+            )
         );
         // e = r v^2 / mu - 1 at a perigee with the velocity across the radius.
-        let expected = 7000.0 * 144.0 / crate::impulsive::EARTH_MU_KM3_S2 - 1.0;
+        let expected = 7000.0 * 144.0 / crate::astro::EARTH_MU_KM3_S2 - 1.0;
         assert!((e.value - expected).abs() < 1e-12, "{}", e.value);
         assert_eq!(e.setting.name(), "chief.eccentricity");
     }
@@ -200,7 +203,7 @@ mod tests {
     fn a_low_state_is_refused_with_its_perigee_altitude() {
         // Circular at 6378 + 80 km: perigee altitude 80 km, below the default 100 km.
         let r = EARTH_RADIUS_KM + 80.0;
-        let v = libm::sqrt(crate::impulsive::EARTH_MU_KM3_S2 / r);
+        let v = libm::sqrt(crate::astro::EARTH_MU_KM3_S2 / r);
         let s = CartesianState {
             pos_km: [r, 0.0, 0.0],
             vel_km_s: [0.0, 0.0, v],
@@ -213,7 +216,7 @@ mod tests {
         assert_eq!(
             (e.setting, e.limit, e.rule),
             (
-                Setting::ImpDeputyTargetPerigeeAltitudeKm,
+                Setting::Problem(ProblemLimit::DeputyTargetPerigeeAltitudeKm),
                 100.0,
                 Rule::AtLeast
             )
@@ -233,14 +236,20 @@ mod tests {
         let e = check(&problem(OrbitForm::Classical(chief()), deputy)).unwrap_err();
         assert_eq!(
             (e.setting, e.rule),
-            (Setting::ImpDeputyInitialEccentricity, Rule::Below)
+            (
+                Setting::Problem(ProblemLimit::DeputyInitialEccentricity),
+                Rule::Below
+            )
         );
         assert!((e.value - 1.0).abs() < 1e-15);
         let mut q = equinoctial_of(&chief());
         q.ex = 0.1;
         q.ey = 0.0;
         let e = check(&problem(OrbitForm::Equinoctial(q), elements())).unwrap_err();
-        assert_eq!(e.setting, Setting::ImpChiefPerigeeAltitudeKm);
+        assert_eq!(
+            e.setting,
+            Setting::Problem(ProblemLimit::ChiefPerigeeAltitudeKm)
+        );
         assert!((e.value - (7078.137 * 0.9 - EARTH_RADIUS_KM)).abs() < 1e-6);
     }
 
@@ -256,7 +265,7 @@ mod tests {
         assert_eq!(
             (e.setting, e.limit, e.rule),
             (
-                Setting::ImpRoeChiefSinInclination,
+                Setting::Problem(ProblemLimit::RoeChiefSinInclination),
                 Settings::default().min_sin_inclination,
                 Rule::AtLeast
             )
@@ -277,6 +286,6 @@ mod tests {
                 &Settings::default(),
             )
             .unwrap_err();
-        assert_eq!(e.setting, Setting::ImpSearch);
+        assert_eq!(e.setting, Setting::Problem(ProblemLimit::Search));
     }
 }

@@ -1,5 +1,6 @@
 //! Reasons a planner-A request is rejected before iterating. The workspace is untouched.
 
+use crate::contract::SettingError;
 use serde::{Deserialize, Serialize};
 
 /// Which input quantity an error is about.
@@ -43,7 +44,7 @@ pub enum Boundary {
 }
 
 /// A request the planner refuses to iterate on.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[repr(u8)]
 pub enum PlanError {
     /// A number is NaN or infinite.
@@ -52,6 +53,8 @@ pub enum PlanError {
         what: Quantity,
         /// Spacecraft index where it applies, else 0.
         spacecraft: u8,
+        /// The value given (NaN or an infinity, as the caller gave it).
+        value: f64,
     } = 0,
     /// A quantity that must be positive is zero or negative.
     NotPositive {
@@ -59,6 +62,8 @@ pub enum PlanError {
         what: Quantity,
         /// Spacecraft index where it applies, else 0.
         spacecraft: u8,
+        /// The value given.
+        value: f64,
     } = 1,
     /// A size is above the compiled capacity.
     CapacityExceeded {
@@ -92,8 +97,8 @@ pub enum PlanError {
         /// Axis 0 = x, 1 = y, 2 = z.
         axis: u8,
     } = 6,
-    /// A setting is out of range.
-    InvalidSettings(SettingsError) = 7,
+    /// A setting is out of its range: the setting, the value and the range.
+    InvalidSetting(SettingError) = 7,
     /// The warm start does not match the problem (spacecraft count or degree).
     WarmStartMismatch = 8,
     /// A number is outside the range the planner is built for: every magnitude at most
@@ -104,6 +109,11 @@ pub enum PlanError {
         what: Quantity,
         /// Spacecraft index where it applies, else 0.
         spacecraft: u8,
+        /// The value given.
+        value: f64,
+        /// The end of the accepted range it is beyond: [`MAX_MAGNITUDE`] for a magnitude,
+        /// [`MIN_POSITIVE`] for a positive quantity below it.
+        limit: f64,
     } = 9,
 }
 
@@ -112,29 +122,23 @@ pub const MAX_MAGNITUDE: f64 = 1e9;
 /// Smallest accepted T, Umax, d and mass (normalised units).
 pub const MIN_POSITIVE: f64 = 1e-9;
 
-/// A setting out of its documented range.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[repr(u8)]
-pub enum SettingsError {
-    /// An iteration limit is zero.
-    ZeroIterationLimit = 0,
-    /// A tolerance is not finite and positive.
-    BadTolerance = 1,
-    /// Verification rounds exceed what the check-point capacity can hold.
-    TooManyVerifyRounds = 2,
-    /// The acceleration memory exceeds its capacity (1).
-    AccelerationMemory = 3,
-}
-
 impl core::fmt::Display for PlanError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
-            Self::NotFinite { what, spacecraft } => {
-                write!(f, "{what:?} is NaN or infinite")?;
+            Self::NotFinite {
+                what,
+                spacecraft,
+                value,
+            } => {
+                write!(f, "{what:?} = {value} is NaN or infinite")?;
                 per_spacecraft(f, *what, *spacecraft)
             }
-            Self::NotPositive { what, spacecraft } => {
-                write!(f, "{what:?} must be positive")?;
+            Self::NotPositive {
+                what,
+                spacecraft,
+                value,
+            } => {
+                write!(f, "{what:?} = {value} must be positive")?;
                 per_spacecraft(f, *what, *spacecraft)
             }
             Self::CapacityExceeded {
@@ -159,12 +163,17 @@ impl core::fmt::Display for PlanError {
                 "spacecraft index {spacecraft} cannot meet its boundary conditions on the {} axis within Umax in T",
                 match axis { 0 => "x", 1 => "y", _ => "z" }
             ),
-            Self::InvalidSettings(e) => write!(f, "invalid settings: {e:?}"),
+            Self::InvalidSetting(e) => write!(f, "{e}"),
             Self::WarmStartMismatch => write!(f, "warm start does not match the problem"),
-            Self::OutOfRange { what, spacecraft } => {
+            Self::OutOfRange {
+                what,
+                spacecraft,
+                value,
+                limit,
+            } => {
                 write!(
                     f,
-                    "{what:?} is outside the accepted range (magnitude at most {MAX_MAGNITUDE:e}, positive quantities at least {MIN_POSITIVE:e})"
+                    "{what:?} = {value:e} is outside the accepted range (beyond {limit:e}: magnitude at most {MAX_MAGNITUDE:e}, positive quantities at least {MIN_POSITIVE:e})"
                 )?;
                 per_spacecraft(f, *what, *spacecraft)
             }

@@ -20,16 +20,26 @@ pub use certificate::{
     ActiveConstraint, Certificate, Multiplier, COMPLEMENTARITY_TOL, CURVATURE_TOL,
     POWER_ITERATIONS, STATIONARITY_TOL,
 };
-pub use error::{
-    Boundary, Capacity, PlanError, Quantity, SettingsError, MAX_MAGNITUDE, MIN_POSITIVE,
-};
+pub use error::{Boundary, Capacity, PlanError, Quantity, MAX_MAGNITUDE, MIN_POSITIVE};
 pub use lanczos::LANCZOS_STEPS;
 pub use problem::{Problem, Spacecraft};
-pub use settings::Settings;
+pub use settings::{
+    SettingId, Settings, DEFAULT_WORK_BUDGET, MAX_ACCELERATION_MEMORY, MAX_VERIFY_ROUNDS,
+};
 pub use solution::{Solution, Unmet, UnmetConstraint, MAX_UNMET};
 pub use status::{SolveInfo, SolveStatus, Stage};
 mod workspace;
 pub use workspace::Workspace;
+
+/// Planner A in the planners' contract ([`crate::contract::Planner`]): [`solve`] from the
+/// analytic guess.
+#[derive(Clone, Copy, Debug)]
+pub struct Pseudospectral;
+
+crate::impl_planner!(
+    Pseudospectral: Problem, Settings, Workspace, Solution, PlanError, SolveStatus,
+    crate::wire::Planner::Pseudospectral, solve, reset |out| out.reset()
+);
 
 /// Solve a reconfiguration problem from the analytic Pontryagin guess.
 ///

@@ -1,7 +1,9 @@
 //! Planner-A settings: every loop bound and tolerance of a solve.
 
-use super::error::SettingsError;
-use serde::{Deserialize, Serialize};
+use crate::contract::{Range, SettingError};
+
+/// Largest Anderson-acceleration memory (`acceleration_memory`).
+pub const MAX_ACCELERATION_MEMORY: u8 = super::anderson::MAX_MEMORY as u8;
 
 /// Most verification rounds a solve may be set to.
 pub const MAX_VERIFY_ROUNDS: u8 = 8;
@@ -9,70 +11,69 @@ pub const MAX_VERIFY_ROUNDS: u8 = 8;
 /// Default work budget, in units (`docs/firmware.md`, "Work budget").
 pub const DEFAULT_WORK_BUDGET: u64 = 40_000_000;
 
-/// Loop bounds and tolerances. Plain `Copy` data; all fields take effect per solve.
-///
-/// The worst case of a solve is bounded by
-/// `(verify_max_rounds + 1) * sqp_max_iter * qp_max_iter` QP steps, each
-/// `O(MAX_ACTIVE^2 + M N (N - 3))` flops; see the README for measured figures.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Settings {
-    /// Most convex subproblems (SQP / convex-concave iterations) per verification round.
-    pub sqp_max_iter: u16,
-    /// Stop when the cost decreases by less than this, relative (`|dJ| <= tol (1 + J)`), between
-    /// iterations.
-    pub sqp_tol_cost: f64,
-    /// Or stop when the largest coefficient change (position scale) is below this, in LU.
-    pub sqp_tol_step_lu: f64,
-    /// Anderson-acceleration memory of the convex-concave iteration (0 = plain iteration, at
-    /// most 1).
-    pub acceleration_memory: u8,
-    /// Follow each near-contact pair's continuous separation minimum with a moving check, and
-    /// run the verification rounds. Off, the solver enforces keep-out only at the nodes and
-    /// test points, as the paper does (the continuous minimum is still measured and reported).
-    pub continuous_verification: bool,
-    /// Most active-set changes per QP. Worst case: every candidate constraint enters once per
-    /// drop, bounded by this number.
-    pub qp_max_iter: u16,
-    /// Constraint violation a QP accepts as satisfied, in the constraint's units (LU or FU).
-    pub qp_tol_feas: f64,
-    /// Rounds of continuous verification: each finds the true minimum separation of every pair
-    /// and adds a keep-out point where it is below d (while the pair has point capacity left,
-    /// `MAX_VERIFY_POINTS_PER_PAIR - 1`; one is the moving check) or, where a dip persists,
-    /// raises that pair's keep-out by the dip; then re-solves. At most `MAX_VERIFY_ROUNDS` (8).
-    pub verify_max_rounds: u8,
-    /// Continuous separation accepted as meeting the keep-out: `>= d - verify_tol_lu`.
-    pub verify_tol_lu: f64,
-    /// Enlarge the keep-out used in the constraints by this, in LU, so that the continuous
-    /// minimum between check points stays at or above d.
-    pub keep_out_margin_lu: f64,
-    /// Newton iterations for LGL nodes and for the root-finds of the Pontryagin guess.
-    pub newton_max_iter: u16,
-    /// Bisection / Newton steps when refining a separation minimum between check points.
-    pub refine_max_iter: u16,
-    /// Work budget of a solve, in work units (`crate::work`): past it the solve stops with
-    /// `SolveStatus::BudgetExhausted`. Part of it is kept for the checks of the returned
-    /// answer. The default bounds the worst request within the default limits to 400 M
-    /// Cortex-M7 instructions (`docs/firmware.md`, "Work budget").
-    pub work_budget: u64,
-}
-
-impl Default for Settings {
-    fn default() -> Self {
-        Self {
-            sqp_max_iter: 60,
-            sqp_tol_cost: 1e-8,
-            sqp_tol_step_lu: 1e-10,
-            acceleration_memory: 1,
-            continuous_verification: true,
-            qp_max_iter: 400,
-            qp_tol_feas: 1e-12,
-            verify_max_rounds: 4,
-            verify_tol_lu: 1e-7,
-            keep_out_margin_lu: 0.0,
-            newton_max_iter: 60,
-            refine_max_iter: 80,
-            work_budget: DEFAULT_WORK_BUDGET,
-        }
+crate::settings_table! {
+    /// Loop bounds and tolerances. Plain `Copy` data; all fields take effect per solve.
+    ///
+    /// The worst case of a solve is bounded by
+    /// `(verify_max_rounds + 1) * sqp_max_iter * qp_max_iter` QP steps, each
+    /// `O(MAX_ACTIVE^2 + M N (N - 3))` flops, and by the work budget (`docs/firmware.md`).
+    pub struct Settings;
+    /// Planner A's settings, by name (stable codes on the wire and in the C interface).
+    pub enum SettingId in crate::limits::Setting::Pseudospectral;
+    {
+        /// Most convex subproblems (SQP / convex-concave iterations) per verification round.
+        sqp_max_iter, SqpMaxIter = 0: u16 = 60,
+        unit "", range Range::at_least(1.0), limit AtMost;
+        /// Stop when the cost decreases by less than this, relative (`|dJ| <= tol (1 + J)`),
+        /// between iterations.
+        sqp_tol_cost, SqpTolCost = 1: f64 = 1e-8,
+        unit "", range Range::positive(), limit AtMost;
+        /// Or stop when the largest coefficient change (position scale) is below this, in LU.
+        sqp_tol_step_lu, SqpTolStepLu = 2: f64 = 1e-10,
+        unit "LU", range Range::positive(), limit AtMost;
+        /// Anderson-acceleration memory of the convex-concave iteration (0 = plain iteration,
+        /// at most 1).
+        acceleration_memory, AccelerationMemory = 3: u8 = 1,
+        unit "", range Range::closed(0.0, MAX_ACCELERATION_MEMORY as f64), limit AtMost;
+        /// Follow each near-contact pair's continuous separation minimum with a moving check,
+        /// and run the verification rounds. Off, the solver enforces keep-out only at the nodes
+        /// and test points, as the paper does (the continuous minimum is still measured and
+        /// reported).
+        continuous_verification, ContinuousVerification = 4: bool = true,
+        unit "", range Range::any(), limit MustBeOn;
+        /// Most active-set changes per QP. Worst case: every candidate constraint enters once
+        /// per drop, bounded by this number.
+        qp_max_iter, QpMaxIter = 5: u16 = 400,
+        unit "", range Range::at_least(1.0), limit AtMost;
+        /// Constraint violation a QP accepts as satisfied, in the constraint's units (LU or FU).
+        qp_tol_feas, QpTolFeas = 6: f64 = 1e-12,
+        unit "", range Range::positive(), limit AtMost;
+        /// Rounds of continuous verification: each finds the true minimum separation of every
+        /// pair and adds a keep-out point where it is below d (while the pair has point
+        /// capacity left, `MAX_VERIFY_POINTS_PER_PAIR - 1`; one is the moving check) or, where
+        /// a dip persists, raises that pair's keep-out by the dip; then re-solves. At most
+        /// `MAX_VERIFY_ROUNDS` (8).
+        verify_max_rounds, VerifyMaxRounds = 7: u8 = 4,
+        unit "", range Range::closed(0.0, MAX_VERIFY_ROUNDS as f64), limit AtMost;
+        /// Continuous separation accepted as meeting the keep-out: `>= d - verify_tol_lu`.
+        verify_tol_lu, VerifyTolLu = 8: f64 = 1e-7,
+        unit "LU", range Range::positive(), limit AtMost;
+        /// Enlarge the keep-out used in the constraints by this, in LU, so that the continuous
+        /// minimum between check points stays at or above d.
+        keep_out_margin_lu, KeepOutMarginLu = 9: f64 = 0.0,
+        unit "LU", range Range::at_least(0.0), limit AtLeast;
+        /// Newton iterations for LGL nodes and for the root-finds of the Pontryagin guess.
+        newton_max_iter, NewtonMaxIter = 10: u16 = 60,
+        unit "", range Range::at_least(1.0), limit AtMost;
+        /// Bisection / Newton steps when refining a separation minimum between check points.
+        refine_max_iter, RefineMaxIter = 11: u16 = 80,
+        unit "", range Range::at_least(1.0), limit AtMost;
+        /// Work budget of a solve, in work units (`crate::work`): past it the solve stops with
+        /// `SolveStatus::BudgetExhausted`. Part of it is kept for the checks of the returned
+        /// answer. The default bounds the worst request within the default limits to 400 M
+        /// Cortex-M7 instructions (`docs/firmware.md`, "Work budget").
+        work_budget, WorkBudget = 12: u64 = DEFAULT_WORK_BUDGET,
+        unit "units", range Range::any(), limit AtMost;
     }
 }
 
@@ -80,31 +81,8 @@ impl Settings {
     /// Check every field against its documented range.
     ///
     /// # Errors
-    /// [`SettingsError`] naming the first field class out of range.
-    pub fn validate(&self) -> Result<(), SettingsError> {
-        if self.sqp_max_iter == 0
-            || self.qp_max_iter == 0
-            || self.newton_max_iter == 0
-            || self.refine_max_iter == 0
-        {
-            return Err(SettingsError::ZeroIterationLimit);
-        }
-        let positive = |v: f64| v.is_finite() && v > 0.0;
-        if !positive(self.sqp_tol_cost)
-            || !positive(self.sqp_tol_step_lu)
-            || !positive(self.qp_tol_feas)
-            || !positive(self.verify_tol_lu)
-            || !self.keep_out_margin_lu.is_finite()
-            || self.keep_out_margin_lu < 0.0
-        {
-            return Err(SettingsError::BadTolerance);
-        }
-        if usize::from(self.acceleration_memory) > super::anderson::MAX_MEMORY {
-            return Err(SettingsError::AccelerationMemory);
-        }
-        if self.verify_max_rounds > MAX_VERIFY_ROUNDS {
-            return Err(SettingsError::TooManyVerifyRounds);
-        }
-        Ok(())
+    /// [`SettingError`] naming the first setting out of range, its value and its range.
+    pub fn validate(&self) -> Result<(), SettingError> {
+        self.check_ranges()
     }
 }

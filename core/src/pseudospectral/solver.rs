@@ -40,10 +40,11 @@ pub(crate) fn solve(
         }
         for sc in previous.controls_fu.iter().take(m) {
             for node in sc.iter().take(n.saturating_add(1)) {
-                if node.iter().any(|v| !v.is_finite()) {
+                if let Some(&value) = node.iter().find(|v| !v.is_finite()) {
                     return Err(PlanError::NotFinite {
                         what: Quantity::WarmStart,
                         spacecraft: 0,
+                        value,
                     });
                 }
             }

@@ -56,6 +56,33 @@ pub enum SolveStatus {
     } = 8,
 }
 
+impl crate::contract::Status for SolveStatus {
+    fn is_usable(&self) -> bool {
+        SolveStatus::is_usable(self)
+    }
+
+    fn code(&self) -> u8 {
+        match self {
+            Self::Unsolved => 0,
+            Self::Solved => 1,
+            Self::SeparationNotVerified => 2,
+            Self::MaxIterations => 3,
+            Self::Infeasible => 4,
+            Self::QpLimit => 5,
+            Self::NumericalFailure(_) => 6,
+            Self::Feasible => 7,
+            Self::BudgetExhausted { .. } => 8,
+        }
+    }
+
+    fn budget_exhausted(&self) -> Option<bool> {
+        match *self {
+            Self::BudgetExhausted { verified } => Some(verified),
+            _ => None,
+        }
+    }
+}
+
 /// Where a numerical failure happened.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[repr(u8)]

@@ -9,13 +9,31 @@ use crate::indexed::IndexedExt as _;
 
 fn finite_positive(value: f64, what: Quantity, spacecraft: u8) -> Result<(), PlanError> {
     if !value.is_finite() {
-        return Err(PlanError::NotFinite { what, spacecraft });
+        return Err(PlanError::NotFinite {
+            what,
+            spacecraft,
+            value,
+        });
     }
     if value <= 0.0 {
-        return Err(PlanError::NotPositive { what, spacecraft });
+        return Err(PlanError::NotPositive {
+            what,
+            spacecraft,
+            value,
+        });
     }
     if !(MIN_POSITIVE..=MAX_MAGNITUDE).contains(&value) {
-        return Err(PlanError::OutOfRange { what, spacecraft });
+        let limit = if value < MIN_POSITIVE {
+            MIN_POSITIVE
+        } else {
+            MAX_MAGNITUDE
+        };
+        return Err(PlanError::OutOfRange {
+            what,
+            spacecraft,
+            value,
+            limit,
+        });
     }
     Ok(())
 }
@@ -27,7 +45,7 @@ fn finite_positive(value: f64, what: Quantity, spacecraft: u8) -> Result<(), Pla
 /// spacecraft count and degree against capacity, masses and boundary states, boundary
 /// separations.
 pub(crate) fn check(problem: &Problem, settings: &Settings) -> Result<(), PlanError> {
-    settings.validate().map_err(PlanError::InvalidSettings)?;
+    settings.validate().map_err(PlanError::InvalidSetting)?;
     finite_positive(problem.horizon_tu, Quantity::Horizon, 0)?;
     finite_positive(problem.max_control_fu, Quantity::MaxControl, 0)?;
     finite_positive(problem.keep_out_lu, Quantity::KeepOut, 0)?;
@@ -62,12 +80,15 @@ pub(crate) fn check(problem: &Problem, settings: &Settings) -> Result<(), PlanEr
                 return Err(PlanError::NotFinite {
                     what: Quantity::BoundaryState,
                     spacecraft: index(i),
+                    value: *value,
                 });
             }
             if libm::fabs(*value) > MAX_MAGNITUDE {
                 return Err(PlanError::OutOfRange {
                     what: Quantity::BoundaryState,
                     spacecraft: index(i),
+                    value: *value,
+                    limit: MAX_MAGNITUDE,
                 });
             }
         }

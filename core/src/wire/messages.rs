@@ -46,13 +46,11 @@ pub enum Request {
         /// Loop bounds, tolerances and the work budget.
         settings: leo_tour::Settings,
     },
-    /// The LEO tour's order (`leo_tour::tour_order::choose_order`).
+    /// The LEO tour's order (`leo_tour::tour_order::solve_sequence`).
     LeoSequence {
-        /// The clients' inertial states at the tour epoch, km and km/s.
-        clients: heapless::Vec<leo_tour::j2::State, { leo_tour::sequence::MAX_CLIENTS }>,
-        /// Impulses per arc.
-        impulses: u8,
-        /// First client, arc durations, the bound's margins, the arc limit.
+        /// The clients at the tour epoch, impulses per arc, first client, arc durations.
+        problem: leo_tour::sequence::SequenceProblem,
+        /// The bound's margins, the arc limit.
         settings: leo_tour::sequence::SequenceSettings,
         /// The per-arc search's settings for the arc estimates.
         arc_settings: leo_tour::Settings,
@@ -86,6 +84,19 @@ pub enum Planner {
     LeoArc = 3,
     /// The LEO tour's order.
     LeoSequence = 4,
+}
+
+impl Planner {
+    /// The planner's name in reports, records and fixture files.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Pseudospectral => "pseudospectral",
+            Self::Impulsive => "impulsive",
+            Self::GeoTour => "geo-tour",
+            Self::LeoArc => "leo-arc",
+            Self::LeoSequence => "leo-sequence",
+        }
+    }
 }
 
 /// What the service answers to one request.
@@ -129,6 +140,9 @@ pub enum Outcome {
     LeoSequence(leo_tour::sequence::Sequence),
     /// The LEO tour's sequencing rejected the request.
     LeoSequenceRejected(leo_tour::sequence::SequenceError),
+    /// The front end that answered does not carry the request's planner (a one-planner flight
+    /// image); nothing was solved.
+    Unsupported(Planner),
 }
 
 /// How long an expired request waited and the deadline it had, in microseconds.
@@ -176,6 +190,55 @@ pub enum OutcomeRef<'a> {
     LeoSequence(&'a leo_tour::sequence::Sequence),
     /// See [`Outcome::LeoSequenceRejected`].
     LeoSequenceRejected(leo_tour::sequence::SequenceError),
+    /// See [`Outcome::Unsupported`].
+    Unsupported(Planner),
+}
+
+/// A planner's refusal of a request before planning (its `PlanError`), as a report shows it.
+pub trait Rejection: core::fmt::Debug + core::fmt::Display {}
+
+impl<T: core::fmt::Debug + core::fmt::Display> Rejection for T {}
+
+impl OutcomeRef<'_> {
+    /// Whether the answer's plan may be flown: `Some` when the planner planned (its status's
+    /// verdict: `contract::Status::is_usable`), `None` when nothing was planned
+    /// (refused, rejected, unsupported, expired or a bad frame).
+    pub fn usable(&self) -> Option<bool> {
+        match self {
+            Self::Pseudospectral(s) => Some(s.info.status.is_usable()),
+            Self::Impulsive(s) | Self::ImpulsiveForm { solution: s, .. } => {
+                Some(s.info.status.is_usable())
+            }
+            Self::GeoTour(s) => Some(s.info.status.is_usable()),
+            Self::LeoArc(s) => Some(s.info.status.is_usable()),
+            Self::LeoSequence(q) => Some(q.info.status.is_usable()),
+            _ => None,
+        }
+    }
+
+    /// The planner's refusal of the request before planning (a `*Rejected` outcome).
+    pub fn rejection(&self) -> Option<&dyn Rejection> {
+        match self {
+            Self::PseudospectralRejected(e) => Some(e),
+            Self::ImpulsiveRejected(e) => Some(e),
+            Self::GeoTourRejected(e) => Some(e),
+            Self::LeoArcRejected(e) => Some(e),
+            Self::LeoSequenceRejected(e) => Some(e),
+            _ => None,
+        }
+    }
+
+    /// The work units the planner used, for a planner with a work meter that planned (the
+    /// LEO sequencing has none of its own: its arcs' estimates are bounded by `max_arcs`).
+    pub fn work_units(&self) -> Option<u64> {
+        match self {
+            Self::Pseudospectral(s) => Some(s.info.work_units),
+            Self::Impulsive(s) | Self::ImpulsiveForm { solution: s, .. } => Some(s.info.work_units),
+            Self::LeoArc(s) => Some(s.info.work_units),
+            Self::GeoTour(s) => Some(s.info.work_units),
+            _ => None,
+        }
+    }
 }
 
 impl Outcome {
@@ -202,6 +265,7 @@ impl Outcome {
             Self::LeoArcRejected(e) => OutcomeRef::LeoArcRejected(*e),
             Self::LeoSequence(q) => OutcomeRef::LeoSequence(q),
             Self::LeoSequenceRejected(e) => OutcomeRef::LeoSequenceRejected(*e),
+            Self::Unsupported(p) => OutcomeRef::Unsupported(*p),
         }
     }
 }

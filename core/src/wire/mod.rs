@@ -19,18 +19,21 @@
 //! Nothing here allocates.
 //!
 //! Layout: `messages` holds what a frame carries (requests and outcomes), `error` why a frame
-//! is refused, `frame` the encoding and decoding.
+//! is refused, `frame` the encoding and decoding, `answer` the one request path every front end
+//! answers a request through.
 
+mod answer;
 mod error;
 mod frame;
 mod messages;
 
+pub use answer::{answer, AllPlanners, Buffers, Slot};
 pub use error::{EncodeError, FrameError, MalformedKind};
 pub use frame::{
     decode_request, decode_response, encode_outcome, encode_request, encode_response,
     peek_request_seq, view_response, RequestFrame, ResponseFrame, ResponseView,
 };
-pub use messages::{Expiry, Outcome, OutcomeRef, Planner, Request};
+pub use messages::{Expiry, Outcome, OutcomeRef, Planner, Rejection, Request};
 
 /// Protocol version carried in every frame; a frame of another version is refused.
 /// 2: planner A's solution carries its certificate, planner B's settings and solve info
@@ -44,7 +47,12 @@ pub use messages::{Expiry, Outcome, OutcomeRef, Planner, Request};
 ///    `Outcome::LeoArcRejected`) and order (`Request::LeoSequence`, answered by
 ///    `Outcome::LeoSequence` or `Outcome::LeoSequenceRejected`), `Planner::LeoArc` and
 ///    `Planner::LeoSequence`, and their limits (`Setting::Leo*`).
-pub const PROTOCOL_VERSION: u16 = 5;
+/// 6: one contract and one request path (issue 29): every refused setting is named by its
+///    planner's settings id with its value and range (`SettingError`) or limit; limits name
+///    settings by id (`limits::Setting`); the LEO sequencing's request carries a
+///    `SequenceProblem`; `Outcome::Unsupported` answers a request for a planner the front end
+///    does not carry.
+pub const PROTOCOL_VERSION: u16 = 6;
 /// First two bytes of a request frame.
 pub const REQUEST_MAGIC: [u8; 2] = *b"RQ";
 /// First two bytes of a response frame.

@@ -3,7 +3,8 @@
  * library) that plans every fixture of examples/c/fixture_data.h through libreconfig_capi.a
  * built for thumbv7em-none-eabihf, and prints per fixture the status, the bits of J / total
  * delta-v, the work units, the checksum of examples/c/plan_fixtures.c, and the stack the solve
- * call used. Output and exit go through semihosting. Built and run by tests/tests/c_api.rs:
+ * call used (a request the built-in limits refuse prints the refusal, named, as
+ * plan_fixtures.c does). Output and exit go through semihosting. Built and run by tests/tests/c_api.rs:
  *
  *   cargo rustc -p reconfig-capi --release --target thumbv7em-none-eabihf --lib \
  *       --crate-type staticlib --no-default-features --features abort-proof
@@ -119,8 +120,22 @@ static uintptr_t current_sp(void) {
     return sp;
 }
 
+/* A refusal's fields, as examples/c/plan_fixtures.c prints them: code, field, index, the
+ * setting's name when the refusal names a setting, the bits of the value and the limit. */
+static void add_refusal(int32_t planner, int32_t status, const ReconfigError *e) {
+    const char *setting = 0;
+    if (status == RECONFIG_ERR_SETTING_OUT_OF_RANGE || status == RECONFIG_ERR_LIMIT_EXCEEDED)
+        setting = reconfig_setting_name(planner, e->index);
+    add(" status="); add_i(status);
+    add(" field="); add_i(e->field);
+    add(" index="); add_i(e->index);
+    add(" setting="); add(setting ? setting : "-");
+    add(" value_bits="); add_hex(bits(e->value));
+    add(" limit_bits="); add_hex(bits(e->limit));
+}
+
 /* ---- the planners, in caller memory ---- */
-static uint64_t a_workspace[210000 / 8];
+static uint64_t a_workspace[220000 / 8];
 static uint64_t b_workspace[8192 / 8];
 static ReconfigASolution a_solution;
 static ReconfigBSolution b_solution;
@@ -145,11 +160,15 @@ static int plan_a(void) {
             }
         at = 0;
         add("A "); add(A_CASES[c].name);
-        add(" status="); add_i(status);
-        add(" J_bits="); add_hex(bits(a_solution.cost_fu2_tu));
-        add(" min_sep_bits="); add_hex(bits(a_solution.min_separation_lu));
-        add(" work_units="); add_u(a_solution.work_units);
-        add(" checksum="); add_hex(h);
+        if (status < 0) {
+            add_refusal(RECONFIG_PLANNER_PSEUDOSPECTRAL, status, &a_solution.error);
+        } else {
+            add(" status="); add_i(status);
+            add(" J_bits="); add_hex(bits(a_solution.cost_fu2_tu));
+            add(" min_sep_bits="); add_hex(bits(a_solution.min_separation_lu));
+            add(" work_units="); add_u(a_solution.work_units);
+            add(" checksum="); add_hex(h);
+        }
         add(" stack_bytes="); add_u(used);
         add("\n");
         put(line);
@@ -179,10 +198,14 @@ static int plan_b(void) {
         h = mix(h, b_solution.terminal_position_error_m);
         at = 0;
         add("B "); add(B_CASES[c].name);
-        add(" status="); add_i(status);
-        add(" dv_bits="); add_hex(bits(b_solution.total_dv_mps));
-        add(" work_units="); add_u(b_solution.work_units);
-        add(" checksum="); add_hex(h);
+        if (status < 0) {
+            add_refusal(RECONFIG_PLANNER_IMPULSIVE, status, &b_solution.error);
+        } else {
+            add(" status="); add_i(status);
+            add(" dv_bits="); add_hex(bits(b_solution.total_dv_mps));
+            add(" work_units="); add_u(b_solution.work_units);
+            add(" checksum="); add_hex(h);
+        }
         add(" stack_bytes="); add_u(used);
         add("\n");
         put(line);
@@ -214,12 +237,17 @@ static int plan_f(void) {
         h = mix(h, p->terminal_position_error_m);
         at = 0;
         add("F "); add(F_CASES[c].name);
-        add(" status="); add_i(status);
-        add(" dv_bits="); add_hex(bits(p->total_dv_mps));
-        add(" work_units="); add_u(p->work_units);
-        add(" checksum="); add_hex(h);
-        add(" end_form="); add_u(f_solution.end.form);
-        add(" end_checksum="); add_hex(end_checksum(UINT64_C(0xcbf29ce484222325), &f_solution.end));
+        if (status < 0) {
+            add_refusal(RECONFIG_PLANNER_IMPULSIVE, status, &p->error);
+        } else {
+            add(" status="); add_i(status);
+            add(" dv_bits="); add_hex(bits(p->total_dv_mps));
+            add(" work_units="); add_u(p->work_units);
+            add(" checksum="); add_hex(h);
+            add(" end_form="); add_u(f_solution.end.form);
+            add(" end_checksum=");
+            add_hex(end_checksum(UINT64_C(0xcbf29ce484222325), &f_solution.end));
+        }
         add(" stack_bytes="); add_u(used);
         add("\n");
         put(line);
@@ -236,9 +264,13 @@ static int plan_g(void) {
         uintptr_t used = sp - (uintptr_t)lowest_touched();
         at = 0;
         add("G "); add(G_CASES[c].name);
-        add(" status="); add_i(status);
-        add(" dv_bits="); add_hex(bits(g_solution.total_dv_mps));
-        add(" checksum="); add_hex(geo_checksum(&g_solution));
+        if (status < 0) {
+            add_refusal(RECONFIG_PLANNER_GEO_TOUR, status, &g_solution.error);
+        } else {
+            add(" status="); add_i(status);
+            add(" dv_bits="); add_hex(bits(g_solution.total_dv_mps));
+            add(" checksum="); add_hex(geo_checksum(&g_solution));
+        }
         add(" stack_bytes="); add_u(used);
         add("\n");
         put(line);

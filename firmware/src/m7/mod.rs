@@ -1,4 +1,6 @@
-//! The Cortex-M7 program: run every baked-in fixture, print results and figures, exit.
+//! The Cortex-M7 program: answer every baked-in request through the core's one request path
+//! (`wire::answer`: the image's limits, then the planner, into the image's static buffers),
+//! print results and figures, exit.
 //!
 //! Output protocol (semihosting stdout, one record per line, `key=value` fields; parsed by
 //! `tests/tests/qemu_firmware/`):
@@ -7,17 +9,21 @@
 //! binary text_bytes=.. rodata_bytes=.. data_bytes=.. bss_bytes=.. uninit_bytes=.. static_ram_bytes=..
 //! planners pseudospectral_workspace_bytes=.. pseudospectral_solution_bytes=.. impulsive_workspace_bytes=.. impulsive_solution_bytes=..
 //! planners geo_tour_workspace_bytes=.. geo_tour_solution_bytes=..   (GEO image only)
-//! fixture index=0 name=.. planner=pseudospectral outcome=ok|error stack_bytes=.. systick_instructions=.. work_units=.. (no work_units on the GEO image)
+//! planners leo_workspace_bytes=.. leo_sequence_workspace_bytes=.. leo_arc_solution_bytes=.. leo_sequence_bytes=..   (LEO image only)
+//! fixture index=0 name=.. planner=pseudospectral outcome=ok|error stack_bytes=.. systick_instructions=.. work_units=.. (work_units when the planner meters its work)
 //! result index=0 hex=..
 //! done fixtures=5
 //! ```
-//! `hex` is the postcard encoding of `Result<Solution, PlanError>`. `stack_bytes` is the stack
-//! high-water mark during that fixture's decode and solve, measured from the top of the stack
-//! (so it includes `main`'s own frame): the stack below the current frame is painted before the
-//! solve and scanned for the lowest overwritten word after it. `systick_instructions` is the
-//! solve's SysTick time converted to instructions (40 per tick): meaningful only under
-//! `-icount shift=0` (the runner sets it), and accurate to about 40 instructions; the exact
-//! count comes from the QEMU plugin.
+//! One `fixture` line per baked request (`fixtures` counts requests). `planner` is the
+//! request's (`wire::Planner::name`); `outcome=ok` when the planner planned (the answer carries
+//! a plan, usable or not), `error` when the request was refused or rejected. `hex` is the
+//! postcard encoding of the answer's `wire::Outcome`. `stack_bytes` is the stack high-water
+//! mark during that request's decode and answer, measured from the top of the stack (so it
+//! includes `main`'s own frame and the decoded request): the stack below the current frame is
+//! painted before the decode and scanned for the lowest overwritten word after the answer.
+//! `systick_instructions` is the answer's SysTick time converted to instructions (40 per
+//! tick): meaningful only under `-icount shift=0` (the runner sets it), and accurate to about
+//! 40 instructions; the exact count comes from the QEMU plugin.
 
 use core::fmt::Write as _;
 use core::hint::black_box;
@@ -25,6 +31,8 @@ use core::hint::black_box;
 use cortex_m_rt::{entry, exception, ExceptionFrame};
 use cortex_m_semihosting::{debug, hio};
 
+#[path = "../../image_limits.rs"]
+mod image_limits;
 mod measure;
 mod output;
 
@@ -34,43 +42,86 @@ use output::{fail, print_result, report, Out};
 use reconfig_core::geo_tour;
 #[cfg(feature = "leo_tour")]
 use reconfig_core::leo_tour;
+use reconfig_core::limits::Limits;
+use reconfig_core::wire::{self, Buffers, Request};
 use reconfig_core::{impulsive, pseudospectral};
 
-/// Which planner a baked-in fixture is for.
-#[derive(Clone, Copy)]
-#[allow(dead_code)] // a variant is unused while no fixture is for that planner
-pub enum Planner {
-    /// Planner A.
-    Pseudospectral,
-    /// Planner B, default settings.
-    Impulsive,
-    /// Planner B, `Settings::fixed_point_only()`.
-    ImpulsiveFixedPoint,
-    /// Planner B in other input forms, default settings; its bytes carry an
-    /// `impulsive::FormProblem`, converted on board.
-    ImpulsiveForm,
-    /// Planner B in other input forms, `Settings::fixed_point_only()`.
-    ImpulsiveFormFixedPoint,
-    /// The GEO servicing tour (the GEO image); its bytes carry `(Problem, Settings)`.
-    GeoTour,
-    /// One arc of the LEO tour (the LEO image); its bytes carry `(ArcProblem, Settings)`.
-    LeoArc,
-    /// The LEO tour's on-board part (the LEO image): the order and its arcs; its bytes carry
-    /// a `leo_tour::tour_order::OnboardProblem`.
-    LeoOnboard,
-}
-
-/// A fixture baked in by `build.rs`: the postcard bytes of the planner's `Problem`.
+/// A request baked in by `build.rs`: the postcard bytes of a `wire::Request`.
 pub struct Fixture {
-    /// The fixture's name.
+    /// Its name.
     pub name: &'static str,
-    /// Which planner.
-    pub planner: Planner,
-    /// postcard encoding of the core `Problem`.
-    pub problem: &'static [u8],
+    /// postcard encoding of the `wire::Request`.
+    pub request: &'static [u8],
 }
 
 include!(concat!(env!("OUT_DIR"), "/fixtures.rs"));
+
+/// The image's limits, in flash (`image_limits.rs`).
+static LIMITS: Limits = image_limits::IMAGE_LIMITS;
+
+/// The buffers of the planners this image carries (cargo features), each a `static` (in
+/// `.bss`, or `.data` when a `new()` is not all zero bits), never on the stack. A planner the
+/// image does not carry keeps the trait's default `None`: the request path answers it
+/// `Unsupported`, and its solve is not linked in.
+struct Image {
+    #[cfg(feature = "pseudospectral")]
+    pseudospectral: (
+        &'static mut pseudospectral::Workspace,
+        &'static mut pseudospectral::Solution,
+    ),
+    #[cfg(feature = "impulsive")]
+    impulsive: (
+        &'static mut impulsive::Workspace,
+        &'static mut impulsive::Solution,
+    ),
+    #[cfg(feature = "geo_tour")]
+    geo_tour: (
+        &'static mut geo_tour::Workspace,
+        &'static mut geo_tour::Solution,
+    ),
+    /// The LEO sequencing's workspace (its memos and an arc search's workspace, which the
+    /// arc requests use too: a flight computer answers one at a time), an arc's answer and the
+    /// sequencing's.
+    #[cfg(feature = "leo_tour")]
+    leo: (
+        &'static mut leo_tour::tour_order::SequenceWorkspace,
+        &'static mut leo_tour::ArcSolution,
+        &'static mut leo_tour::sequence::Sequence,
+    ),
+}
+
+impl Buffers for Image {
+    #[cfg(feature = "pseudospectral")]
+    fn pseudospectral(
+        &mut self,
+    ) -> Option<(
+        &mut pseudospectral::Workspace,
+        &mut pseudospectral::Solution,
+    )> {
+        Some((&mut *self.pseudospectral.0, &mut *self.pseudospectral.1))
+    }
+    #[cfg(feature = "impulsive")]
+    fn impulsive(&mut self) -> Option<(&mut impulsive::Workspace, &mut impulsive::Solution)> {
+        Some((&mut *self.impulsive.0, &mut *self.impulsive.1))
+    }
+    #[cfg(feature = "geo_tour")]
+    fn geo_tour(&mut self) -> Option<(&mut geo_tour::Workspace, &mut geo_tour::Solution)> {
+        Some((&mut *self.geo_tour.0, &mut *self.geo_tour.1))
+    }
+    #[cfg(feature = "leo_tour")]
+    fn leo_arc(&mut self) -> Option<(&mut leo_tour::Workspace, &mut leo_tour::ArcSolution)> {
+        Some((&mut self.leo.0.arc, &mut *self.leo.1))
+    }
+    #[cfg(feature = "leo_tour")]
+    fn leo_sequence(
+        &mut self,
+    ) -> Option<(
+        &mut leo_tour::tour_order::SequenceWorkspace,
+        &mut leo_tour::sequence::Sequence,
+    )> {
+        Some((&mut *self.leo.0, &mut *self.leo.2))
+    }
+}
 
 extern "C" {
     static __stext: u8;
@@ -96,9 +147,8 @@ fn symbol(s: &u8) -> usize {
 #[entry]
 fn main() -> ! {
     // cortex-m-rt turns these into `&'static mut` references owned by `main`: the workspaces
-    // and output buffers live in static memory (.bss, or .data when a `new()` is not all zero
-    // bits), never on the stack.
-    // A one-planner image (cargo feature) carries only its planner's statics.
+    // and output buffers live in static memory, never on the stack. An image carries only its
+    // planners' statics (cargo features).
     #[cfg(feature = "pseudospectral")]
     static mut PS_WORKSPACE: pseudospectral::Workspace = pseudospectral::Workspace::new();
     #[cfg(feature = "pseudospectral")]
@@ -107,12 +157,28 @@ fn main() -> ! {
     static mut IM_WORKSPACE: impulsive::Workspace = impulsive::Workspace::new();
     #[cfg(feature = "impulsive")]
     static mut IM_SOLUTION: impulsive::Solution = impulsive::Solution::new();
-
-    // The GEO image (`cargo firmware-geo`) carries the GEO tour's alone.
     #[cfg(feature = "geo_tour")]
     static mut GEO_WORKSPACE: geo_tour::Workspace = geo_tour::Workspace::new();
     #[cfg(feature = "geo_tour")]
     static mut GEO_SOLUTION: geo_tour::Solution = geo_tour::Solution::new();
+    #[cfg(feature = "leo_tour")]
+    static mut LEO_WORKSPACE: leo_tour::tour_order::SequenceWorkspace =
+        leo_tour::tour_order::SequenceWorkspace::new();
+    #[cfg(feature = "leo_tour")]
+    static mut LEO_ARC: leo_tour::ArcSolution = leo_tour::ArcSolution::new();
+    #[cfg(feature = "leo_tour")]
+    static mut LEO_SEQUENCE: leo_tour::sequence::Sequence = leo_tour::sequence::Sequence::new();
+
+    let mut image = Image {
+        #[cfg(feature = "pseudospectral")]
+        pseudospectral: (PS_WORKSPACE, PS_SOLUTION),
+        #[cfg(feature = "impulsive")]
+        impulsive: (IM_WORKSPACE, IM_SOLUTION),
+        #[cfg(feature = "geo_tour")]
+        geo_tour: (GEO_WORKSPACE, GEO_SOLUTION),
+        #[cfg(feature = "leo_tour")]
+        leo: (LEO_WORKSPACE, LEO_ARC, LEO_SEQUENCE),
+    };
 
     let mut out = Out::new();
     let _ = writeln!(
@@ -153,74 +219,21 @@ fn main() -> ! {
         core::mem::size_of::<geo_tour::Solution>(),
     );
 
+    #[cfg(feature = "leo_tour")]
+    let _ = writeln!(
+        out,
+        "planners leo_workspace_bytes={} leo_sequence_workspace_bytes={} \
+         leo_arc_solution_bytes={} leo_sequence_bytes={}",
+        core::mem::size_of::<leo_tour::Workspace>(),
+        core::mem::size_of::<leo_tour::tour_order::SequenceWorkspace>(),
+        core::mem::size_of::<leo_tour::ArcSolution>(),
+        core::mem::size_of::<leo_tour::sequence::Sequence>(),
+    );
+
     systick::start();
-    #[cfg(feature = "pseudospectral")]
-    let ps_settings = pseudospectral::Settings::default();
-    #[cfg(feature = "impulsive")]
-    let im_settings = impulsive::Settings::default();
-    #[cfg(feature = "impulsive")]
-    let im_fixed_point_settings = impulsive::Settings::fixed_point_only();
     for (index, fixture) in FIXTURES.iter().enumerate() {
-        // The inputs pass through `black_box` after the start marker and the result before the stop
-        // marker, so that no part of the solve is folded away or moved out of the measured span.
         let marker = u32::try_from(index).unwrap_or(u32::MAX);
-        match fixture.planner {
-            #[cfg(feature = "pseudospectral")]
-            Planner::Pseudospectral => run_pseudospectral(
-                &mut out,
-                (index, marker, fixture),
-                &ps_settings,
-                &mut *PS_WORKSPACE,
-                &mut *PS_SOLUTION,
-            ),
-            #[cfg(feature = "impulsive")]
-            Planner::Impulsive | Planner::ImpulsiveFixedPoint => {
-                let settings = if matches!(fixture.planner, Planner::ImpulsiveFixedPoint) {
-                    &im_fixed_point_settings
-                } else {
-                    &im_settings
-                };
-                run_impulsive(
-                    &mut out,
-                    (index, marker, fixture),
-                    settings,
-                    &mut *IM_WORKSPACE,
-                    &mut *IM_SOLUTION,
-                );
-            }
-            #[cfg(feature = "impulsive")]
-            Planner::ImpulsiveForm | Planner::ImpulsiveFormFixedPoint => {
-                let settings = if matches!(fixture.planner, Planner::ImpulsiveFormFixedPoint) {
-                    &im_fixed_point_settings
-                } else {
-                    &im_settings
-                };
-                run_impulsive_form(
-                    &mut out,
-                    (index, marker, fixture),
-                    settings,
-                    &mut *IM_WORKSPACE,
-                    &mut *IM_SOLUTION,
-                );
-            }
-            #[cfg(feature = "leo_tour")]
-            Planner::LeoArc => run_leo_arc(&mut out, (index, marker, fixture)),
-            #[cfg(feature = "leo_tour")]
-            Planner::LeoOnboard => run_leo_onboard(&mut out, (index, marker, fixture)),
-            #[cfg(feature = "geo_tour")]
-            Planner::GeoTour => run_geo_tour(
-                &mut out,
-                (index, marker, fixture),
-                &mut *GEO_WORKSPACE,
-                &mut *GEO_SOLUTION,
-            ),
-            // build.rs bakes only the fixtures of the planners this image carries.
-            #[allow(unreachable_patterns)]
-            _ => panic!(
-                "fixture {} is for a planner this image does not carry",
-                fixture.name
-            ),
-        }
+        answer(&mut out, (index, marker, fixture), &mut image);
     }
     let _ = writeln!(out, "done fixtures={}", FIXTURES.len());
     debug::exit(debug::EXIT_SUCCESS);
@@ -228,211 +241,45 @@ fn main() -> ! {
     loop {}
 }
 
-// Each planner's fixture runs in a function of its own (never inlined), so that `main`'s frame
-// does not hold every planner's decoded problem at once: the stack high-water of a fixture in
-// the default two-planner image is then that planner's, as in its one-planner image
-// (docs/firmware.md, "RAM per image"). The workspace is reused on purpose (no result may depend
-// on what an earlier solve left in it); the output buffer is fresh, as the host's is.
-
-/// A baked fixture's bytes decoded as the planner's input (`build.rs` encoded them from this
-/// type: a failure is a build fault, fatal).
-fn decode<P: serde::de::DeserializeOwned>(fixture: &Fixture) -> P {
-    match postcard::from_bytes(fixture.problem) {
-        Ok(p) => p,
-        Err(_) => panic!("fixture {} does not decode", fixture.name),
-    }
-}
-
-#[cfg(feature = "pseudospectral")]
+/// Decode one baked request and answer it through `wire::answer`, measured, then report it and
+/// print its outcome. Never inlined: its frame (the decoded request, the answer) is the part of
+/// the stack high-water above the request path, the same for every request. The buffers are
+/// reused on purpose (the request path resets a planner's solution before its solve; no answer
+/// may depend on what an earlier one left in the workspace).
 #[inline(never)]
-fn run_pseudospectral(
-    out: &mut Out,
-    (index, marker, fixture): (usize, u32, &Fixture),
-    settings: &pseudospectral::Settings,
-    workspace: &mut pseudospectral::Workspace,
-    solution: &mut pseudospectral::Solution,
-) {
-    *solution = pseudospectral::Solution::new();
+fn answer(out: &mut Out, (index, marker, fixture): (usize, u32, &Fixture), image: &mut Image) {
     repaint_stack();
-    let problem: pseudospectral::Problem = decode(fixture);
+    let request = decode(fixture);
+    // The inputs pass through `black_box` after the start marker and the result before the stop
+    // marker, so that no part of the answer is folded away or moved out of the measured span.
     let run = measured(marker, || {
-        pseudospectral::solve(
-            black_box(&problem),
-            black_box(settings),
-            black_box(&mut *workspace),
-            black_box(&mut *solution),
+        wire::answer(
+            black_box(&request),
+            black_box(&LIMITS),
+            black_box(&mut *image),
         )
     });
-    let units = Some(solution.info.work_units);
-    let figures = (run.ticks, units);
     report(
         out,
         index,
         fixture,
-        "pseudospectral",
-        run.result.is_ok(),
+        request.planner().name(),
+        run.result.usable().is_some(),
         run.stack_bytes,
-        figures,
-    );
-    print_result(out, index, &run.result.map(|()| &*solution));
-}
-
-#[cfg(feature = "impulsive")]
-#[inline(never)]
-fn run_impulsive(
-    out: &mut Out,
-    (index, marker, fixture): (usize, u32, &Fixture),
-    settings: &impulsive::Settings,
-    workspace: &mut impulsive::Workspace,
-    solution: &mut impulsive::Solution,
-) {
-    *solution = impulsive::Solution::new();
-    repaint_stack();
-    let problem: impulsive::Problem = decode(fixture);
-    let run = measured(marker, || {
-        impulsive::solve(
-            black_box(&problem),
-            black_box(settings),
-            black_box(&mut *workspace),
-            black_box(&mut *solution),
-        )
-    });
-    let figures = (run.ticks, Some(solution.info.work_units));
-    report(
-        out,
-        index,
-        fixture,
-        "impulsive",
-        run.result.is_ok(),
-        run.stack_bytes,
-        figures,
-    );
-    print_result(out, index, &run.result.map(|()| &*solution));
-}
-
-/// [`run_impulsive`] for a fixture in other input forms: the conversion runs inside the
-/// measured span, and the result carries the end state in the fixture's form.
-#[cfg(feature = "impulsive")]
-#[inline(never)]
-fn run_impulsive_form(
-    out: &mut Out,
-    (index, marker, fixture): (usize, u32, &Fixture),
-    settings: &impulsive::Settings,
-    workspace: &mut impulsive::Workspace,
-    solution: &mut impulsive::Solution,
-) {
-    *solution = impulsive::Solution::new();
-    repaint_stack();
-    let problem: impulsive::FormProblem = decode(fixture);
-    let run = measured(marker, || {
-        impulsive::solve_form(
-            black_box(&problem),
-            black_box(settings),
-            black_box(&mut *workspace),
-            black_box(&mut *solution),
-        )
-    });
-    let figures = (run.ticks, Some(solution.info.work_units));
-    report(
-        out,
-        index,
-        fixture,
-        "impulsive",
-        run.result.is_ok(),
-        run.stack_bytes,
-        figures,
-    );
-    print_result(out, index, &run.result.map(|end| (&*solution, end)));
-}
-
-/// The GEO tour's fixture (the GEO image): its bytes carry `(Problem, Settings)`. The GEO tour
-/// has no work meter: its line carries no `work_units`.
-#[cfg(feature = "geo_tour")]
-#[inline(never)]
-fn run_geo_tour(
-    out: &mut Out,
-    (index, marker, fixture): (usize, u32, &Fixture),
-    workspace: &mut geo_tour::Workspace,
-    solution: &mut geo_tour::Solution,
-) {
-    *solution = geo_tour::Solution::new();
-    repaint_stack();
-    let (problem, settings): (geo_tour::Problem, geo_tour::Settings) = decode(fixture);
-    let run = measured(marker, || {
-        geo_tour::solve(
-            black_box(&problem),
-            black_box(&settings),
-            black_box(&mut *workspace),
-            black_box(&mut *solution),
-        )
-    });
-    let figures = (run.ticks, None);
-    report(
-        out,
-        index,
-        fixture,
-        "geo-tour",
-        run.result.is_ok(),
-        run.stack_bytes,
-        figures,
-    );
-    print_result(out, index, &run.result.map(|()| &*solution));
-}
-
-/// One LEO arc (the LEO image): its bytes carry `(ArcProblem, Settings)`.
-#[cfg(feature = "leo_tour")]
-#[inline(never)]
-fn run_leo_arc(out: &mut Out, (index, marker, fixture): (usize, u32, &Fixture)) {
-    repaint_stack();
-    let (problem, settings): (leo_tour::ArcProblem, leo_tour::Settings) = decode(fixture);
-    let run = measured(marker, || {
-        leo_tour::solve_arc(black_box(&problem), black_box(&settings))
-    });
-    let units = run.result.as_ref().ok().map(|s| s.work_units);
-    report_leo(out, (index, fixture), &run, units);
-}
-
-/// The LEO tour's on-board part (the LEO image): the sequencing and every arc of the order;
-/// its bytes carry a `tour_order::OnboardProblem`. Its work units are the arcs' (the
-/// sequencing's estimates are not metered in total).
-#[cfg(feature = "leo_tour")]
-#[inline(never)]
-fn run_leo_onboard(out: &mut Out, (index, marker, fixture): (usize, u32, &Fixture)) {
-    repaint_stack();
-    let problem: leo_tour::tour_order::OnboardProblem = decode(fixture);
-    let run = measured(marker, || {
-        leo_tour::tour_order::plan_onboard(black_box(&problem))
-    });
-    let units = run.result.as_ref().ok().map(|p| {
-        p.arcs
-            .iter()
-            .flatten()
-            .flatten()
-            .map(|a| a.work_units)
-            .sum::<u64>()
-    });
-    report_leo(out, (index, fixture), &run, units);
-}
-
-/// Report a LEO run and print its result. The LEO planners keep their state on the stack (no
-/// workspace), so the stack figure is their memory.
-#[cfg(feature = "leo_tour")]
-fn report_leo<T: serde::Serialize, E: serde::Serialize>(
-    out: &mut Out,
-    (index, fixture): (usize, &Fixture),
-    run: &measure::Measured<Result<T, E>>,
-    units: Option<u64>,
-) {
-    report(
-        out,
-        index,
-        fixture,
-        "leo-tour",
-        run.result.is_ok(),
-        run.stack_bytes,
-        (run.ticks, units),
+        (run.ticks, run.result.work_units()),
     );
     print_result(out, index, &run.result);
+}
+
+/// A baked request decoded (`build.rs` encoded these bytes from a `wire::Request`: a failure
+/// is a build fault, fatal). Never inlined: the decoder's temporaries stay in this frame, below
+/// the caller's, and are gone before the answer.
+#[inline(never)]
+fn decode(fixture: &Fixture) -> Request {
+    match postcard::from_bytes(fixture.request) {
+        Ok(request) => request,
+        Err(_) => panic!("request {} does not decode", fixture.name),
+    }
 }
 
 #[panic_handler]

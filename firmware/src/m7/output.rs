@@ -77,6 +77,10 @@ impl postcard::ser_flavors::Flavor for HexFlavor<'_> {
     }
 }
 
+/// Print a `result` line: the postcard encoding of `result`, streamed as hex. Never inlined:
+/// its buffer is not part of the caller's frame, so the stack high-water of an answer is the
+/// answer's alone.
+#[inline(never)]
 pub fn print_result<T: serde::Serialize>(out: &mut Out, index: usize, result: &T) {
     let _ = write!(out, "result index={index} hex=");
     if postcard::serialize_with_flavor(result, HexFlavor::new(out)).is_err() {
@@ -97,7 +101,8 @@ pub fn fail() -> ! {
 }
 
 /// A fixture's figures line: name, planner, outcome, stack high-water, SysTick instructions
-/// and (when the planner has a work meter) work units.
+/// and (when the planner has a work meter) work units. Never inlined, as [`print_result`].
+#[inline(never)]
 pub fn report(
     out: &mut Out,
     index: usize,

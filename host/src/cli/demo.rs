@@ -3,13 +3,15 @@
 //! (first one at a time, then with every worker busy), prints the results table and the timing
 //! report, stops the service, and exits 0 only if every request was answered correctly.
 
-use crate::cli::feed;
+use crate::harness::check::conclude;
+use crate::harness::child::ServiceChild;
 use crate::harness::feeder::{self, FeedOptions};
-use crate::harness::{faults, report, Instance};
-use anyhow::{anyhow, bail, Context, Result};
-use std::io::{BufRead, BufReader};
+use crate::harness::items::{default_fixtures_dir, fixture_files, fixture_items};
+use crate::harness::{faults, leo_onboard, report, Instance};
+use anyhow::{anyhow, Result};
+use reconfig_core::limits::Limits;
 use std::path::PathBuf;
-use std::process::{Child, Command, ExitCode, Stdio};
+use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
 /// Arguments of `reconfig demo`.
@@ -45,122 +47,6 @@ pub struct Args {
     pub rows: usize,
 }
 
-/// The repository's fixtures folder: `./fixtures` when run from the repository, else the one
-/// beside this crate's sources.
-pub fn default_fixtures_dir() -> PathBuf {
-    let here = PathBuf::from("fixtures");
-    if here.is_dir() {
-        here
-    } else {
-        PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-            .join("..")
-            .join("fixtures")
-    }
-}
-
-/// A flight service child process; stopped with SIGTERM when dropped.
-pub struct ServiceChild {
-    child: Option<Child>,
-}
-
-impl ServiceChild {
-    /// Start `reconfig serve` (this executable) and wait for its `ready` line.
-    pub fn start(instance: &Instance, cpus: &str, no_pin: bool, extra: &[&str]) -> Result<Self> {
-        let exe = std::env::current_exe().context("cannot find this executable")?;
-        let mut cmd = Command::new(exe);
-        cmd.arg("serve")
-            .args([
-                "--cpus",
-                cpus,
-                "--prefix",
-                &instance.prefix,
-                "--service",
-                &instance.service,
-            ])
-            .args(extra)
-            .stdout(Stdio::piped())
-            .stdin(Stdio::null());
-        if no_pin {
-            cmd.arg("--no-pin");
-        }
-        let mut child = cmd.spawn().context("cannot start the flight service")?;
-        let stdout = child.stdout.take().ok_or_else(|| anyhow!("no stdout"))?;
-        let (tx, rx) = std::sync::mpsc::channel();
-        std::thread::spawn(move || {
-            let mut lines = BufReader::new(stdout).lines();
-            if let Some(Ok(line)) = lines.next() {
-                let _ = tx.send(line);
-            }
-            for _ in lines {}
-        });
-        let mut me = Self { child: Some(child) };
-        match rx.recv_timeout(Duration::from_secs(60)) {
-            Ok(line) if line.starts_with("ready") => {
-                println!("flight service started (pid {}): {line}", me.pid());
-                Ok(me)
-            }
-            Ok(line) => {
-                me.kill();
-                bail!("flight service said {line:?} instead of ready")
-            }
-            Err(_) => {
-                let status = me.child.as_mut().and_then(|c| c.try_wait().ok().flatten());
-                me.kill();
-                bail!("flight service did not become ready (exit status {status:?})")
-            }
-        }
-    }
-
-    /// Process id.
-    pub fn pid(&self) -> u32 {
-        self.child.as_ref().map_or(0, Child::id)
-    }
-
-    /// SIGTERM, then wait (10 s at most, then SIGKILL). True when it exited with status 0.
-    pub fn stop(mut self) -> Result<bool> {
-        let Some(mut child) = self.child.take() else {
-            return Ok(false);
-        };
-        // SAFETY: kill(2) on our own child's pid.
-        unsafe {
-            libc::kill(child.id() as libc::pid_t, libc::SIGTERM);
-        }
-        let start = Instant::now();
-        loop {
-            if let Some(status) = child.try_wait()? {
-                return Ok(status.success());
-            }
-            if start.elapsed() > Duration::from_secs(10) {
-                let _ = child.kill();
-                let _ = child.wait();
-                return Ok(false);
-            }
-            std::thread::sleep(Duration::from_millis(20));
-        }
-    }
-
-    fn kill(&mut self) {
-        if let Some(mut child) = self.child.take() {
-            let _ = child.kill();
-            let _ = child.wait();
-        }
-    }
-}
-
-impl Drop for ServiceChild {
-    fn drop(&mut self) {
-        if let Some(child) = &self.child {
-            // SAFETY: kill(2) on our own child's pid.
-            unsafe {
-                libc::kill(child.id() as libc::pid_t, libc::SIGTERM);
-            }
-        }
-        if let Some(mut child) = self.child.take() {
-            let _ = child.wait();
-        }
-    }
-}
-
 /// Run `reconfig demo`.
 pub fn run(args: &Args) -> Result<ExitCode> {
     let started = Instant::now();
@@ -169,7 +55,8 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         service: "demo".into(),
     };
     let dir = args.fixtures.clone().unwrap_or_else(default_fixtures_dir);
-    let mut items = feed::fixture_items(&feed::fixture_files(&dir)?);
+    let limits = Limits::default();
+    let mut items = fixture_items(&fixture_files(&dir)?, &limits);
     let published = items.len();
     items.extend(faults::items(1_000_000));
     items.extend(crate::scenario::generate(args.random, args.seed));
@@ -199,14 +86,14 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     let saturated = sequential.as_ref().ok().map(|_| feeder::run(&items, &opts));
     // The LEO tour's on-board part: the sequencing, then its arcs on every worker (when the
     // fixtures folder has Example I's sequencing fixture).
-    let has_onboard = dir.join(crate::cli::demo_leo_onboard::FIXTURE).is_file();
+    let has_onboard = dir.join(leo_onboard::FIXTURE).is_file();
     let onboard = has_onboard.then(|| {
-        crate::cli::demo_leo_onboard::run(
+        leo_onboard::run(
             &instance,
             &dir,
             workers,
             1 + 2 * items.len() as u64,
-            &reconfig_core::limits::Limits::default(),
+            &limits,
         )
     });
     let stopped_cleanly = service.stop()?;
@@ -228,16 +115,16 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         budget,
         Some(2 * workers),
     );
-    let ok = feed::conclude(
+    let ok = conclude(
         &items,
         &[(&sequential, rep1), (&saturated, rep2)],
         args.rows,
         args.json.as_deref(),
-        &reconfig_core::limits::Limits::default(),
+        &limits,
     )?;
     let onboard_ok = match &onboard {
         Some(Ok(r)) => {
-            crate::cli::demo_leo_onboard::print(r, workers);
+            leo_onboard::print(r, workers);
             r.correct
         }
         Some(Err(e)) => {
@@ -247,7 +134,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         None => {
             println!(
                 "LEO on-board part skipped: no {} in {}",
-                crate::cli::demo_leo_onboard::FIXTURE,
+                leo_onboard::FIXTURE,
                 dir.display()
             );
             true

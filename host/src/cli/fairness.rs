@@ -1,9 +1,10 @@
-//! `reconfig fairness`: two feeders at once against one flight service, to show that clients
-//! are served in turn (round-robin per client) and that a cheap client keeps its latency next
-//! to an expensive one.
+//! `reconfig fairness`: clients at once against one flight service, to show that they are
+//! served in turn (round-robin per client), that a cheap client keeps its latency next to an
+//! expensive one, and (`--flood MODE`) that a client flooding garbage neither starves a good
+//! client nor outlives its own death.
 //!
-//! Starts `serve` as a child (like the demo), then runs two phases of `--seconds` each, two
-//! feeder threads per phase (each its own iceoryx2 node and client):
+//! Starts `serve` as a child (like the demo). Without `--flood`, two phases of `--seconds`
+//! each, two feeder threads per phase (each its own iceoryx2 node and client):
 //! 1. *mixed*: client `expensive` sends only 8-spacecraft crossings (planner A, N = 16, tens of
 //!    ms each) with `--window` in flight; client `cheap` sends only planner-B fixed-point plans
 //!    (sub-millisecond) one at a time at `--cheap-rate`. The cheap client's p99 round trip must
@@ -11,17 +12,28 @@
 //! 2. *same kind*: both clients send the crossings with the same window; neither client's
 //!    throughput may fall below half of the other's.
 //!
+//! With `--flood MODE`: a flooder process (`reconfig feed --flood MODE`) floods the service with
+//! garbage frames and wake-ups; phase *during*: the cheap client runs for `--seconds` beside it;
+//! then the flooder is killed (SIGKILL); phase *after*: the cheap client runs `--seconds` more.
+//! Its p99 must stay within `--budget-ms` in both.
+//!
 //! Every answer is checked byte for byte against a local solve (one per distinct request), and
-//! nothing may be lost, late, duplicated, malformed or expired. Exit 0 only if all holds.
+//! nothing may be lost, late, duplicated, malformed or expired. Every answer carries its place
+//! in the order of service (`harness::order`): no request may wait for more turns of the other
+//! client than the round-robin allows (*served in turn*; *starved* counts the requests lost or
+//! served out of turn). Exit 0 only if all holds; the JSON report says which check failed.
 
-use crate::cli::demo::ServiceChild;
-use crate::harness::feeder::{self, Fate, FeedOptions, FeedRun, Item, Payload};
+use crate::harness::child::ServiceChild;
+use crate::harness::dispatch::{ServiceOrder, NO_TURN};
+use crate::harness::feeder::{self, Fate, FeedOptions, FeedRun, Item};
+use crate::harness::flood::{FloodMode, FlooderProcess};
+use crate::harness::items::request_item;
 use crate::harness::worker::{local_outcome, Worker, WORKER_STACK_BYTES};
-use crate::harness::{report, Instance};
+use crate::harness::{order, report, Instance};
 use anyhow::{anyhow, Result};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use reconfig_core::wire::{Planner, Request};
+use reconfig_core::wire::Request;
 use reconfig_core::{impulsive, pseudospectral};
 use serde::Serialize;
 use std::path::PathBuf;
@@ -52,6 +64,10 @@ pub struct Args {
     /// Write the results as JSON to this file.
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
+    /// Instead of the two phases: the cheap client during and after a flood of garbage by a
+    /// flooder process in this mode (`read`, `abandon`, `ignore`; see `reconfig feed --flood`).
+    #[arg(long, value_name = "MODE")]
+    pub flood: Option<FloodMode>,
 }
 
 /// One client's figures in one phase.
@@ -75,9 +91,47 @@ pub struct ClientFigures {
     pub rtt_p99_us: f64,
     /// Round trip, us.
     pub rtt_max_us: f64,
+    /// Requests that waited for more turns of the other clients than the round-robin allows.
+    pub out_of_turn: usize,
+    /// Requests not answered (lost, late, duplicated, malformed) or served out of turn.
+    pub starved: u64,
+    /// Most turns of other clients one request waited for (between its receipt and its turn).
+    pub most_other_turns_waited: u64,
+    /// Turns given to other clients between this client's first receipt and its last turn.
+    pub other_turns: u64,
+    /// Each answer's `[received_at_turn, turn]` (answers given in a turn), in send order.
+    pub served: Vec<[u64; 2]>,
 }
 
-/// Both phases.
+/// The checks, each on its own.
+#[derive(Clone, Debug, Serialize)]
+pub struct Checks {
+    /// Every request answered, every answer byte-identical to a local solve.
+    pub all_correct: bool,
+    /// No request waited for more turns of other clients than the round-robin allows.
+    pub served_in_turn: bool,
+    /// The cheap client's p99 round trip within `--budget-ms` (a measurement, machine-dependent).
+    pub cheap_within_budget: bool,
+    /// Same-kind throughput ratio at least 0.5 (a measurement; true with `--flood`).
+    pub throughput_ratio_ok: bool,
+    /// The flight service stopped cleanly on SIGTERM.
+    pub stopped_cleanly: bool,
+}
+
+/// The `--flood` run.
+#[derive(Clone, Debug, Serialize)]
+pub struct FloodOut {
+    /// Flooder mode.
+    pub mode: String,
+    /// The flooder's last `flooding:` line before it was killed.
+    pub flooder: String,
+    /// The cheap client while the flooder runs.
+    pub during: ClientFigures,
+    /// The cheap client after the flooder was killed.
+    pub after: ClientFigures,
+}
+
+/// Both phases, or the flood run.
 #[derive(Clone, Debug, Serialize)]
 pub struct FairnessOut {
     /// Phase length, s.
@@ -90,6 +144,10 @@ pub struct FairnessOut {
     pub same_kind: Vec<ClientFigures>,
     /// Smaller throughput over the larger in phase 2.
     pub same_kind_throughput_ratio: f64,
+    /// With `--flood` (then `mixed` and `same_kind` are empty).
+    pub flood: Option<FloodOut>,
+    /// Each check.
+    pub checks: Checks,
     /// Every check held.
     pub passed: bool,
 }
@@ -98,14 +156,11 @@ pub struct FairnessOut {
 fn expensive_templates() -> Vec<Item> {
     let mut rng = ChaCha8Rng::seed_from_u64(11);
     (0..8)
-        .map(|k| Item {
-            label: format!("crossing M8 N16 #{k}"),
-            planner: Some(Planner::Pseudospectral),
-            size: "M8 N16".into(),
-            payload: Payload::Request(Box::new(Request::Pseudospectral {
-                problem: crate::scenario::crossing(&mut rng, 8, 16),
-                settings: pseudospectral::Settings::default(),
-            })),
+        .map(|k| {
+            let problem = crate::scenario::crossing(&mut rng, 8, 16);
+            let settings = pseudospectral::Settings::default();
+            let request = Request::Pseudospectral { problem, settings };
+            request_item(format!("crossing M8 N16 #{k}"), "M8 N16".into(), request)
         })
         .collect()
 }
@@ -114,14 +169,11 @@ fn expensive_templates() -> Vec<Item> {
 fn cheap_templates() -> Vec<Item> {
     let mut rng = ChaCha8Rng::seed_from_u64(12);
     (0..8)
-        .map(|k| Item {
-            label: format!("fixed point K3 #{k}"),
-            planner: Some(Planner::Impulsive),
-            size: "K3".into(),
-            payload: Payload::Request(Box::new(Request::Impulsive {
-                problem: crate::scenario::perturbed_impulsive(&mut rng, 3),
-                settings: impulsive::Settings::default(),
-            })),
+        .map(|k| {
+            let problem = crate::scenario::perturbed_impulsive(&mut rng, 3);
+            let settings = impulsive::Settings::default();
+            let request = Request::Impulsive { problem, settings };
+            request_item(format!("fixed point K3 #{k}"), "K3".into(), request)
         })
         .collect()
 }
@@ -152,12 +204,27 @@ fn expected_bodies(templates: &[Item]) -> Result<Vec<Vec<u8>>> {
         .map_err(|_| anyhow!("the local solve panicked"))
 }
 
-fn figures(name: &str, run: &FeedRun, templates: usize, expected: &[Vec<u8>]) -> ClientFigures {
+/// One client's figures; `other_clients` ran beside it.
+fn figures(
+    name: &str,
+    run: &FeedRun,
+    templates: usize,
+    expected: &[Vec<u8>],
+    other_clients: u64,
+) -> ClientFigures {
     let mut rtts: Vec<u64> = Vec::new();
+    let mut served: Vec<ServiceOrder> = Vec::new();
     let (mut correct, mut wrong) = (0u64, 0u64);
     for r in &run.records {
-        if let Fate::Answered { rtt_ns, body, .. } = &r.fate {
+        if let Fate::Answered {
+            rtt_ns,
+            body,
+            order,
+            ..
+        } = &r.fate
+        {
             rtts.push(*rtt_ns);
+            served.push(*order);
             if expected.get(r.index % templates) == Some(body) {
                 correct += 1;
             } else {
@@ -174,25 +241,44 @@ fn figures(name: &str, run: &FeedRun, templates: usize, expected: &[Vec<u8>]) ->
         rtts[i] as f64 / 1e3
     };
     let c = &run.counters;
+    let waits = order::waits(&served);
+    let out_of_turn = order::out_of_turn(&waits, other_clients);
+    let lost = c.lost + c.late + c.duplicated + c.malformed;
     ClientFigures {
         client: name.into(),
         sent: c.sent,
         correct,
         wrong,
-        lost: c.lost + c.late + c.duplicated + c.malformed,
+        lost,
         throughput_per_s: c.answered as f64 / run.elapsed.as_secs_f64().max(1e-9),
         rtt_p50_us: at(0.5),
         rtt_p99_us: at(0.99),
         rtt_max_us: at(1.0),
+        out_of_turn,
+        starved: lost + c.not_sent + out_of_turn as u64,
+        most_other_turns_waited: waits.iter().map(|w| w.others).max().unwrap_or(0),
+        other_turns: order::other_turns(&served),
+        served: served
+            .iter()
+            .filter(|o| o.turn != NO_TURN)
+            .map(|o| [o.received_at_turn, o.turn])
+            .collect(),
     }
 }
 
-/// Two feeders at once; returns their runs in order.
-fn two_feeders(
+/// Answered correctly, nothing lost.
+fn all_right(c: &ClientFigures) -> bool {
+    c.wrong == 0 && c.lost == 0 && c.correct == c.sent
+}
+
+/// Feeders at once, each for `seconds`; returns their runs in order. Client `k`'s sequence
+/// numbers start at `first_seq + 10_000_000 k`.
+fn feeders(
     instance: &Instance,
-    clients: [(&[Item], usize, Option<f64>); 2],
+    clients: &[(&[Item], usize, Option<f64>)],
     seconds: f64,
-) -> Result<[FeedRun; 2]> {
+    first_seq: u64,
+) -> Result<Vec<FeedRun>> {
     let runs: Vec<Result<FeedRun>> = std::thread::scope(|scope| {
         let handles: Vec<_> = clients
             .iter()
@@ -202,7 +288,7 @@ fn two_feeders(
                 opts.window = *window;
                 opts.rate = *rate;
                 opts.timeout = Duration::from_secs(10);
-                opts.first_seq = 1 + 10_000_000 * k as u64;
+                opts.first_seq = first_seq + 10_000_000 * k as u64;
                 opts.stop_after = Some(Duration::from_secs_f64(seconds));
                 scope.spawn(move || feeder::run(items, &opts))
             })
@@ -215,21 +301,40 @@ fn two_feeders(
             })
             .collect()
     });
-    let mut runs = runs.into_iter();
-    let a = runs.next().ok_or_else(|| anyhow!("no run"))??;
-    let b = runs.next().ok_or_else(|| anyhow!("no run"))??;
+    runs.into_iter().collect()
+}
+
+/// Two feeders at once; returns their runs in order.
+fn two_feeders(
+    instance: &Instance,
+    clients: [(&[Item], usize, Option<f64>); 2],
+    seconds: f64,
+) -> Result<[FeedRun; 2]> {
+    let mut runs = feeders(instance, &clients, seconds, 1)?.into_iter();
+    let a = runs.next().ok_or_else(|| anyhow!("no run"))?;
+    let b = runs.next().ok_or_else(|| anyhow!("no run"))?;
     Ok([a, b])
 }
 
 fn print_phase(title: &str, rows: &[ClientFigures]) {
     println!("\n== {title}");
     println!(
-        "{:<10} {:>7} {:>7} {:>5} {:>5} {:>10} {:>10} {:>10} {:>10}",
-        "client", "sent", "correct", "wrong", "lost", "req/s", "rtt p50", "p99", "max (us)"
+        "{:<10} {:>7} {:>7} {:>5} {:>5} {:>10} {:>10} {:>10} {:>10} {:>8} {:>7}",
+        "client",
+        "sent",
+        "correct",
+        "wrong",
+        "lost",
+        "req/s",
+        "rtt p50",
+        "p99",
+        "max (us)",
+        "starved",
+        "waited"
     );
     for r in rows {
         println!(
-            "{:<10} {:>7} {:>7} {:>5} {:>5} {:>10.1} {:>10.1} {:>10.1} {:>10.1}",
+            "{:<10} {:>7} {:>7} {:>5} {:>5} {:>10.1} {:>10.1} {:>10.1} {:>10.1} {:>8} {:>7}",
             r.client,
             r.sent,
             r.correct,
@@ -238,9 +343,124 @@ fn print_phase(title: &str, rows: &[ClientFigures]) {
             r.throughput_per_s,
             r.rtt_p50_us,
             r.rtt_p99_us,
-            r.rtt_max_us
+            r.rtt_max_us,
+            r.starved,
+            r.most_other_turns_waited
         );
     }
+    println!(
+        "(starved: lost or served out of turn; waited: most turns of other clients one request \
+         waited for)"
+    );
+}
+
+fn write_json(path: Option<&std::path::Path>, out: &FairnessOut) -> Result<()> {
+    if let Some(path) = path {
+        std::fs::write(path, serde_json::to_string_pretty(out)?)?;
+    }
+    Ok(())
+}
+
+fn exit(passed: bool) -> ExitCode {
+    if passed {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    }
+}
+
+/// `--flood MODE`: the cheap client during a flood and after the flooder is killed.
+fn run_flood(args: &Args, mode: FloodMode, instance: &Instance) -> Result<ExitCode> {
+    let cheap = cheap_templates();
+    let expected_cheap = expected_bodies(&cheap)?;
+    let n_cheap = (args.seconds * args.cheap_rate.max(1.0) * 1.5) as usize + 16;
+    let cheap_items = cycle(&cheap, n_cheap);
+    let cpus = args
+        .cpus
+        .clone()
+        .unwrap_or_else(crate::harness::affinity::default_cpu_list);
+    let service = ServiceChild::start(instance, &cpus, args.no_pin, &[])?;
+    let exe = std::env::current_exe()?;
+    let flooder = FlooderProcess::start(&exe, instance, mode)?;
+    println!(
+        "flooder started (pid {}, mode {mode:?}); cheap client for {} s",
+        flooder.pid(),
+        args.seconds
+    );
+    let client = [(cheap_items.as_slice(), 1, Some(args.cheap_rate))];
+    let during = feeders(instance, &client, args.seconds, 1);
+    let flooder_line = flooder.kill();
+    println!("flooder killed (SIGKILL) after: {flooder_line}");
+    let after = during
+        .as_ref()
+        .ok()
+        .map(|_| feeders(instance, &client, args.seconds, 100_000_001));
+    let stopped = service.stop()?;
+    let _ = crate::harness::remove_instance_segment(instance);
+    let during = during?.pop().ok_or_else(|| anyhow!("no run"))?;
+    let after = after
+        .ok_or_else(|| anyhow!("no second phase"))??
+        .pop()
+        .ok_or_else(|| anyhow!("no run"))?;
+    let n = cheap.len();
+    let during = figures("during", &during, n, &expected_cheap, 1);
+    let after = figures("after", &after, n, &expected_cheap, 1);
+    let budget_us = args.budget_ms * 1e3;
+    let checks = Checks {
+        all_correct: all_right(&during) && all_right(&after),
+        served_in_turn: during.starved + after.starved == 0,
+        cheap_within_budget: during.rtt_p99_us <= budget_us && after.rtt_p99_us <= budget_us,
+        throughput_ratio_ok: true,
+        stopped_cleanly: stopped,
+    };
+    let passed = checks.all_correct
+        && checks.served_in_turn
+        && checks.cheap_within_budget
+        && checks.stopped_cleanly;
+    print_phase(
+        &format!(
+            "cheap client (planner-B fixed point, {} /s), {} s during a {mode:?} flood, then {} s \
+             after the flooder was killed",
+            args.cheap_rate, args.seconds, args.seconds
+        ),
+        &[during.clone(), after.clone()],
+    );
+    println!(
+        "turns the service gave the flooder while the cheap client was served: {} during, {} \
+         after; p99 {:.1} / {:.1} us, budget {} ms: {}",
+        during.other_turns,
+        after.other_turns,
+        during.rtt_p99_us,
+        after.rtt_p99_us,
+        args.budget_ms,
+        if checks.cheap_within_budget {
+            "within"
+        } else {
+            "OVER"
+        }
+    );
+    println!(
+        "flight service stopped {}; flood fairness {}",
+        if stopped { "cleanly" } else { "UNCLEANLY" },
+        if passed { "passed" } else { "FAILED" }
+    );
+    let out = FairnessOut {
+        seconds: args.seconds,
+        budget_ms: args.budget_ms,
+        mixed: Vec::new(),
+        same_kind: Vec::new(),
+        same_kind_throughput_ratio: 1.0,
+        flood: Some(FloodOut {
+            mode: format!("{mode:?}").to_lowercase(),
+            flooder: flooder_line,
+            during,
+            after,
+        }),
+        checks,
+        passed,
+    };
+    write_json(args.json.as_deref(), &out)?;
+    Ok(exit(passed))
 }
 
 /// Run `reconfig fairness`.
@@ -249,6 +469,9 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         prefix: format!("reconfig_fair_{}_", std::process::id()),
         service: "fairness".into(),
     };
+    if let Some(mode) = args.flood {
+        return run_flood(args, mode, &instance);
+    }
     let expensive = expensive_templates();
     let cheap = cheap_templates();
     let expected_expensive = expected_bodies(&expensive)?;
@@ -288,21 +511,28 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     let [s_a, s_b] = same.ok_or_else(|| anyhow!("no second phase"))??;
     let n_e = expensive.len();
     let mixed = vec![
-        figures("expensive", &m_exp, n_e, &expected_expensive),
-        figures("cheap", &m_cheap, cheap.len(), &expected_cheap),
+        figures("expensive", &m_exp, n_e, &expected_expensive, 1),
+        figures("cheap", &m_cheap, cheap.len(), &expected_cheap, 1),
     ];
     let same_kind = vec![
-        figures("first", &s_a, n_e, &expected_expensive),
-        figures("second", &s_b, n_e, &expected_expensive),
+        figures("first", &s_a, n_e, &expected_expensive, 1),
+        figures("second", &s_b, n_e, &expected_expensive, 1),
     ];
     let (ta, tb) = (same_kind[0].throughput_per_s, same_kind[1].throughput_per_s);
     let ratio = ta.min(tb) / ta.max(tb).max(1e-9);
-    let all_right = mixed
-        .iter()
-        .chain(&same_kind)
-        .all(|c| c.wrong == 0 && c.lost == 0 && c.correct == c.sent);
     let cheap_ok = mixed[1].rtt_p99_us <= args.budget_ms * 1e3;
-    let passed = all_right && cheap_ok && ratio >= 0.5 && stopped;
+    let checks = Checks {
+        all_correct: mixed.iter().chain(&same_kind).all(all_right),
+        served_in_turn: mixed.iter().chain(&same_kind).all(|c| c.starved == 0),
+        cheap_within_budget: cheap_ok,
+        throughput_ratio_ok: ratio >= 0.5,
+        stopped_cleanly: stopped,
+    };
+    let passed = checks.all_correct
+        && checks.served_in_turn
+        && checks.cheap_within_budget
+        && checks.throughput_ratio_ok
+        && checks.stopped_cleanly;
     print_phase(
         &format!(
             "mixed, {} s: expensive (M8 N16 crossings, {} in flight) + cheap (planner-B fixed point, {} /s)",
@@ -325,24 +555,30 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     );
     println!("throughput ratio (smaller / larger) {ratio:.3} (must be >= 0.5)");
     println!(
+        "served in turn: {} (requests that waited for more turns of the other client than the \
+         round-robin allows: {})",
+        if checks.served_in_turn { "yes" } else { "NO" },
+        mixed
+            .iter()
+            .chain(&same_kind)
+            .map(|c| c.out_of_turn)
+            .sum::<usize>()
+    );
+    println!(
         "flight service stopped {}; fairness {}",
         if stopped { "cleanly" } else { "UNCLEANLY" },
         if passed { "passed" } else { "FAILED" }
     );
-    if let Some(path) = &args.json {
-        let out = FairnessOut {
-            seconds: args.seconds,
-            budget_ms: args.budget_ms,
-            mixed,
-            same_kind,
-            same_kind_throughput_ratio: ratio,
-            passed,
-        };
-        std::fs::write(path, serde_json::to_string_pretty(&out)?)?;
-    }
-    Ok(if passed {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::FAILURE
-    })
+    let out = FairnessOut {
+        seconds: args.seconds,
+        budget_ms: args.budget_ms,
+        mixed,
+        same_kind,
+        same_kind_throughput_ratio: ratio,
+        flood: None,
+        checks,
+        passed,
+    };
+    write_json(args.json.as_deref(), &out)?;
+    Ok(exit(passed))
 }

@@ -1,19 +1,13 @@
-//! One module per subcommand of `reconfig`.
+//! One module per subcommand of `reconfig`, and nothing else: what they share lives in
+//! `crate::drivers` (answering and reporting a fixture's requests), `crate::harness` (the
+//! flight service, the feeders and their checks) and `crate::fixture`.
 
 pub mod demo;
-pub mod demo_leo_onboard;
 pub mod fairness;
 pub mod feed;
-pub mod leo_tour_rounds;
-pub mod leo_tour_sequence;
 pub mod montecarlo;
 pub mod plot;
 pub mod serve;
 pub mod solve;
-pub mod solve_geo_tour;
-pub mod solve_impulsive;
-pub mod solve_leo_tour;
-pub mod solve_pseudospectral;
 pub mod sweep;
-pub mod sweep_oracle;
 pub mod truth;

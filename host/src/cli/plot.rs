@@ -36,36 +36,29 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         println!("wrote {}", args.output.display());
         return Ok(ExitCode::SUCCESS);
     }
-    let text = std::fs::read_to_string(&args.file).unwrap_or_default();
-    if fixture::geo_tour::is_geo_tour(&text) {
-        let f = fixture::geo_tour::load(&args.file)?;
-        if args.pareto {
-            let days: Vec<f64> = (10..=60).map(|k| f64::from(k) * 2.0).collect();
-            for (d, by_cost, by_rule) in crate::plot_geo::pareto_svg(&f, &days, &args.output)? {
-                println!("{d:6.1} d  by cost {by_cost:?}  by rule {by_rule:?}");
-            }
-        } else {
-            crate::plot_geo::tour_svg(&f, &args.output)?;
-        }
-        println!("wrote {}", args.output.display());
-        return Ok(ExitCode::SUCCESS);
-    }
-    if fixture::leo_tour::is_leo_tour(&text) {
-        let f = fixture::leo_tour::load(&args.file)?;
-        let drawn = crate::plot_leo::tour_svg(&f, &args.output)?;
-        for a in &drawn.arcs {
-            println!(
-                "arc {} -> {}: {:?}, {:.3} m/s",
-                a.from + 1,
-                a.to + 1,
-                a.solution.status,
-                a.solution.total_dv_mps
-            );
-        }
-        println!("wrote {}", args.output.display());
-        return Ok(ExitCode::SUCCESS);
-    }
     match fixture::load(&args.file)? {
+        Fixture::GeoTour(f) => {
+            if args.pareto {
+                let days: Vec<f64> = (10..=60).map(|k| f64::from(k) * 2.0).collect();
+                for (d, by_cost, by_rule) in crate::plot_geo::pareto_svg(&f, &days, &args.output)? {
+                    println!("{d:6.1} d  by cost {by_cost:?}  by rule {by_rule:?}");
+                }
+            } else {
+                crate::plot_geo::tour_svg(&f, &args.output)?;
+            }
+        }
+        Fixture::LeoTour(f) => {
+            let drawn = crate::plot_leo::tour_svg(&f, &args.output)?;
+            for a in &drawn.arcs {
+                println!(
+                    "arc {} -> {}: {:?}, {:.3} m/s",
+                    a.from + 1,
+                    a.to + 1,
+                    a.solution.info.status,
+                    a.solution.total_dv_mps
+                );
+            }
+        }
         Fixture::Pseudospectral(f) => {
             let mut workspace = Box::new(pseudospectral::Workspace::new());
             let mut solution = Box::new(pseudospectral::Solution::new());
@@ -118,15 +111,17 @@ fn impulsive_plot(problem: &impulsive::Problem, name: &str, out: &std::path::Pat
     if let Err(e) = impulsive::solve(problem, &settings, &mut workspace, &mut solution) {
         bail!("{name}: the planner rejected the problem: {e}");
     }
-    let period_s =
-        std::f64::consts::TAU * (problem.chief.sma_km.powi(3) / impulsive::EARTH_MU_KM3_S2).sqrt();
+    let period_s = std::f64::consts::TAU
+        * (problem.chief.sma_km.powi(3) / reconfig_core::astro::EARTH_MU_KM3_S2).sqrt();
     let title = format!(
-        "{name}: {:?}, total dv {:.4} m/s, {} impulses, last at {:.2} orbits, terminal position error {:.1e} m",
+        "{name}: {:?}, total dv {:.4} m/s, {} impulses, last at {:.2} orbits, terminal position error {}",
         solution.info.status,
         solution.total_dv_mps,
         solution.impulses.len(),
         solution.final_time_s / period_s,
-        solution.terminal_position_error_m,
+        solution
+            .terminal_error
+            .map_or_else(|| "absent".to_string(), |t| format!("{:.1e} m", t.position_m)),
     );
     plot::impulsive_svg(problem, &settings, &solution, &title, out)
 }

@@ -26,9 +26,6 @@ pub struct Args {
     /// file and exit.
     #[arg(long)]
     pub print_limits: bool,
-    /// Test hook: every worker sleeps this long per request (stands in for a long solve).
-    #[arg(long, default_value_t = 0, hide = true)]
-    pub debug_delay_ms: u64,
 }
 
 /// Run `reconfig serve`.
@@ -41,7 +38,6 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         instance: args.instance.clone(),
         cpus: harness::parse_cpus(&args.cpus)?,
         no_pin: args.no_pin,
-        delay: Duration::from_millis(args.debug_delay_ms),
         limits: args.limits.load()?,
         default_deadline: Duration::from_millis(args.deadline_ms),
     };

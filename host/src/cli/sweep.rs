@@ -15,8 +15,8 @@
 //! gives per family the cost gap to the oracle's best, the Solved / usable rates of the problems
 //! the oracle solves and the time against IPOPT's (`sweep_oracle.rs`).
 
-use crate::cli::solve_pseudospectral::solve_timed_with_starts;
-use crate::cli::sweep_oracle::{self, relative_gap, OracleAnswer, GAP_REPORT_REL};
+use crate::drivers::pseudospectral::solve_timed_with_starts;
+use crate::drivers::sweep_oracle::{self, relative_gap, OracleAnswer, GAP_REPORT_REL};
 use anyhow::{Context, Result};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -141,6 +141,20 @@ fn problem(umax: f64, degree: u16, spacecraft: Vec<Spacecraft>) -> Problem {
     }
 }
 
+/// Spacecraft at rest at `starts`, each to rest at its end, with the masses `mass` gives (in
+/// order: a generator's draws stay in the same sequence).
+fn rest_to_rest(
+    starts: &[[f64; 3]],
+    ends: &[[f64; 3]],
+    mut mass: impl FnMut() -> f64,
+) -> Vec<Spacecraft> {
+    starts
+        .iter()
+        .zip(ends)
+        .map(|(a, b)| craft(mass(), at_rest(*a), at_rest(*b)))
+        .collect()
+}
+
 /// Generate one problem of `family`.
 pub fn generate(family: &str, rng: &mut ChaCha8Rng) -> Problem {
     let gap = KEEP_OUT_LU + 0.5;
@@ -160,8 +174,7 @@ pub fn generate(family: &str, rng: &mut ChaCha8Rng) -> Problem {
         }
         "tight" => {
             let m = rng.random_range(2..=6usize);
-            let starts = spread(rng, m, 8.0, gap);
-            let ends = spread(rng, m, 8.0, gap);
+            let (starts, ends) = (spread(rng, m, 8.0, gap), spread(rng, m, 8.0, gap));
             // Rest to rest along one axis needs 4 D / T^2 at least.
             let mut need = 0.0f64;
             for (a, b) in starts.iter().zip(ends.iter()) {
@@ -169,12 +182,11 @@ pub fn generate(family: &str, rng: &mut ChaCha8Rng) -> Problem {
                     need = need.max(4.0 * (b[k] - a[k]).abs() / (HORIZON_TU * HORIZON_TU));
                 }
             }
-            let crafts = starts
-                .iter()
-                .zip(ends.iter())
-                .map(|(a, b)| craft(1.0, at_rest(*a), at_rest(*b)))
-                .collect();
-            problem(1.15 * need.max(0.05), 12, crafts)
+            problem(
+                1.15 * need.max(0.05),
+                12,
+                rest_to_rest(&starts, &ends, || 1.0),
+            )
         }
         "fly-through" => {
             let per_side = rng.random_range(1..=4usize);
@@ -216,26 +228,15 @@ pub fn generate(family: &str, rng: &mut ChaCha8Rng) -> Problem {
         }
         "mixed" => {
             let m = rng.random_range(2..=8usize);
-            let starts = spread(rng, m, 10.0, gap);
-            let ends = spread(rng, m, 10.0, gap);
+            let (starts, ends) = (spread(rng, m, 10.0, gap), spread(rng, m, 10.0, gap));
             let degree = rng.random_range(8..=24u16);
-            let crafts = starts
-                .iter()
-                .zip(ends.iter())
-                .map(|(a, b)| craft(rng.random_range(0.5..2.0), at_rest(*a), at_rest(*b)))
-                .collect();
+            let crafts = rest_to_rest(&starts, &ends, || rng.random_range(0.5..2.0));
             problem(1.0, degree, crafts)
         }
         _ => {
             let m = rng.random_range(2..=8usize);
-            let starts = spread(rng, m, 10.0, gap);
-            let ends = spread(rng, m, 10.0, gap);
-            let crafts = starts
-                .iter()
-                .zip(ends.iter())
-                .map(|(a, b)| craft(1.0, at_rest(*a), at_rest(*b)))
-                .collect();
-            problem(1.0, 12, crafts)
+            let (starts, ends) = (spread(rng, m, 10.0, gap), spread(rng, m, 10.0, gap));
+            problem(1.0, 12, rest_to_rest(&starts, &ends, || 1.0))
         }
     }
 }

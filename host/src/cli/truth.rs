@@ -118,8 +118,13 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     );
     for c in &checks {
         println!(
-            "{}: {} dv {:.5} m/s, last impulse at {:.1} s (planner's own miss {:.2e} m)",
-            c.name, c.status, c.total_dv_mps, c.final_time_s, c.planner_terminal_error_m
+            "{}: {} dv {:.5} m/s, last impulse at {:.1} s (planner's own miss {})",
+            c.name,
+            c.status,
+            c.total_dv_mps,
+            c.final_time_s,
+            c.planner_terminal_error_m
+                .map_or_else(|| "absent".to_string(), |m| format!("{m:.2e} m"))
         );
         for (label, m) in [("full model", &c.full), ("J2 only   ", &c.j2_only)] {
             println!(

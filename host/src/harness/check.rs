@@ -3,9 +3,13 @@
 //! also checks that solves are deterministic across processes).
 
 use super::feeder::{Fate, FeedRun, Item};
+use super::report;
 use super::worker::{local_outcome, Worker};
+use anyhow::Result;
 use reconfig_core::limits::Limits;
-use reconfig_core::wire::{self, Outcome};
+use reconfig_core::wire::Outcome;
+use serde::Serialize;
+use std::path::Path;
 
 /// The verdict on one item.
 #[derive(Clone, Debug)]
@@ -112,14 +116,7 @@ pub fn print_table(items: &[Item], verdicts: &[Verdict], limit: usize) {
             Some(o) => super::worker::summarize(o),
             None => (v.reason.clone(), "-".into(), "-".into(), "-".into()),
         };
-        let planner = match item.planner {
-            Some(wire::Planner::Pseudospectral) => "pseudospectral",
-            Some(wire::Planner::Impulsive) => "impulsive",
-            Some(wire::Planner::GeoTour) => "geo-tour",
-            Some(wire::Planner::LeoArc) => "leo-arc",
-            Some(wire::Planner::LeoSequence) => "leo-sequence",
-            None => "fault",
-        };
+        let planner = item.planner.map_or("fault", |p| p.name());
         println!(
             "{:<42} {:<15} {:<7} {:<40} {:>16} {:>16} {:>5} {:>9} {}",
             truncate(&item.label, 42),
@@ -166,4 +163,96 @@ fn truncate(s: &str, n: usize) -> String {
         t.push('~');
         t
     }
+}
+
+/// Machine-readable feed results.
+#[derive(Serialize)]
+pub struct JsonOut<'a> {
+    /// Timing reports.
+    pub reports: Vec<&'a report::Report>,
+    /// One per request.
+    pub results: Vec<JsonResult>,
+    /// Every answer was correct.
+    pub all_correct: bool,
+}
+
+/// One request's result.
+#[derive(Serialize)]
+pub struct JsonResult {
+    /// Request label.
+    pub label: String,
+    /// Status or error text.
+    pub status: String,
+    /// Correct answer.
+    pub correct: bool,
+    /// Round trip, us.
+    pub rtt_us: Option<f64>,
+    /// Sequence number sent.
+    pub seq: u64,
+    /// The request's turn in the service's order of service (none when not answered in a
+    /// turn: lost, or expired in the queue).
+    pub turn: Option<u64>,
+    /// Turns the service had given when it received the request.
+    pub received_at_turn: Option<u64>,
+}
+
+/// Check, print and report one run; returns whether every answer was correct.
+pub fn conclude(
+    items: &[Item],
+    runs: &[(&FeedRun, report::Report)],
+    rows: usize,
+    json: Option<&Path>,
+    limits: &reconfig_core::limits::Limits,
+) -> Result<bool> {
+    let mut all_correct = true;
+    let mut results = Vec::new();
+    let mut first = true;
+    // One local solve per item serves every run: frames differ only in their sequence numbers.
+    let expected = runs
+        .first()
+        .map(|(run, _)| expected(run, limits))
+        .unwrap_or_default();
+    for (run, _) in runs {
+        let verdicts = verify(items, run, &expected);
+        if first {
+            print_table(items, &verdicts, rows);
+            first = false;
+        }
+        for (v, record) in verdicts.iter().zip(&run.records) {
+            all_correct &= v.correct;
+            let order = match &record.fate {
+                Fate::Answered { order, .. } => Some(*order),
+                _ => None,
+            };
+            results.push(JsonResult {
+                label: items[v.index].label.clone(),
+                status: v
+                    .outcome
+                    .as_ref()
+                    .map_or_else(|| v.reason.clone(), |o| super::worker::summarize(o).0),
+                correct: v.correct,
+                rtt_us: v.rtt_us,
+                seq: record.seq,
+                turn: order
+                    .map(|o| o.turn)
+                    .filter(|t| *t != super::dispatch::NO_TURN),
+                received_at_turn: order.map(|o| o.received_at_turn),
+            });
+        }
+        let c = &run.counters;
+        all_correct &= c.lost == 0 && c.late == 0 && c.duplicated == 0 && c.malformed == 0;
+    }
+    for (_, r) in runs {
+        report::print(r);
+    }
+    if let Some(path) = json {
+        let out = JsonOut {
+            reports: runs.iter().map(|(_, r)| r).collect(),
+            results,
+            all_correct,
+        };
+        std::fs::write(path, serde_json::to_string_pretty(&out)?)?;
+        println!("report written to {}", path.display());
+    }
+    Ok(all_correct)
 }

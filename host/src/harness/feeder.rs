@@ -102,6 +102,8 @@ pub enum Fate {
         solve_ns: u64,
         /// The response body (encoded outcome), for comparison with a local solve.
         body: Vec<u8>,
+        /// Where the request stood in the service's order of service.
+        order: super::dispatch::ServiceOrder,
     },
 }
 
@@ -153,7 +155,13 @@ pub struct FeedRun {
     pub elapsed: Duration,
 }
 
-type Pending = PendingResponse<ipc::Service, [u8], super::service::RequestHeader, [u8], ()>;
+type Pending = PendingResponse<
+    ipc::Service,
+    [u8],
+    super::service::RequestHeader,
+    [u8],
+    super::dispatch::ServiceOrder,
+>;
 
 struct InFlight {
     index: usize,
@@ -205,6 +213,7 @@ pub fn run(items: &[Item], opts: &FeedOptions) -> Result<FeedRun> {
         node.service_builder(&inst.service_name("rpc")?)
             .request_response::<[u8], [u8]>()
             .request_user_header::<super::service::RequestHeader>()
+            .response_user_header::<super::dispatch::ServiceOrder>()
             .open()
             .map_err(|e| anyhow!("{e:?}"))
     })
@@ -302,6 +311,7 @@ pub fn run(items: &[Item], opts: &FeedOptions) -> Result<FeedRun> {
                             rtt_ns,
                             solve_ns: view.solve_time_ns,
                             body: view.body.to_vec(),
+                            order: *response.user_header(),
                         }
                     }
                     Ok(view) => {
@@ -487,13 +497,11 @@ pub fn run(items: &[Item], opts: &FeedOptions) -> Result<FeedRun> {
         if in_flight.is_empty() && (next >= items.len()) {
             break;
         }
-        if !wait.is_zero() {
-            let _ = listener.timed_wait(|_| {}, wait);
-        }
+        wait_for_wake_up(&listener, wait);
     }
     let _ = seq;
     // A last look for duplicates and late answers.
-    let _ = listener.timed_wait(|_| {}, Duration::from_millis(5));
+    wait_for_wake_up(&listener, Duration::from_millis(5));
     for (pending, how) in &settled {
         while let Ok(Some(_)) = pending.receive() {
             match how {
@@ -516,6 +524,19 @@ pub fn run(items: &[Item], opts: &FeedOptions) -> Result<FeedRun> {
     })
 }
 
+/// Wait on `listener` for a wake-up, at most `wait` (not at all when it is zero). iceoryx2 hands
+/// the wait to a unix socket as `SO_RCVTIMEO` in whole microseconds, and a zero `timeval` there
+/// means "no timeout": a wait under 1 us would block until the next notification, which for a
+/// client with nothing in flight may never come. So a wait is at least 1 us.
+pub fn wait_for_wake_up(
+    listener: &iceoryx2::port::listener::Listener<ipc::Service>,
+    wait: Duration,
+) {
+    if !wait.is_zero() {
+        let _ = listener.timed_wait(|_| {}, wait.max(Duration::from_micros(1)));
+    }
+}
+
 /// Retry `f` every 10 ms until it succeeds or `limit` has passed.
 fn wait_for<T>(limit: Duration, mut f: impl FnMut() -> Result<T>) -> Result<T> {
     let start = Instant::now();
@@ -525,5 +546,45 @@ fn wait_for<T>(limit: Duration, mut f: impl FnMut() -> Result<T>) -> Result<T> {
             Err(e) if start.elapsed() >= limit => bail!("gave up after {limit:?}: {e}"),
             Err(_) => std::thread::sleep(Duration::from_millis(10)),
         }
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+
+    /// Whether `f` returns within `limit` (a safety net: it either returns at once or never).
+    fn returns_within(limit: Duration, f: impl FnOnce() + Send + 'static) -> bool {
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            f();
+            let _ = tx.send(());
+        });
+        rx.recv_timeout(limit).is_ok()
+    }
+
+    #[test]
+    fn a_wait_under_a_microsecond_returns() {
+        let instance = Instance {
+            prefix: format!("rcfgu_wake_{}_", std::process::id()),
+            service: "wake".into(),
+        };
+        let returned = returns_within(Duration::from_secs(30), move || {
+            let node = instance.node("wake-test").unwrap();
+            let event = node
+                .service_builder(&instance.service_name("to-feeder").unwrap())
+                .event()
+                .open_or_create()
+                .unwrap();
+            let listener = event.listener_builder().create().unwrap();
+            // Nothing will ever notify this listener.
+            wait_for_wake_up(&listener, Duration::from_nanos(500));
+            drop(listener);
+            drop(event);
+            drop(node);
+            let _ = super::super::remove_instance_segment(&instance);
+        });
+        assert!(returned, "a 500 ns wait did not return");
     }
 }

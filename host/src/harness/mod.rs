@@ -11,8 +11,15 @@
 pub mod affinity;
 pub mod alloc_count;
 pub mod check;
+pub mod child;
+pub mod conduct;
+pub mod dispatch;
 pub mod faults;
 pub mod feeder;
+pub mod flood;
+pub mod items;
+pub mod leo_onboard;
+pub mod order;
 pub mod report;
 pub mod schedule;
 pub mod service;

@@ -129,14 +129,7 @@ impl Group {
 }
 
 fn planner_name(item: &Item) -> String {
-    match item.planner {
-        Some(reconfig_core::wire::Planner::Pseudospectral) => "pseudospectral".into(),
-        Some(reconfig_core::wire::Planner::Impulsive) => "impulsive".into(),
-        Some(reconfig_core::wire::Planner::GeoTour) => "geo-tour".into(),
-        Some(reconfig_core::wire::Planner::LeoArc) => "leo-arc".into(),
-        Some(reconfig_core::wire::Planner::LeoSequence) => "leo-sequence".into(),
-        None => "faults".into(),
-    }
+    item.planner.map_or("faults", |p| p.name()).into()
 }
 
 /// Build the report of a run.
@@ -296,6 +289,7 @@ mod tests {
                 rtt_ns: ms * 1_000_000,
                 solve_ns: ms * 900_000,
                 body: Vec::new(),
+                order: Default::default(),
             },
         };
         let run = FeedRun {

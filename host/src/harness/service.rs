@@ -1,10 +1,20 @@
 //! `reconfig serve`: the flight service.
 //!
 //! One dispatcher thread owns every iceoryx2 port. It blocks in a `WaitSet` on the
-//! `to-service` event (no busy spinning), or until the earliest queued deadline. On a wake-up it
-//! hands finished jobs' responses back over iceoryx2, moves every new request into its
-//! per-client queues ([`Scheduler`]), answers the requests past their deadline `Expired`
-//! unsolved, and hands the next requests to the free workers, clients in turn (round-robin).
+//! `to-service` event (no busy spinning), until the earliest queued deadline, or for at most
+//! [`HEARTBEAT`]. On every wake-up it resets the `to-service` listener and runs
+//! [`Dispatcher::pump`] (finished jobs' responses, new requests into per-client queues, expiries,
+//! turns to the free workers, clients in turn), again and again while a pump finds work.
+//!
+//! Why the heartbeat: iceoryx2's event (a unix datagram plus a notification state in shared
+//! memory) can lose a wake-up for good. A listener that drains (`NOTIFIED -> IDLE`, then
+//! empties the socket) while a notifier sends (`IDLE -> PENDING`, datagram, `PENDING ->
+//! NOTIFIED`) reads that notifier's datagram yet leaves the state `NOTIFIED`; every later
+//! `notify` then sees `NOTIFIED` and sends nothing, so a dispatcher that waits only for the
+//! socket never wakes again. Under a client flooding notifications this happened within
+//! seconds, and the service answered nobody until restarted. The heartbeat bounds such a stall
+//! to one period, and the reset on every wake-up (`Listener::try_wait` moves `NOTIFIED` back
+//! to `IDLE`) makes notifications wake the dispatcher again.
 //!
 //! Each worker is a thread pinned to one CPU of the set, with its own [`Worker`] (workspaces)
 //! and one job buffer that travels dispatcher -> worker -> dispatcher over bounded channels;
@@ -14,16 +24,14 @@
 //! SIGTERM / SIGINT end the `WaitSet` wait; the service then finishes jobs in progress, answers
 //! them, drops its ports and node (which removes its shared memory) and exits 0.
 
-use super::schedule::Scheduler;
+use super::dispatch::{Dispatcher, ServiceOrder};
 use super::worker::{Worker, WORKER_STACK_BYTES};
 use super::{affinity, Instance, MAX_CLIENTS, MAX_IN_FLIGHT};
 use anyhow::{anyhow, Context, Result};
-use iceoryx2::active_request::ActiveRequest;
 use iceoryx2::identifiers::UniqueClientId;
 use iceoryx2::prelude::*;
 use iceoryx2::waitset::WaitSetRunResult;
 use reconfig_core::limits::Limits;
-use reconfig_core::wire::{Expiry, OutcomeRef};
 use reconfig_core::wire::{REQUEST_MAX_BYTES, RESPONSE_MAX_BYTES};
 use std::sync::mpsc::{sync_channel, Receiver, SyncSender, TryRecvError};
 use std::time::Duration;
@@ -38,8 +46,6 @@ pub struct ServiceOptions {
     pub cpus: Vec<usize>,
     /// Do not pin (for machines where affinity is not allowed).
     pub no_pin: bool,
-    /// Test hook: each worker sleeps this long per request.
-    pub delay: Duration,
     /// Limits every request is checked against before it is solved.
     pub limits: Limits,
     /// Deadline of a request that does not carry its own (counted from its receipt).
@@ -106,31 +112,28 @@ pub fn worker_loop(
     }
 }
 
-type Active = ActiveRequest<ipc::Service, [u8], RequestHeader, [u8], ()>;
-
 type Rpc = iceoryx2::service::port_factory::request_response::PortFactory<
     ipc::Service,
     [u8],
     RequestHeader,
     [u8],
-    (),
+    ServiceOrder,
 >;
 
 /// The iceoryx2 user header of a request: its deadline in microseconds after the service
 /// receives it; 0 asks for the service's default (`serve --deadline-ms`).
 pub type RequestHeader = u64;
 
-/// Longest blocking wait of the dispatcher when nothing is queued (it wakes on every event).
-const IDLE_WAIT: Duration = Duration::from_secs(3600);
+/// Longest wait of the dispatcher between two looks at its queues, events or not (see the
+/// module's documentation: iceoryx2 can lose a wake-up).
+pub const HEARTBEAT: Duration = Duration::from_millis(10);
 
-/// A request's deadline after receipt: its own, else the service's default.
-fn request_deadline(header_us: RequestHeader, default: Duration) -> Duration {
-    if header_us == 0 {
-        default
-    } else {
-        Duration::from_micros(header_us)
-    }
-}
+/// Pumps per wake-up at most, before the dispatcher returns to its `WaitSet` (which reports
+/// SIGTERM) and comes straight back.
+const PUMPS_PER_WAKE: usize = 64;
+
+/// How often, at most, the dispatcher looks for clients that have gone.
+const DEPARTED_CHECK: Duration = Duration::from_secs(1);
 
 /// Run the flight service until SIGTERM / SIGINT. Prints one `ready` line on stdout when it
 /// accepts requests.
@@ -146,6 +149,7 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
         .service_builder(&inst.service_name("rpc")?)
         .request_response::<[u8], [u8]>()
         .request_user_header::<RequestHeader>()
+        .response_user_header::<ServiceOrder>()
         .max_clients(MAX_CLIENTS)
         .max_servers(2)
         .max_active_requests_per_client(MAX_IN_FLIGHT)
@@ -154,6 +158,11 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
         .max_nodes(MAX_CLIENTS + 4)
         .enable_safe_overflow_for_requests(false)
         .enable_safe_overflow_for_responses(false)
+        // Hand the dispatcher the requests their clients have already dropped too (iceoryx2's
+        // default, stated here on purpose): it judges them and spends their turns. Without it,
+        // `Server::receive` drops them in a loop of its own, which a client sending and dropping
+        // requests as fast as it can could keep going.
+        .enable_fire_and_forget_requests(true)
         .open_or_create()
         .map_err(|e| anyhow!("cannot open service rpc: {e:?}"))?;
     let to_service = node
@@ -177,6 +186,10 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
         .initial_max_slice_len(RESPONSE_MAX_BYTES)
         .allocation_strategy(AllocationStrategy::Static)
         .max_loaned_responses_per_request(1)
+        // Never wait for a client: a response that finds the client's buffer for it full (a
+        // client that does not read its answers) is dropped. iceoryx2's default would retry
+        // until delivered, and a client that never reads could hold the dispatcher forever.
+        .backpressure_strategy(BackpressureStrategy::DiscardData)
         .create()
         .map_err(|e| anyhow!("cannot create server: {e:?}"))?;
     let listener = to_service
@@ -191,16 +204,15 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
     // Workers: one per CPU, each with its job channel and its own notifier.
     let (done_tx, done_rx) = sync_channel::<Box<Job>>(workers);
     let mut job_txs = Vec::with_capacity(workers);
-    let mut free: Vec<Option<Box<Job>>> = Vec::with_capacity(workers);
+    let mut jobs: Vec<Box<Job>> = Vec::with_capacity(workers);
     let mut handles = Vec::with_capacity(workers);
     for (index, &cpu) in opts.cpus.iter().enumerate() {
         let (tx, rx) = sync_channel::<Box<Job>>(1);
         job_txs.push(tx);
-        free.push(Some(Job::boxed(index)));
+        jobs.push(Job::boxed(index));
         let done = done_tx.clone();
         let worker_instance = inst.clone();
         let no_pin = opts.no_pin;
-        let delay = opts.delay;
         let limits = opts.limits;
         let (ready_tx, ready_rx) = sync_channel::<Result<(), String>>(1);
         let handle = std::thread::Builder::new()
@@ -217,7 +229,6 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
                     worker_notifier(&worker_instance, index).map_err(|e| format!("{e:#}"))
                 });
                 let mut worker = Worker::new();
-                worker.delay = delay;
                 worker.limits = limits;
                 warm_up(&rx);
                 let (wake, pinned) = match wake {
@@ -250,11 +261,7 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
         .attach_notification(&listener)
         .map_err(|e| anyhow!("cannot attach listener: {e:?}"))?;
 
-    let default_deadline = opts.default_deadline;
-    let mut in_flight: Vec<Option<Active>> = (0..workers).map(|_| None).collect();
-    let mut queue: Scheduler<UniqueClientId, Active> = Scheduler::new(MAX_CLIENTS, MAX_IN_FLIGHT);
-    let mut answered: u64 = 0;
-    let mut expired: u64 = 0;
+    let mut dispatcher = Dispatcher::new(jobs, opts.default_deadline);
     println!(
         "ready: service {} prefix {} workers {} cpus {:?}",
         inst.service, inst.prefix, workers, opts.cpus
@@ -263,99 +270,30 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
     let _ = std::io::stdout().flush();
     let allocations_at_start = super::alloc_count::allocations();
 
-    let mut pump = |in_flight: &mut Vec<Option<Active>>,
-                    free: &mut Vec<Option<Box<Job>>>,
-                    queue: &mut Scheduler<UniqueClientId, Active>|
-     -> Result<()> {
-        // 1. Finished jobs: send their responses, free their workers.
-        loop {
-            match done_rx.try_recv() {
-                Ok(job) => {
-                    let index = job.worker;
-                    if let Some(active) = in_flight.get_mut(index).and_then(Option::take) {
-                        send_response(&active, &job);
-                        answered += 1;
-                        let _ = notifier.notify();
-                    }
-                    if let Some(slot) = free.get_mut(index) {
-                        *slot = Some(job);
-                    }
-                }
-                Err(TryRecvError::Empty) => break,
-                Err(TryRecvError::Disconnected) => return Err(anyhow!("a worker has died")),
-            }
-        }
-        // 2. Everything iceoryx2 holds moves to the per-client queues (bounded by iceoryx2's
-        // MAX_CLIENTS x MAX_IN_FLIGHT), so clients can be served in turn.
-        loop {
-            let active = match server.receive() {
-                Ok(Some(active)) => active,
-                Ok(None) => break,
-                Err(e) => {
-                    // A broken connection to one feeder must not stop the service.
-                    eprintln!("serve: receive failed: {e:?}");
-                    break;
-                }
-            };
-            let len = active.payload().len();
-            if len > REQUEST_MAX_BYTES {
-                oversized_answer(&active, len);
-                answered += 1;
-                let _ = notifier.notify();
-                continue;
-            }
-            let now = Instant::now();
-            let deadline = now + request_deadline(*active.user_header(), default_deadline);
-            queue.push(active.origin(), active, now, deadline);
-        }
-        // 3. Requests past their deadline are answered without being solved.
-        let now = Instant::now();
-        queue.take_expired(now, |q| {
-            expired_answer(&q, now);
-            answered += 1;
-            expired += 1;
-            let _ = notifier.notify();
-        });
-        // 4. Free workers take the next request, clients in turn.
-        for index in 0..free.len() {
-            let Some(slot) = free.get_mut(index) else {
-                break;
-            };
-            if slot.is_none() {
-                continue;
-            }
-            let Some(q) = queue.pop() else { break };
-            let Some(mut job) = slot.take() else { break };
-            let bytes = q.item.payload();
-            let len = bytes.len().min(job.request.len());
-            if let (Some(dst), Some(src)) = (job.request.get_mut(..len), bytes.get(..len)) {
-                dst.copy_from_slice(src);
-            }
-            job.request_len = len;
-            if let Some(tx) = job_txs.get(index) {
-                tx.send(job)
-                    .map_err(|_| anyhow!("worker {index} has died"))?;
-            }
-            if let Some(f) = in_flight.get_mut(index) {
-                *f = Some(q.item);
-            }
-        }
-        Ok(())
+    let finished = || match done_rx.try_recv() {
+        Ok(job) => Ok(Some(job)),
+        Err(TryRecvError::Empty) => Ok(None),
+        Err(TryRecvError::Disconnected) => Err(anyhow!("a worker has died")),
     };
-
-    // Wait for a wake-up or the next queued deadline, whichever comes first; then pump.
+    // Wake-ups by the heartbeat (no event) that found frames or finished jobs waiting: the
+    // notifications iceoryx2 did not deliver.
+    let mut missed_wakeups: u64 = 0;
+    let mut departed_checked = Instant::now();
     let mut failed: Option<anyhow::Error> = None;
+    let mut busy = false;
     let outcome = loop {
-        let timeout = queue
-            .next_deadline()
-            .map_or(IDLE_WAIT, |d| d.saturating_duration_since(Instant::now()))
-            .min(IDLE_WAIT);
+        let timeout = if busy {
+            Duration::ZERO
+        } else {
+            dispatcher
+                .next_deadline()
+                .map_or(HEARTBEAT, |d| d.saturating_duration_since(Instant::now()))
+                .min(HEARTBEAT)
+        };
+        let mut evented = false;
         let result = waitset.wait_and_process_once_with_timeout(
             |id| {
-                if id.has_event_from(&guard) {
-                    // Consume the notifications; the pump below serves everything there is.
-                    let _ = listener.try_wait(|_| {});
-                }
+                evented |= id.has_event_from(&guard);
                 CallbackProgression::Continue
             },
             timeout,
@@ -365,9 +303,43 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
             Ok(_) => {}
             Err(_) => break result,
         }
-        if let Err(e) = pump(&mut in_flight, &mut free, &mut queue) {
-            failed = Some(e);
+        let mut first = true;
+        let mut idle = true;
+        busy = false;
+        for round in 0..PUMPS_PER_WAKE {
+            // Consume the notifications first (and move a lost wake-up's NOTIFIED state back
+            // to IDLE): one sent after this wakes the next wait, so work this pump misses does
+            // not wait for the heartbeat.
+            let _ = listener.try_wait(|_| {});
+            let pumped = match dispatcher.pump(&server, finished, &job_txs) {
+                Ok(p) => p,
+                Err(e) => {
+                    failed = Some(e);
+                    break;
+                }
+            };
+            if pumped.answered > 0 {
+                let _ = notifier.notify();
+            }
+            if first && !evented && pumped.received + pumped.finished > 0 {
+                missed_wakeups += 1;
+            }
+            first = false;
+            if !pumped.any() {
+                break;
+            }
+            idle = false;
+            // Still work after the last round: look again at once, after the WaitSet has had
+            // its say (SIGTERM).
+            busy = round + 1 == PUMPS_PER_WAKE;
+        }
+        if failed.is_some() {
             break Ok(WaitSetRunResult::StopRequest);
+        }
+        if idle && departed_checked.elapsed() >= DEPARTED_CHECK {
+            departed_checked = Instant::now();
+            let listed = listed_clients(&rpc);
+            dispatcher.forget_departed(|c| listed.contains(&Some(c)));
         }
     };
     if let Some(e) = failed {
@@ -375,34 +347,63 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
     }
     let outcome = outcome.map_err(|e| anyhow!("waitset failed: {e:?}"))?;
     let allocations = super::alloc_count::allocations() - allocations_at_start;
+    let held = dispatcher.held();
+    let queued = dispatcher.drop_queued();
     eprintln!(
         "serve: stopping ({outcome:?}); finishing jobs in progress, {} queued requests are \
-         not answered",
-        queue.len()
+         not answered ({held} of them held for dropped clients)",
+        queued
     );
-    // Queued requests are dropped unanswered (their clients see them lost, as on a crash);
-    // what the workers hold is finished and answered.
-    queue.drain(drop);
+    // What the workers hold is finished and answered.
     let deadline = Instant::now() + Duration::from_secs(10);
-    while in_flight.iter().any(Option::is_some) && Instant::now() < deadline {
+    while dispatcher.busy() > 0 && Instant::now() < deadline {
         let _ = listener.timed_wait(|_| {}, Duration::from_millis(50));
         while let Ok(job) = done_rx.try_recv() {
-            if let Some(active) = in_flight.get_mut(job.worker).and_then(Option::take) {
-                send_response(&active, &job);
-                answered += 1;
-                let _ = notifier.notify();
-            }
+            dispatcher.finish(job);
+            let _ = notifier.notify();
         }
     }
     drop(job_txs);
     for h in handles {
         let _ = h.join();
     }
+    let c = &dispatcher.counters;
     eprintln!(
-        "serve: answered {answered} requests ({expired} expired in the queue); heap allocations in the process after start-up: \
-         {allocations} (iceoryx2 and WaitSet on the dispatcher; the workers make none)"
+        "serve: received {} frames ({} bad), gave {} turns, answered {} ({} expired in the queue), \
+         dropped {} unsolved whose clients no longer waited; dropped {} client(s) for bad frames \
+         ({} frames held unanswered), {} client(s) left with requests queued; {} wake-up(s) \
+         came from the heartbeat, not from a notification; {} receive error(s)",
+        c.received,
+        c.bad,
+        c.turns,
+        c.answered,
+        c.expired,
+        c.abandoned,
+        c.clients_dropped,
+        c.ignored,
+        c.clients_departed,
+        missed_wakeups,
+        c.receive_errors
+    );
+    eprintln!(
+        "serve: heap allocations in the process after start-up: {allocations} (iceoryx2 and \
+         WaitSet on the dispatcher; the workers make none)"
     );
     Ok(())
+}
+
+/// The ids of the clients iceoryx2 lists for the service (at most `MAX_CLIENTS`).
+fn listed_clients(rpc: &Rpc) -> [Option<UniqueClientId>; MAX_CLIENTS] {
+    let mut ids = [None; MAX_CLIENTS];
+    let mut n = 0;
+    rpc.dynamic_config().list_clients(|details| {
+        if let Some(slot) = ids.get_mut(n) {
+            *slot = Some(details.client_id);
+        }
+        n += 1;
+        CallbackProgression::Continue
+    });
+    ids
 }
 
 /// A worker's own node and its notifier on `to-service`.
@@ -424,53 +425,4 @@ fn worker_notifier(
         .create()
         .map_err(|e| anyhow!("worker {index} cannot create notifier: {e:?}"))?;
     Ok((node, notifier))
-}
-
-/// Send a job's response. A failure (a feeder that went away, a full response pool) loses this
-/// one response, which the feeder reports as lost; it must not stop the service.
-fn send_response(active: &Active, job: &Job) {
-    send_bytes(active, job.response.get(..job.response_len).unwrap_or(&[]));
-}
-
-fn send_bytes(active: &Active, bytes: &[u8]) {
-    match active.loan_slice_uninit(bytes.len()) {
-        Ok(response) => {
-            if let Err(e) = response.write_from_slice(bytes).send() {
-                eprintln!("serve: cannot send a response: {e:?}");
-            }
-        }
-        Err(e) => eprintln!("serve: cannot loan a response: {e:?}"),
-    }
-}
-
-/// Answer a request that waited in the queue past its deadline, without solving it.
-fn expired_answer(q: &super::schedule::Queued<Active>, now: Instant) {
-    let seq = reconfig_core::wire::peek_request_seq(q.item.payload()).unwrap_or(0);
-    let micros = |d: Duration| u64::try_from(d.as_micros()).unwrap_or(u64::MAX);
-    let expiry = Expiry {
-        queued_us: micros(now.saturating_duration_since(q.received)),
-        deadline_us: micros(q.deadline.saturating_duration_since(q.received)),
-    };
-    let mut buf = [0u8; 256];
-    let n = reconfig_core::wire::encode_response(seq, 0, &OutcomeRef::Expired(expiry), &mut buf)
-        .unwrap_or(0);
-    send_bytes(&q.item, buf.get(..n).unwrap_or(&[]));
-}
-
-/// Answer a request longer than the largest frame without copying it to a worker.
-fn oversized_answer(active: &Active, len: usize) {
-    let seq = reconfig_core::wire::peek_request_seq(active.payload()).unwrap_or(0);
-    let err = reconfig_core::wire::FrameError::Oversized {
-        len: u32::try_from(len).unwrap_or(u32::MAX),
-        max: REQUEST_MAX_BYTES as u32,
-    };
-    let mut buf = [0u8; 256];
-    let n = reconfig_core::wire::encode_response(
-        seq,
-        0,
-        &reconfig_core::wire::OutcomeRef::BadRequest(err),
-        &mut buf,
-    )
-    .unwrap_or(0);
-    send_bytes(active, buf.get(..n).unwrap_or(&[]));
 }

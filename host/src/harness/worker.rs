@@ -3,8 +3,7 @@
 //! test `harness_alloc`).
 
 use reconfig_core::limits::Limits;
-use reconfig_core::wire::{self, Outcome, OutcomeRef, Request};
-use reconfig_core::{geo_tour, impulsive, leo_tour, pseudospectral};
+use reconfig_core::wire::{self, AllPlanners, Outcome, OutcomeRef};
 use std::time::Instant;
 
 /// Stack size for threads that own a [`Worker`]: workspaces are boxed, but building them goes
@@ -13,16 +12,10 @@ pub const WORKER_STACK_BYTES: usize = 32 * 1024 * 1024;
 
 /// A worker's workspaces and output buffers, each built once.
 pub struct Worker {
-    ps_workspace: Box<pseudospectral::Workspace>,
-    ps_solution: Box<pseudospectral::Solution>,
-    imp_workspace: Box<impulsive::Workspace>,
-    imp_solution: Box<impulsive::Solution>,
+    /// Every planner's workspace and solution (the request path's buffers).
+    buffers: Box<AllPlanners>,
     /// The service's limits: a request outside them is answered `LimitExceeded` unsolved.
     pub limits: Limits,
-    geo_workspace: Box<geo_tour::Workspace>,
-    geo_solution: Box<geo_tour::Solution>,
-    /// Test hook: sleep this long per request (a stand-in for a long solve in fault tests).
-    pub delay: std::time::Duration,
 }
 
 impl Default for Worker {
@@ -35,136 +28,24 @@ impl Worker {
     /// Build the workspaces (the only allocations a worker makes).
     pub fn new() -> Self {
         Self {
-            ps_workspace: Box::new(pseudospectral::Workspace::new()),
-            ps_solution: Box::new(pseudospectral::Solution::new()),
-            imp_workspace: Box::new(impulsive::Workspace::new()),
-            imp_solution: Box::new(impulsive::Solution::new()),
+            buffers: Box::new(AllPlanners::new()),
             limits: Limits::default(),
-            geo_workspace: Box::new(geo_tour::Workspace::new()),
-            geo_solution: Box::new(geo_tour::Solution::new()),
-            delay: std::time::Duration::ZERO,
         }
     }
 
     /// Answer one request frame: writes the response frame into `out` (at least
-    /// [`wire::RESPONSE_MAX_BYTES`] long) and returns its length.
+    /// [`wire::RESPONSE_MAX_BYTES`] long) and returns its length. The request goes through the
+    /// core's one request path ([`wire::answer`]): the limits check, then the planner.
     pub fn handle(&mut self, request: &[u8], out: &mut [u8]) -> usize {
         let seq = wire::peek_request_seq(request).unwrap_or(0);
         let frame = match wire::decode_request(request) {
             Ok(frame) => frame,
             Err(e) => return encode(seq, 0, &OutcomeRef::BadRequest(e), out),
         };
-        if !self.delay.is_zero() {
-            std::thread::sleep(self.delay);
-        }
         let start = Instant::now();
-        // Before any solve: a request outside the limits is refused, never clamped.
-        if let Err(violation) = self.limits.check(&frame.request) {
-            let ns = elapsed_ns(start);
-            return encode(frame.seq, ns, &OutcomeRef::LimitExceeded(violation), out);
-        }
-        match &frame.request {
-            Request::Pseudospectral { problem, settings } => {
-                // A fresh output buffer per solve: a rejected request leaves `out` untouched,
-                // and the answer must not depend on the previous request.
-                *self.ps_solution = pseudospectral::Solution::new();
-                let result = pseudospectral::solve(
-                    problem,
-                    settings,
-                    &mut self.ps_workspace,
-                    &mut self.ps_solution,
-                );
-                let ns = elapsed_ns(start);
-                match result {
-                    Ok(()) => encode(
-                        frame.seq,
-                        ns,
-                        &OutcomeRef::Pseudospectral(&self.ps_solution),
-                        out,
-                    ),
-                    Err(e) => encode(frame.seq, ns, &OutcomeRef::PseudospectralRejected(e), out),
-                }
-            }
-            Request::Impulsive { problem, settings } => {
-                *self.imp_solution = impulsive::Solution::new();
-                let result = impulsive::solve(
-                    problem,
-                    settings,
-                    &mut self.imp_workspace,
-                    &mut self.imp_solution,
-                );
-                let ns = elapsed_ns(start);
-                match result {
-                    Ok(()) => encode(
-                        frame.seq,
-                        ns,
-                        &OutcomeRef::Impulsive(&self.imp_solution),
-                        out,
-                    ),
-                    Err(e) => encode(frame.seq, ns, &OutcomeRef::ImpulsiveRejected(e), out),
-                }
-            }
-            Request::ImpulsiveForm { problem, settings } => {
-                // Converted here by the core's `impulsive::forms`, the one implementation.
-                *self.imp_solution = impulsive::Solution::new();
-                let result = impulsive::solve_form(
-                    problem,
-                    settings,
-                    &mut self.imp_workspace,
-                    &mut self.imp_solution,
-                );
-                let ns = elapsed_ns(start);
-                match result {
-                    Ok(end_state) => encode(
-                        frame.seq,
-                        ns,
-                        &OutcomeRef::ImpulsiveForm {
-                            solution: &self.imp_solution,
-                            end_state,
-                        },
-                        out,
-                    ),
-                    Err(e) => encode(frame.seq, ns, &OutcomeRef::ImpulsiveRejected(e), out),
-                }
-            }
-            Request::GeoTour { problem, settings } => {
-                *self.geo_solution = geo_tour::Solution::new();
-                let result = geo_tour::solve(
-                    problem,
-                    settings,
-                    &mut self.geo_workspace,
-                    &mut self.geo_solution,
-                );
-                let ns = elapsed_ns(start);
-                match result {
-                    Ok(()) => encode(frame.seq, ns, &OutcomeRef::GeoTour(&self.geo_solution), out),
-                    Err(e) => encode(frame.seq, ns, &OutcomeRef::GeoTourRejected(e), out),
-                }
-            }
-            Request::LeoArc { problem, settings } => {
-                // No workspace: the arc planner's state is on the stack (fixed size).
-                let result = leo_tour::solve_arc(problem, settings);
-                let ns = elapsed_ns(start);
-                match result {
-                    Ok(sol) => encode(frame.seq, ns, &OutcomeRef::LeoArc(&sol), out),
-                    Err(e) => encode(frame.seq, ns, &OutcomeRef::LeoArcRejected(e), out),
-                }
-            }
-            Request::LeoSequence {
-                clients,
-                impulses,
-                settings,
-                arc_settings,
-            } => {
-                let result =
-                    leo_tour::tour_order::choose_order(clients, *impulses, settings, arc_settings);
-                let ns = elapsed_ns(start);
-                match result {
-                    Ok(q) => encode(frame.seq, ns, &OutcomeRef::LeoSequence(&q), out),
-                    Err(e) => encode(frame.seq, ns, &OutcomeRef::LeoSequenceRejected(e), out),
-                }
-            }
-        }
+        let outcome = wire::answer(&frame.request, &self.limits, &mut *self.buffers);
+        let ns = elapsed_ns(start);
+        encode(frame.seq, ns, &outcome, out)
     }
 }
 
@@ -188,8 +69,14 @@ pub fn local_outcome(worker: &mut Worker, request: &[u8]) -> Vec<u8> {
     }
 }
 
-/// A short human summary of an outcome: (status, cost or dv, min separation, iterations).
+/// A short human summary of an outcome: (status, cost or dv, min separation, iterations). The
+/// outcomes of the planners shown here have their figures; a refusal, a rejection or a bad
+/// frame says what went wrong; any other outcome shows as it is.
 pub fn summarize(outcome: &Outcome) -> (String, String, String, String) {
+    let dash = || "-".to_owned();
+    let figures =
+        |status: String, cost: String, iterations: String| (status, cost, dash(), iterations);
+    let dv = |mps: f64| format!("dv={mps:.4} m/s");
     match outcome {
         Outcome::Pseudospectral(s) => (
             format!("{:?}", s.info.status),
@@ -202,46 +89,25 @@ pub fn summarize(outcome: &Outcome) -> (String, String, String, String) {
             ),
             format!("{}", s.info.sqp_iterations),
         ),
-        Outcome::Impulsive(s) => (
+        Outcome::Impulsive(s) | Outcome::ImpulsiveForm { solution: s, .. } => figures(
             format!("{:?}", s.info.status),
-            format!("dv={:.4} m/s", s.total_dv_mps),
-            "-".into(),
+            dv(s.total_dv_mps),
             format!("{}", s.info.iterations),
         ),
-        Outcome::ImpulsiveForm { solution: s, .. } => (
+        Outcome::GeoTour(s) => figures(
             format!("{:?}", s.info.status),
-            format!("dv={:.4} m/s", s.total_dv_mps),
-            "-".into(),
-            format!("{}", s.info.iterations),
-        ),
-        Outcome::PseudospectralRejected(e) => {
-            (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
-        }
-        Outcome::ImpulsiveRejected(e) => {
-            (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
-        }
-        Outcome::GeoTour(s) => (
-            format!("{:?}", s.info.status),
-            format!("dv={:.4} m/s", s.total_dv_mps),
-            "-".into(),
+            dv(s.total_dv_mps),
             format!("{}", s.info.price_iterations),
         ),
-        Outcome::GeoTourRejected(e) => {
-            (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
-        }
-        Outcome::LeoArc(s) => (
-            format!("{:?}", s.status),
-            format!("dv={:.4} m/s", s.total_dv_mps),
-            "-".into(),
-            format!("{}", s.evaluations),
+        Outcome::LeoArc(s) => figures(
+            format!("{:?}", s.info.status),
+            dv(s.total_dv_mps),
+            format!("{}", s.info.evaluations),
         ),
-        Outcome::LeoArcRejected(e) => {
-            (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
-        }
-        Outcome::LeoSequence(q) => (
+        Outcome::LeoSequence(q) => figures(
             format!(
                 "{:?} {}",
-                q.status,
+                q.info.status,
                 q.order
                     .iter()
                     .take(usize::from(q.len))
@@ -249,34 +115,24 @@ pub fn summarize(outcome: &Outcome) -> (String, String, String, String) {
                     .collect::<Vec<_>>()
                     .join(">")
             ),
-            format!("dv={:.4} m/s", q.total_dv_mps),
-            "-".into(),
-            format!("{}", q.arcs_planned),
+            q.total_dv_mps.map_or("no order".into(), dv),
+            format!("{}", q.info.arcs_planned),
         ),
-        Outcome::LeoSequenceRejected(e) => {
-            (format!("rejected: {e}"), "-".into(), "-".into(), "-".into())
-        }
-        Outcome::BadRequest(e) => (
-            format!("bad request: {e}"),
-            "-".into(),
-            "-".into(),
-            "-".into(),
-        ),
-        Outcome::LimitExceeded(v) => (
-            format!("limit exceeded: {v}"),
-            "-".into(),
-            "-".into(),
-            "-".into(),
-        ),
-        Outcome::Expired(x) => (
+        Outcome::BadRequest(e) => figures(format!("bad request: {e}"), dash(), dash()),
+        Outcome::LimitExceeded(v) => figures(format!("limit exceeded: {v}"), dash(), dash()),
+        Outcome::Unsupported(p) => figures(format!("unsupported planner {p:?}"), dash(), dash()),
+        Outcome::Expired(x) => figures(
             format!(
                 "expired: queued {:.1} ms, deadline {:.1} ms",
                 x.queued_us as f64 / 1e3,
                 x.deadline_us as f64 / 1e3
             ),
-            "-".into(),
-            "-".into(),
-            "-".into(),
+            dash(),
+            dash(),
         ),
+        other => match other.as_ref().rejection() {
+            Some(e) => figures(format!("rejected: {e}"), dash(), dash()),
+            None => figures(format!("{other:?}"), dash(), dash()),
+        },
     }
 }

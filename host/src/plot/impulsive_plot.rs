@@ -3,7 +3,7 @@
 //! initial and the target formation; the three components over time. Every position comes
 //! from the core (`impulsive::relative_position_rtn_km`, `impulsive::formation_position_rtn_km`).
 
-use super::{color, range, GOLD};
+use super::{arc_color, color, range, GOLD};
 use anyhow::{anyhow, Result};
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -12,7 +12,8 @@ use std::path::Path;
 
 /// The chief's Keplerian period, s.
 fn chief_period_s(problem: &impulsive::Problem) -> f64 {
-    2.0 * std::f64::consts::PI * (problem.chief.sma_km.powi(3) / impulsive::EARTH_MU_KM3_S2).sqrt()
+    2.0 * std::f64::consts::PI
+        * (problem.chief.sma_km.powi(3) / reconfig_core::astro::EARTH_MU_KM3_S2).sqrt()
 }
 
 /// One orbit of the formation with relative elements `rel` at `t0_s` (both spacecraft then
@@ -113,17 +114,6 @@ pub fn impulsive_svg(
         .collect::<Result<_>>()?;
     // Coast arc of each sample: the number of impulses at or before it.
     let arc = |t: f64| imps.iter().filter(|i| i.time_s <= t).count();
-    // One colour per coast arc (at most MAX_IMPULSES + 1 = 7), none of the formations' two.
-    const ARC_COLORS: [RGBColor; 7] = [
-        RGBColor(44, 160, 44),
-        RGBColor(214, 39, 40),
-        RGBColor(148, 103, 189),
-        RGBColor(140, 86, 75),
-        RGBColor(227, 119, 194),
-        RGBColor(23, 190, 207),
-        RGBColor(188, 189, 34),
-    ];
-    let arc_color = |k: usize| ARC_COLORS[k % ARC_COLORS.len()];
     let dv_norm = |i: &impulsive::Impulse| {
         let d = i.dv_rtn_mps;
         (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
@@ -223,26 +213,21 @@ pub fn impulsive_svg(
         }
         // The formations on top, thin and dashed: the trajectory should run along them.
         let faint = |c: RGBColor| c.mix(0.9).stroke_width(1);
-        chart
-            .draw_series(DashedLineSeries::new(
-                initial.iter().map(|p| (p[a], p[b])),
-                6,
-                4,
-                faint(color(0)),
-            ))
-            .map_err(|e| err(&e))?
-            .label("initial formation (t = 0)")
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], faint(color(0))));
-        chart
-            .draw_series(DashedLineSeries::new(
-                target.iter().map(|p| (p[a], p[b])),
-                6,
-                4,
-                faint(color(1)),
-            ))
-            .map_err(|e| err(&e))?
-            .label("target formation (at the last impulse)")
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], faint(color(1))));
+        for (k, formation, label) in [
+            (0, &initial, "initial formation (t = 0)"),
+            (1, &target, "target formation (at the last impulse)"),
+        ] {
+            chart
+                .draw_series(DashedLineSeries::new(
+                    formation.iter().map(|p| (p[a], p[b])),
+                    6,
+                    4,
+                    faint(color(k)),
+                ))
+                .map_err(|e| err(&e))?
+                .label(label)
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], faint(color(k))));
+        }
         // Impulses: the dv arrows (this panel's two components), labels placed where they
         // hide no marker, arrow or other label, then arrows and markers on top.
         let arrows: Vec<Option<[(f64, f64); 4]>> = imps

@@ -8,6 +8,7 @@
 //!   drawn, over the initial and the target formation; the three components over time. The
 //!   orbital model (J2 drift, geometry) is the core's.
 
+use plotters::coord::types::RangedCoordf64 as RangedF64;
 use plotters::prelude::*;
 
 pub mod impulsive_plot;
@@ -21,7 +22,9 @@ pub use pseudospectral_plot::{
 /// Highlight colour (impulses, test points).
 pub(crate) const GOLD: RGBColor = RGBColor(255, 200, 0);
 
-const COLORS: [RGBColor; 8] = [
+/// The palette: [`color`] cycles through its first 8, [`arc_color`] through the 7 after the
+/// first two.
+const PALETTE: [RGBColor; 9] = [
     RGBColor(31, 119, 180),
     RGBColor(255, 127, 14),
     RGBColor(44, 160, 44),
@@ -30,11 +33,52 @@ const COLORS: [RGBColor; 8] = [
     RGBColor(140, 86, 75),
     RGBColor(227, 119, 194),
     RGBColor(23, 190, 207),
+    RGBColor(188, 189, 34),
 ];
 
-/// The i-th colour of the palette (cycling).
+/// The i-th colour of the palette (cycling over 8).
 pub(crate) fn color(i: usize) -> RGBColor {
-    COLORS[i % COLORS.len()]
+    PALETTE[i % 8]
+}
+
+/// The colour of planner B's k-th coast arc (cycling over 7): none of the formations' two
+/// (`color(0)`, `color(1)`), at most `MAX_IMPULSES + 1 = 7` arcs.
+pub(crate) fn arc_color(k: usize) -> RGBColor {
+    PALETTE[2 + k % 7]
+}
+
+/// A chart on `area` over `x` × `y`, its mesh drawn with the axes' descriptions: the tours'
+/// plots' one style (`(margin, x label area, y label area)` in pixels, an optional caption and
+/// its font size).
+///
+/// # Errors
+/// A drawing error.
+pub(crate) fn chart<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, plotters::coord::Shift>,
+    caption: Option<(&str, u32)>,
+    (margin, x_area, y_area): (u32, u32, u32),
+    (x, y): (std::ops::Range<f64>, std::ops::Range<f64>),
+    (x_desc, y_desc): (&str, &str),
+) -> anyhow::Result<ChartContext<'a, DB, Cartesian2d<RangedF64, RangedF64>>>
+where
+    DB::ErrorType: 'static,
+{
+    let mut builder = ChartBuilder::on(area);
+    if let Some((text, size)) = caption {
+        builder.caption(text, ("sans-serif", size));
+    }
+    let mut c = builder
+        .margin(margin)
+        .x_label_area_size(x_area)
+        .y_label_area_size(y_area)
+        .build_cartesian_2d(x, y)
+        .map_err(|e| anyhow::anyhow!("{e}"))?;
+    c.configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .draw()
+        .map_err(|e| anyhow::anyhow!("{e}"))?;
+    Ok(c)
 }
 
 /// The finite values' range widened by `pad` of its span on each side (-1..1 when empty).

@@ -74,28 +74,14 @@ fn sample(s: &pseudospectral::Solution, samples: usize) -> Sampled {
         let axes_u: Vec<Vec<f64>> = (0..3)
             .map(|a| series(&|h| s.controls_fu[i][h][a]))
             .collect();
-        pos.push(
+        // The three axes' interpolants at every sample time.
+        let sampled = |axes: &[Vec<f64>]| -> Vec<[f64; 3]> {
             t.iter()
-                .map(|&x| {
-                    [
-                        interp.eval(&axes_p[0], x),
-                        interp.eval(&axes_p[1], x),
-                        interp.eval(&axes_p[2], x),
-                    ]
-                })
-                .collect(),
-        );
-        ctrl.push(
-            t.iter()
-                .map(|&x| {
-                    [
-                        interp.eval(&axes_u[0], x),
-                        interp.eval(&axes_u[1], x),
-                        interp.eval(&axes_u[2], x),
-                    ]
-                })
-                .collect(),
-        );
+                .map(|&x| std::array::from_fn(|a| interp.eval(&axes[a], x)))
+                .collect()
+        };
+        pos.push(sampled(&axes_p));
+        ctrl.push(sampled(&axes_u));
     }
     Sampled { t, pos, ctrl }
 }

@@ -136,21 +136,18 @@ mod tests {
         let r = [7000.0, 0.0, 0.0];
         let v = [0.0, 7.5, 0.0];
         let base = m.acceleration(0.0, &r, &v);
+        // The change of the acceleration with the third body on, km/s^2.
+        let with = |m: &ForceModel| {
+            let a = m.acceleration(0.0, &r, &v);
+            (0..3).map(|k| (a[k] - base[k]).powi(2)).sum::<f64>().sqrt()
+        };
         m.moon = true;
-        let with_moon = m.acceleration(0.0, &r, &v);
-        let d: f64 = (0..3)
-            .map(|k| (with_moon[k] - base[k]).powi(2))
-            .sum::<f64>()
-            .sqrt();
+        let d = with(&m);
         // ~ GM_moon r / d^3 ... 2 GM_moon r / d^3 = 0.6e-9 .. 1.2e-9 km/s^2 (~1e-6 m/s^2).
         assert!(d > 2e-10 && d < 2e-9, "moon {d}");
         m.moon = false;
         m.sun = true;
-        let with_sun = m.acceleration(0.0, &r, &v);
-        let d: f64 = (0..3)
-            .map(|k| (with_sun[k] - base[k]).powi(2))
-            .sum::<f64>()
-            .sqrt();
+        let d = with(&m);
         // GM_sun r / au^3 = 2.8e-10 .. twice that.
         assert!(d > 1e-10 && d < 8e-10, "sun {d}");
     }

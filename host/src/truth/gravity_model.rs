@@ -162,19 +162,16 @@ mod tests {
     #[test]
     fn a_missing_coefficient_or_header_value_is_named() {
         let text = GravityModel::jgm3().map(|_| JGM3_DEG8_GFC).unwrap();
-        let without: String = text
-            .lines()
-            .filter(|l| !l.starts_with("gfc    5    3"))
-            .collect::<Vec<_>>()
-            .join("\n");
-        let err = GravityModel::parse_gfc(&without).unwrap_err().to_string();
+        // The model's error without the lines that start with `prefix`.
+        let without = |prefix: &str| {
+            let kept: Vec<&str> = text.lines().filter(|l| !l.starts_with(prefix)).collect();
+            GravityModel::parse_gfc(&kept.join("\n"))
+                .unwrap_err()
+                .to_string()
+        };
+        let err = without("gfc    5    3");
         assert!(err.contains("degree 5 and order 3"), "{err}");
-        let no_radius: String = text
-            .lines()
-            .filter(|l| !l.starts_with("radius"))
-            .collect::<Vec<_>>()
-            .join("\n");
-        let err = GravityModel::parse_gfc(&no_radius).unwrap_err().to_string();
+        let err = without("radius");
         assert!(err.contains("radius"), "{err}");
     }
 }

@@ -26,10 +26,10 @@ use super::integrator::Tolerance;
 use super::propagate::{propagate, Burn, EciState};
 use crate::fixture::impulsive::ImpulsiveFixture;
 use anyhow::{anyhow, bail, Result};
+use reconfig_core::astro::{EARTH_J2, EARTH_MU_KM3_S2, EARTH_RADIUS_KM};
 use reconfig_core::impulsive::{
     deputy_of, formation_position_rtn_km, osculating_state_of_mean, relative_position_rtn_km,
-    solve, CartesianState, MeanElements, Solution, Workspace, EARTH_J2, EARTH_MU_KM3_S2,
-    EARTH_RADIUS_KM,
+    solve, CartesianState, MeanElements, Solution, Workspace,
 };
 use std::time::Instant;
 
@@ -102,8 +102,9 @@ pub struct PlanCheck {
     pub total_dv_mps: f64,
     /// The last impulse, s from the epoch (the end of the check).
     pub final_time_s: f64,
-    /// The plan's own terminal position error in its model, m.
-    pub planner_terminal_error_m: f64,
+    /// The plan's own terminal position error in its model, m (absent when its nonlinear check
+    /// could not be flown).
+    pub planner_terminal_error_m: Option<f64>,
     /// The deputy's end position in the full model minus the J2-only one, norm, m: what the
     /// forces beyond J2 move it by (absolute, not relative to the chief).
     pub deputy_full_minus_j2_only_m: f64,
@@ -257,7 +258,7 @@ pub fn check(fixture: &ImpulsiveFixture, settings: &TruthSettings) -> Result<Pla
         status: format!("{:?}", solution.info.status),
         total_dv_mps: solution.total_dv_mps,
         final_time_s: solution.final_time_s,
-        planner_terminal_error_m: solution.terminal_position_error_m,
+        planner_terminal_error_m: solution.terminal_error.map(|t| t.position_m),
         deputy_full_minus_j2_only_m,
         full: full.miss,
         j2_only: j2_only.miss,

@@ -24,12 +24,14 @@ pub struct EciState {
 }
 
 impl EciState {
-    fn to_array(self) -> State6 {
+    /// `[x, y, z, vx, vy, vz]`, km and km/s.
+    pub fn to_array(self) -> State6 {
         let (p, v) = (self.pos_km, self.vel_km_s);
         [p[0], p[1], p[2], v[0], v[1], v[2]]
     }
 
-    fn from_array(y: &State6) -> Self {
+    /// From `[x, y, z, vx, vy, vz]`, km and km/s.
+    pub fn from_array(y: &State6) -> Self {
         Self {
             pos_km: [y[0], y[1], y[2]],
             vel_km_s: [y[3], y[4], y[5]],

@@ -158,9 +158,9 @@ fn a_burn_is_applied_in_the_local_frame() {
 fn j2_alone_drifts_the_mean_elements_at_the_first_order_secular_rates() {
     let mut g = GravityModel::jgm3().unwrap();
     // The core's constants, so that its theory and the truth model share them.
-    g.gm_km3_s2 = reconfig_core::impulsive::EARTH_MU_KM3_S2;
-    g.radius_km = reconfig_core::impulsive::EARTH_RADIUS_KM;
-    g.c[2][0] = -reconfig_core::impulsive::EARTH_J2;
+    g.gm_km3_s2 = reconfig_core::astro::EARTH_MU_KM3_S2;
+    g.radius_km = reconfig_core::astro::EARTH_RADIUS_KM;
+    g.c[2][0] = -reconfig_core::astro::EARTH_J2;
     let mut model = ForceModel::two_body(g, julian_date(2025, 1, 1, 0, 0, 0.0));
     model.terms = FieldTerms::J2;
     let el0 = leo();
@@ -172,9 +172,9 @@ fn j2_alone_drifts_the_mean_elements_at_the_first_order_secular_rates() {
     })
     .unwrap();
     // First-order secular rates (Kozai): the textbook form of what the core integrates.
-    let mu = reconfig_core::impulsive::EARTH_MU_KM3_S2;
-    let re = reconfig_core::impulsive::EARTH_RADIUS_KM;
-    let j2 = reconfig_core::impulsive::EARTH_J2;
+    let mu = reconfig_core::astro::EARTH_MU_KM3_S2;
+    let re = reconfig_core::astro::EARTH_RADIUS_KM;
+    let j2 = reconfig_core::astro::EARTH_J2;
     let (a, e, i) = (el0.sma_km, el0.ecc, el0.inc_rad);
     let n = (mu / a.powi(3)).sqrt();
     let p = a * (1.0 - e * e);
@@ -224,11 +224,11 @@ fn j2_alone_moves_a_formation_as_the_cores_drift_says() {
         deputy_of, formation_position_rtn_km, RelativeElements, Settings,
     };
     let mut g = GravityModel::jgm3().unwrap();
-    g.gm_km3_s2 = reconfig_core::impulsive::EARTH_MU_KM3_S2;
-    g.radius_km = reconfig_core::impulsive::EARTH_RADIUS_KM;
+    g.gm_km3_s2 = reconfig_core::astro::EARTH_MU_KM3_S2;
+    g.radius_km = reconfig_core::astro::EARTH_RADIUS_KM;
     g.c = [[0.0; super::gravity_model::ROWS]; super::gravity_model::ROWS];
     g.c[0][0] = 1.0;
-    g.c[2][0] = -reconfig_core::impulsive::EARTH_J2;
+    g.c[2][0] = -reconfig_core::astro::EARTH_J2;
     let mut model = ForceModel::two_body(g, julian_date(2025, 1, 1, 0, 0, 0.0));
     model.terms = FieldTerms::J2;
     let chief = leo();

@@ -206,3 +206,45 @@ pub fn stop_and_check_clean(mut service: Proc, inst: &Instance) {
     let left = leftovers(inst);
     assert!(left.is_empty(), "left behind: {left:?}");
 }
+
+/// A genuinely slow request and the limits that allow it, written for this test: planner B's
+/// impulse-point search (Wang 2018's published case, 3 impulses) over `samples` samples with a
+/// work budget large enough to finish (the built-in limits allow 400 samples). Its solve time
+/// grows with `samples` (`reconfig solve`, this 2-core VM under load: 10 000 in 0.71 s, 20 000 in
+/// 0.51 s, 60 000 in 1.90 s, 100 000 in 1.90 s).
+/// Returns (fixture, limits file); pass the limits file to both `serve` and `feed`.
+pub fn slow_search(test: &str, samples: u64) -> (PathBuf, PathBuf) {
+    let base = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../fixtures/over-limits/wang2018-search-3imp-2m-samples.toml");
+    let text = std::fs::read_to_string(&base).expect("read the search fixture");
+    let evaluations = samples + 1800;
+    let text = text
+        .replace(
+            "name = \"wang2018-search-3imp-2m-samples\"",
+            &format!("name = \"slow-search-{samples}\""),
+        )
+        .replace(
+            "search_samples = 2000000",
+            &format!("search_samples = {samples}"),
+        )
+        .replace(
+            "search_max_evaluations = 2020000",
+            &format!("search_max_evaluations = {evaluations}\nwork_budget = 100000000000"),
+        );
+    assert!(
+        text.contains(&format!("search_samples = {samples}")),
+        "{text}"
+    );
+    let fixture = temp(test, "slow-search.toml");
+    std::fs::write(&fixture, text).expect("write the slow fixture");
+    let limits = temp(test, "slow-limits.toml");
+    std::fs::write(
+        &limits,
+        format!(
+            "[impulsive]\nsearch_samples = {samples}\nsearch_max_evaluations = {evaluations}\n\
+             work_budget = 100000000000\n"
+        ),
+    )
+    .expect("write the limits");
+    (fixture, limits)
+}

@@ -5,9 +5,10 @@
 use std::fmt::Write as _;
 use std::sync::OnceLock;
 
+use reconfig_core::wire::Planner;
+
 use crate::disassembly::assert_no_fused_multiply_add;
-use crate::fixture_set::{self, Planner};
-use crate::host::{hex, host_result};
+use crate::host::{assert_bit_identical, fixtures_of};
 use crate::image::{
     build_and_run, build_image_in, instructions_or_skip, or_skip, run_firmware, FixtureReport, Run,
 };
@@ -94,47 +95,11 @@ fn results_are_bit_identical_to_the_host() {
     let Some(Runs { run, .. }) = or_skip("results_are_bit_identical_to_the_host", runs()) else {
         return;
     };
-    let fixtures = fixture_set::encode_all(&root().join("fixtures")).expect("fixtures load");
-    // The GEO tour runs in its own image (geo_results_are_bit_identical_to_the_host).
-    let fixtures: Vec<_> = fixtures
-        .into_iter()
-        .filter(|f| {
-            !matches!(
-                f.planner,
-                Planner::GeoTour | Planner::LeoArc | Planner::LeoOnboard
-            )
-        })
-        .collect();
-    let host_names: Vec<&str> = fixtures.iter().map(|f| f.name.as_str()).collect();
-    let m7_names: Vec<&str> = run.fixtures.iter().map(|f| f.name.as_str()).collect();
-    assert_eq!(
-        m7_names, host_names,
-        "the firmware ran a different fixture set than fixtures/ holds"
-    );
-    assert!(!fixtures.is_empty(), "no fixtures to compare");
-    let mut mismatches = Vec::new();
-    for (fixture, m7) in fixtures.iter().zip(&run.fixtures) {
-        assert_eq!(m7.planner, fixture.planner.key(), "{}", fixture.name);
-        let host = hex(&host_result(fixture.planner, &fixture.problem));
-        if host != m7.hex {
-            let first = host
-                .bytes()
-                .zip(m7.hex.bytes())
-                .position(|(a, b)| a != b)
-                .unwrap_or(host.len().min(m7.hex.len()));
-            mismatches.push(format!(
-                "{}: host {} bytes, M7 {} bytes, first difference at byte {}",
-                fixture.name,
-                host.len() / 2,
-                m7.hex.len() / 2,
-                first / 2
-            ));
-        }
-    }
-    assert!(
-        mismatches.is_empty(),
-        "results differ between the host and the emulated Cortex-M7:\n{}",
-        mismatches.join("\n")
+    // The GEO and LEO tours run in their own images (geo_ and leo_ tests).
+    assert_bit_identical(
+        run,
+        &fixtures_of(&[Planner::Pseudospectral, Planner::Impulsive]),
+        "default",
     );
 }
 
@@ -213,7 +178,7 @@ fn figures_are_within_budget() {
     let static_ram = run.binary["static_ram_bytes"];
     for (fixture, &count) in run.fixtures.iter().zip(instructions) {
         let recorded = recorded_fixtures.get(&fixture.name).copied();
-        let (default_instructions, work_budget) = if fixture.planner == Planner::Impulsive.key() {
+        let (default_instructions, work_budget) = if fixture.planner == Planner::Impulsive.name() {
             (
                 BUDGET_INSTRUCTIONS_IMPULSIVE,
                 reconfig_core::impulsive::Settings::default().work_budget,

@@ -6,7 +6,6 @@ use std::fmt::Write as _;
 use std::sync::OnceLock;
 
 use crate::disassembly::assert_no_fused_multiply_add;
-use crate::fixture_set::Planner;
 use crate::host::{assert_bit_identical, fixtures_of};
 use crate::image::{build_and_run, instructions_or_skip, or_skip, Run};
 use crate::prerequisites::{notice, root};
@@ -14,6 +13,7 @@ use crate::record::{
     assert_figures, assert_systick_agrees, read_record, record_entries, record_image_ram,
     tables_by, updating, BUDGET_RAM_BYTES, BUDGET_STACK_BYTES, FIGURES_FILE, RECORD_LOCK,
 };
+use reconfig_core::wire::Planner;
 
 /// The GEO image's binary.
 const BIN: &str = "reconfig-firmware-geo";

@@ -5,9 +5,9 @@
 //! `cargo firmware-a` / `firmware-b`) and the GEO tour's image (`cargo firmware-geo`, module
 //! [`geo_image`]). Each runs in `qemu-system-arm` with the instruction-counting plugin
 //! `tools/qemu-insn-plugin/` (built here with `gcc`):
-//! * `results_are_bit_identical_to_the_host` compares every fixture's postcard-encoded
-//!   `Result<Solution, PlanError>` byte for byte with the host build's, solved from the same
-//!   problem bytes the firmware baked in;
+//! * `results_are_bit_identical_to_the_host` compares every baked request's postcard-encoded
+//!   `wire::Outcome` byte for byte with the host build's answer (`wire::answer` under the same
+//!   image limits) to the same request bytes the firmware baked in;
 //! * `figures_are_within_budget` checks the instructions per solve, stack high-water, RAM and
 //!   section sizes against the budgets in `fixtures/golden/m7-figures.toml`.
 //!   Every measured figure must also be within 1 % of the record (drift check); accept a new
@@ -21,13 +21,15 @@
 //! `RECONFIG_REQUIRE_QEMU=1` (set by `.ci/run`) they fail instead.
 //!
 //! Modules: [`prerequisites`] (what the run needs, skip or fail), [`image`] (build, run and parse
-//! an image), [`host`] (the host's result of a fixture), [`record`] (the figures file, drift
+//! an image), [`host`] (the host's answer to a baked request), [`record`] (the figures file, drift
 //! and budget checks), [`disassembly`] (the fused multiply-add check), [`default_image`],
 //! [`geo_image`] and [`leo_image`] (the tests of each image; the LEO arc image's record is its
 //! own file, `fixtures/golden/m7-figures-leo.toml`).
 
 #[path = "../../../firmware/fixture_set.rs"]
 mod fixture_set;
+#[path = "../../../firmware/image_limits.rs"]
+mod image_limits;
 
 mod default_image;
 mod disassembly;

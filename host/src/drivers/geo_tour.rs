@@ -1,30 +1,35 @@
-//! `reconfig solve` for GEO-tour fixtures: a table per leg, or `--json`.
+//! The GEO tour's driver: the report of an answered GEO-tour fixture (a table per leg, or
+//! `--json`), and its plan as the plots draw it.
 
-use crate::cli::solve::{report_rejection, EXIT_NOT_USABLE, EXIT_USABLE};
+use super::answer::{answer, buffers, exit_code, no_plan, report_other, Answered};
 use crate::fixture::geo_tour::{GeoTourFixture, DAY_S};
-use anyhow::Result;
-use reconfig_core::geo_tour::{solve, Solution, SolveStatus, Workspace};
+use crate::fixture::Fixture;
+use anyhow::{bail, Result};
+use reconfig_core::geo_tour::{Solution, SolveStatus};
+use reconfig_core::limits::Limits;
+use reconfig_core::wire::OutcomeRef;
 use serde_json::json;
 use std::process::ExitCode;
-use std::time::Instant;
 
-/// Solve a GEO-tour fixture (with the mission time overridden when `mission_days` is given).
+/// The plan of a GEO-tour fixture (with the mission time overridden when `mission_days` is
+/// given), answered through the request path under the built-in limits.
 ///
 /// # Errors
-/// The core's `PlanError` as text when the request is refused.
-pub fn solve_fixture(
-    fixture: &GeoTourFixture,
-    mission_days: Option<f64>,
-) -> Result<(Box<Solution>, f64), reconfig_core::geo_tour::PlanError> {
-    let mut problem = fixture.problem.clone();
+/// The request refused or rejected (named).
+pub fn plan(fixture: &GeoTourFixture, mission_days: Option<f64>) -> Result<Box<Solution>> {
+    let mut fixture = fixture.clone();
     if let Some(d) = mission_days {
-        problem.mission_time_s = d * DAY_S;
+        fixture.problem.mission_time_s = d * DAY_S;
     }
-    let mut ws = Box::new(Workspace::new());
-    let mut out = Box::new(Solution::new());
-    let started = Instant::now();
-    solve(&problem, &fixture.settings, &mut ws, &mut out)?;
-    Ok((out, started.elapsed().as_secs_f64()))
+    let mut buffers = buffers();
+    let [r] = &Fixture::GeoTour(fixture).requests()?[..] else {
+        bail!("a GEO-tour fixture stands for one request");
+    };
+    let answered = answer(&r.request, &Limits::default(), &mut *buffers);
+    match answered.outcome {
+        OutcomeRef::GeoTour(s) => Ok(Box::new(s.clone())),
+        _ => Err(no_plan(&r.label, &answered)),
+    }
 }
 
 /// The plan as one JSON object.
@@ -75,6 +80,7 @@ pub fn to_json(name: &str, limit_s: f64, s: &Solution, solve_time_s: f64) -> ser
         "price_iterations": s.info.price_iterations,
         "gap_assignments": s.info.gap_assignments,
         "refined_legs": s.info.refined_legs,
+        "work_units": s.info.work_units,
         "legs": legs,
         "solve_time_s": solve_time_s,
     })
@@ -89,23 +95,29 @@ pub fn status_text(s: &SolveStatus) -> String {
             format!("RuleMethodInadmissible(leg {leg})")
         }
         SolveStatus::CheckFailed { leg } => format!("CheckFailed(leg {leg})"),
+        SolveStatus::BudgetExhausted { verified } => {
+            format!("BudgetExhausted(verified: {verified})")
+        }
         other => format!("{other:?}"),
     }
 }
 
-/// Solve and report. Exit code 0 when the plan is `Solved`, 1 otherwise.
-pub fn run(fixture: &GeoTourFixture, json: bool, mission_days: Option<f64>) -> Result<ExitCode> {
-    let limit_s = mission_days.map_or(fixture.problem.mission_time_s, |d| d * DAY_S);
-    let (s, solve_time_s) = match solve_fixture(fixture, mission_days) {
-        Ok(v) => v,
-        Err(err) => {
-            return Ok(report_rejection(&fixture.name, &err, json));
-        }
+/// Report a GEO-tour fixture's answer (its mission time is the limit the tour was planned
+/// for). Exit code 0 when the plan is `Solved`, 1 otherwise, 2 when the request was refused or
+/// rejected.
+///
+/// # Errors
+/// An answer of another planner, or JSON that does not print.
+pub fn report(fixture: &GeoTourFixture, answered: &Answered, json: bool) -> Result<ExitCode> {
+    let OutcomeRef::GeoTour(s) = answered.outcome else {
+        return report_other(&fixture.name, answered, json);
     };
+    let limit_s = fixture.problem.mission_time_s;
+    let solve_time_s = answered.time_s;
     if json {
         println!(
             "{}",
-            serde_json::to_string_pretty(&to_json(&fixture.name, limit_s, &s, solve_time_s))?
+            serde_json::to_string_pretty(&to_json(&fixture.name, limit_s, s, solve_time_s))?
         );
     } else {
         println!(
@@ -151,13 +163,17 @@ pub fn run(fixture: &GeoTourFixture, json: bool, mission_days: Option<f64>) -> R
             limit_s / DAY_S,
             s.max_burn_mps
         );
+        let fastest = s.info.fastest_tour_s.map_or_else(
+            || "none admissible".to_owned(),
+            |t| format!("{:.4} d", t / DAY_S),
+        );
         println!(
-            "time price {:.5} m/s per day; fastest tour {:.4} d; {} price steps, {} gap assignments, {} Lambert legs refined; solve time {:.6} s",
+            "time price {:.5} m/s per day; fastest tour {fastest}; {} price steps, {} gap assignments, {} Lambert legs refined; {} work units; solve time {:.6} s",
             s.info.price_mps_per_s * DAY_S,
-            s.info.fastest_tour_s / DAY_S,
             s.info.price_iterations,
             s.info.gap_assignments,
             s.info.refined_legs,
+            s.info.work_units,
             solve_time_s
         );
         if let Some(p) = fixture.published.total_dv_mps {
@@ -165,9 +181,5 @@ pub fn run(fixture: &GeoTourFixture, json: bool, mission_days: Option<f64>) -> R
         }
         println!("burns: RTN frame (radial, along-track, normal), epochs in --json");
     }
-    Ok(if s.info.status == SolveStatus::Solved {
-        ExitCode::from(EXIT_USABLE)
-    } else {
-        ExitCode::from(EXIT_NOT_USABLE)
-    })
+    Ok(exit_code(s.info.status.is_usable()))
 }

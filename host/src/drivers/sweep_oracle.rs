@@ -48,20 +48,13 @@ fn opt_f64(v: &serde_json::Value, key: &str) -> Option<f64> {
 /// # Errors
 /// The file cannot be read, or a line is not the oracle's JSON.
 pub fn load_golden(path: &Path) -> Result<BTreeMap<usize, OracleAnswer>> {
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
     let mut out = BTreeMap::new();
-    for (line_no, line) in text.lines().enumerate() {
-        if line.trim().is_empty() {
-            continue;
-        }
-        let v: serde_json::Value = serde_json::from_str(line)
-            .with_context(|| format!("{} line {}", path.display(), line_no + 1))?;
+    for (at, v) in json_lines::<serde_json::Value>(path)? {
         if v.get("header").is_some() {
             continue;
         }
         let Some(index) = v.get("index").and_then(serde_json::Value::as_u64) else {
-            bail!("{} line {}: no index", path.display(), line_no + 1);
+            bail!("{at}: no index");
         };
         let solved = v
             .get("solved")
@@ -99,6 +92,22 @@ pub fn load_golden(path: &Path) -> Result<BTreeMap<usize, OracleAnswer>> {
 /// # Errors
 /// The file cannot be read or a line is not a problem.
 pub fn load_problems(path: &Path) -> Result<Vec<(String, Problem)>> {
+    #[derive(serde::Deserialize)]
+    struct Item {
+        family: String,
+        problem: Problem,
+    }
+    Ok(json_lines::<Item>(path)?
+        .into_iter()
+        .map(|(_, item)| (item.family, item.problem))
+        .collect())
+}
+
+/// A JSON-lines file's non-empty lines, each read as `T`, with where it stands (`FILE line N`).
+///
+/// # Errors
+/// The file cannot be read, or a line is not a `T` (named by its place).
+fn json_lines<T: serde::de::DeserializeOwned>(path: &Path) -> Result<Vec<(String, T)>> {
     let text =
         std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
     let mut out = Vec::new();
@@ -106,14 +115,9 @@ pub fn load_problems(path: &Path) -> Result<Vec<(String, Problem)>> {
         if line.trim().is_empty() {
             continue;
         }
-        #[derive(serde::Deserialize)]
-        struct Item {
-            family: String,
-            problem: Problem,
-        }
-        let item: Item = serde_json::from_str(line)
-            .with_context(|| format!("{} line {}", path.display(), line_no + 1))?;
-        out.push((item.family, item.problem));
+        let at = format!("{} line {}", path.display(), line_no + 1);
+        let value = serde_json::from_str(line).with_context(|| at.clone())?;
+        out.push((at, value));
     }
     Ok(out)
 }

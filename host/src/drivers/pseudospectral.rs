@@ -1,11 +1,14 @@
-//! `reconfig solve` for planner-A fixtures: a readable report or one JSON object.
+//! Planner A's driver: the report of an answered planner-A fixture (readable, or one JSON
+//! object) for `reconfig solve`, and the timed solve with alternative starts the sweep uses (a
+//! study of the planner, not a request: alternative starts are not on the wire).
 
-use crate::cli::solve::{report_rejection, EXIT_NOT_USABLE, EXIT_USABLE};
+use super::answer::{exit_code, report_other, Answered};
 use crate::fixture::pseudospectral::PseudospectralFixture;
 use anyhow::{anyhow, Result};
 use reconfig_core::pseudospectral::{
     self, ActiveConstraint, Settings, Solution, UnmetConstraint, Workspace,
 };
+use reconfig_core::wire::OutcomeRef;
 use serde_json::json;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -18,17 +21,11 @@ pub struct Timed {
     pub solve_time_s: f64,
 }
 
-/// Solve a planner-A problem with default settings in a fresh boxed workspace, timed.
-///
-/// # Errors
-/// The core's `PlanError`, as a message.
-pub fn solve_timed(problem: &pseudospectral::Problem, settings: &Settings) -> Result<Timed> {
-    solve_or_reject(problem, settings).map_err(|e| anyhow!("the planner rejected the problem: {e}"))
-}
-
-/// [`solve_timed`] followed by `starts` alternative starts (0, 1 or 2;
-/// `pseudospectral::solve_with_alternative_starts`), the best answer kept; also returns which
-/// start it came from (0: the analytic guess). The time covers every solve.
+/// A planner-A solve in a fresh boxed workspace from the analytic guess, followed by `starts`
+/// alternative starts (0, 1 or 2; `pseudospectral::solve_with_alternative_starts`) when given,
+/// the best answer kept; also returns which start it came from (0: the analytic guess). The
+/// time covers every solve. The sweep's study of the planner (its work budget may be lifted
+/// past the limits), not a request of a front end.
 ///
 /// # Errors
 /// The core's `PlanError`, as a message.
@@ -37,63 +34,44 @@ pub fn solve_timed_with_starts(
     settings: &Settings,
     starts: Option<pseudospectral::AlternativeStarts>,
 ) -> Result<(Timed, u8)> {
-    let Some(starts) = starts else {
-        return solve_timed(problem, settings).map(|timed| (timed, 0));
-    };
     let mut workspace = Box::new(Workspace::new());
     let mut solution = Box::new(Solution::new());
-    let mut spare = Box::new(Solution::new());
     let start = Instant::now();
-    let outcome = pseudospectral::solve_with_alternative_starts(
-        problem,
-        settings,
-        starts,
-        &mut workspace,
-        &mut spare,
-        &mut solution,
-    )
+    let kept = match starts {
+        None => pseudospectral::solve(problem, settings, &mut workspace, &mut solution).map(|()| 0),
+        Some(starts) => {
+            let mut spare = Box::new(Solution::new());
+            pseudospectral::solve_with_alternative_starts(
+                problem,
+                settings,
+                starts,
+                &mut workspace,
+                &mut spare,
+                &mut solution,
+            )
+            .map(|outcome| outcome.kept)
+        }
+    }
     .map_err(|e| anyhow!("the planner rejected the problem: {e}"))?;
     Ok((
         Timed {
             solution,
             solve_time_s: start.elapsed().as_secs_f64(),
         },
-        outcome.kept,
+        kept,
     ))
 }
 
-/// [`solve_timed`] with the core's error kept as such.
-fn solve_or_reject(
-    problem: &pseudospectral::Problem,
-    settings: &Settings,
-) -> std::result::Result<Timed, pseudospectral::PlanError> {
-    let mut workspace = Box::new(Workspace::new());
-    let mut solution = Box::new(Solution::new());
-    let start = Instant::now();
-    pseudospectral::solve(problem, settings, &mut workspace, &mut solution)?;
-    Ok(Timed {
-        solution,
-        solve_time_s: start.elapsed().as_secs_f64(),
-    })
-}
-
 /// The JSON object `reconfig solve --json` prints for planner A.
-pub fn to_json(name: &str, timed: &Timed) -> serde_json::Value {
-    let s = &timed.solution;
+pub fn to_json(name: &str, s: &Solution, solve_time_s: f64) -> serde_json::Value {
     let m = usize::from(s.spacecraft_count);
     let nodes = usize::from(s.degree) + 1;
-    let states: Vec<Vec<[f64; 6]>> = s
-        .states
-        .iter()
-        .take(m)
-        .map(|sc| sc[..nodes].to_vec())
-        .collect();
-    let controls: Vec<Vec<[f64; 3]>> = s
-        .controls_fu
-        .iter()
-        .take(m)
-        .map(|sc| sc[..nodes].to_vec())
-        .collect();
+    // Each spacecraft's values at the nodes in use.
+    fn used<T: Copy, const N: usize>(rows: &[[T; N]], m: usize, nodes: usize) -> Vec<Vec<T>> {
+        rows.iter().take(m).map(|sc| sc[..nodes].to_vec()).collect()
+    }
+    let states = used(&s.states, m, nodes);
+    let controls = used(&s.controls_fu, m, nodes);
     json!({
         "name": name,
         "planner": "pseudospectral",
@@ -115,29 +93,33 @@ pub fn to_json(name: &str, timed: &Timed) -> serde_json::Value {
         "unmet": s.unmet.named(),
         "unmet_truncated": s.unmet.truncated,
         "elastic_subproblems": s.info.elastic_subproblems,
-        "solve_time_s": timed.solve_time_s,
+        "solve_time_s": solve_time_s,
         "node_times": &s.node_times_tu[..nodes],
         "states": states,
         "controls": controls,
     })
 }
 
-/// Solve and report a planner-A fixture. Exit code 0 when the plan is usable, 1 when it is not,
-/// 2 when the planner rejects the input.
-pub fn run(fixture: &PseudospectralFixture, json_output: bool) -> Result<ExitCode> {
-    let timed = match solve_or_reject(&fixture.problem, &fixture.settings) {
-        Ok(t) => t,
-        Err(err) => {
-            return Ok(report_rejection(&fixture.name, &err, json_output));
-        }
+/// Report a planner-A fixture's answer. Exit code 0 when the plan is usable, 1 when it is
+/// not, 2 when the request was refused or rejected.
+///
+/// # Errors
+/// An answer of another planner, or JSON that does not print.
+pub fn report(
+    fixture: &PseudospectralFixture,
+    answered: &Answered,
+    json_output: bool,
+) -> Result<ExitCode> {
+    let OutcomeRef::Pseudospectral(s) = answered.outcome else {
+        return report_other(&fixture.name, answered, json_output);
     };
+    let solve_time_s = answered.time_s;
     if json_output {
         println!(
             "{}",
-            serde_json::to_string_pretty(&to_json(&fixture.name, &timed))?
+            serde_json::to_string_pretty(&to_json(&fixture.name, s, solve_time_s))?
         );
     } else {
-        let s = &timed.solution;
         let p = &fixture.problem;
         println!("{} (planner A, pseudospectral)", fixture.name);
         println!(
@@ -192,13 +174,9 @@ pub fn run(fixture: &PseudospectralFixture, json_output: bool) -> Result<ExitCod
         if s.unmet.truncated {
             println!("  cannot be met        (more, with smaller shortfalls)");
         }
-        println!("  solve time           {:.3} ms", timed.solve_time_s * 1e3);
+        println!("  solve time           {:.3} ms", solve_time_s * 1e3);
     }
-    Ok(ExitCode::from(if timed.solution.info.status.is_usable() {
-        EXIT_USABLE
-    } else {
-        EXIT_NOT_USABLE
-    }))
+    Ok(exit_code(s.info.status.is_usable()))
 }
 
 /// One constraint an `Infeasible` answer names, for a person (spacecraft numbered from 1).

@@ -4,14 +4,13 @@
 //! a flight computer with the service's cores would wait: the sequencing's round trip plus
 //! the longest round trip of the arcs.
 
-use crate::cli::feed::{leo_items, leo_sequence_request};
-use crate::cli::leo_tour_sequence::with_order;
-use crate::fixture::leo_tour;
-use crate::harness::feeder::{self, Fate, FeedOptions, FeedRun, Item, Payload};
-use crate::harness::{check, Instance};
+use super::feeder::{self, Fate, FeedOptions, FeedRun, Item};
+use super::items::requests_items;
+use super::{check, Instance};
+use crate::fixture::{self, leo_tour::LeoTourFixture};
 use anyhow::{anyhow, bail, Result};
 use reconfig_core::limits::Limits;
-use reconfig_core::wire::{Outcome, Planner};
+use reconfig_core::wire::Outcome;
 use std::path::Path;
 use std::time::Duration;
 
@@ -57,24 +56,21 @@ pub fn run(
     first_seq: u64,
     limits: &Limits,
 ) -> Result<OnboardRun> {
-    let f = leo_tour::load(&dir.join(FIXTURE))?;
+    let f: LeoTourFixture = fixture::load_as(&dir.join(FIXTURE))?;
     let mut opts = FeedOptions::new(instance.clone());
     opts.timeout = Duration::from_secs(10);
     opts.first_seq = first_seq;
-    let sequencing = vec![Item {
-        label: format!("{} order (on-board part)", f.name),
-        planner: Some(Planner::LeoSequence),
-        size: format!("N{}", f.clients.len()),
-        payload: Payload::Request(Box::new(leo_sequence_request(&f)?)),
-    }];
+    // The sequencing request of the `[sequence]` fixture.
+    let mut sequencing: Vec<Item> = requests_items(f.requests()?).collect();
+    for item in &mut sequencing {
+        item.label.push_str(" (on-board part)");
+    }
     let seq_run = feeder::run(&sequencing, &opts)?;
     let (seq_rtt_ms, body) = answered(&seq_run, 0)?;
     let Ok(Outcome::LeoSequence(q)) = postcard::from_bytes::<Outcome>(body) else {
         bail!("the sequencing was not answered with an order");
     };
-    let mut chosen = with_order(&f, &q);
-    chosen.sequence = None;
-    let arcs = leo_items(&chosen)?;
+    let arcs: Vec<Item> = requests_items(f.with_order(&q).requests()?).collect();
     opts.window = arcs.len().max(workers);
     opts.first_seq = first_seq.saturating_add(1);
     let arc_run = feeder::run(&arcs, &opts)?;

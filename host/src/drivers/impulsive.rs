@@ -1,34 +1,31 @@
-//! `reconfig solve` for planner-B fixtures: a readable report, or `--json`.
+//! Planner B's driver: the report of an answered planner-B fixture (readable, or `--json`),
+//! with the plan's end state in the form the fixture gave its target in.
 
-use crate::cli::solve::{report_rejection, EXIT_NOT_USABLE, EXIT_USABLE};
-use crate::fixture::impulsive::forms::end_state_json;
+use super::answer::{exit_code, report_other, Answered};
 use crate::fixture::impulsive::ImpulsiveFixture;
-use anyhow::Result;
+use anyhow::{bail, Result};
 use reconfig_core::impulsive::{
-    point_phase, solve, solve_form, ImpulsePlan, Phase, Solution, Workspace,
+    end_state, point_phase, EndForm, EndState, ImpulsePlan, MeanElements, Phase, RelativeElements,
+    Solution,
 };
-use serde_json::json;
+use reconfig_core::wire::OutcomeRef;
+use serde_json::{json, Value};
 use std::process::ExitCode;
-use std::time::Instant;
 
-/// Solve and report a planner-B fixture. Exit code 0 when the plan is usable, 1 when it is not,
-/// 2 when the planner rejects the input.
-pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
-    let settings = fixture.settings;
-    let mut workspace = Box::new(Workspace::new());
-    let mut solution = Box::new(Solution::new());
-    let started = Instant::now();
-    // A fixture in other forms is solved as the service solves it: the conversion in the core,
-    // charged to the same work budget.
-    let result = match &fixture.form {
-        Some(form) => solve_form(form, &settings, &mut workspace, &mut solution).map(|_| ()),
-        None => solve(&fixture.problem, &settings, &mut workspace, &mut solution),
+/// Report a planner-B fixture's answer (a fixture in other forms is answered as the service
+/// answers it: the conversion in the core, charged to the same work budget). Exit code 0 when
+/// the plan is usable, 1 when it is not, 2 when the request was refused or rejected.
+///
+/// # Errors
+/// An answer of another planner, or an end state that cannot be written.
+pub fn report(fixture: &ImpulsiveFixture, answered: &Answered, json: bool) -> Result<ExitCode> {
+    let (OutcomeRef::Impulsive(s) | OutcomeRef::ImpulsiveForm { solution: s, .. }) =
+        answered.outcome
+    else {
+        return report_other(&fixture.name, answered, json);
     };
-    let solve_time_s = started.elapsed().as_secs_f64();
-    if let Err(err) = result {
-        return Ok(report_rejection(&fixture.name, &err, json));
-    }
-    let s = &solution;
+    let settings = fixture.settings;
+    let solve_time_s = answered.time_s;
     // The angle the impulse points are counted in (mean longitude for an equatorial chief).
     let equatorial = point_phase(&fixture.problem.chief, &settings) == Phase::MeanLongitude;
     let (mean_key, true_key, mean_head, true_head) = if equatorial {
@@ -68,8 +65,7 @@ pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
                 entry
             })
             .collect();
-        let e = &s.terminal_error_elements;
-        let q = &s.terminal_error_equinoctial;
+        let t = s.terminal_error.as_ref();
         println!(
             "{}",
             serde_json::to_string_pretty(&json!({
@@ -80,10 +76,11 @@ pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
                 "linear_total_dv_mps": s.linear_total_dv_mps,
                 "impulses": impulses,
                 "final_time_s": s.final_time_s,
-                "terminal_error_m": s.terminal_error_m,
-                "terminal_position_error_m": s.terminal_position_error_m,
-                "terminal_error_elements": [e.dsma_km, e.decc, e.dinc_rad, e.draan_rad, e.dargp_rad, e.dmean_anomaly_rad],
-                "terminal_error_equinoctial": [q.sma_km, q.mean_longitude_rad, q.ex, q.ey, q.hx, q.hy],
+                // Absent (null) when the nonlinear check could not be flown.
+                "terminal_error_m": t.map(|t| t.along_track_m),
+                "terminal_position_error_m": t.map(|t| t.position_m),
+                "terminal_error_elements": t.map(|t| t.elements.as_array()),
+                "terminal_error_equinoctial": t.map(|t| t.equinoctial.as_array()),
                 "end_state": end,
                 "element_set": format!("{:?}", settings.element_set),
                 "iterations": s.info.iterations,
@@ -125,21 +122,30 @@ pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
                 (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
             );
         }
+        let figure = |x: Option<f64>| x.map_or_else(|| "absent".to_string(), |v| format!("{v:.5}"));
         println!(
-            "total dv            {:.5} m/s (linear model: minimum norm {:.5}, returned plan {:.5} m/s)",
-            s.total_dv_mps, s.min_norm_total_dv_mps, s.linear_total_dv_mps
+            "total dv            {:.5} m/s (linear model: minimum norm {}, returned plan {} m/s)",
+            s.total_dv_mps,
+            figure(s.min_norm_total_dv_mps),
+            figure(s.linear_total_dv_mps)
+        );
+        match &s.terminal_error {
+            Some(t) => println!(
+                "terminal error      {:.3e} m along-track, {:.3e} m position (nonlinear check)",
+                t.along_track_m, t.position_m
+            ),
+            None => println!("terminal error      absent (the nonlinear check could not be flown)"),
+        }
+        let cond = s.info.condition_number.map_or_else(
+            || "absent (rank-deficient)".to_string(),
+            |c| format!("{c:.3e}"),
         );
         println!(
-            "terminal error      {:.3e} m along-track, {:.3e} m position (nonlinear check)",
-            s.terminal_error_m, s.terminal_position_error_m
-        );
-        println!(
-            "iterations          {} fixed point, {} min-fuel, {} correction; rank {}, cond {:.3e}",
+            "iterations          {} fixed point, {} min-fuel, {} correction; rank {}, cond {cond}",
             s.info.iterations,
             s.info.min_fuel_iterations,
             s.info.correction_iterations,
             s.info.rank,
-            s.info.condition_number
         );
         println!(
             "min fuel used {}, nonlinear correction used {}, evaluations {}, solve time {:.6} s",
@@ -148,9 +154,39 @@ pub fn run(fixture: &ImpulsiveFixture, json: bool) -> Result<ExitCode> {
         println!("end state           {end}");
         println!("frame: dv in the deputy's local frame (radial, along-track, normal)");
     }
-    Ok(ExitCode::from(if s.info.status.is_usable() {
-        EXIT_USABLE
-    } else {
-        EXIT_NOT_USABLE
-    }))
+    Ok(exit_code(s.info.status.is_usable()))
+}
+
+/// The plan's end state (the core's [`end_state`]) as JSON, in the form the fixture gave the
+/// target in.
+fn end_state_json(
+    chief: &MeanElements,
+    target: &RelativeElements,
+    solution: &Solution,
+    form: EndForm,
+) -> Result<Value> {
+    end_state_value(&end_state(chief, target, solution, form))
+}
+
+/// An end state as JSON (angles in degrees).
+fn end_state_value(end: &EndState) -> Result<Value> {
+    Ok(match end {
+        EndState::Elements(r) => json!({"relative_elements_deg": [
+            r.dsma_km, r.decc, r.dinc_rad.to_degrees(), r.draan_rad.to_degrees(),
+            r.dargp_rad.to_degrees(), r.dmean_anomaly_rad.to_degrees()]}),
+        EndState::Roe(r) => {
+            json!({"roe_m": [r.da_m, r.dlambda_m, r.dex_m, r.dey_m, r.dix_m, r.diy_m]})
+        }
+        EndState::DeputyClassical(d) => json!({"deputy_classical_deg": [
+            d.sma_km, d.ecc, d.inc_rad.to_degrees(), d.raan_rad.to_degrees(),
+            d.argp_rad.to_degrees(), d.mean_anomaly_rad.to_degrees()]}),
+        EndState::DeputyEquinoctial(q) => {
+            json!({"deputy_equinoctial": [q.sma_km, q.mean_longitude_rad.to_degrees(), q.ex, q.ey, q.hx, q.hy]})
+        }
+        EndState::DeputyState(s) => {
+            json!({"deputy_state": {"position_km": s.pos_km, "velocity_km_s": s.vel_km_s}})
+        }
+        EndState::Unavailable(e) => bail!("end state: {e}"),
+        EndState::NotFlown => Value::Null,
+    })
 }

@@ -1,0 +1,267 @@
+//! `reconfig solve`'s report of a LEO tour fixture: the tour's requests answered in turn
+//! ([`super::leo_tour`]: the order chosen first for a `[sequence]` fixture, the arcs'
+//! durations for a `[schedule]` one, then each arc), then every arc flown in the host truth
+//! model (J2 alone with the core's constants, and the full model) to report its arrival miss,
+//! with its last leg re-planned against the truth model, and the chained multi-round
+//! correction after ([`super::leo_truth`]).
+
+use super::answer::{exit_code, report_error};
+use super::leo_tour::{plan, prepare, ChosenOrder, ChosenSchedule};
+use super::leo_truth::{multi_round, replan_last_leg, truth_miss_m, Round};
+use crate::fixture::leo_tour::LeoTourFixture;
+use anyhow::Result;
+use reconfig_core::limits::Limits;
+use serde_json::json;
+use std::process::ExitCode;
+
+/// Answer and report a LEO tour fixture under `limits`: exit code 0 when every arc is
+/// `Solved`, 1 when one is not, 2 when a request was refused by the limits (reported as a
+/// refusal, nothing more planned) or rejected.
+///
+/// # Errors
+/// A truth-model propagation error.
+pub fn run(f: &LeoTourFixture, limits: &Limits, json_output: bool) -> Result<ExitCode> {
+    let prepared = match prepare(f, limits) {
+        Ok(p) => p,
+        Err(e) => return Ok(report_error(&f.name, &e, json_output)),
+    };
+    let f = &prepared.fixture;
+    let seq_json = prepared.order.as_ref().map(sequence_json);
+    let schedule_json = prepared.schedule.as_ref().map(schedule_json);
+    let arcs = match plan(f, limits) {
+        Ok(a) => a,
+        Err(e) => return Ok(report_error(&f.name, &e, json_output)),
+    };
+    let total: f64 = arcs.iter().map(|a| a.solution.total_dv_mps).sum();
+    let usable = arcs.iter().all(|a| a.solution.info.status.is_usable());
+    let status = if usable { "Solved" } else { "NotSolved" };
+    let mut rows = Vec::new();
+    for a in &arcs {
+        // An arc without a plan is not flown (its misses are absent: null in JSON).
+        let (j2_miss, full_miss) = if a.solution.impulses == 0 {
+            (None, None)
+        } else {
+            (Some(truth_miss_m(a, false)?), Some(truth_miss_m(a, true)?))
+        };
+        // A re-plan that fails is reported as such (NaN: printed as "failed", null in JSON).
+        let after = replan_last_leg(a, &f.settings).unwrap_or((f64::NAN, f64::NAN));
+        rows.push((a, j2_miss, full_miss, after));
+    }
+    // The chained multi-round correction in the truth model; an error is reported, not fatal.
+    let rounds = multi_round(f, &arcs, limits);
+    if json_output {
+        let arcs_json: Vec<_> = rows
+            .iter()
+            .map(|(a, j2m, fm, after)| {
+                let s = &a.solution;
+                let burns: Vec<_> = s
+                    .burns
+                    .iter()
+                    .take(usize::from(s.impulses))
+                    .map(|b| {
+                        json!({
+                            "epoch_s": a.start_s + b.epoch_s,
+                            "dv_rtn_mps": b.rtn_mps,
+                            "dv_mps": (b.rtn_mps.iter().map(|x| x * x).sum::<f64>()).sqrt(),
+                        })
+                    })
+                    .collect();
+                json!({
+                    "from": a.from + 1,
+                    "to": a.to + 1,
+                    "start_s": a.start_s,
+                    "end_s": a.end_s,
+                    "status": format!("{:?}", s.info.status),
+                    "dv_mps": s.total_dv_mps,
+                    "burns": burns,
+                    "model_miss_m": s.miss_m,
+                    "truth_miss_m": { "j2_only": j2m, "full": fm, "after_replanning": after.0.is_finite().then_some(after.0) },
+                    "dv_after_replanning_mps": after.1.is_finite().then_some(after.1),
+                    "evaluations": s.info.evaluations,
+                    "work_units": s.info.work_units,
+                    "solve_time_s": a.solve_time_s,
+                })
+            })
+            .collect();
+        println!(
+            "{}",
+            json!({
+                "name": f.name,
+                "status": status,
+                "order": f.order.iter().map(|k| k + 1).collect::<Vec<_>>(),
+                "total_dv_mps": total,
+                "sequence": seq_json,
+                "schedule": schedule_json,
+                "arcs": arcs_json,
+                "multi_round": rounds_json(&rounds),
+                "published": {
+                    "arc_dv_mps": f.published.arc_dv_mps,
+                    "total_dv_mps": f.published.total_dv_mps,
+                },
+            })
+        );
+    } else {
+        let order: Vec<String> = f.order.iter().map(|k| (k + 1).to_string()).collect();
+        println!("{}: {status}, order {}", f.name, order.join(" -> "));
+        if let Some(c) = &prepared.order {
+            let q = &c.sequence;
+            let i = &q.info;
+            println!(
+                "  sequencing: {:?}, {} m/s with the sequencing search; planned {} of the tree's {} arcs ({:.1} %), {} of {} orders completed, {} bound violations, {:.2} s",
+                i.status,
+                q.total_dv_mps.map_or("no order".into(), |t| format!("{t:.3}")),
+                i.arcs_planned,
+                i.arcs_in_tree,
+                100.0 * f64::from(i.arcs_planned) / f64::from(i.arcs_in_tree.max(1)),
+                i.orders_completed,
+                i.orders_total,
+                i.bound_violations,
+                c.time_s
+            );
+        }
+        if let Some(c) = &prepared.schedule {
+            let q = &c.schedule;
+            let n = usize::from(q.arcs);
+            let units: Vec<String> = q.duration_units[..n]
+                .iter()
+                .map(|u| u.to_string())
+                .collect();
+            println!(
+                "  schedule: {:?}, arcs of [{}] x {:.4} s (horizon {:.4} s), {:.3} m/s with the schedule's estimates; {} arcs estimated, {:.2} s",
+                q.status,
+                units.join(", "),
+                q.unit_s,
+                c.horizon_s,
+                q.total_dv_mps,
+                q.arcs_planned,
+                c.time_s
+            );
+        }
+        for (n, (a, j2m, fm, after)) in rows.iter().enumerate() {
+            let s = &a.solution;
+            let published = f
+                .published
+                .arc_dv_mps
+                .get(n)
+                .map_or(String::new(), |p| format!(" (published {p:.3})"));
+            println!(
+                "  arc {} -> {}  [{:.4} s, {:.4} s]  {:?}  dv {:.3} m/s{published}",
+                a.from + 1,
+                a.to + 1,
+                a.start_s,
+                a.end_s,
+                s.info.status,
+                s.total_dv_mps
+            );
+            for b in s.burns.iter().take(usize::from(s.impulses)) {
+                let size = b.rtn_mps.iter().map(|x| x * x).sum::<f64>().sqrt();
+                println!(
+                    "    burn at {:>12.4} s  RTN [{:>9.3} {:>9.3} {:>9.3}] m/s  |dv| {:.3} m/s",
+                    a.start_s + b.epoch_s,
+                    b.rtn_mps[0],
+                    b.rtn_mps[1],
+                    b.rtn_mps[2],
+                    size
+                );
+            }
+            let (j2m, fm) = (j2m.unwrap_or(f64::NAN), fm.unwrap_or(f64::NAN));
+            let model_miss = s.miss_m.map_or("none".into(), |m| format!("{m:.2e}"));
+            println!(
+                "    arrival miss: planning model {model_miss} m, truth J2-only {j2m:.3} m, truth full {fm:.3} m  ({} evaluations, {:.2} s)",
+                s.info.evaluations, a.solve_time_s
+            );
+            println!(
+                "    last leg re-planned in the truth model: miss {:.3e} m, arc dv {:.3} m/s",
+                after.0, after.1
+            );
+        }
+        let published = f
+            .published
+            .total_dv_mps
+            .map_or(String::new(), |p| format!(" (published {p:.3})"));
+        println!("  total {total:.3} m/s{published}");
+        print_rounds(&rounds);
+    }
+    Ok(exit_code(usable))
+}
+
+pub fn sequence_json(c: &ChosenOrder) -> serde_json::Value {
+    let q = &c.sequence;
+    let n = usize::from(q.len);
+    let i = &q.info;
+    json!({
+        "status": format!("{:?}", i.status),
+        "order": q.order[..n].iter().map(|&k| usize::from(k) + 1).collect::<Vec<_>>(),
+        "total_dv_mps": q.total_dv_mps,
+        "durations_s": q.durations_s[..n.saturating_sub(1)].to_vec(),
+        "arcs_planned": i.arcs_planned,
+        "arcs_in_tree": i.arcs_in_tree,
+        "orders_completed": i.orders_completed,
+        "orders_total": i.orders_total,
+        "bound_violations": i.bound_violations,
+        "time_s": c.time_s,
+    })
+}
+
+pub fn schedule_json(c: &ChosenSchedule) -> serde_json::Value {
+    let q = &c.schedule;
+    let n = usize::from(q.arcs);
+    json!({
+        "status": format!("{:?}", q.status),
+        "durations_s": q.durations_s[..n].to_vec(),
+        "duration_units": q.duration_units[..n].to_vec(),
+        "unit_s": q.unit_s,
+        "horizon_s": c.horizon_s,
+        "total_dv_mps": q.total_dv_mps,
+        "arcs_planned": q.arcs_planned,
+        "time_s": c.time_s,
+    })
+}
+
+/// `multi_round`'s outcome as JSON (an error as `{"error": ...}`).
+pub fn rounds_json(rounds: &Result<Vec<Round>>) -> serde_json::Value {
+    match rounds {
+        Err(e) => json!({ "error": e.to_string() }),
+        Ok(rs) => json!({
+            "total_dv_after_mps": rs.iter().map(|r| r.dv_after_mps).sum::<f64>(),
+            "arcs": rs.iter().map(|r| json!({
+                "from": r.arc.from + 1,
+                "to": r.arc.to + 1,
+                "start_s": r.arc.start_s,
+                "end_s": r.arc.end_s,
+                "status": format!("{:?}", r.arc.solution.info.status),
+                "dv_mps": r.arc.solution.total_dv_mps,
+                "dv_after_mps": r.dv_after_mps,
+                "corrected": r.corrected,
+                "start_offset_m": r.start_offset_m,
+                "truth_miss_m": { "before": r.miss_before_m, "after": r.miss_after_m },
+            })).collect::<Vec<_>>(),
+        }),
+    }
+}
+
+/// Print `multi_round`'s outcome.
+pub fn print_rounds(rounds: &Result<Vec<Round>>) {
+    match rounds {
+        Err(e) => println!("  multi-round correction in the truth model failed: {e:#}"),
+        Ok(rs) => {
+            println!("  multi-round correction (each arc planned from the truth state reached, its last leg re-planned in the truth model):");
+            for r in rs {
+                println!(
+                    "    arc {} -> {}  {:?}{}  dv {:.3} m/s planned, {:.3} m/s flown; start offset {:.3e} m; truth miss {:.3} m before, {:.3e} m after",
+                    r.arc.from + 1,
+                    r.arc.to + 1,
+                    r.arc.solution.info.status,
+                    if r.corrected { "" } else { " (last leg not re-planned: flown as made)" },
+                    r.arc.solution.total_dv_mps,
+                    r.dv_after_mps,
+                    r.start_offset_m,
+                    r.miss_before_m,
+                    r.miss_after_m
+                );
+            }
+            let total: f64 = rs.iter().map(|r| r.dv_after_mps).sum();
+            println!("    total flown {total:.3} m/s");
+        }
+    }
+}
