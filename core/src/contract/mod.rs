@@ -5,6 +5,7 @@
 
 mod planner;
 mod settings;
+mod status;
 
 pub use planner::{Planner, Status};
 pub use settings::{check_limit, check_range, Range, SettingError, SettingValue};

@@ -4,80 +4,62 @@ use super::maneuver::{Burn, Direction, Method, MAX_BURNS};
 use super::types::MAX_TARGETS;
 use serde::{Deserialize, Serialize};
 
-/// How the solve ended: `#[repr(u8)]` with stable codes (the C interface's status is 200 plus
-/// the code, and 207 for an unverified budget stop). A plan may be flown when
-/// [`SolveStatus::is_usable`]: `Solved`, or `BudgetExhausted { verified: true }`; either is
-/// returned only after the plan was checked: every burn within the cap, the legs' durations
-/// summing to at most the mission time, every number finite.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[repr(u8)]
-pub enum SolveStatus {
-    /// No solve has written this solution.
-    #[default]
-    Unsolved = 0,
-    /// The plan meets the mission time and the cap; its total is the least the allocation
-    /// found (see the docs for what is exact).
-    Solved = 1,
-    /// Even the fastest admissible method of every leg overruns the mission time; `leg` is the
-    /// leg that needs the most time (index in the sweep's order). `info.fastest_tour_s` says
-    /// how long the fastest tour takes (absent when no tour is admissible at all).
-    MissionTooShort {
-        /// Leg index (0 = from the servicer's slot).
-        leg: u8,
-    } = 2,
-    /// The tour would fit in the mission time without the cap, but not with it: `leg` is the
-    /// leg the cap slows most (or that has no admissible method at all).
-    CapTooLow {
-        /// Leg index.
-        leg: u8,
-    } = 3,
-    /// `MethodPolicy::PaperRule`: the rule's method for `leg` is not admissible (its burns
-    /// exceed the cap, or its orbit dips below `min_radius_km`).
-    RuleMethodInadmissible {
-        /// Leg index.
-        leg: u8,
-    } = 4,
-    /// The final check of the plan failed (a burn over the cap, a non-finite number, the
-    /// mission time exceeded by rounding); the plan is returned for inspection only (a number
-    /// that came out NaN or infinite is written as 0).
-    CheckFailed {
-        /// First leg that failed.
-        leg: u8,
-    } = 5,
-    /// The work budget (`Settings::work_budget`) ran out before the method's own end (tables,
-    /// price search, gap enumeration, exchange search or the other sweep cut short). The
-    /// returned plan is the best one found so far (none when the budget ran out before the
-    /// allocation had one), checked like any other with the part of the budget kept for it:
-    /// `verified` says whether it met every condition of `Solved` (then it may be flown; a
-    /// longer solve might find less Δv).
-    BudgetExhausted {
-        /// The returned plan passed the checks of `Solved`.
-        verified: bool,
-    } = 6,
+crate::status_enum! {
+    /// How the solve ended: `#[repr(u8)]` with stable codes (the C interface's status is 200 plus
+    /// the code, and 207 for an unverified budget stop). A plan may be flown when
+    /// [`SolveStatus::is_usable`]: `Solved`, or `BudgetExhausted { verified: true }`; either is
+    /// returned only after the plan was checked: every burn within the cap, the legs' durations
+    /// summing to at most the mission time, every number finite.
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+    pub enum SolveStatus {
+        /// No solve has written this solution.
+        #[default]
+        Unsolved = 0,
+        /// The plan meets the mission time and the cap; its total is the least the allocation
+        /// found (see the docs for what is exact).
+        Solved = 1,
+        /// Even the fastest admissible method of every leg overruns the mission time; `leg` is the
+        /// leg that needs the most time (index in the sweep's order). `info.fastest_tour_s` says
+        /// how long the fastest tour takes (absent when no tour is admissible at all).
+        MissionTooShort {
+            /// Leg index (0 = from the servicer's slot).
+            leg: u8,
+        } = 2,
+        /// The tour would fit in the mission time without the cap, but not with it: `leg` is the
+        /// leg the cap slows most (or that has no admissible method at all).
+        CapTooLow {
+            /// Leg index.
+            leg: u8,
+        } = 3,
+        /// `MethodPolicy::PaperRule`: the rule's method for `leg` is not admissible (its burns
+        /// exceed the cap, or its orbit dips below `min_radius_km`).
+        RuleMethodInadmissible {
+            /// Leg index.
+            leg: u8,
+        } = 4,
+        /// The final check of the plan failed (a burn over the cap, a non-finite number, the
+        /// mission time exceeded by rounding); the plan is returned for inspection only (a number
+        /// that came out NaN or infinite is written as 0).
+        CheckFailed {
+            /// First leg that failed.
+            leg: u8,
+        } = 5,
+        /// The work budget (`Settings::work_budget`) ran out before the method's own end (tables,
+        /// price search, gap enumeration, exchange search or the other sweep cut short). The
+        /// returned plan is the best one found so far (none when the budget ran out before the
+        /// allocation had one), checked like any other with the part of the budget kept for it:
+        /// `verified` says whether it met every condition of `Solved` (then it may be flown; a
+        /// longer solve might find less Δv).
+        BudgetExhausted {
+            /// The returned plan passed the checks of `Solved`.
+            verified: bool,
+        } = 6,
+    }
+    usable: [Self::Solved | Self::BudgetExhausted { verified: true }];
+    budget: BudgetExhausted;
 }
 
 impl SolveStatus {
-    /// The plan may be flown: `Solved` or `BudgetExhausted { verified: true }`.
-    pub const fn is_usable(&self) -> bool {
-        matches!(
-            self,
-            Self::Solved | Self::BudgetExhausted { verified: true }
-        )
-    }
-
-    /// The variant's stable code (its `repr(u8)` discriminant).
-    pub const fn code(&self) -> u8 {
-        match self {
-            Self::Unsolved => 0,
-            Self::Solved => 1,
-            Self::MissionTooShort { .. } => 2,
-            Self::CapTooLow { .. } => 3,
-            Self::RuleMethodInadmissible { .. } => 4,
-            Self::CheckFailed { .. } => 5,
-            Self::BudgetExhausted { .. } => 6,
-        }
-    }
-
     /// The leg the status names, if any.
     pub const fn leg(&self) -> Option<u8> {
         match *self {
@@ -86,23 +68,6 @@ impl SolveStatus {
             | Self::RuleMethodInadmissible { leg }
             | Self::CheckFailed { leg } => Some(leg),
             Self::Unsolved | Self::Solved | Self::BudgetExhausted { .. } => None,
-        }
-    }
-}
-
-impl crate::contract::Status for SolveStatus {
-    fn is_usable(&self) -> bool {
-        SolveStatus::is_usable(self)
-    }
-
-    fn code(&self) -> u8 {
-        SolveStatus::code(self)
-    }
-
-    fn budget_exhausted(&self) -> Option<bool> {
-        match *self {
-            Self::BudgetExhausted { verified } => Some(verified),
-            _ => None,
         }
     }
 }

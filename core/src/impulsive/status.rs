@@ -2,85 +2,61 @@
 
 use serde::{Deserialize, Serialize};
 
-/// The state of the returned plan. Checked in this order: numerical failure, unsafe perigee,
-/// rank deficiency (at the returned plan), nonlinear correction not converged, fixed point not
-/// converged, linearised (correction off), solved. Every number in a returned [`Solution`] is
-/// finite whatever the status: a value a failed stage could not compute is absent (`None`),
-/// and a plan whose own numbers are not finite is not returned (`NumericalFailure(NonFinite)`,
-/// no impulses).
-///
-/// [`Solution`]: super::Solution
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[repr(u8)]
-pub enum SolveStatus {
-    /// No solve has written this solution.
-    #[default]
-    Unsolved = 0,
-    /// The returned impulses, flown with the exact impulse model and J2 secular drift, reach the
-    /// target within `correction_tol` (re-checked on the returned plan), F has full rank there,
-    /// and every transfer arc's perigee is above `min_perigee_altitude_km`. Needs
-    /// `nonlinear_correction`.
-    Solved = 1,
-    /// `F` has rank below 6 (for example coincident impulse points): the least-squares
-    /// minimum-norm impulses are returned; they do not reach the target.
-    RankDeficient = 2,
-    /// The fixed-point iteration hit `fixed_point_max_iter` (correction disabled); the last
-    /// iterate is returned.
-    MaxIterations = 3,
-    /// The nonlinear defect correction hit `correction_max_iter` above `correction_tol`.
-    CorrectionNotConverged = 4,
-    /// A numerical step failed; the stage says where. The best plan so far is returned.
-    NumericalFailure(Stage) = 5,
-    /// The plan's transfer arc `arc` (1-based: arc k follows impulse k, arc N is the final
-    /// orbit) has its perigee below `Settings::min_perigee_altitude_km`: not flyable.
-    UnsafePerigee {
-        /// The arc, 1..=N.
-        arc: u8,
-        /// Its perigee altitude `a (1 - e) - Re`, km (exact impulse model).
-        perigee_altitude_km: f64,
-    } = 6,
-    /// The linear-model fixed point (Wang 2018, eq. 14) converged, full rank, safe perigees, but
-    /// the nonlinear correction was off: flown with exact impulses the plan misses the target by
-    /// `miss_m` (deputy position at the last impulse). Not usable as a plan to fly.
-    Linearised {
-        /// Position miss of the nonlinear check, m.
-        miss_m: f64,
-    } = 7,
-    /// The work budget (`Settings::work_budget`) ran out: the search, the fixed point or the
-    /// correction stopped early. The returned plan (the best points found, solved with the
-    /// budget kept for it) was checked like any other: `verified` says whether it met every
-    /// condition of `Solved` (then it may be flown; a longer search might find less fuel).
-    BudgetExhausted {
-        /// The returned plan reaches the target and has safe perigees (as `Solved`).
-        verified: bool,
-    } = 8,
-}
-
-impl crate::contract::Status for SolveStatus {
-    fn is_usable(&self) -> bool {
-        SolveStatus::is_usable(self)
+crate::status_enum! {
+    /// The state of the returned plan. Checked in this order: numerical failure, unsafe perigee,
+    /// rank deficiency (at the returned plan), nonlinear correction not converged, fixed point not
+    /// converged, linearised (correction off), solved. Every number in a returned [`Solution`] is
+    /// finite whatever the status: a value a failed stage could not compute is absent (`None`),
+    /// and a plan whose own numbers are not finite is not returned (`NumericalFailure(NonFinite)`,
+    /// no impulses).
+    ///
+    /// [`Solution`]: super::Solution
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+    pub enum SolveStatus {
+        /// No solve has written this solution.
+        #[default]
+        Unsolved = 0,
+        /// The returned impulses, flown with the exact impulse model and J2 secular drift, reach
+        /// the target within `correction_tol` (re-checked on the returned plan), F has full rank
+        /// there, and every transfer arc's perigee is above `min_perigee_altitude_km`. Needs
+        /// `nonlinear_correction`.
+        Solved = 1,
+        /// `F` has rank below 6 (for example coincident impulse points): the least-squares
+        /// minimum-norm impulses are returned; they do not reach the target.
+        RankDeficient = 2,
+        /// The fixed-point iteration hit `fixed_point_max_iter` (correction disabled); the last
+        /// iterate is returned.
+        MaxIterations = 3,
+        /// The nonlinear defect correction hit `correction_max_iter` above `correction_tol`.
+        CorrectionNotConverged = 4,
+        /// A numerical step failed; the stage says where. The best plan so far is returned.
+        NumericalFailure(Stage) = 5,
+        /// The plan's transfer arc `arc` (1-based: arc k follows impulse k, arc N is the final
+        /// orbit) has its perigee below `Settings::min_perigee_altitude_km`: not flyable.
+        UnsafePerigee {
+            /// The arc, 1..=N.
+            arc: u8,
+            /// Its perigee altitude `a (1 - e) - Re`, km (exact impulse model).
+            perigee_altitude_km: f64,
+        } = 6,
+        /// The linear-model fixed point (Wang 2018, eq. 14) converged, full rank, safe perigees,
+        /// but the nonlinear correction was off: flown with exact impulses the plan misses the
+        /// target by `miss_m` (deputy position at the last impulse). Not usable as a plan to fly.
+        Linearised {
+            /// Position miss of the nonlinear check, m.
+            miss_m: f64,
+        } = 7,
+        /// The work budget (`Settings::work_budget`) ran out: the search, the fixed point or the
+        /// correction stopped early. The returned plan (the best points found, solved with the
+        /// budget kept for it) was checked like any other: `verified` says whether it met every
+        /// condition of `Solved` (then it may be flown; a longer search might find less fuel).
+        BudgetExhausted {
+            /// The returned plan reaches the target and has safe perigees (as `Solved`).
+            verified: bool,
+        } = 8,
     }
-
-    fn code(&self) -> u8 {
-        match self {
-            Self::Unsolved => 0,
-            Self::Solved => 1,
-            Self::RankDeficient => 2,
-            Self::MaxIterations => 3,
-            Self::CorrectionNotConverged => 4,
-            Self::NumericalFailure(_) => 5,
-            Self::UnsafePerigee { .. } => 6,
-            Self::Linearised { .. } => 7,
-            Self::BudgetExhausted { .. } => 8,
-        }
-    }
-
-    fn budget_exhausted(&self) -> Option<bool> {
-        match *self {
-            Self::BudgetExhausted { verified } => Some(verified),
-            _ => None,
-        }
-    }
+    usable: [Self::Solved | Self::BudgetExhausted { verified: true }];
+    budget: BudgetExhausted;
 }
 
 /// Where a numerical failure happened.
@@ -96,17 +72,6 @@ pub enum Stage {
     SingularState = 2,
     /// A number of the returned plan came out NaN or infinite: no plan is returned.
     NonFinite = 3,
-}
-
-impl SolveStatus {
-    /// The plan reaches the target and may be flown (`Solved`, or
-    /// `BudgetExhausted { verified: true }`).
-    pub fn is_usable(&self) -> bool {
-        matches!(
-            self,
-            Self::Solved | Self::BudgetExhausted { verified: true }
-        )
-    }
 }
 
 /// Counters and measures of one solve.

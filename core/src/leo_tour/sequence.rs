@@ -97,57 +97,33 @@ impl SequenceSettings {
     }
 }
 
-/// What the returned order is (the contract's vocabulary, [`crate::contract::Status`]; the
-/// sequencing has no work budget of its own: `max_arcs` bounds it).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[repr(u8)]
-pub enum SequenceStatus {
-    /// No sequencing has written this outcome.
-    #[default]
-    Unsolved = 0,
-    /// Every order was either planned or pruned by the bound, and no planned arc was cheaper
-    /// than its bound: the order is the cheapest for the arc costs given (the contract's
-    /// `Solved`).
-    Optimal = 1,
-    /// The enumeration finished but some planned arc was cheaper than its bound: the order is
-    /// the cheapest of those planned, and a pruned order might have been cheaper.
-    BoundViolated = 2,
-    /// `max_arcs` stopped the enumeration: the best order planned so far.
-    ArcLimit = 3,
-    /// No order was found: no `order`, no `total_dv_mps`. With `arc_limit`, `max_arcs` stopped
-    /// the enumeration before any complete order; without it, every order has an arc the
-    /// planner refused.
-    NoOrder {
-        /// `max_arcs` stopped the enumeration.
-        arc_limit: bool,
-    } = 4,
-}
-
-impl SequenceStatus {
-    /// An order exists (`Optimal`, `BoundViolated`, `ArcLimit`).
-    pub const fn is_usable(&self) -> bool {
-        matches!(self, Self::Optimal | Self::BoundViolated | Self::ArcLimit)
+crate::status_enum! {
+    /// What the returned order is (the contract's vocabulary, [`crate::contract::Status`]; the
+    /// sequencing has no work budget of its own: `max_arcs` bounds it).
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+    pub enum SequenceStatus {
+        /// No sequencing has written this outcome.
+        #[default]
+        Unsolved = 0,
+        /// Every order was either planned or pruned by the bound, and no planned arc was cheaper
+        /// than its bound: the order is the cheapest for the arc costs given (the contract's
+        /// `Solved`).
+        Optimal = 1,
+        /// The enumeration finished but some planned arc was cheaper than its bound: the order is
+        /// the cheapest of those planned, and a pruned order might have been cheaper.
+        BoundViolated = 2,
+        /// `max_arcs` stopped the enumeration: the best order planned so far.
+        ArcLimit = 3,
+        /// No order was found: no `order`, no `total_dv_mps`. With `arc_limit`, `max_arcs` stopped
+        /// the enumeration before any complete order; without it, every order has an arc the
+        /// planner refused.
+        NoOrder {
+            /// `max_arcs` stopped the enumeration.
+            arc_limit: bool,
+        } = 4,
     }
-}
-
-impl crate::contract::Status for SequenceStatus {
-    fn is_usable(&self) -> bool {
-        SequenceStatus::is_usable(self)
-    }
-
-    fn code(&self) -> u8 {
-        match self {
-            Self::Unsolved => 0,
-            Self::Optimal => 1,
-            Self::BoundViolated => 2,
-            Self::ArcLimit => 3,
-            Self::NoOrder { .. } => 4,
-        }
-    }
-
-    fn budget_exhausted(&self) -> Option<bool> {
-        None
-    }
+    usable: [Self::Optimal | Self::BoundViolated | Self::ArcLimit];
+    budget: none;
 }
 
 /// How a sequencing ended and what it took.

@@ -145,64 +145,34 @@ pub struct Burn {
     pub rtn_mps: Vec3,
 }
 
-/// How an arc's solve ended (the contract's vocabulary, [`crate::contract::Status`]). The
-/// plan in the solution, when there is one, was flown from scratch in the planning model with
-/// an exact shooting of its last leg; that flight decides the status.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[repr(u8)]
-pub enum SolveStatus {
-    /// No solve has written this solution.
-    #[default]
-    Unsolved = 0,
-    /// The plan, flown from scratch in the planning model, arrives within `arrival_tol_km` of
-    /// the client with its velocity.
-    Solved = 1,
-    /// The best plan found misses by more than `arrival_tol_km` (its miss is returned). Not
-    /// usable.
-    ArrivalMissed = 2,
-    /// The work budget (`work_budget`) stopped the search. With `verified` the returned plan
-    /// arrives as for `Solved` (usable; a longer search might find less Δv); without it, the
-    /// plan returned misses (its burns and miss are returned), or the budget was spent before
-    /// any plan (no burns: `impulses == 0`, `miss_m` absent).
-    BudgetExhausted {
-        /// The returned plan arrives within `arrival_tol_km`.
-        verified: bool,
-    } = 3,
-    /// No transfer of the search reached the client (no Lambert leg converged): no burns.
-    NoTransfer = 4,
-}
-
-impl SolveStatus {
-    /// The plan may be flown: `Solved` or `BudgetExhausted { verified: true }`.
-    pub const fn is_usable(&self) -> bool {
-        matches!(
-            self,
-            Self::Solved | Self::BudgetExhausted { verified: true }
-        )
+crate::status_enum! {
+    /// How an arc's solve ended (the contract's vocabulary, [`crate::contract::Status`]). The
+    /// plan in the solution, when there is one, was flown from scratch in the planning model with
+    /// an exact shooting of its last leg; that flight decides the status.
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+    pub enum SolveStatus {
+        /// No solve has written this solution.
+        #[default]
+        Unsolved = 0,
+        /// The plan, flown from scratch in the planning model, arrives within `arrival_tol_km` of
+        /// the client with its velocity.
+        Solved = 1,
+        /// The best plan found misses by more than `arrival_tol_km` (its miss is returned). Not
+        /// usable.
+        ArrivalMissed = 2,
+        /// The work budget (`work_budget`) stopped the search. With `verified` the returned plan
+        /// arrives as for `Solved` (usable; a longer search might find less Δv); without it, the
+        /// plan returned misses (its burns and miss are returned), or the budget was spent before
+        /// any plan (no burns: `impulses == 0`, `miss_m` absent).
+        BudgetExhausted {
+            /// The returned plan arrives within `arrival_tol_km`.
+            verified: bool,
+        } = 3,
+        /// No transfer of the search reached the client (no Lambert leg converged): no burns.
+        NoTransfer = 4,
     }
-}
-
-impl crate::contract::Status for SolveStatus {
-    fn is_usable(&self) -> bool {
-        SolveStatus::is_usable(self)
-    }
-
-    fn code(&self) -> u8 {
-        match self {
-            Self::Unsolved => 0,
-            Self::Solved => 1,
-            Self::ArrivalMissed => 2,
-            Self::BudgetExhausted { .. } => 3,
-            Self::NoTransfer => 4,
-        }
-    }
-
-    fn budget_exhausted(&self) -> Option<bool> {
-        match *self {
-            Self::BudgetExhausted { verified } => Some(verified),
-            _ => None,
-        }
-    }
+    usable: [Self::Solved | Self::BudgetExhausted { verified: true }];
+    budget: BudgetExhausted;
 }
 
 /// How an arc's solve ended and what it cost.

@@ -2,85 +2,61 @@
 
 use serde::{Deserialize, Serialize};
 
-/// The state of the returned iterate: a promise about the trajectory in the solution.
-///
-/// Only `Solved` and `Feasible` promise anything about the returned trajectory, and both are
-/// checked on it by the code that returns them (`solver.rs`, `certificate.rs`):
-///
-/// * feasible: keep-out `>= d - verify_tol_lu` on the **continuous** trajectory (global
-///   branch-and-bound minimum per pair, certified), every node control within
-///   `Umax + CONTROL_TOL_FU`, and the dynamics check (eq. 29) below `DYNAMICS_TOL`;
-/// * certified: additionally the certificate in `Solution::certificate` meets the first- and
-///   second-order tolerances of [`super::Certificate`].
-///
-/// Every other status makes **no** feasibility promise: the trajectory returned with it may
-/// violate the keep-out or the control bound (`max_violation` and `min_separation_lu` say by
-/// how much).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[repr(u8)]
-pub enum SolveStatus {
-    /// No solve has written this solution.
-    #[default]
-    Unsolved = 0,
-    /// Feasible (as above) and certified a local optimum: stationary, complementary, and the
-    /// reduced Hessian of the Lagrangian positive on the active constraints' null space, each
-    /// within the certificate's tolerances.
-    Solved = 1,
-    /// The iteration ended but the continuous separation is below `d - verify_tol_lu`
-    /// somewhere; the solution says where. Not feasible.
-    SeparationNotVerified = 2,
-    /// The SQP iteration limit was reached and the last iterate is not verified feasible.
-    MaxIterations = 3,
-    /// A subproblem's l1-elastic QP kept a positive slack: at the last answer no step within
-    /// the control bound meets the linearised keep-out of the checks `Solution::unseparated`
-    /// names (pairs, times, shortfalls). Not feasible; not a proof that no plan exists (the
-    /// linearisation is an inner approximation of the keep-out).
-    Infeasible = 4,
-    /// A QP hit its iteration limit (never its active-set capacity: past it the QP continues
-    /// without a factor) and the last iterate is not verified feasible.
-    QpLimit = 5,
-    /// A factorisation failed; the stage says where. Not feasible.
-    NumericalFailure(Stage) = 6,
-    /// Verified feasible (as above) but not certified optimal within the budget: the iteration
-    /// limit was reached, a QP stopped early, or the certificate missed a tolerance (for
-    /// example a saddle the escape could not leave). May be flown; it may cost more than a
-    /// local optimum.
-    Feasible = 7,
-    /// The work budget (`Settings::work_budget`) ran out before the iteration ended. The
-    /// returned trajectory is the last QP solution (or the guess), checked like any other with
-    /// the budget kept for it: `verified` says whether it passed the feasibility checks above
-    /// (then it may be flown, not certified optimal); otherwise it makes no promise.
-    BudgetExhausted {
-        /// The returned trajectory is verified feasible (as above).
-        verified: bool,
-    } = 8,
-}
-
-impl crate::contract::Status for SolveStatus {
-    fn is_usable(&self) -> bool {
-        SolveStatus::is_usable(self)
+crate::status_enum! {
+    /// The state of the returned iterate: a promise about the trajectory in the solution.
+    ///
+    /// Only `Solved` and `Feasible` promise anything about the returned trajectory, and both are
+    /// checked on it by the code that returns them (`solver.rs`, `certificate.rs`):
+    ///
+    /// * feasible: keep-out `>= d - verify_tol_lu` on the **continuous** trajectory (global
+    ///   branch-and-bound minimum per pair, certified), every node control within
+    ///   `Umax + CONTROL_TOL_FU`, and the dynamics check (eq. 29) below `DYNAMICS_TOL`;
+    /// * certified: additionally the certificate in `Solution::certificate` meets the first- and
+    ///   second-order tolerances of [`super::Certificate`].
+    ///
+    /// Every other status makes **no** feasibility promise: the trajectory returned with it may
+    /// violate the keep-out or the control bound (`max_violation` and `min_separation_lu` say by
+    /// how much).
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+    pub enum SolveStatus {
+        /// No solve has written this solution.
+        #[default]
+        Unsolved = 0,
+        /// Feasible (as above) and certified a local optimum: stationary, complementary, and the
+        /// reduced Hessian of the Lagrangian positive on the active constraints' null space, each
+        /// within the certificate's tolerances.
+        Solved = 1,
+        /// The iteration ended but the continuous separation is below `d - verify_tol_lu`
+        /// somewhere; the solution says where. Not feasible.
+        SeparationNotVerified = 2,
+        /// The SQP iteration limit was reached and the last iterate is not verified feasible.
+        MaxIterations = 3,
+        /// A subproblem's l1-elastic QP kept a positive slack: at the last answer no step within
+        /// the control bound meets the linearised keep-out of the checks `Solution::unseparated`
+        /// names (pairs, times, shortfalls). Not feasible; not a proof that no plan exists (the
+        /// linearisation is an inner approximation of the keep-out).
+        Infeasible = 4,
+        /// A QP hit its iteration limit (never its active-set capacity: past it the QP continues
+        /// without a factor) and the last iterate is not verified feasible.
+        QpLimit = 5,
+        /// A factorisation failed; the stage says where. Not feasible.
+        NumericalFailure(Stage) = 6,
+        /// Verified feasible (as above) but not certified optimal within the budget: the iteration
+        /// limit was reached, a QP stopped early, or the certificate missed a tolerance (for
+        /// example a saddle the escape could not leave). May be flown; it may cost more than a
+        /// local optimum.
+        Feasible = 7,
+        /// The work budget (`Settings::work_budget`) ran out before the iteration ended. The
+        /// returned trajectory is the last QP solution (or the guess), checked like any other with
+        /// the budget kept for it: `verified` says whether it passed the feasibility checks above
+        /// (then it may be flown, not certified optimal); otherwise it makes no promise.
+        BudgetExhausted {
+            /// The returned trajectory is verified feasible (as above).
+            verified: bool,
+        } = 8,
     }
-
-    fn code(&self) -> u8 {
-        match self {
-            Self::Unsolved => 0,
-            Self::Solved => 1,
-            Self::SeparationNotVerified => 2,
-            Self::MaxIterations => 3,
-            Self::Infeasible => 4,
-            Self::QpLimit => 5,
-            Self::NumericalFailure(_) => 6,
-            Self::Feasible => 7,
-            Self::BudgetExhausted { .. } => 8,
-        }
-    }
-
-    fn budget_exhausted(&self) -> Option<bool> {
-        match *self {
-            Self::BudgetExhausted { verified } => Some(verified),
-            _ => None,
-        }
-    }
+    usable: [Self::Solved | Self::Feasible | Self::BudgetExhausted { verified: true }];
+    budget: BudgetExhausted;
 }
 
 /// Where a numerical failure happened.
@@ -97,15 +73,6 @@ pub enum Stage {
 }
 
 impl SolveStatus {
-    /// The trajectory was verified to meet every constraint and may be flown (`Solved`,
-    /// `Feasible`, or `BudgetExhausted { verified: true }`).
-    pub fn is_usable(&self) -> bool {
-        matches!(
-            self,
-            Self::Solved | Self::Feasible | Self::BudgetExhausted { verified: true }
-        )
-    }
-
     /// The trajectory is also certified a local optimum (`Solved`).
     pub fn is_certified(&self) -> bool {
         matches!(self, Self::Solved)
