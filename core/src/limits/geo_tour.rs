@@ -7,26 +7,13 @@ use super::{at_most, LimitViolation, ProblemLimit, Setting};
 use crate::geo_tour::{Problem, Settings, MAX_TARGETS};
 use serde::{Deserialize, Serialize};
 
-/// GEO-tour limits. Defaults: the compiled capacity and the default settings.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Limits {
-    /// Most clients of one tour.
-    pub targets: u8,
-    /// The most work and the least safety a request's settings may ask for.
-    pub settings: Settings,
-}
-
-impl Limits {
-    /// The built-in limits, as a constant.
-    pub const BUILT_IN: Self = Self {
-        targets: MAX_TARGETS as u8,
-        settings: Settings::DEFAULT,
-    };
-}
-
-impl Default for Limits {
-    fn default() -> Self {
-        Self::BUILT_IN
+planner_limits! {
+    /// GEO-tour limits. Defaults: the compiled capacity and the default settings.
+    pub struct Limits {
+        /// Most clients of one tour.
+        targets: u8 = MAX_TARGETS as u8,
+        /// The most work and the least safety a request's settings may ask for.
+        settings: Settings = Settings::DEFAULT,
     }
 }
 

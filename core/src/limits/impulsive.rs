@@ -8,29 +8,15 @@ use crate::capacity::MAX_IMPULSES;
 use crate::impulsive::{ImpulsePlan, Problem, Settings};
 use serde::{Deserialize, Serialize};
 
-/// Planner-B limits. Defaults: the compiled capacity, searches allowed, the default settings.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Limits {
-    /// Most impulses (fixed points, or a search's count).
-    pub impulses: u8,
-    /// A request may ask for an impulse-point search.
-    pub search: bool,
-    /// The most work and the least safety a request's settings may ask for.
-    pub settings: Settings,
-}
-
-impl Limits {
-    /// The built-in limits, as a constant.
-    pub const BUILT_IN: Self = Self {
-        impulses: MAX_IMPULSES as u8,
-        search: true,
-        settings: Settings::DEFAULT,
-    };
-}
-
-impl Default for Limits {
-    fn default() -> Self {
-        Self::BUILT_IN
+planner_limits! {
+    /// Planner-B limits. Defaults: the compiled capacity, searches allowed, the default settings.
+    pub struct Limits {
+        /// Most impulses (fixed points, or a search's count).
+        impulses: u8 = MAX_IMPULSES as u8,
+        /// A request may ask for an impulse-point search.
+        search: bool = true,
+        /// The most work and the least safety a request's settings may ask for.
+        settings: Settings = Settings::DEFAULT,
     }
 }
 

@@ -9,33 +9,18 @@ use crate::leo_tour::sequence::{SequenceProblem, SequenceSettings, MAX_CLIENTS};
 use crate::leo_tour::{ArcProblem, Settings, MAX_IMPULSES};
 use serde::{Deserialize, Serialize};
 
-/// LEO-tour limits. Defaults: the compiled capacities and the default settings.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Limits {
-    /// Most impulses of one arc.
-    pub impulses: u8,
-    /// Most clients of a sequencing.
-    pub clients: u8,
-    /// The most work and the least safety an arc's settings may ask for (also those of a
-    /// sequencing's arc estimates).
-    pub arc: Settings,
-    /// The most work and the least safety a sequencing's settings may ask for.
-    pub sequence: SequenceSettings,
-}
-
-impl Limits {
-    /// The built-in limits, as a constant.
-    pub const BUILT_IN: Self = Self {
-        impulses: MAX_IMPULSES as u8,
-        clients: MAX_CLIENTS as u8,
-        arc: Settings::DEFAULT,
-        sequence: SequenceSettings::DEFAULT,
-    };
-}
-
-impl Default for Limits {
-    fn default() -> Self {
-        Self::BUILT_IN
+planner_limits! {
+    /// LEO-tour limits. Defaults: the compiled capacities and the default settings.
+    pub struct Limits {
+        /// Most impulses of one arc.
+        impulses: u8 = MAX_IMPULSES as u8,
+        /// Most clients of a sequencing.
+        clients: u8 = MAX_CLIENTS as u8,
+        /// The most work and the least safety an arc's settings may ask for (also those of a
+        /// sequencing's arc estimates).
+        arc: Settings = Settings::DEFAULT,
+        /// The most work and the least safety a sequencing's settings may ask for.
+        sequence: SequenceSettings = SequenceSettings::DEFAULT,
     }
 }
 

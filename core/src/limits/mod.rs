@@ -15,6 +15,39 @@
 //! [`impulsive::Limits::check_settings`] destructure `Settings` without `..`, so a new field
 //! fails to compile until it has its one line (and its [`Setting`] name).
 
+/// Declare a planner's `Limits`: the struct (each field with the value of the built-in
+/// limits), its `BUILT_IN` constant and `Default` (the built-in limits), so every planner's
+/// limits are built the one way.
+macro_rules! planner_limits {
+    (
+        $(#[$meta:meta])*
+        pub struct Limits {
+            $( $(#[$fmeta:meta])* $field:ident : $ty:ty = $built_in:expr ),* $(,)?
+        }
+    ) => {
+        // The derive first: a caller's `#[serde(...)]` needs its helper in scope.
+        #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+        $(#[$meta])*
+        pub struct Limits {
+            $( $(#[$fmeta])* pub $field: $ty ),*
+        }
+
+        impl Limits {
+            /// The built-in limits, as a constant: a flight image's limits can sit in flash,
+            /// not in RAM.
+            pub const BUILT_IN: Self = Self {
+                $( $field: $built_in ),*
+            };
+        }
+
+        impl Default for Limits {
+            fn default() -> Self {
+                Self::BUILT_IN
+            }
+        }
+    };
+}
+
 pub mod geo_tour;
 pub mod impulsive;
 mod impulsive_forms;
@@ -219,36 +252,23 @@ impl core::fmt::Display for LimitViolation {
 
 impl core::error::Error for LimitViolation {}
 
-/// The limits of every planner.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct Limits {
-    /// Planner A.
-    pub pseudospectral: pseudospectral::Limits,
-    /// Planner B.
-    pub impulsive: impulsive::Limits,
-    /// The GEO servicing tour.
-    pub geo_tour: geo_tour::Limits,
-    /// The LEO tour's arcs and sequencing.
-    pub leo_tour: leo_tour::Limits,
-}
-
-impl Default for Limits {
-    fn default() -> Self {
-        Self::BUILT_IN
+planner_limits! {
+    /// The limits of every planner (built in: each planner's default settings and compiled
+    /// capacities).
+    #[serde(default, deny_unknown_fields)]
+    pub struct Limits {
+        /// Planner A.
+        pseudospectral: pseudospectral::Limits = pseudospectral::Limits::BUILT_IN,
+        /// Planner B.
+        impulsive: impulsive::Limits = impulsive::Limits::BUILT_IN,
+        /// The GEO servicing tour.
+        geo_tour: geo_tour::Limits = geo_tour::Limits::BUILT_IN,
+        /// The LEO tour's arcs and sequencing.
+        leo_tour: leo_tour::Limits = leo_tour::Limits::BUILT_IN,
     }
 }
 
 impl Limits {
-    /// The built-in limits (each planner's default settings and compiled capacities), as a
-    /// constant: a flight image's limits can sit in flash, not in RAM.
-    pub const BUILT_IN: Self = Self {
-        pseudospectral: pseudospectral::Limits::BUILT_IN,
-        impulsive: impulsive::Limits::BUILT_IN,
-        geo_tour: geo_tour::Limits::BUILT_IN,
-        leo_tour: leo_tour::Limits::BUILT_IN,
-    };
-
     /// Check a request against the limits of its planner.
     ///
     /// # Errors

@@ -6,30 +6,16 @@ use crate::capacity::{MAX_DEGREE, MAX_SPACECRAFT};
 use crate::pseudospectral::{Problem, Settings};
 use serde::{Deserialize, Serialize};
 
-/// Planner-A limits. Defaults: the compiled capacities and the default settings.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Limits {
-    /// Most spacecraft M.
-    pub spacecraft: u8,
-    /// Highest polynomial degree N.
-    pub nodes: u16,
-    /// The most work and the least safety a request's settings may ask for, each by its
-    /// setting's rule.
-    pub settings: Settings,
-}
-
-impl Limits {
-    /// The built-in limits, as a constant.
-    pub const BUILT_IN: Self = Self {
-        spacecraft: MAX_SPACECRAFT as u8,
-        nodes: MAX_DEGREE as u16,
-        settings: Settings::DEFAULT,
-    };
-}
-
-impl Default for Limits {
-    fn default() -> Self {
-        Self::BUILT_IN
+planner_limits! {
+    /// Planner-A limits. Defaults: the compiled capacities and the default settings.
+    pub struct Limits {
+        /// Most spacecraft M.
+        spacecraft: u8 = MAX_SPACECRAFT as u8,
+        /// Highest polynomial degree N.
+        nodes: u16 = MAX_DEGREE as u16,
+        /// The most work and the least safety a request's settings may ask for, each by its
+        /// setting's rule.
+        settings: Settings = Settings::DEFAULT,
     }
 }
 
