@@ -4,9 +4,11 @@
 /// list of variants, so that the stable codes, the usable set and the budget stop are stated in
 /// one place and cannot drift from the `repr(u8)` discriminants.
 ///
-/// The enum gets `#[repr(u8)]`; the caller gives its derives and docs. Each variant is written
-/// as in an enum with its discriminant (`Name = 1`, `Name(Stage) = 5`,
-/// `Name { field: T } = 6`). After the enum:
+/// The enum gets `#[repr(u8)]`, the derives every status has (`Clone`, `Copy`, `Debug`,
+/// `Default`, `PartialEq`, serde's two; the caller may add `#[derive(Eq)]`) and the default
+/// variant `Unsolved = 0`. The caller gives the docs and the other variants, each written as in
+/// an enum with its discriminant (`Solved = 1`, `Name(Stage) = 5`, `Name { field: T } = 6`).
+/// After the enum:
 ///
 /// * `usable: [<pattern>];` the variants that may be flown (the inherent `const fn is_usable`);
 /// * `budget: BudgetExhausted;` when the enum has `BudgetExhausted { verified: bool }` (the
@@ -29,9 +31,13 @@ macro_rules! status_enum {
         usable: [$usable:pat];
         budget: $budget:ident;
     ) => {
+        #[derive(Clone, Copy, Debug, Default, PartialEq, ::serde::Serialize, ::serde::Deserialize)]
         $(#[$meta])*
         #[repr(u8)]
         $vis enum $Name {
+            /// Nothing has written this outcome yet (the default).
+            #[default]
+            Unsolved = 0,
             $(
                 $(#[$vmeta])*
                 $Variant
@@ -52,6 +58,7 @@ macro_rules! status_enum {
             #[allow(clippy::unneeded_struct_pattern)]
             pub const fn code(&self) -> u8 {
                 match self {
+                    Self::Unsolved => 0,
                     $( Self::$Variant { .. } => $code, )*
                 }
             }

@@ -10,11 +10,8 @@ crate::status_enum! {
     /// [`SolveStatus::is_usable`]: `Solved`, or `BudgetExhausted { verified: true }`; either is
     /// returned only after the plan was checked: every burn within the cap, the legs' durations
     /// summing to at most the mission time, every number finite.
-    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+    #[derive(Eq)]
     pub enum SolveStatus {
-        /// No solve has written this solution.
-        #[default]
-        Unsolved = 0,
         /// The plan meets the mission time and the cap; its total is the least the allocation
         /// found (see the docs for what is exact).
         Solved = 1,

@@ -11,11 +11,7 @@ crate::status_enum! {
     /// no impulses).
     ///
     /// [`Solution`]: super::Solution
-    #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
     pub enum SolveStatus {
-        /// No solve has written this solution.
-        #[default]
-        Unsolved = 0,
         /// The returned impulses, flown with the exact impulse model and J2 secular drift, reach
         /// the target within `correction_tol` (re-checked on the returned plan), F has full rank
         /// there, and every transfer arc's perigee is above `min_perigee_altitude_km`. Needs

@@ -100,11 +100,8 @@ impl SequenceSettings {
 crate::status_enum! {
     /// What the returned order is (the contract's vocabulary, [`crate::contract::Status`]; the
     /// sequencing has no work budget of its own: `max_arcs` bounds it).
-    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+    #[derive(Eq)]
     pub enum SequenceStatus {
-        /// No sequencing has written this outcome.
-        #[default]
-        Unsolved = 0,
         /// Every order was either planned or pruned by the bound, and no planned arc was cheaper
         /// than its bound: the order is the cheapest for the arc costs given (the contract's
         /// `Solved`).

@@ -149,11 +149,8 @@ crate::status_enum! {
     /// How an arc's solve ended (the contract's vocabulary, [`crate::contract::Status`]). The
     /// plan in the solution, when there is one, was flown from scratch in the planning model with
     /// an exact shooting of its last leg; that flight decides the status.
-    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+    #[derive(Eq)]
     pub enum SolveStatus {
-        /// No solve has written this solution.
-        #[default]
-        Unsolved = 0,
         /// The plan, flown from scratch in the planning model, arrives within `arrival_tol_km` of
         /// the client with its velocity.
         Solved = 1,

@@ -17,11 +17,8 @@ crate::status_enum! {
     /// Every other status makes **no** feasibility promise: the trajectory returned with it may
     /// violate the keep-out or the control bound (`max_violation` and `min_separation_lu` say by
     /// how much).
-    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+    #[derive(Eq)]
     pub enum SolveStatus {
-        /// No solve has written this solution.
-        #[default]
-        Unsolved = 0,
         /// Feasible (as above) and certified a local optimum: stationary, complementary, and the
         /// reduced Hessian of the Lagrangian positive on the active constraints' null space, each
         /// within the certificate's tolerances.
