@@ -592,43 +592,13 @@ mod tests {
 
     #[test]
     fn too_short_for_the_revolutions_and_bad_input_are_errors() {
-        let r1 = [7000.0, 0.0, 0.0];
-        let r2 = [0.0, 7000.0, 0.0];
-        let e = solve(
-            MU,
-            &r1,
-            &r2,
-            3000.0,
-            2,
-            Branch::Left,
-            &[0.0, 0.0, 1.0],
-            40,
-            1e-13,
-        );
-        assert_eq!(e, Err(LambertError::NoSolution));
-        let e = solve(
-            MU,
-            &r1,
-            &r2,
-            f64::NAN,
-            0,
-            Branch::Left,
-            &[0.0, 0.0, 1.0],
-            40,
-            1e-13,
-        );
-        assert_eq!(e, Err(LambertError::BadInput));
-        let e = solve(
-            MU,
-            &r1,
-            &r2,
-            100.0,
-            0,
-            Branch::Left,
-            &[0.0, 0.0, 0.0],
-            40,
-            1e-13,
-        );
-        assert_eq!(e, Err(LambertError::BadInput));
+        let quarter = |tof_s: f64, revs: u16, normal: Vec3| {
+            let (r1, r2) = ([7000.0, 0.0, 0.0], [0.0, 7000.0, 0.0]);
+            solve(MU, &r1, &r2, tof_s, revs, Branch::Left, &normal, 40, 1e-13)
+        };
+        let z = [0.0, 0.0, 1.0];
+        assert_eq!(quarter(3000.0, 2, z), Err(LambertError::NoSolution));
+        assert_eq!(quarter(f64::NAN, 0, z), Err(LambertError::BadInput));
+        assert_eq!(quarter(100.0, 0, [0.0; 3]), Err(LambertError::BadInput));
     }
 }

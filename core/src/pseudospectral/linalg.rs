@@ -8,6 +8,23 @@
 
 use crate::indexed::IndexedExt as _;
 
+/// `start - x_1 y_1 - x_2 y_2 - ...`, subtracted in order: the inner step of every kernel here
+/// and in `packed.rs`, so the dense and the packed kernels round alike.
+pub(crate) fn minus_products(start: f64, pairs: impl IntoIterator<Item = (f64, f64)>) -> f64 {
+    let mut value = start;
+    for (x, y) in pairs {
+        value -= x * y;
+    }
+    value
+}
+
+/// Entry `i` of `b` and the entries after it (back substitution's unknown and the solved
+/// ones), `None` past the end.
+pub(crate) fn slot_and_later(b: &mut [f64], i: usize) -> Option<(&mut f64, &mut [f64])> {
+    b.split_at_mut_checked(i)
+        .and_then(|(_, rest)| rest.split_first_mut())
+}
+
 /// Column `j` of `a` from row `from` down: `a[from][j], a[from + 1][j], ...`.
 fn column<const C: usize>(
     a: &[[f64; C]; C],
@@ -35,10 +52,7 @@ pub(crate) fn cholesky_in_place<const C: usize>(a: &mut [[f64; C]; C], n: usize)
         else {
             return Some(j);
         };
-        let mut diag = *diagonal;
-        for l in left.iter() {
-            diag -= l * l;
-        }
+        let diag = minus_products(*diagonal, left.iter().map(|&l| (l, l)));
         if diag.is_nan() || diag <= 0.0 {
             return Some(j);
         }
@@ -48,11 +62,8 @@ pub(crate) fn cholesky_in_place<const C: usize>(a: &mut [[f64; C]; C], n: usize)
             let Some((row_left, entry)) = split_at_diagonal(row, j) else {
                 return Some(j);
             };
-            let mut value = *entry;
-            for (x, y) in row_left.iter().zip(left.iter()) {
-                value -= x * y;
-            }
-            *entry = value / pivot;
+            *entry =
+                minus_products(*entry, row_left.iter().copied().zip(left.iter().copied())) / pivot;
         }
     }
     None
@@ -80,11 +91,7 @@ pub(crate) fn solve_lower<const C: usize>(l: &[[f64; C]; C], n: usize, b: &mut [
         let (Some(&diagonal), Some(slot)) = (right.first(), rest.first_mut()) else {
             return false;
         };
-        let mut value = *slot;
-        for (lk, bk) in left.iter().zip(solved.iter()) {
-            value -= lk * bk;
-        }
-        *slot = value / diagonal;
+        *slot = minus_products(*slot, left.iter().copied().zip(solved.iter().copied())) / diagonal;
     }
     true
 }
@@ -99,10 +106,7 @@ pub(crate) fn solve_lower_transposed<const C: usize>(
 ) -> bool {
     let n = n.min(C);
     for i in (0..n).rev() {
-        let Some((slot, later)) = b
-            .split_at_mut_checked(i)
-            .and_then(|(_, rest)| rest.split_first_mut())
-        else {
+        let Some((slot, later)) = slot_and_later(b, i) else {
             return false;
         };
         // Column i from the diagonal down: L[i][i], then L[k][i] for k > i.
@@ -110,35 +114,39 @@ pub(crate) fn solve_lower_transposed<const C: usize>(
         let Some(diagonal) = below.next() else {
             return false;
         };
-        let mut value = *slot;
-        for (lki, bk) in below
-            .zip(later.iter())
-            .take(n.saturating_sub(i.saturating_add(1)))
-        {
-            value -= lki * bk;
-        }
-        *slot = value / diagonal;
+        let later = later.iter().copied();
+        let pairs = below.zip(later).take(n.saturating_sub(i.saturating_add(1)));
+        *slot = minus_products(*slot, pairs) / diagonal;
     }
     true
 }
 
 #[cfg(test)]
 #[allow(clippy::indexing_slicing)]
-mod tests {
+pub(super) mod tests {
     use super::*;
+
+    /// The SPD test matrix of the dense and the packed Cholesky, and its right-hand side.
+    pub(in crate::pseudospectral) const SPD: [[f64; 3]; 3] =
+        [[4.0, 2.0, 0.4], [2.0, 5.0, 1.0], [0.4, 1.0, 3.0]];
+    pub(in crate::pseudospectral) const RHS: [f64; 3] = [1.0, 2.0, 3.0];
+
+    /// `solve` (both triangular solves of a factor of `SPD`) turns `RHS` into `x` with
+    /// `SPD x = RHS` to 1e-14.
+    pub(in crate::pseudospectral) fn assert_solves_spd(solve: impl FnOnce(&mut [f64; 3]) -> bool) {
+        let mut x = RHS;
+        assert!(solve(&mut x));
+        for i in 0..3 {
+            let row: f64 = (0..3).map(|j| SPD[i][j] * x[j]).sum();
+            assert!((row - RHS[i]).abs() < 1e-14);
+        }
+    }
 
     #[test]
     fn cholesky_solves_spd_system() {
-        let mut a = [[4.0, 2.0, 0.4], [2.0, 5.0, 1.0], [0.4, 1.0, 3.0]];
-        let original = a;
+        let mut a = SPD;
         assert_eq!(cholesky_in_place(&mut a, 3), None);
-        let mut x = [1.0, 2.0, 3.0];
-        assert!(solve_lower(&a, 3, &mut x));
-        assert!(solve_lower_transposed(&a, 3, &mut x));
-        for i in 0..3 {
-            let row: f64 = (0..3).map(|j| original[i][j] * x[j]).sum();
-            assert!((row - [1.0, 2.0, 3.0][i]).abs() < 1e-14);
-        }
+        assert_solves_spd(|x| solve_lower(&a, 3, x) && solve_lower_transposed(&a, 3, x));
     }
 
     #[test]

@@ -5,6 +5,7 @@
 //! (12.8 KB instead of 25.1 KB), and the same buffer doubles as the dual table of the QP's
 //! capacity-free fallback (`qp_dual.rs`).
 
+use super::linalg::{minus_products, slot_and_later};
 use crate::indexed::IndexedExt as _;
 
 /// Numbers a packed lower triangle of order `n` takes.
@@ -50,10 +51,7 @@ pub(crate) fn cholesky<const S: usize>(a: &mut [f64; S], n: usize) -> Option<usi
         let Some((left, diagonal, below)) = split_row(rest, j) else {
             return Some(j);
         };
-        let mut diag = *diagonal;
-        for l in left.iter() {
-            diag -= l * l;
-        }
+        let diag = minus_products(*diagonal, left.iter().map(|&l| (l, l)));
         if diag.is_nan() || diag <= 0.0 {
             return Some(j);
         }
@@ -71,11 +69,7 @@ pub(crate) fn cholesky<const S: usize>(a: &mut [f64; S], n: usize) -> Option<usi
             let Some(entry) = tail.first_mut() else {
                 return Some(j);
             };
-            let mut value = *entry;
-            for (x, y) in head.iter().zip(left.iter()) {
-                value -= x * y;
-            }
-            *entry = value / pivot;
+            *entry = minus_products(*entry, head.iter().copied().zip(left.iter().copied())) / pivot;
             lower = after;
         }
         rest = below;
@@ -105,11 +99,7 @@ pub(crate) fn solve_lower<const S: usize, const C: usize>(
         let Some(slot) = unsolved.first_mut() else {
             return false;
         };
-        let mut value = *slot;
-        for (lk, bk) in left.iter().zip(solved.iter()) {
-            value -= lk * bk;
-        }
-        *slot = value / diagonal;
+        *slot = minus_products(*slot, left.iter().copied().zip(solved.iter().copied())) / diagonal;
         rows = after;
     }
     true
@@ -125,10 +115,7 @@ pub(crate) fn solve_lower_transposed<const S: usize, const C: usize>(
 ) -> bool {
     let n = n.min(C);
     for i in (0..n).rev() {
-        let Some((slot, later)) = b
-            .split_at_mut_checked(i)
-            .and_then(|(_, rest)| rest.split_first_mut())
-        else {
+        let Some((slot, later)) = slot_and_later(b, i) else {
             return false;
         };
         let Some(&diagonal) = l.get(at(i, i)) else {
@@ -162,21 +149,15 @@ mod tests {
 
     #[test]
     fn packed_cholesky_solves_an_spd_system() {
-        let dense = [[4.0, 2.0, 0.4], [2.0, 5.0, 1.0], [0.4, 1.0, 3.0]];
+        use crate::pseudospectral::linalg::tests::{assert_solves_spd, SPD};
         let mut a = [0.0; 6];
         for i in 0..3 {
             for j in 0..=i {
-                set(&mut a, i, j, dense[i][j]);
+                set(&mut a, i, j, SPD[i][j]);
             }
         }
         assert_eq!(cholesky(&mut a, 3), None);
-        let mut x = [1.0, 2.0, 3.0];
-        assert!(solve_lower(&a, 3, &mut x));
-        assert!(solve_lower_transposed(&a, 3, &mut x));
-        for i in 0..3 {
-            let row: f64 = (0..3).map(|j| dense[i][j] * x[j]).sum();
-            assert!((row - [1.0, 2.0, 3.0][i]).abs() < 1e-14);
-        }
+        assert_solves_spd(|x| solve_lower(&a, 3, x) && solve_lower_transposed(&a, 3, x));
     }
 
     #[test]
