@@ -77,13 +77,7 @@ pub(crate) fn fixed_point(
             }
             None => {
                 seq.work.charge(work_units::svd(pts.n));
-                let (x, cond) = solve_min_norm(
-                    &seq.f,
-                    columns,
-                    &seq.dy,
-                    settings.rank_rcond,
-                    settings.svd_max_iter,
-                )?;
+                let (x, cond) = min_norm_of_system(seq, columns, settings)?;
                 out.conditioning = cond;
                 if cond.rank < 6 {
                     // Rank-deficient F (coincident points, or fewer than two impulses): the
@@ -337,14 +331,27 @@ fn conditioning_at(
     propagate(ctx, pts, dv, ImpulseModel::Linear, settings, seq)?;
     build_system(ctx, pts, seq);
     let columns = pts.n.saturating_mul(3);
-    let (_, c) = solve_min_norm(
+    let (_, c) = min_norm_of_system(seq, columns, settings)?;
+    Ok(c)
+}
+
+/// The minimum-norm solution (by the SVD, with the settings' rank tolerance and sweep bound)
+/// of the system `F x = dy` built in `seq`, over its first `columns` unknowns.
+///
+/// # Errors
+/// [`Stage::Svd`] when the SVD fails.
+fn min_norm_of_system(
+    seq: &Sequence,
+    columns: usize,
+    settings: &Settings,
+) -> Result<(XVector, Conditioning), Stage> {
+    solve_min_norm(
         &seq.f,
         columns,
         &seq.dy,
         settings.rank_rcond,
         settings.svd_max_iter,
-    )?;
-    Ok(c)
+    )
 }
 
 /// Nonlinear correction: Broyden's method on the defect `e(dv)` of the exact model (exact
@@ -486,10 +493,7 @@ mod tests {
 
     #[test]
     fn fixed_point_converges_quickly_on_table_2() {
-        let ctx = paper_context();
-        let pts = table_2_points();
-        let settings = Settings::paper_classical();
-        let mut seq = Sequence::new();
+        let (ctx, pts, settings, mut seq) = paper_case();
         let mut dv = XVector::zeros();
         let mut changes = [0.0; 12];
         for c in changes.iter_mut() {
@@ -499,6 +503,25 @@ mod tests {
         }
         assert!(changes[6] < 1e-9, "{changes:?}");
         assert!((total(&dv) * 1000.0 - 8.2207).abs() < 1e-3);
+    }
+
+    /// The paper's case: its context, Table 2's impulse points, its settings, a sequence.
+    fn paper_case() -> (Context, Points, Settings, Sequence) {
+        let settings = Settings::paper_classical();
+        (paper_context(), table_2_points(), settings, Sequence::new())
+    }
+
+    /// The solution written for `rep`: one evaluation, a fresh `Solution`.
+    fn written(
+        ctx: &Context,
+        pts: &Points,
+        settings: &Settings,
+        seq: &mut Sequence,
+        rep: &Report,
+    ) -> Solution {
+        let mut out = Solution::new();
+        write_solution(ctx, pts, settings, seq, rep, 1, &mut out);
+        out
     }
 
     fn table_2_points() -> Points {
@@ -518,13 +541,9 @@ mod tests {
 
     #[test]
     fn a_transfer_arc_below_the_perigee_limit_is_unsafe_and_named() {
-        let ctx = paper_context();
-        let pts = table_2_points();
-        let settings = Settings::paper_classical();
-        let mut seq = Sequence::new();
+        let (ctx, pts, settings, mut seq) = paper_case();
         let rep = solve_points(&ctx, &pts, &settings, &mut seq);
-        let mut out = Solution::new();
-        write_solution(&ctx, &pts, &settings, &mut seq, &rep, 1, &mut out);
+        let out = written(&ctx, &pts, &settings, &mut seq, &rep);
         assert_eq!(out.info.status, SolveStatus::Solved);
         // The exact propagation of the returned plan is left in `seq`: the arcs' perigees.
         nonlinear_error(&ctx, &pts, &rep.dv, &settings, &mut seq).unwrap();
@@ -546,7 +565,7 @@ mod tests {
             min_perigee_altitude_km: *value + 1e-6,
             ..settings
         };
-        write_solution(&ctx, &pts, &strict, &mut seq, &rep, 1, &mut out);
+        let out = written(&ctx, &pts, &strict, &mut seq, &rep);
         assert_eq!(
             out.info.status,
             SolveStatus::UnsafePerigee {
@@ -560,22 +579,17 @@ mod tests {
 
     #[test]
     fn non_finite_numbers_never_leave_and_say_numerical_failure() {
-        let ctx = paper_context();
-        let pts = table_2_points();
-        let settings = Settings::paper_classical();
-        let mut seq = Sequence::new();
+        let (ctx, pts, settings, mut seq) = paper_case();
         let mut rep = solve_points(&ctx, &pts, &settings, &mut seq);
         rep.min_norm_total_km_s = f64::NAN;
-        let mut out = Solution::new();
-        write_solution(&ctx, &pts, &settings, &mut seq, &rep, 1, &mut out);
+        let out = written(&ctx, &pts, &settings, &mut seq, &rep);
         // A figure that came out non-finite is absent; the plan itself is finite and kept.
         assert_eq!(out.min_norm_total_dv_mps, None);
         assert!(out.total_dv_mps > 8.0);
         assert!(out.terminal_error.is_some());
         // A plan number that came out non-finite: no plan at all, and the status says so.
         rep.dv[0] = f64::INFINITY;
-        let mut out = Solution::new();
-        write_solution(&ctx, &pts, &settings, &mut seq, &rep, 1, &mut out);
+        let out = written(&ctx, &pts, &settings, &mut seq, &rep);
         assert!(matches!(out.info.status, SolveStatus::NumericalFailure(_)));
         assert!(out.impulses.is_empty());
         assert_eq!(out.total_dv_mps, 0.0);
@@ -583,16 +597,12 @@ mod tests {
 
     #[test]
     fn solved_is_rechecked_on_the_returned_impulses() {
-        let ctx = paper_context();
-        let pts = table_2_points();
-        let settings = Settings::paper_classical();
-        let mut seq = Sequence::new();
+        let (ctx, pts, settings, mut seq) = paper_case();
         let mut rep = solve_points(&ctx, &pts, &settings, &mut seq);
         assert_eq!(rep.status, SolveStatus::Solved);
         // 1 mm/s off on one component: the report must not keep `Solved`.
         rep.dv[1] += 1e-6;
-        let mut out = Solution::new();
-        write_solution(&ctx, &pts, &settings, &mut seq, &rep, 1, &mut out);
+        let out = written(&ctx, &pts, &settings, &mut seq, &rep);
         assert_eq!(out.info.status, SolveStatus::CorrectionNotConverged);
     }
 }
