@@ -103,71 +103,43 @@ pub fn solve(
     // Each sweep's end (its plan's legs rebuilt and checked, or why it is infeasible) is paid
     // from this reserve, so a usable plan is never lost to the check that shows it usable.
     meter.reserve(work_units::reserve(settings, n));
-    match problem.sweep {
-        SweepChoice::East => {
-            solve_sweep(
-                &g,
-                Direction::East,
-                problem,
-                settings,
-                workspace,
-                out,
-                None,
-                &mut meter,
-            );
+    // The sweep asked for, or east first when the cheaper one is wanted.
+    let first = match problem.sweep {
+        SweepChoice::West => Direction::West,
+        SweepChoice::East | SweepChoice::Cheaper => Direction::East,
+    };
+    solve_sweep(
+        &g, first, problem, settings, workspace, out, None, &mut meter,
+    );
+    if problem.sweep == SweepChoice::Cheaper {
+        let mut other = core::mem::take(&mut workspace.other);
+        // The west plan replaces the east one only when it is usable and strictly
+        // cheaper (or the east one is not usable), so a west sweep that provably is
+        // neither is cut short.
+        let beat = if out.info.status.is_usable() {
+            out.total_dv_mps
+        } else {
+            f64::INFINITY
+        };
+        solve_sweep(
+            &g,
+            Direction::West,
+            problem,
+            settings,
+            workspace,
+            &mut other,
+            Some(beat),
+            &mut meter,
+        );
+        let usable = |s: &Solution| s.info.status.is_usable();
+        let iterations = out.info.price_iterations;
+        let take_west = (usable(&other) && !usable(out))
+            || (usable(&other) && usable(out) && other.total_dv_mps < out.total_dv_mps);
+        if take_west {
+            core::mem::swap(out, &mut other);
         }
-        SweepChoice::West => {
-            solve_sweep(
-                &g,
-                Direction::West,
-                problem,
-                settings,
-                workspace,
-                out,
-                None,
-                &mut meter,
-            );
-        }
-        SweepChoice::Cheaper => {
-            solve_sweep(
-                &g,
-                Direction::East,
-                problem,
-                settings,
-                workspace,
-                out,
-                None,
-                &mut meter,
-            );
-            let mut other = core::mem::take(&mut workspace.other);
-            // The west plan replaces the east one only when it is usable and strictly
-            // cheaper (or the east one is not usable), so a west sweep that provably is
-            // neither is cut short.
-            let beat = if out.info.status.is_usable() {
-                out.total_dv_mps
-            } else {
-                f64::INFINITY
-            };
-            solve_sweep(
-                &g,
-                Direction::West,
-                problem,
-                settings,
-                workspace,
-                &mut other,
-                Some(beat),
-                &mut meter,
-            );
-            let usable = |s: &Solution| s.info.status.is_usable();
-            let iterations = out.info.price_iterations;
-            let take_west = (usable(&other) && !usable(out))
-                || (usable(&other) && usable(out) && other.total_dv_mps < out.total_dv_mps);
-            if take_west {
-                core::mem::swap(out, &mut other);
-            }
-            out.info.price_iterations = out.info.price_iterations.saturating_add(iterations);
-            workspace.other = other;
-        }
+        out.info.price_iterations = out.info.price_iterations.saturating_add(iterations);
+        workspace.other = other;
     }
     // A budget stop anywhere (in either sweep) makes the answer a budget stop: the plan
     // returned is the best usable one found, verified by its own checks.
