@@ -317,11 +317,37 @@ fn drift_allocate(
     if fb.is_nan() || fb <= 0.0 || fa.is_nan() || fa > 0.0 {
         return Ok(None);
     }
-    // A refused step reads NaN, which stops the search; `cut` says so.
+    let ((w, _, _, _, steps), cut) = weight_search(
+        |price| drift_time(price, picks),
+        budget,
+        (w_a, fa),
+        (w_b, fb),
+        s,
+    );
+    if cut {
+        return Err(Cut);
+    }
+    *iterations = iterations.saturating_add(u32::from(steps));
+    let price = 1.0 / (w * w);
+    drift_time(price, picks)?;
+    Ok(Some(price))
+}
+
+/// Illinois on the price weight `w` (the price is `1 / w^2`) for the tour time `time(price)`
+/// to meet `budget_s`, from the bracket `(w_a, f(w_a)) .. (w_b, f(w_b))` of `f = time -
+/// budget_s`: [`illinois`]'s final bracket and steps, and whether a step was refused (`Cut`
+/// reads NaN, which stops the search).
+fn weight_search(
+    mut time: impl FnMut(f64) -> Result<f64, Cut>,
+    budget_s: f64,
+    (w_a, fa): (f64, f64),
+    (w_b, fb): (f64, f64),
+    s: &Settings,
+) -> ((f64, f64, f64, f64, u16), bool) {
     let mut cut = false;
-    let (w, _, _, _, steps) = illinois(
-        |w| match drift_time(1.0 / (w * w), picks) {
-            Ok(t) => t - budget,
+    let bracket = illinois(
+        |w| match time(1.0 / (w * w)) {
+            Ok(t) => t - budget_s,
             Err(Cut) => {
                 cut = true;
                 f64::NAN
@@ -335,13 +361,7 @@ fn drift_allocate(
         1e-9,
         s.time_tol_s,
     );
-    if cut {
-        return Err(Cut);
-    }
-    *iterations = iterations.saturating_add(u32::from(steps));
-    let price = 1.0 / (w * w);
-    drift_time(price, picks)?;
-    Ok(Some(price))
+    (bracket, cut)
 }
 
 /// Allocate the mission time `budget_s` over the legs. `picks` receives each leg's choice and
@@ -421,23 +441,12 @@ pub(crate) fn allocate(
         }
     }
     let (wa, wb) = if fb > 0.0 {
-        // A refused step reads NaN, which stops the search.
-        let mut was_cut = false;
-        let (a, _, b, _, steps) = illinois(
-            |w| match pick_all(tables, 1.0 / (w * w), s, trial, meter) {
-                Ok(t) => t - budget_s,
-                Err(Cut) => {
-                    was_cut = true;
-                    f64::NAN
-                }
-            },
-            w_a,
-            fa,
-            w_b,
-            fb,
-            s.price_max_iter,
-            1e-9,
-            s.time_tol_s,
+        let ((a, _, b, _, steps), was_cut) = weight_search(
+            |price| pick_all(tables, price, s, trial, meter),
+            budget_s,
+            (w_a, fa),
+            (w_b, fb),
+            s,
         );
         iterations = iterations.saturating_add(u32::from(steps));
         if was_cut {
