@@ -178,20 +178,7 @@ impl Drift {
                 }
             }
         }
-        for _ in 0..max_iter {
-            let mid = 0.5 * (lo + hi);
-            if mid <= lo || mid >= hi {
-                break;
-            }
-            if !gauge.take(eval) {
-                return None;
-            }
-            if ok(mid) {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
+        let (lo, _) = super::root::metered_bisection(lo, hi, max_iter, gauge, eval, ok)?;
         (lo > 0.0).then_some(lo)
     }
 

@@ -98,20 +98,8 @@ pub(crate) fn radial_gauged(
             hi = b;
         }
     }
-    for _ in 0..max_iter {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        if !gauge.take(eval) {
-            return None;
-        }
-        if arc(g, dir, mid).1 < phase_rad {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
+    let short = |e: f64| arc(g, dir, e).1 < phase_rad;
+    let (lo, hi) = super::root::metered_bisection(lo, hi, max_iter, gauge, eval, short)?;
     let e = 0.5 * (lo + hi);
     if !gauge.take(eval) {
         return None;

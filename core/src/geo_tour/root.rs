@@ -1,5 +1,35 @@
 //! A bounded bracketing root finder (Illinois regula falsi with a bisection every fourth
-//! step, so a step function cannot stall it).
+//! step, so a step function cannot stall it), and the metered bisection that finishes a search.
+
+use super::work_units::Gauge;
+
+/// Bisection of `[lo, hi]` down to adjacent floats, at most `max_iter` steps: `keep_lo(mid)`
+/// moves `lo` to `mid`, else `hi` moves there. Each evaluation is taken from `gauge` first;
+/// `None` when one is refused (the search stops where it is). Returns the final `(lo, hi)`.
+pub(crate) fn metered_bisection(
+    mut lo: f64,
+    mut hi: f64,
+    max_iter: u16,
+    gauge: &mut Gauge<'_>,
+    eval: u64,
+    mut keep_lo: impl FnMut(f64) -> bool,
+) -> Option<(f64, f64)> {
+    for _ in 0..max_iter {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if !gauge.take(eval) {
+            return None;
+        }
+        if keep_lo(mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Some((lo, hi))
+}
 
 /// Root of a non-decreasing `f` on `[a, b]` given `fa = f(a) <= 0 < fb = f(b)`. Returns the
 /// final bracket `(a, fa, b, fb, steps)`: `f(a) <= 0 < f(b)` always holds, so `a` is the
