@@ -140,27 +140,15 @@ impl Drift {
         }
         let f_hi = violation(hi);
         if f_hi > 0.0 {
-            // The origin is admissible in the limit (violation -1 stands for it). A refused
-            // evaluation reads NaN, which stops the search.
-            let (a, _, b, _, _) = super::root::illinois(
-                |x| {
-                    if gauge.take(eval) {
-                        violation(x)
-                    } else {
-                        f64::NAN
-                    }
-                },
-                lo,
-                -1.0,
-                hi,
-                f_hi,
+            // The origin is admissible in the limit (violation -1 stands for it).
+            let (a, _, b, _) = super::root::metered_illinois(
+                violation,
+                (lo, -1.0),
+                (hi, f_hi),
                 max_iter,
-                1e-15,
-                0.0,
-            );
-            if gauge.stopped() {
-                return None;
-            }
+                gauge,
+                eval,
+            )?;
             if a > 0.0 {
                 if !gauge.take(eval) {
                     return None;

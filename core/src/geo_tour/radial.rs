@@ -77,20 +77,8 @@ pub(crate) fn radial_gauged(
     let (f_lo, f_hi) = (gain(lo), gain(hi));
     if f_lo < 0.0 && f_hi >= 0.0 {
         // illinois keeps f(a) <= 0 < f(b); the bisection below keeps gain(lo) < 0 <= gain(hi).
-        // A refused evaluation reads NaN, which stops the search.
-        let (a, fa, b, fb, _) = super::root::illinois(
-            |e| if gauge.take(eval) { gain(e) } else { f64::NAN },
-            lo,
-            f_lo,
-            hi,
-            f_hi,
-            max_iter,
-            1e-15,
-            0.0,
-        );
-        if gauge.stopped() {
-            return None;
-        }
+        let (a, fa, b, fb) =
+            super::root::metered_illinois(gain, (lo, f_lo), (hi, f_hi), max_iter, gauge, eval)?;
         if fa < 0.0 {
             lo = a;
         }

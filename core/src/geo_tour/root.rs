@@ -31,6 +31,30 @@ pub(crate) fn metered_bisection(
     Some((lo, hi))
 }
 
+/// [`illinois`] from `(a, f(a))` to `(b, f(b))` with the geometric searches' tolerances
+/// (adjacent floats, no tolerance on `f`), each evaluation taken from `gauge` first: a refused
+/// one reads NaN, which stops the search, and the answer is `None`. Else the final bracket.
+pub(crate) fn metered_illinois(
+    mut f: impl FnMut(f64) -> f64,
+    (a, fa): (f64, f64),
+    (b, fb): (f64, f64),
+    max_iter: u16,
+    gauge: &mut Gauge<'_>,
+    eval: u64,
+) -> Option<(f64, f64, f64, f64)> {
+    let (a, fa, b, fb, _) = illinois(
+        |x| if gauge.take(eval) { f(x) } else { f64::NAN },
+        a,
+        fa,
+        b,
+        fb,
+        max_iter,
+        1e-15,
+        0.0,
+    );
+    (!gauge.stopped()).then_some((a, fa, b, fb))
+}
+
 /// Root of a non-decreasing `f` on `[a, b]` given `fa = f(a) <= 0 < fb = f(b)`. Returns the
 /// final bracket `(a, fa, b, fb, steps)`: `f(a) <= 0 < f(b)` always holds, so `a` is the
 /// "feasible" end when `f <= 0` means feasible. Stops after `max_iter` steps, when the bracket
