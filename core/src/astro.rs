@@ -57,7 +57,6 @@ pub fn wrap_pi(x: f64) -> f64 {
 }
 
 #[cfg(test)]
-#[allow(clippy::float_cmp)]
 mod tests {
     use super::*;
     use core::f64::consts::PI;

@@ -79,7 +79,6 @@ pub trait IndexedExt: Iterator + Sized {
 impl<I: Iterator> IndexedExt for I {}
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing)]
 mod tests {
     extern crate std;
     use super::IndexedExt;

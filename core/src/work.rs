@@ -109,7 +109,6 @@ pub(crate) fn units(factors: &[usize]) -> u64 {
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
 

@@ -422,7 +422,6 @@ macro_rules! settings_table {
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::float_cmp)]
 mod tests {
     use super::*;
 

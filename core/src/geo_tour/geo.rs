@@ -175,7 +175,6 @@ impl core::ops::Mul<f64> for Dual {
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
 mod tests {
     use super::*;
 

@@ -579,7 +579,6 @@ fn drift(g: &Geo, phase_deg: f64) -> Drift {
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing)]
 mod tests {
     use super::*;
     extern crate std;

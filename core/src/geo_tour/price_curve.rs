@@ -156,7 +156,6 @@ impl PriceCurve {
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
 mod tests {
     use super::*;
     use crate::geo_tour::geo::Geo;

@@ -157,7 +157,6 @@ pub(crate) fn secant_root<F: FnMut(f64) -> f64>(
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::float_cmp)]
 mod tests {
     use super::*;
 

@@ -89,7 +89,6 @@ pub(crate) fn mean_arg_latitude_rad(el: &Elements) -> f64 {
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
 mod tests {
     use super::*;
 

@@ -220,7 +220,6 @@ pub(crate) fn impulse_matrix(q: &Elements, true_longitude_rad: f64) -> SMatrix<f
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
 mod tests {
     use super::*;
     use crate::impulsive::nonlinear;

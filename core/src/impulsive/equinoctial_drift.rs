@@ -144,7 +144,6 @@ pub(crate) fn flow_jacobian(q: &Elements, dt_s: f64) -> SMatrix<f64, 6, 6> {
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
 mod tests {
     use super::*;
     use crate::impulsive::equinoctial::{from_classical, to_classical};

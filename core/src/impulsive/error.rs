@@ -235,12 +235,6 @@ impl core::fmt::Display for PlanError {
 }
 
 #[cfg(test)]
-#[allow(
-    clippy::unwrap_used,
-    clippy::indexing_slicing,
-    clippy::float_cmp,
-    clippy::arithmetic_side_effects
-)]
 mod tests {
     use super::*;
     use core::fmt::Write;

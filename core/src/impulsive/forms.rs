@@ -301,7 +301,6 @@ pub fn roe_of(chief: &MeanElements, rel: &RelativeElements) -> Roe {
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
 mod tests {
     use super::*;
 

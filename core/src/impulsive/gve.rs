@@ -58,7 +58,6 @@ pub(crate) fn impulse_matrix(el: &Elements, true_anomaly_rad: f64) -> SMatrix<f6
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
 mod tests {
     use super::*;
 

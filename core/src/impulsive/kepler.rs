@@ -61,7 +61,6 @@ pub(crate) fn mean_from_true(true_anomaly_rad: f64, ecc: f64) -> f64 {
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
 mod tests {
     use super::*;
 

@@ -170,7 +170,6 @@ pub(crate) fn relative_position_rtn(a: &State, b: &State) -> Vec3 {
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
 mod tests {
     use super::*;
     use crate::impulsive::gve::impulse_matrix;

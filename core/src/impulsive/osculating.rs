@@ -160,7 +160,6 @@ pub(crate) fn osculating_to_mean(
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
 mod tests {
     use super::*;
     use crate::impulsive::equinoctial::from_classical;

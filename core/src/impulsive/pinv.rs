@@ -195,7 +195,6 @@ pub(crate) fn solve_full_row_rank(f: &FMatrix, y: &SVector<f64, 6>) -> Option<XV
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
 mod tests {
     use super::*;
 

@@ -68,7 +68,6 @@ pub(crate) fn rates_jacobian(el: &Elements) -> SMatrix<f64, 6, 6> {
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
 mod tests {
     use super::*;
 

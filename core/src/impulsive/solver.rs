@@ -442,7 +442,6 @@ fn defect_jacobian(
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
 mod tests {
     use super::*;
     use crate::impulsive::elements::{from_mean, from_relative};

@@ -174,7 +174,6 @@ pub fn formation_position_rtn_km(
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
 mod tests {
     use super::*;
     use crate::impulsive::elements::TWO_PI;

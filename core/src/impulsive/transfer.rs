@@ -262,7 +262,6 @@ pub(crate) fn target_at(ctx: &Context, t_s: f64) -> Elements {
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
 mod tests {
     use super::*;
     use crate::impulsive::model::Phase;

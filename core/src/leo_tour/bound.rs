@@ -225,7 +225,6 @@ fn combine(g: &Gravity, a: &Plane, b: &Plane, d_raan: f64, a_hi: f64, bs: &Bound
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::float_cmp)]
 mod tests {
     use super::*;
     use crate::astro::EARTH_MU_KM3_S2;

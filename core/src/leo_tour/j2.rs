@@ -114,7 +114,6 @@ pub fn propagate_steps(g: &Gravity, s: &State, dt_s: f64, n: u32) -> Option<Stat
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing)]
 mod tests {
     use super::*;
     use crate::vec3::{cross, norm, sub};

@@ -226,7 +226,6 @@ pub fn fly(g: &Gravity, state: &State, dt_s: f64) -> Option<State> {
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing)]
 mod tests {
     extern crate std;
     use super::*;

@@ -324,11 +324,6 @@ pub fn best_schedule<F: FnMut(&GridArc) -> Option<f64>>(
 }
 
 #[cfg(test)]
-#[allow(
-    clippy::unwrap_used,
-    clippy::indexing_slicing,
-    clippy::arithmetic_side_effects
-)]
 mod tests {
     extern crate std;
     use super::*;

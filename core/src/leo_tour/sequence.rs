@@ -583,11 +583,6 @@ pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
 }
 
 #[cfg(test)]
-#[allow(
-    clippy::unwrap_used,
-    clippy::indexing_slicing,
-    clippy::arithmetic_side_effects
-)]
 mod tests {
     use super::*;
     extern crate std;

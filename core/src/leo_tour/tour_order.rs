@@ -444,7 +444,6 @@ pub fn plan_onboard(
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::panic)]
 mod tests {
     extern crate std;
     use super::*;

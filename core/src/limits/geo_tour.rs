@@ -35,7 +35,6 @@ impl Limits {
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::float_cmp)]
 mod tests {
     use super::*;
     use crate::geo_tour::SettingId;

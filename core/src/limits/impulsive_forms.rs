@@ -99,7 +99,6 @@ fn sin_inclination(orbit: &OrbitForm) -> f64 {
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::float_cmp)]
 mod tests {
     use super::*;
     use crate::impulsive::{

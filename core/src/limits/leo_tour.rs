@@ -77,7 +77,6 @@ impl Limits {
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::float_cmp)]
 mod tests {
     use super::*;
     use crate::leo_tour::SettingId;

@@ -54,7 +54,6 @@ impl Limits {
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::float_cmp)]
 mod tests {
     use super::*;
     use crate::limits::Rule;

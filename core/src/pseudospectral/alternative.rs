@@ -124,7 +124,6 @@ pub fn solve_with_alternative_starts(
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing)]
 mod tests {
     use super::*;
     use crate::pseudospectral::{solve, Spacecraft};

@@ -165,11 +165,7 @@ fn apply_rows(
 }
 
 #[cfg(test)]
-#[allow(
-    clippy::indexing_slicing,
-    clippy::unwrap_used,
-    clippy::needless_range_loop
-)]
+#[allow(clippy::needless_range_loop)]
 mod tests {
     use super::*;
 

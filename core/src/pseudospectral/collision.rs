@@ -185,7 +185,6 @@ pub(crate) fn test_points(
 }
 
 #[cfg(test)]
-#[allow(clippy::indexing_slicing, clippy::unwrap_used)]
 mod tests {
     use super::*;
     use crate::pseudospectral::guess::{solve_axis, AxisBoundary};

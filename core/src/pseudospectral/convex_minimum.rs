@@ -180,13 +180,7 @@ pub(crate) fn convex_minimum(c: &[f64], tol: f64, best: f64) -> ConvexMinimum {
 }
 
 #[cfg(test)]
-#[allow(
-    clippy::indexing_slicing,
-    clippy::unwrap_used,
-    clippy::arithmetic_side_effects,
-    clippy::needless_range_loop,
-    clippy::float_cmp
-)]
+#[allow(clippy::needless_range_loop)]
 mod tests {
     use super::*;
     use crate::pseudospectral::verify::MAX_PRODUCT;

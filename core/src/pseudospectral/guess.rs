@@ -328,7 +328,6 @@ pub(crate) fn solve_axis(bd: AxisBoundary, max_newton: u16) -> Result<AxisLaw, G
 }
 
 #[cfg(test)]
-#[allow(clippy::indexing_slicing, clippy::unwrap_used)]
 mod tests {
     use super::*;
 

@@ -512,7 +512,6 @@ fn name_unmet(tr: &Transcription, y: &Coefficients, tol: f64, unmet: &mut Unmet)
 }
 
 #[cfg(test)]
-#[allow(clippy::indexing_slicing, clippy::unwrap_used, clippy::expect_used)]
 mod tests {
     use super::super::certificate::ActiveConstraint;
     use super::super::{self as pseudospectral, Problem, SolveStatus};

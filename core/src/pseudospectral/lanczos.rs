@@ -233,7 +233,6 @@ fn log_derivatives(alpha: &[f64], beta: &[f64], m: usize, x: f64) -> Option<(f64
 }
 
 #[cfg(test)]
-#[allow(clippy::indexing_slicing, clippy::arithmetic_side_effects)]
 mod tests {
     use super::*;
 

@@ -252,12 +252,7 @@ pub(crate) fn dot(a: &[f64], b: &[f64], count: usize) -> f64 {
 }
 
 #[cfg(test)]
-#[allow(
-    clippy::indexing_slicing,
-    clippy::unwrap_used,
-    clippy::float_cmp,
-    clippy::needless_range_loop
-)]
+#[allow(clippy::needless_range_loop)]
 mod tests {
     use super::*;
 

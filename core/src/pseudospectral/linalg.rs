@@ -122,7 +122,6 @@ pub(crate) fn solve_lower_transposed<const C: usize>(
 }
 
 #[cfg(test)]
-#[allow(clippy::indexing_slicing)]
 pub(super) mod tests {
     use super::*;
 

@@ -143,7 +143,7 @@ pub(crate) fn solve_lower_transposed<const S: usize, const C: usize>(
 }
 
 #[cfg(test)]
-#[allow(clippy::indexing_slicing, clippy::needless_range_loop)]
+#[allow(clippy::needless_range_loop)]
 mod tests {
     use super::*;
 

@@ -224,7 +224,6 @@ impl Default for Solution {
 }
 
 #[cfg(test)]
-#[allow(clippy::indexing_slicing, clippy::unwrap_used, clippy::float_cmp)]
 mod tests {
     use super::*;
 

@@ -472,7 +472,6 @@ fn finish(ws: &mut Workspace, settings: &Settings, out: &mut Solution, end: SqpE
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing)]
 mod tests {
     use super::super::swerve::perpendicular_direction;
     use super::*;

@@ -341,11 +341,7 @@ impl Bernstein {
 }
 
 #[cfg(test)]
-#[allow(
-    clippy::indexing_slicing,
-    clippy::unwrap_used,
-    clippy::needless_range_loop
-)]
+#[allow(clippy::needless_range_loop)]
 mod tests {
     use super::*;
 

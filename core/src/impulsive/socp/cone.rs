@@ -163,13 +163,7 @@ pub(super) fn max_step(u: &Cone, du: &Cone) -> f64 {
 }
 
 #[cfg(test)]
-#[allow(
-    clippy::unwrap_used,
-    clippy::indexing_slicing,
-    clippy::float_cmp,
-    clippy::arithmetic_side_effects,
-    clippy::needless_range_loop
-)]
+#[allow(clippy::needless_range_loop)]
 mod tests {
     use super::*;
 

@@ -506,13 +506,7 @@ pub(crate) fn least_fuel(
 }
 
 #[cfg(test)]
-#[allow(
-    clippy::unwrap_used,
-    clippy::indexing_slicing,
-    clippy::float_cmp,
-    clippy::arithmetic_side_effects,
-    clippy::needless_range_loop
-)]
+#[allow(clippy::needless_range_loop)]
 mod tests {
     use super::*;
 
