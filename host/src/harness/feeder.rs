@@ -7,9 +7,8 @@
 //! nodes (`Node::list`) and removes them (`try_cleanup_dead_nodes`), and waits (bounded) for a
 //! server before it sends the next request.
 
-use super::{affinity, Instance, MAX_IN_FLIGHT};
+use super::{affinity, Instance, Pending, MAX_IN_FLIGHT};
 use anyhow::{anyhow, bail, Result};
-use iceoryx2::pending_response::PendingResponse;
 use iceoryx2::prelude::*;
 use reconfig_core::wire::{self, Planner, Request, REQUEST_MAX_BYTES};
 use std::time::{Duration, Instant};
@@ -155,14 +154,6 @@ pub struct FeedRun {
     pub elapsed: Duration,
 }
 
-type Pending = PendingResponse<
-    ipc::Service,
-    [u8],
-    super::service::RequestHeader,
-    [u8],
-    super::dispatch::ServiceOrder,
->;
-
 struct InFlight {
     index: usize,
     seq: u64,
@@ -224,30 +215,16 @@ pub fn run(items: &[Item], opts: &FeedOptions) -> Result<FeedRun> {
             inst.prefix
         )
     })?;
-    let to_service = node
-        .service_builder(&inst.service_name("to-service")?)
-        .event()
-        .open()
-        .map_err(|e| anyhow!("cannot open event to-service: {e:?}"))?;
-    let to_feeder = node
-        .service_builder(&inst.service_name("to-feeder")?)
-        .event()
-        .open()
-        .map_err(|e| anyhow!("cannot open event to-feeder: {e:?}"))?;
+    let to_service = inst.open_event(&node, "to-service")?;
+    let to_feeder = inst.open_event(&node, "to-feeder")?;
     let client = rpc
         .client_builder()
         .initial_max_slice_len(REQUEST_MAX_BYTES)
         .allocation_strategy(AllocationStrategy::PowerOfTwo)
         .create()
         .map_err(|e| anyhow!("cannot create client: {e:?}"))?;
-    let wake_service = to_service
-        .notifier_builder()
-        .create()
-        .map_err(|e| anyhow!("cannot create notifier: {e:?}"))?;
-    let listener = to_feeder
-        .listener_builder()
-        .create()
-        .map_err(|e| anyhow!("cannot create listener: {e:?}"))?;
+    let wake_service = super::notifier(&to_service)?;
+    let listener = super::listener(&to_feeder)?;
 
     let window = opts.window.clamp(1, MAX_IN_FLIGHT / 2);
     let settled_cap = MAX_IN_FLIGHT - window;

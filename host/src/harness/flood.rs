@@ -8,9 +8,8 @@
 //! Its client port discards a request rather than wait when the service's buffer for it is
 //! full, so it never blocks, and it notifies the service after every send.
 
-use super::{Instance, MAX_IN_FLIGHT};
+use super::{Instance, Pending, MAX_IN_FLIGHT};
 use anyhow::{anyhow, Result};
-use iceoryx2::pending_response::PendingResponse;
 use iceoryx2::port::client::RequestSendError;
 use iceoryx2::prelude::*;
 use rand::{Rng, SeedableRng};
@@ -100,14 +99,6 @@ pub struct FloodStats {
     pub refused: u64,
 }
 
-type Pending = PendingResponse<
-    ipc::Service,
-    [u8],
-    super::service::RequestHeader,
-    [u8],
-    super::dispatch::ServiceOrder,
->;
-
 /// Flood the service. Returns after `count` attempts (or never, when killed first).
 pub fn run(opts: &FloodOptions) -> Result<FloodStats> {
     let inst = &opts.instance;
@@ -128,11 +119,7 @@ pub fn run(opts: &FloodOptions) -> Result<FloodStats> {
             Err(_) => std::thread::sleep(Duration::from_millis(10)),
         }
     };
-    let to_service = node
-        .service_builder(&inst.service_name("to-service")?)
-        .event()
-        .open()
-        .map_err(|e| anyhow!("cannot open event to-service: {e:?}"))?;
+    let to_service = inst.open_event(&node, "to-service")?;
     let client = rpc
         .client_builder()
         .initial_max_slice_len(REQUEST_MAX_BYTES)
@@ -140,10 +127,7 @@ pub fn run(opts: &FloodOptions) -> Result<FloodStats> {
         .backpressure_strategy(BackpressureStrategy::DiscardData)
         .create()
         .map_err(|e| anyhow!("cannot create client: {e:?}"))?;
-    let wake = to_service
-        .notifier_builder()
-        .create()
-        .map_err(|e| anyhow!("cannot create notifier: {e:?}"))?;
+    let wake = super::notifier(&to_service)?;
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(opts.seed);
     let mut stats = FloodStats::default();
     let mut open: VecDeque<Pending> = VecDeque::with_capacity(MAX_IN_FLIGHT);

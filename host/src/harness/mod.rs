@@ -86,6 +86,44 @@ impl Instance {
     }
 }
 
+/// A request a feeder sent, waiting for its answer.
+pub type Pending = iceoryx2::pending_response::PendingResponse<
+    ipc::Service,
+    [u8],
+    service::RequestHeader,
+    [u8],
+    dispatch::ServiceOrder,
+>;
+
+/// One of an instance's event services (`to-service`, `to-feeder`).
+pub type EventService = iceoryx2::service::port_factory::event::PortFactory<ipc::Service>;
+
+impl Instance {
+    /// Open the event service `what` of this instance (the flight service creates it).
+    pub fn open_event(&self, node: &Node<ipc::Service>, what: &str) -> Result<EventService> {
+        node.service_builder(&self.service_name(what)?)
+            .event()
+            .open()
+            .map_err(|e| anyhow!("cannot open event {what}: {e:?}"))
+    }
+}
+
+/// A notifier on `event`.
+pub fn notifier(event: &EventService) -> Result<iceoryx2::port::notifier::Notifier<ipc::Service>> {
+    event
+        .notifier_builder()
+        .create()
+        .map_err(|e| anyhow!("cannot create notifier: {e:?}"))
+}
+
+/// A listener on `event`.
+pub fn listener(event: &EventService) -> Result<iceoryx2::port::listener::Listener<ipc::Service>> {
+    event
+        .listener_builder()
+        .create()
+        .map_err(|e| anyhow!("cannot create listener: {e:?}"))
+}
+
 /// Remove the instance's persistent global-management segment (iceoryx2 keeps one per
 /// prefix). Call it only when no process of this instance runs any more.
 pub fn remove_instance_segment(instance: &Instance) -> Result<()> {

@@ -192,14 +192,8 @@ pub fn run(opts: &ServiceOptions) -> Result<()> {
         .backpressure_strategy(BackpressureStrategy::DiscardData)
         .create()
         .map_err(|e| anyhow!("cannot create server: {e:?}"))?;
-    let listener = to_service
-        .listener_builder()
-        .create()
-        .map_err(|e| anyhow!("cannot create listener: {e:?}"))?;
-    let notifier = to_feeder
-        .notifier_builder()
-        .create()
-        .map_err(|e| anyhow!("cannot create notifier: {e:?}"))?;
+    let listener = super::listener(&to_service)?;
+    let notifier = super::notifier(&to_feeder)?;
 
     // Workers: one per CPU, each with its job channel and its own notifier.
     let (done_tx, done_rx) = sync_channel::<Box<Job>>(workers);
@@ -415,14 +409,9 @@ fn worker_notifier(
     iceoryx2::port::notifier::Notifier<ipc::Service>,
 )> {
     let node = inst.node(&format!("reconfig-worker-{index}"))?;
-    let event = node
-        .service_builder(&inst.service_name("to-service")?)
-        .event()
-        .open()
-        .map_err(|e| anyhow!("worker {index} cannot open event to-service: {e:?}"))?;
-    let notifier = event
-        .notifier_builder()
-        .create()
-        .map_err(|e| anyhow!("worker {index} cannot create notifier: {e:?}"))?;
+    let event = inst
+        .open_event(&node, "to-service")
+        .with_context(|| format!("worker {index}"))?;
+    let notifier = super::notifier(&event).with_context(|| format!("worker {index}"))?;
     Ok((node, notifier))
 }
