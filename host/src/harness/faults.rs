@@ -7,9 +7,14 @@ use reconfig_core::wire::{self, Planner, Request, CRC_BYTES, REQUEST_HEADER_BYTE
 use reconfig_core::{impulsive, pseudospectral};
 
 fn valid_frame(seq: u64) -> Vec<u8> {
+    crossing_frame(seq, 3)
+}
+
+/// The frame of a planner-A crossing of `spacecraft` spacecraft (N = 10, seeded by `seq`).
+fn crossing_frame(seq: u64, spacecraft: usize) -> Vec<u8> {
     let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(seq);
     let request = Request::Pseudospectral {
-        problem: scenario::crossing(&mut rng, 3, 10),
+        problem: scenario::crossing(&mut rng, spacecraft, 10),
         settings: pseudospectral::Settings::default(),
     };
     let mut buf = vec![0u8; wire::REQUEST_MAX_BYTES];
@@ -48,14 +53,7 @@ fn request(label: &str, request: Request) -> Item {
 /// layout: variant (1), three f64 (24), degree varint (1 for N = 10), test_points (1), then the
 /// spacecraft count.
 fn nine_spacecraft(seq: u64) -> Vec<u8> {
-    let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(seq);
-    let request = Request::Pseudospectral {
-        problem: scenario::crossing(&mut rng, 8, 10),
-        settings: pseudospectral::Settings::default(),
-    };
-    let mut buf = vec![0u8; wire::REQUEST_MAX_BYTES];
-    let n = wire::encode_request(seq, &request, &mut buf).unwrap_or(0);
-    buf.truncate(n);
+    let mut buf = crossing_frame(seq, 8);
     let count_at = REQUEST_HEADER_BYTES + 27;
     if buf.get(count_at) != Some(&8) {
         return buf;
