@@ -266,14 +266,7 @@ mod tests {
     use super::*;
 
     fn chief() -> MeanElements {
-        MeanElements {
-            sma_km: 7078.137,
-            ecc: 1e-3,
-            inc_rad: 98.2f64.to_radians(),
-            raan_rad: 0.5,
-            argp_rad: 0.3,
-            mean_anomaly_rad: 1.0,
-        }
+        MeanElements::test_sso_chief()
     }
 
     fn rel(scale: f64) -> RelativeElements {

@@ -54,8 +54,9 @@ impl EquinoctialElements {
     }
 }
 
-/// Deputy-minus-chief mean elements, same order and units as [`MeanElements`].
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+/// Deputy-minus-chief mean elements, same order and units as [`MeanElements`]. The default is
+/// no difference (the deputy on the chief's elements).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct RelativeElements {
     /// Delta a, km.
     pub dsma_km: f64,
@@ -123,4 +124,19 @@ pub struct Problem {
     pub target: RelativeElements,
     /// Impulse points or a search.
     pub plan: ImpulsePlan,
+}
+
+#[cfg(test)]
+impl MeanElements {
+    /// The tests' sun-synchronous chief: 700 km, e = 1e-3, i = 98.2 deg.
+    pub(crate) fn test_sso_chief() -> Self {
+        Self {
+            sma_km: 7078.137,
+            ecc: 1e-3,
+            inc_rad: 98.2f64.to_radians(),
+            raan_rad: 0.5,
+            argp_rad: 0.3,
+            mean_anomaly_rad: 1.0,
+        }
+    }
 }

@@ -158,14 +158,7 @@ mod tests {
             search: false,
             ..Limits::default()
         };
-        let zero = crate::impulsive::RelativeElements {
-            dsma_km: 0.0,
-            decc: 0.0,
-            dinc_rad: 0.0,
-            draan_rad: 0.0,
-            dargp_rad: 0.0,
-            dmean_anomaly_rad: 0.0,
-        };
+        let zero = crate::impulsive::RelativeElements::default();
         let p = Problem {
             chief: crate::impulsive::MeanElements {
                 sma_km: 7000.0,

@@ -108,25 +108,11 @@ mod tests {
     use crate::limits::Rule;
 
     fn chief() -> MeanElements {
-        MeanElements {
-            sma_km: 7078.137,
-            ecc: 1e-3,
-            inc_rad: 98.2f64.to_radians(),
-            raan_rad: 0.5,
-            argp_rad: 0.3,
-            mean_anomaly_rad: 1.0,
-        }
+        MeanElements::test_sso_chief()
     }
 
     fn zero() -> RelativeElements {
-        RelativeElements {
-            dsma_km: 0.0,
-            decc: 0.0,
-            dinc_rad: 0.0,
-            draan_rad: 0.0,
-            dargp_rad: 0.0,
-            dmean_anomaly_rad: 0.0,
-        }
+        RelativeElements::default()
     }
 
     fn problem(chief: OrbitForm, relative: RelativeForm) -> FormProblem {
