@@ -17,7 +17,7 @@
 use super::flight::{Flight, Model};
 use super::j2::{join, pos, vel, State};
 use super::mean_j2::{self, MeanOrbit};
-use super::shoot::{corrected_lambert_from, shoot, Family, Offset, Secant};
+use super::shoot::{corrected_lambert_from, shoot, Family, Offset, Secant, Shot};
 use super::track::Track;
 use super::types::{Burn, Settings, MAX_IMPULSES, MAX_VARS};
 use crate::astro::Gravity;
@@ -291,14 +291,11 @@ impl Ctx<'_> {
         best
     }
 
-    /// Re-shoot the last leg at `p` (exact J2): `p` with the new offset and its cost, or
-    /// `None` when the shooting did not reach `arrival_tol_km`.
-    fn reshoot(&mut self, p: &Point) -> Option<Point> {
-        let flown = self.fly_to_last_leg(&p.x)?;
-        let (_, s, t) = &flown;
-        let t_last = *t.get(self.impulses.checked_sub(2)?)?;
+    /// Shoot the last leg from `s` at `t_last` to client B's end position, in `p`'s Lambert
+    /// family from `p`'s offset, with the context's quasi-Newton matrix and meter.
+    fn shoot_last_leg(&mut self, s: &State, t_last: f64, p: &Point) -> Option<Shot> {
         let target = pos(&self.b_end);
-        let shot = shoot(
+        shoot(
             &self.flight,
             self.settings,
             s,
@@ -308,7 +305,16 @@ impl Ctx<'_> {
             &p.off,
             &mut self.secant,
             &mut self.meter,
-        )?;
+        )
+    }
+
+    /// Re-shoot the last leg at `p` (exact J2): `p` with the new offset and its cost, or
+    /// `None` when the shooting did not reach `arrival_tol_km`.
+    fn reshoot(&mut self, p: &Point) -> Option<Point> {
+        let flown = self.fly_to_last_leg(&p.x)?;
+        let (_, s, t) = &flown;
+        let t_last = *t.get(self.impulses.checked_sub(2)?)?;
+        let shot = self.shoot_last_leg(s, t_last, p)?;
         if shot.miss_km > self.settings.arrival_tol_km {
             return None;
         }
@@ -442,19 +448,8 @@ impl Ctx<'_> {
         let (pre, s, t) = self.fly_to_last_leg(&p.x)?;
         let last = self.impulses.checked_sub(2)?;
         let t_last = *t.get(last)?;
-        let target = pos(&self.b_end);
         self.secant = p.secant;
-        let shot = shoot(
-            &self.flight,
-            self.settings,
-            &s,
-            &target,
-            self.tf - t_last,
-            p.fam,
-            &p.off,
-            &mut self.secant,
-            &mut self.meter,
-        )?;
+        let shot = self.shoot_last_leg(&s, t_last, p)?;
         let mut burns = [Burn::default(); MAX_IMPULSES];
         let mut fill = |k: usize, state: &State, dv: Vec3, epoch_s: f64| {
             if let Some(b) = burns.get_mut(k) {
