@@ -19,7 +19,7 @@ use crate::status::{
 };
 use core::ffi::c_void;
 use reconfig_core::limits::Limits;
-use reconfig_core::wire::{self, Buffers, OutcomeRef, Request};
+use reconfig_core::wire::{self, Buffers, Lent, OutcomeRef, Request};
 use reconfig_core::{geo_tour, impulsive, pseudospectral};
 
 /// A planner's workspace and the solution it writes (the block's `wire::Buffers`).
@@ -32,24 +32,19 @@ pub struct Slot<W, S> {
 }
 
 impl Buffers for Slot<pseudospectral::Workspace, pseudospectral::Solution> {
-    fn pseudospectral(
-        &mut self,
-    ) -> Option<(
-        &mut pseudospectral::Workspace,
-        &mut pseudospectral::Solution,
-    )> {
+    fn pseudospectral(&mut self) -> Lent<'_, pseudospectral::Workspace, pseudospectral::Solution> {
         Some((&mut self.workspace, &mut self.solution))
     }
 }
 
 impl Buffers for Slot<impulsive::Workspace, impulsive::Solution> {
-    fn impulsive(&mut self) -> Option<(&mut impulsive::Workspace, &mut impulsive::Solution)> {
+    fn impulsive(&mut self) -> Lent<'_, impulsive::Workspace, impulsive::Solution> {
         Some((&mut self.workspace, &mut self.solution))
     }
 }
 
 impl Buffers for Slot<geo_tour::Workspace, geo_tour::Solution> {
-    fn geo_tour(&mut self) -> Option<(&mut geo_tour::Workspace, &mut geo_tour::Solution)> {
+    fn geo_tour(&mut self) -> Lent<'_, geo_tour::Workspace, geo_tour::Solution> {
         Some((&mut self.workspace, &mut self.solution))
     }
 }

@@ -24,33 +24,39 @@ pub struct Slot<W, S> {
     pub solution: S,
 }
 
+/// A planner's workspace and solution lent to the request path, or `None` when the front end
+/// does not carry the planner.
+pub type Lent<'a, W, S> = Option<(&'a mut W, &'a mut S)>;
+
+impl<W, S> Slot<W, S> {
+    /// The slot's workspace and solution, lent.
+    pub fn lend(&mut self) -> Lent<'_, W, S> {
+        Some((&mut self.workspace, &mut self.solution))
+    }
+}
+
 /// The buffers a front end lends the request path, one slot per planner it carries. Each
 /// method returns the planner's workspace and solution, or `None` when the front end does not
 /// carry that planner (the default).
 pub trait Buffers {
     /// Planner A's.
-    fn pseudospectral(
-        &mut self,
-    ) -> Option<(
-        &mut pseudospectral::Workspace,
-        &mut pseudospectral::Solution,
-    )> {
+    fn pseudospectral(&mut self) -> Lent<'_, pseudospectral::Workspace, pseudospectral::Solution> {
         None
     }
     /// Planner B's (also for requests in its input forms).
-    fn impulsive(&mut self) -> Option<(&mut impulsive::Workspace, &mut impulsive::Solution)> {
+    fn impulsive(&mut self) -> Lent<'_, impulsive::Workspace, impulsive::Solution> {
         None
     }
     /// The GEO tour's.
-    fn geo_tour(&mut self) -> Option<(&mut geo_tour::Workspace, &mut geo_tour::Solution)> {
+    fn geo_tour(&mut self) -> Lent<'_, geo_tour::Workspace, geo_tour::Solution> {
         None
     }
     /// The LEO arc's.
-    fn leo_arc(&mut self) -> Option<(&mut leo_tour::Workspace, &mut leo_tour::ArcSolution)> {
+    fn leo_arc(&mut self) -> Lent<'_, leo_tour::Workspace, leo_tour::ArcSolution> {
         None
     }
     /// The LEO sequencing's.
-    fn leo_sequence(&mut self) -> Option<(&mut SequenceWorkspace, &mut Sequence)> {
+    fn leo_sequence(&mut self) -> Lent<'_, SequenceWorkspace, Sequence> {
         None
     }
 }
@@ -106,30 +112,20 @@ impl Default for AllPlanners {
 }
 
 impl Buffers for AllPlanners {
-    fn pseudospectral(
-        &mut self,
-    ) -> Option<(
-        &mut pseudospectral::Workspace,
-        &mut pseudospectral::Solution,
-    )> {
-        let s = &mut self.pseudospectral;
-        Some((&mut s.workspace, &mut s.solution))
+    fn pseudospectral(&mut self) -> Lent<'_, pseudospectral::Workspace, pseudospectral::Solution> {
+        self.pseudospectral.lend()
     }
-    fn impulsive(&mut self) -> Option<(&mut impulsive::Workspace, &mut impulsive::Solution)> {
-        let s = &mut self.impulsive;
-        Some((&mut s.workspace, &mut s.solution))
+    fn impulsive(&mut self) -> Lent<'_, impulsive::Workspace, impulsive::Solution> {
+        self.impulsive.lend()
     }
-    fn geo_tour(&mut self) -> Option<(&mut geo_tour::Workspace, &mut geo_tour::Solution)> {
-        let s = &mut self.geo_tour;
-        Some((&mut s.workspace, &mut s.solution))
+    fn geo_tour(&mut self) -> Lent<'_, geo_tour::Workspace, geo_tour::Solution> {
+        self.geo_tour.lend()
     }
-    fn leo_arc(&mut self) -> Option<(&mut leo_tour::Workspace, &mut leo_tour::ArcSolution)> {
-        let s = &mut self.leo_arc;
-        Some((&mut s.workspace, &mut s.solution))
+    fn leo_arc(&mut self) -> Lent<'_, leo_tour::Workspace, leo_tour::ArcSolution> {
+        self.leo_arc.lend()
     }
-    fn leo_sequence(&mut self) -> Option<(&mut SequenceWorkspace, &mut Sequence)> {
-        let s = &mut self.leo_sequence;
-        Some((&mut s.workspace, &mut s.solution))
+    fn leo_sequence(&mut self) -> Lent<'_, SequenceWorkspace, Sequence> {
+        self.leo_sequence.lend()
     }
 }
 
@@ -204,7 +200,7 @@ pub fn answer<'a, B: Buffers + ?Sized>(
 fn run_form<'a>(
     problem: &impulsive::FormProblem,
     settings: &impulsive::Settings,
-    slot: Option<(&'a mut impulsive::Workspace, &'a mut impulsive::Solution)>,
+    slot: Lent<'a, impulsive::Workspace, impulsive::Solution>,
 ) -> OutcomeRef<'a> {
     let Some((workspace, out)) = slot else {
         return OutcomeRef::Unsupported(Planner::Impulsive);
@@ -231,7 +227,7 @@ type Outcomes<'a, P> = (
 #[inline(never)]
 fn run<'a, P: crate::contract::Planner>(
     (problem, settings): (&P::Problem, &P::Settings),
-    slot: Option<(&'a mut P::Workspace, &'a mut P::Solution)>,
+    slot: Lent<'a, P::Workspace, P::Solution>,
     (ok, rejected): Outcomes<'a, P>,
 ) -> OutcomeRef<'a> {
     let Some((workspace, out)) = slot else {

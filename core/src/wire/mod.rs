@@ -27,7 +27,7 @@ mod error;
 mod frame;
 mod messages;
 
-pub use answer::{answer, AllPlanners, Buffers, Slot};
+pub use answer::{answer, AllPlanners, Buffers, Lent, Slot};
 pub use error::{EncodeError, FrameError, MalformedKind};
 pub use frame::{
     decode_request, decode_response, encode_outcome, encode_request, encode_response,
