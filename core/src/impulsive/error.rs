@@ -256,38 +256,30 @@ mod tests {
         }
     }
 
+    /// `e` as displayed (its first 160 bytes), handed to `check`.
+    fn displayed(e: PlanError, check: impl FnOnce(&str)) {
+        let mut buf = Buf {
+            text: [0; 160],
+            len: 0,
+        };
+        write!(buf, "{e}").unwrap();
+        check(core::str::from_utf8(&buf.text[..buf.len]).unwrap());
+    }
+
     #[test]
     fn display_names_the_problem() {
-        let mut buf = Buf {
-            text: [0; 160],
-            len: 0,
+        let singular = PlanError::InclinationSingular {
+            orbit: Orbit::Chief,
+            sin_inc: 1e-4,
+            min: 1e-3,
         };
-        write!(
-            buf,
-            "{}",
-            PlanError::InclinationSingular {
-                orbit: Orbit::Chief,
-                sin_inc: 1e-4,
-                min: 1e-3,
-            }
-        )
-        .unwrap();
-        let s = core::str::from_utf8(&buf.text[..buf.len]).unwrap();
-        assert!(s.contains("Chief") && s.contains("sin i"), "{s}");
-        let mut buf = Buf {
-            text: [0; 160],
-            len: 0,
+        displayed(singular, |s| {
+            assert!(s.contains("Chief") && s.contains("sin i"), "{s}");
+        });
+        let full = PlanError::CapacityExceeded {
+            requested: 7,
+            capacity: 6,
         };
-        write!(
-            buf,
-            "{}",
-            PlanError::CapacityExceeded {
-                requested: 7,
-                capacity: 6
-            }
-        )
-        .unwrap();
-        let s = core::str::from_utf8(&buf.text[..buf.len]).unwrap();
-        assert!(s.contains('7') && s.contains('6'), "{s}");
+        displayed(full, |s| assert!(s.contains('7') && s.contains('6'), "{s}"));
     }
 }
