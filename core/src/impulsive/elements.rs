@@ -107,3 +107,17 @@ mod tests {
         assert_eq!(sub(&add(&v, &v), &v), v);
     }
 }
+
+/// Each of `got`'s six elements within `rel` of `want`'s (relative to `max(|want|, 1)`): the
+/// round trips' check.
+#[cfg(test)]
+pub(crate) fn assert_elements_close(got: &Elements, want: &Elements, rel: f64) {
+    for k in 0..6 {
+        assert!(
+            (got[k] - want[k]).abs() < rel * want[k].abs().max(1.0),
+            "{k}: {} vs {}",
+            got[k],
+            want[k]
+        );
+    }
+}

@@ -265,14 +265,7 @@ mod tests {
             let (l, _) = true_longitude(&q, 50);
             let s = state(&q, l);
             let back = from_state(&s.pos_km, &s.vel_km_s, &q).unwrap();
-            for k in 0..6 {
-                assert!(
-                    (back[k] - q[k]).abs() < 1e-12 * q[k].abs().max(1.0),
-                    "{k}: {} vs {}",
-                    back[k],
-                    q[k]
-                );
-            }
+            crate::impulsive::elements::assert_elements_close(&back, &q, 1e-12);
         }
     }
 

@@ -305,14 +305,7 @@ mod tests {
     use super::*;
 
     fn paper_chief() -> MeanElements {
-        MeanElements {
-            sma_km: 7178.137,
-            ecc: 0.0678,
-            inc_rad: 63.4349f64.to_radians(),
-            raan_rad: 112f64.to_radians(),
-            argp_rad: 0.0,
-            mean_anomaly_rad: 0.0,
-        }
+        MeanElements::test_paper_chief()
     }
 
     #[test]

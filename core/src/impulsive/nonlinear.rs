@@ -182,14 +182,7 @@ mod tests {
         let (f, _) = true_anomaly(EL[MA], EL[E], 50);
         let s = state(&EL, f);
         let back = elements_from_state(&s.pos_km, &s.vel_km_s, &EL).unwrap();
-        for k in 0..6 {
-            assert!(
-                (back[k] - EL[k]).abs() < 1e-11 * EL[k].abs().max(1.0),
-                "{k}: {} vs {}",
-                back[k],
-                EL[k]
-            );
-        }
+        crate::impulsive::elements::assert_elements_close(&back, &EL, 1e-11);
         // Frame is orthonormal and right-handed.
         let c = cross(&s.radial, &s.along);
         for (x, n) in c.iter().zip(s.normal.iter()) {

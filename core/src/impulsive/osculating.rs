@@ -192,14 +192,7 @@ mod tests {
             let osc = mean_to_osculating(&q, 30).unwrap();
             let (back, ok, _) = osculating_to_mean(&osc, 30, 30, 1e-14).unwrap();
             assert!(ok);
-            for k in 0..6 {
-                assert!(
-                    (back[k] - q[k]).abs() < 1e-12 * q[k].abs().max(1.0),
-                    "{k}: {} vs {}",
-                    back[k],
-                    q[k]
-                );
-            }
+            crate::impulsive::elements::assert_elements_close(&back, &q, 1e-12);
         }
     }
 }

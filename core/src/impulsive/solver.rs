@@ -455,14 +455,7 @@ mod tests {
     }
 
     pub(crate) fn paper_context() -> Context {
-        let chief = MeanElements {
-            sma_km: 7178.137,
-            ecc: 0.0678,
-            inc_rad: deg(63.4349),
-            raan_rad: deg(112.0),
-            argp_rad: 0.0,
-            mean_anomaly_rad: 0.0,
-        };
+        let chief = MeanElements::test_paper_chief();
         let rel = |v: [f64; 6]| RelativeElements {
             dsma_km: v[0],
             decc: v[1],

@@ -190,14 +190,7 @@ mod tests {
             dmean_anomaly_rad: v[5].to_radians(),
         };
         Problem {
-            chief: MeanElements {
-                sma_km: 7178.137,
-                ecc: 0.0678,
-                inc_rad: 63.4349f64.to_radians(),
-                raan_rad: 112f64.to_radians(),
-                argp_rad: 0.0,
-                mean_anomaly_rad: 0.0,
-            },
+            chief: MeanElements::test_paper_chief(),
             initial: rel([
                 4.0940e-4, -1.3888e-4, -1.0831e-3, 1.5409e-2, -1.6134e-2, 9.2428e-3,
             ]),

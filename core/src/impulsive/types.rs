@@ -128,6 +128,18 @@ pub struct Problem {
 
 #[cfg(test)]
 impl MeanElements {
+    /// The paper's chief (Wang 2018): Molniya-like inclination, e = 0.0678.
+    pub(crate) fn test_paper_chief() -> Self {
+        Self {
+            sma_km: 7178.137,
+            ecc: 0.0678,
+            inc_rad: 63.4349f64.to_radians(),
+            raan_rad: 112f64.to_radians(),
+            argp_rad: 0.0,
+            mean_anomaly_rad: 0.0,
+        }
+    }
+
     /// The tests' sun-synchronous chief: 700 km, e = 1e-3, i = 98.2 deg.
     pub(crate) fn test_sso_chief() -> Self {
         Self {
