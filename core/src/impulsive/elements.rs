@@ -88,6 +88,20 @@ pub(crate) fn mean_arg_latitude_rad(el: &Elements) -> f64 {
     el[ARGP] + el[MA]
 }
 
+/// Each of `got`'s six elements within `rel` of `want`'s (relative to `max(|want|, 1)`): the
+/// round trips' check.
+#[cfg(test)]
+pub(crate) fn assert_elements_close(got: &Elements, want: &Elements, rel: f64) {
+    for k in 0..6 {
+        assert!(
+            (got[k] - want[k]).abs() < rel * want[k].abs().max(1.0),
+            "{k}: {} vs {}",
+            got[k],
+            want[k]
+        );
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -105,19 +119,5 @@ mod tests {
         let v = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
         assert_eq!(from_relative(&to_relative(&v)), v);
         assert_eq!(sub(&add(&v, &v), &v), v);
-    }
-}
-
-/// Each of `got`'s six elements within `rel` of `want`'s (relative to `max(|want|, 1)`): the
-/// round trips' check.
-#[cfg(test)]
-pub(crate) fn assert_elements_close(got: &Elements, want: &Elements, rel: f64) {
-    for k in 0..6 {
-        assert!(
-            (got[k] - want[k]).abs() < rel * want[k].abs().max(1.0),
-            "{k}: {} vs {}",
-            got[k],
-            want[k]
-        );
     }
 }
