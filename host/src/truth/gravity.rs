@@ -177,14 +177,7 @@ mod tests {
             -g.gm_km3_s2 * y / rn.powi(3) + k * y * (zr - 1.0),
             -g.gm_km3_s2 * z / rn.powi(3) + k * z * (zr - 3.0),
         ];
-        for i in 0..3 {
-            assert!(
-                (a[i] - want[i]).abs() < 1e-17,
-                "{i}: {} vs {}",
-                a[i],
-                want[i]
-            );
-        }
+        super::super::assert_close(&a, &want, 1e-17);
     }
 
     /// The acceleration is the gradient of the potential computed by another recursion

@@ -218,14 +218,7 @@ mod tests {
             7.0 / w * (w * t1).sin(),
             100.0 * (w * t1).cos(),
         ];
-        for i in 0..3 {
-            assert!(
-                (y[i] - want[i]).abs() < 1e-6,
-                "{i}: {} vs {}",
-                y[i],
-                want[i]
-            );
-        }
+        super::super::assert_close(&y, &want, 1e-6);
         assert!(c.accepted > 100 && c.accepted < 100_000, "{c:?}");
     }
 

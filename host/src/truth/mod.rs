@@ -26,3 +26,11 @@ pub mod record;
 
 #[cfg(test)]
 mod validation_tests;
+
+/// Each of `want`'s components matched by `got`'s to within `tol` (absolute).
+#[cfg(test)]
+fn assert_close(got: &[f64], want: &[f64], tol: f64) {
+    for (i, (g, w)) in got.iter().zip(want).enumerate() {
+        assert!((g - w).abs() < tol, "{i}: {g} vs {w}");
+    }
+}
