@@ -394,9 +394,9 @@ fn owned(o: &OutcomeRef<'_>) -> Outcome {
             solution: solution.clone(),
             end_state,
         },
-        OutcomeRef::LeoArc(s) => Outcome::LeoArc(s.clone()),
+        OutcomeRef::LeoArc(s) => Outcome::LeoArc(*s),
         OutcomeRef::LeoArcRejected(e) => Outcome::LeoArcRejected(e),
-        OutcomeRef::LeoSequence(q) => Outcome::LeoSequence(q.clone()),
+        OutcomeRef::LeoSequence(q) => Outcome::LeoSequence(*q),
         OutcomeRef::LeoSequenceRejected(e) => Outcome::LeoSequenceRejected(e),
         OutcomeRef::Unsupported(p) => Outcome::Unsupported(p),
     }
