@@ -122,3 +122,4 @@ pub mod alloc_count {
     }
 }
 pub mod m7_record;
+pub mod readme_figures;
