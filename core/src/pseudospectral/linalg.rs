@@ -17,7 +17,9 @@ fn column<const C: usize>(
     // Each row's entry `j` (a row has none only when `j` is outside the array: then the
     // column is empty). Not `flatten().step_by(C)`: `StepBy::nth` divides, and its
     // division-by-zero check is a panic path the abort-proof C library must not link.
-    a.iter().skip(from).filter_map(move |row| row.get(j).copied())
+    a.iter()
+        .skip(from)
+        .filter_map(move |row| row.get(j).copied())
 }
 
 /// Cholesky-factor the leading `n x n` block of `a` in place (lower triangle holds L, the
