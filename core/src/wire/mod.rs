@@ -51,9 +51,10 @@ pub use messages::{Expiry, Outcome, OutcomeRef, Planner, Rejection, Request};
 ///    planner's settings id with its value and range (`SettingError`) or limit; limits name
 ///    settings by id (`limits::Setting`); the LEO sequencing's request carries a
 ///    `SequenceProblem`; `Outcome::Unsupported` answers a request for a planner the front end
-///    does not carry; no answer carries a NaN or an infinity: planner A's `min_separation_lu`
-///    is an `Option` (absent with one spacecraft, where it was infinite).
-pub const PROTOCOL_VERSION: u16 = 6;
+///    does not carry.
+/// 7: no answer carries a NaN or an infinity: planner A's `min_separation_lu` is an `Option`
+///    (absent with one spacecraft, where it was infinite).
+pub const PROTOCOL_VERSION: u16 = 7;
 /// First two bytes of a request frame.
 pub const REQUEST_MAGIC: [u8; 2] = *b"RQ";
 /// First two bytes of a response frame.

@@ -103,7 +103,7 @@ pub struct FloodStats {
 type Pending = PendingResponse<
     ipc::Service,
     [u8],
-    super::service::RequestHeader,
+    super::dispatch::RequestHeader,
     [u8],
     super::dispatch::ServiceOrder,
 >;
@@ -117,7 +117,7 @@ pub fn run(opts: &FloodOptions) -> Result<FloodStats> {
         match node
             .service_builder(&inst.service_name("rpc")?)
             .request_response::<[u8], [u8]>()
-            .request_user_header::<super::service::RequestHeader>()
+            .request_user_header::<super::dispatch::RequestHeader>()
             .response_user_header::<super::dispatch::ServiceOrder>()
             .open()
         {

@@ -18,6 +18,7 @@ pub mod faults;
 pub mod feeder;
 pub mod flood;
 pub mod items;
+pub mod job;
 pub mod leo_onboard;
 pub mod order;
 pub mod report;
