@@ -1004,7 +1004,10 @@ typedef struct {
   double horizon_tu;
   // Control energy J = 1/2 sum int |U|^2 dt, FU^2 TU.
   double cost_fu2_tu;
-  // Least separation over the continuous trajectory, LU.
+  // 1 when the least separation exists (two spacecraft or more); 0 with one spacecraft,
+  // and then `min_separation_lu`, `min_separation_time_tu` and `min_separation_pair` are 0.
+  uint8_t has_min_separation;
+  // Least separation over the continuous trajectory, LU, when `has_min_separation`.
   double min_separation_lu;
   // When it occurs, TU.
   double min_separation_time_tu;

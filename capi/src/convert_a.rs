@@ -239,7 +239,8 @@ pub fn solution_to_c(s: &Solution, out: &mut ReconfigASolution) {
     out.work_units = s.info.work_units;
     out.horizon_tu = s.horizon_tu;
     out.cost_fu2_tu = s.cost;
-    out.min_separation_lu = s.min_separation_lu;
+    out.has_min_separation = u8::from(s.min_separation_lu.is_some());
+    out.min_separation_lu = s.min_separation_lu.unwrap_or(0.0);
     out.min_separation_time_tu = s.min_separation_time_tu;
     out.min_separation_pair = [s.min_separation_pair.0, s.min_separation_pair.1];
     out.max_dynamics_error = s.max_dynamics_error;
@@ -299,6 +300,7 @@ pub fn refusal_to_c(error: ReconfigError, out: &mut ReconfigASolution) {
     out.work_units = 0;
     out.horizon_tu = 0.0;
     out.cost_fu2_tu = 0.0;
+    out.has_min_separation = 0;
     out.min_separation_lu = 0.0;
     out.min_separation_time_tu = 0.0;
     out.min_separation_pair = [0, 0];

@@ -3,10 +3,15 @@
 use crate::convert_a::flag;
 use crate::status::*;
 use crate::types_b::*;
+use crate::types_b_form::{
+    RECONFIG_B_FORM_KEPLER, RECONFIG_B_FORM_MEAN_NOT_CONVERGED, RECONFIG_B_FORM_NOT_AN_ELLIPSE,
+    RECONFIG_B_FORM_NOT_FINITE, RECONFIG_B_FORM_ROE_EQUATORIAL_CHIEF,
+};
 use reconfig_core::capacity::MAX_IMPULSES;
 use reconfig_core::impulsive::{
-    EquinoctialElements, ImpulsePlan, ImpulsePoint, MeanElements, Orbit, PlanError, Problem,
-    Quantity, RelativeElements, SettingId, Settings, Solution, SolveStatus, Stage,
+    EquinoctialElements, FormError, FormPart, ImpulsePlan, ImpulsePoint, MeanElements, Orbit,
+    PlanError, Problem, Quantity, RelativeElements, SettingId, Settings, Solution, SolveStatus,
+    Stage,
 };
 
 crate::mirror_settings!(ReconfigBSettings => Settings, SettingId {
@@ -301,10 +306,34 @@ pub fn error_to_c(e: &PlanError, problem: &Problem) -> ReconfigError {
             limit_rad,
         )
         .at(i32::from(index)),
-        PlanError::InputForm { part, error } => {
-            crate::convert_b_form::input_form_error_to_c(part, error)
+        PlanError::InputForm { part, error } => input_form_error_to_c(part, error),
+    }
+}
+
+/// The C code of a form error (`RECONFIG_B_FORM_*`) with the value and limit it names (`|sin i|`
+/// and its minimum for an equatorial ROE chief, else 0).
+pub fn form_error_to_c(e: FormError) -> (i32, f64, f64) {
+    match e {
+        FormError::NotFinite => (RECONFIG_B_FORM_NOT_FINITE, 0.0, 0.0),
+        FormError::NotAnEllipse => (RECONFIG_B_FORM_NOT_AN_ELLIPSE, 0.0, 0.0),
+        FormError::Kepler => (RECONFIG_B_FORM_KEPLER, 0.0, 0.0),
+        FormError::MeanNotConverged => (RECONFIG_B_FORM_MEAN_NOT_CONVERGED, 0.0, 0.0),
+        FormError::RoeEquatorialChief { sin_inc, min } => {
+            (RECONFIG_B_FORM_ROE_EQUATORIAL_CHIEF, sin_inc, min)
         }
     }
+}
+
+/// The refusal of a request part that could not be converted: `field` the part
+/// (`RECONFIG_FIELD_CHIEF`, `_INITIAL`, `_TARGET`), `detail` the form error.
+pub fn input_form_error_to_c(part: FormPart, error: FormError) -> ReconfigError {
+    let field = match part {
+        FormPart::Chief => RECONFIG_FIELD_CHIEF,
+        FormPart::Initial => RECONFIG_FIELD_INITIAL,
+        FormPart::Target => RECONFIG_FIELD_TARGET,
+    };
+    let (detail, value, limit) = form_error_to_c(error);
+    ReconfigError::new(RECONFIG_B_ERR_INPUT_FORM, field, value, limit).with_detail(detail)
 }
 
 /// The C status code of a core status (`status::status_code`), and its payload: (code,

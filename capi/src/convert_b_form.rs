@@ -2,14 +2,14 @@
 //! back (the mean-element form is [`crate::convert_b`]'s).
 
 use crate::convert_b::{
-    equinoctial_to_c, mean_from_c, plan_from_c, relative_from_c, relative_to_c,
+    equinoctial_to_c, form_error_to_c, mean_from_c, plan_from_c, relative_from_c, relative_to_c,
 };
 use crate::status::*;
 use crate::types_b::{ReconfigBEquinoctialElements, ReconfigBMeanElements};
 use crate::types_b_form::*;
 use reconfig_core::impulsive::{
-    CartesianState, EndState, EquinoctialElements, FormError, FormPart, FormProblem, MeanElements,
-    OrbitForm, RelativeForm, Roe,
+    CartesianState, EndState, EquinoctialElements, FormProblem, MeanElements, OrbitForm,
+    RelativeForm, Roe,
 };
 
 /// Field code of `relative.form` in `RECONFIG_ERR_INVALID_CODE` refusals.
@@ -125,32 +125,6 @@ pub fn form_problem_from_c(c: &ReconfigBFormProblem) -> Result<FormProblem, Reco
         relative,
         plan: plan_from_c(c.search, c.impulse_count, c.max_revolutions, &c.points)?,
     })
-}
-
-/// The C code of a form error (`RECONFIG_B_FORM_*`) with the value and limit it names (`|sin i|`
-/// and its minimum for an equatorial ROE chief, else 0).
-pub fn form_error_to_c(e: FormError) -> (i32, f64, f64) {
-    match e {
-        FormError::NotFinite => (RECONFIG_B_FORM_NOT_FINITE, 0.0, 0.0),
-        FormError::NotAnEllipse => (RECONFIG_B_FORM_NOT_AN_ELLIPSE, 0.0, 0.0),
-        FormError::Kepler => (RECONFIG_B_FORM_KEPLER, 0.0, 0.0),
-        FormError::MeanNotConverged => (RECONFIG_B_FORM_MEAN_NOT_CONVERGED, 0.0, 0.0),
-        FormError::RoeEquatorialChief { sin_inc, min } => {
-            (RECONFIG_B_FORM_ROE_EQUATORIAL_CHIEF, sin_inc, min)
-        }
-    }
-}
-
-/// The refusal of a request part that could not be converted: `field` the part
-/// (`RECONFIG_FIELD_CHIEF`, `_INITIAL`, `_TARGET`), `detail` the form error.
-pub fn input_form_error_to_c(part: FormPart, error: FormError) -> ReconfigError {
-    let field = match part {
-        FormPart::Chief => RECONFIG_FIELD_CHIEF,
-        FormPart::Initial => RECONFIG_FIELD_INITIAL,
-        FormPart::Target => RECONFIG_FIELD_TARGET,
-    };
-    let (detail, value, limit) = form_error_to_c(error);
-    ReconfigError::new(RECONFIG_B_ERR_INPUT_FORM, field, value, limit).with_detail(detail)
 }
 
 /// The C end state of the core's.

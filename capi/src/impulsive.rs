@@ -2,8 +2,9 @@
 //! (`_solve`) and the other input forms (`_solve_form`), in the same workspace (bodies in
 //! [`crate::shell`]).
 
+use crate::convert_b::input_form_error_to_c;
 use crate::convert_b::{error_to_c, problem_from_c, refusal_to_c, solution_to_c};
-use crate::convert_b_form::{end_state_to_c, form_problem_from_c, input_form_error_to_c};
+use crate::convert_b_form::{end_state_to_c, form_problem_from_c};
 use crate::settings::SettingsMirror;
 use crate::shell::{self, not_initialised, Entry, Shell, Slot};
 use crate::status::ReconfigError;

@@ -139,7 +139,10 @@ pub struct ReconfigASolution {
     pub horizon_tu: f64,
     /// Control energy J = 1/2 sum int |U|^2 dt, FU^2 TU.
     pub cost_fu2_tu: f64,
-    /// Least separation over the continuous trajectory, LU.
+    /// 1 when the least separation exists (two spacecraft or more); 0 with one spacecraft,
+    /// and then `min_separation_lu`, `min_separation_time_tu` and `min_separation_pair` are 0.
+    pub has_min_separation: u8,
+    /// Least separation over the continuous trajectory, LU, when `has_min_separation`.
     pub min_separation_lu: f64,
     /// When it occurs, TU.
     pub min_separation_time_tu: f64,

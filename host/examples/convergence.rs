@@ -19,7 +19,7 @@ fn main() {
         };
         pseudospectral::solve(&f.problem, &settings, &mut ws, &mut out).expect("solve");
         println!(
-            "{k:3} J = {:.12} dJ = {:.3e} min_sep = {:.9} {:?}",
+            "{k:3} J = {:.12} dJ = {:.3e} min_sep = {:.9?} {:?}",
             out.cost,
             out.cost - previous,
             out.min_separation_lu,

@@ -24,7 +24,7 @@ fn main() -> anyhow::Result<()> {
     let mut out = Box::new(Solution::new());
     pseudospectral::solve(problem, &settings, &mut ws, &mut out)
         .map_err(|e| anyhow::anyhow!("refused: {e:?}"))?;
-    println!("#{index} ({family}): {:?} J = {:.6} min sep {:.6} (pair {:?}, t {:.4}) subproblems {} elastic {}",
+    println!("#{index} ({family}): {:?} J = {:.6} min sep {:.6?} (pair {:?}, t {:.4}) subproblems {} elastic {}",
         out.info.status, out.cost, out.min_separation_lu, out.min_separation_pair, out.min_separation_time_tu,
         out.info.sqp_iterations, out.info.elastic_subproblems);
     for c in out.unmet.named() {

@@ -40,7 +40,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     };
                     pseudospectral::solve(&problem, &settings, &mut ws, &mut out)?;
                     println!(
-                        "{iterations} J={:.12} min_sep={:.9} {:?}",
+                        "{iterations} J={:.12} min_sep={:.9?} {:?}",
                         out.cost, out.min_separation_lu, out.info.status
                     );
                 }
@@ -54,7 +54,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .or_insert(0) += 1;
         if out.info.status != SolveStatus::Solved {
             println!(
-                "#{k} M{} N{} {:?} min_sep={:.9} subproblems={} rounds={} points={} peak_active={}",
+                "#{k} M{} N{} {:?} min_sep={:.9?} subproblems={} rounds={} points={} peak_active={}",
                 problem.spacecraft.len(),
                 problem.degree,
                 out.info.status,

@@ -122,3 +122,5 @@ pub mod alloc_count {
     }
 }
 pub mod m7_record;
+pub mod numbers;
+pub mod readme_figures;

@@ -410,11 +410,12 @@ fn update_all() -> Result<bool, String> {
     let new = splice(&docs, &render(&record)?)?;
     let new = splice_geo(&new, &render_geo(&record)?)?;
     let new = splice_between(&new, IMAGES_BEGIN, IMAGES_END, &render_images(&record)?)?;
+    let readme_changed = crate::readme_figures::update_readme()?;
     if new != docs {
         std::fs::write(&docs_path, &new).map_err(|e| e.to_string())?;
         return Ok(true);
     }
-    Ok(false)
+    Ok(readme_changed)
 }
 
 #[cfg(test)]

@@ -345,7 +345,7 @@ fn a_expected(name: &str, p: &pseudospectral::Problem) -> String {
             u8::from(s.info.status.is_usable()),
             s.cost,
             s.cost.to_bits(),
-            s.min_separation_lu.to_bits(),
+            s.min_separation_lu.unwrap_or(0.0).to_bits(),
             s.info.work_units
         )
     })

@@ -7,7 +7,8 @@
 
 use reconfig_host::harness::faults;
 use reconfig_host::harness::feeder::frame_of;
-use reconfig_host::harness::service::{warm_up, worker_loop, Job};
+use reconfig_host::harness::job::Job;
+use reconfig_host::harness::service::{warm_up, worker_loop};
 use reconfig_host::harness::worker::Worker;
 use reconfig_host::scenario;
 use reconfig_tests::alloc_count::{allocations, set_counting, CountingAllocator};

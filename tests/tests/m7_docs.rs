@@ -1,6 +1,6 @@
-//! `docs/firmware.md`'s M7 tables are generated from the record
-//! `fixtures/golden/m7-figures.toml`: this fails when they differ, with the command that
-//! regenerates them. No QEMU needed.
+//! `docs/firmware.md`'s M7 tables and the README's M7 lines are generated from the records
+//! `fixtures/golden/m7-figures.toml` and `m7-figures-leo.toml`: this fails when they differ,
+//! with the command that regenerates them. No QEMU needed.
 
 use reconfig_tests::m7_record::{self, DOCS_FILE, RECORD_FILE, UPDATE_DOCS_COMMAND};
 
@@ -61,5 +61,19 @@ fn the_docs_ram_per_image_table_is_the_record() {
         expected == docs,
         "{DOCS_FILE}'s RAM-per-image table differs from what {RECORD_FILE} generates; \
          regenerate with\n  {UPDATE_DOCS_COMMAND}"
+    );
+}
+
+#[test]
+fn the_readme_m7_lines_are_the_record() {
+    use reconfig_tests::readme_figures::{expected_readme, update_readme, README_FILE};
+    if std::env::var("RECONFIG_UPDATE_DOCS").as_deref() == Ok("1") {
+        update_readme().expect("regenerate the README's M7 lines");
+    }
+    let (readme, expected) = expected_readme().expect("the README's M7 lines");
+    assert!(
+        expected == readme,
+        "{README_FILE}'s M7 lines differ from what the M7 records generate; regenerate with\n  \
+         {UPDATE_DOCS_COMMAND}"
     );
 }

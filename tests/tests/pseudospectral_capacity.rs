@@ -55,7 +55,7 @@ fn a_working_set_beyond_the_factor_capacity_is_no_failure() {
             assert!(u.iter().all(|c| c.abs() <= 1.0 + 1e-9), "{u:?}");
         }
     }
-    assert!(s.min_separation_lu >= 2.0 - 1e-7);
+    assert!(s.min_separation_lu.unwrap() >= 2.0 - 1e-7);
     assert!(s.certificate.stationarity <= 1e-6, "{:?}", s.certificate);
     // Per axis the optimum is the saturated law of eq. 24-26 (no keep-out is near): its cost is
     // the sum of 24 equal axes, each between the cubic's and Umax^2 T / 2.

@@ -218,7 +218,11 @@ fn iteration_limit_returns_the_best_iterate_and_says_so() {
     // the continuous trajectory but is no certified optimum: `Feasible`, never `Solved`.
     assert_eq!(s.info.status, SolveStatus::Feasible);
     assert!(s.info.status.is_usable() && !s.info.status.is_certified());
-    assert!(s.min_separation_lu >= 2.0 - 1e-7, "{}", s.min_separation_lu);
+    assert!(
+        s.min_separation_lu.unwrap() >= 2.0 - 1e-7,
+        "{:?}",
+        s.min_separation_lu
+    );
     assert!(s.certificate.max_violation <= 1e-7);
     // The returned iterate is a QP solution: it meets every checked keep-out.
     assert!(s.info.max_violation <= 1e-9, "{}", s.info.max_violation);
@@ -234,7 +238,7 @@ fn iteration_limit_returns_the_best_iterate_and_says_so() {
         assert_eq!(s.info.status, SolveStatus::MaxIterations);
         assert!(!s.info.status.is_usable());
     } else {
-        assert!(s.min_separation_lu >= 2.0 - 1e-7);
+        assert!(s.min_separation_lu.unwrap() >= 2.0 - 1e-7);
     }
 }
 

@@ -231,7 +231,7 @@ fn compare(
             }
             Some(_) => {} // an exception that now works: welcome; drop it from the list
             None if !status.is_usable() => failures.push(format!(
-                "NEW exception: problem {index} ({family}) ends {status:?} (J = {}, min separation {}) but the oracle solved it (J = {oracle_cost})",
+                "NEW exception: problem {index} ({family}) ends {status:?} (J = {}, min separation {:?}) but the oracle solved it (J = {oracle_cost})",
                 ours.cost, ours.min_separation_lu
             )),
             None => {}
@@ -300,7 +300,7 @@ fn a_moving_check_cycling_between_two_minima_is_frozen_and_the_dense_case_conver
         ours.info.sqp_iterations
     );
     assert!((ours.cost - 1.596418).abs() < 1e-5, "J = {}", ours.cost);
-    assert!(ours.min_separation_lu >= problem.keep_out_lu - settings.verify_tol_lu);
+    assert!(ours.min_separation_lu.unwrap() >= problem.keep_out_lu - settings.verify_tol_lu);
     // That minimum is 14.6 % above the oracle's; the lifted start reaches the oracle's basin.
     let lifted = solve_with(problem, &settings, Some(AlternativeStarts::One)).expect("accepted");
     assert_eq!(lifted.info.status, SolveStatus::Solved);

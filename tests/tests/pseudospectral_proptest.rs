@@ -152,7 +152,7 @@ proptest! {
             if status.is_certified() {
                 prop_assert!(solution.certificate.certifies_local_optimum());
             }
-            prop_assert!(solution.min_separation_lu >= 2.0 - 1e-6, "{}", solution.min_separation_lu);
+            prop_assert!(solution.min_separation_lu.unwrap() >= 2.0 - 1e-6, "{:?}", solution.min_separation_lu);
             let n = usize::from(problem.degree);
             for (i, craft) in problem.spacecraft.iter().enumerate() {
                 for k in 0..6 {

@@ -28,7 +28,7 @@ fn a_is_feasible(problem: &pseudospectral::Problem, s: &pseudospectral::Solution
         .flat_map(|sc| sc.iter().take(nodes))
         .flatten()
         .all(|u| u.abs() <= problem.max_control_fu * (1.0 + 1e-9));
-    controls_ok && s.min_separation_lu >= problem.keep_out_lu - settings.verify_tol_lu
+    controls_ok && s.min_separation_lu.unwrap() >= problem.keep_out_lu - settings.verify_tol_lu
 }
 
 #[test]

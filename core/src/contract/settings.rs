@@ -151,14 +151,19 @@ pub fn check_range(setting: Setting, value: f64, range: Range) -> Result<(), Set
 /// Check `value` of `setting` against its service limit by `rule`.
 ///
 /// # Errors
-/// [`LimitViolation`] when the value is on the wrong side of the limit. A NaN passes here: the
-/// range check (which runs first on every path) names it.
+/// [`LimitViolation`] when the value is on the wrong side of the limit. A NaN or an infinity,
+/// in the value or the limit, passes here: a violation carries finite numbers only (an answer
+/// has no NaN or infinity, issue 29), and the planner's own validation names a non-finite
+/// value the request gave (a setting by its range, a problem number by its field).
 pub fn check_limit(
     setting: Setting,
     rule: Rule,
     value: f64,
     limit: f64,
 ) -> Result<(), LimitViolation> {
+    if !(value.is_finite() && limit.is_finite()) {
+        return Ok(());
+    }
     let broken = match rule {
         Rule::AtMost => value > limit,
         Rule::AtLeast => value < limit,
@@ -424,6 +429,22 @@ macro_rules! settings_table {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_limit_violation_carries_finite_numbers_only() {
+        // Issue 29 (finite answers): a NaN or an infinity on either side passes the limits;
+        // the planner's validation names the request's (tests/finite_answers.rs).
+        let s = Setting::Problem(crate::limits::ProblemLimit::ChiefEccentricity);
+        for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            for rule in [Rule::AtMost, Rule::AtLeast, Rule::Below] {
+                assert_eq!(check_limit(s, rule, x, 1.0), Ok(()));
+                assert_eq!(check_limit(s, rule, 1.0, x), Ok(()));
+            }
+        }
+        let e = check_limit(s, Rule::Below, 1.5, 1.0).unwrap_err();
+        assert_eq!((e.value, e.limit, e.rule), (1.5, 1.0, Rule::Below));
+        assert!(check_limit(s, Rule::AtMost, f64::MAX, 1.0).is_err());
+    }
 
     #[test]
     fn ranges_refuse_non_finite_and_open_ends() {

@@ -110,6 +110,14 @@ fn pick(t: &LegTable, price: f64, s: &Settings, gauge: &mut Gauge<'_>) -> Option
     }
 }
 
+/// How many of `items` satisfy `pred`. Not `filter().count()`: with overflow checks on (the
+/// release profiles) its sum is an overflow panic path the abort-proof C library must not link.
+fn count_where<T>(items: &[T], pred: impl Fn(&T) -> bool) -> usize {
+    items
+        .iter()
+        .fold(0_usize, |n, item| n.saturating_add(usize::from(pred(item))))
+}
+
 /// Every leg's best option at `price` into `picks`; returns the tour's time. Charged first
 /// (the legs' scans and points), the drift roots' evaluations as they run; [`Cut`] when the
 /// budget runs out (`picks` then partly written: the caller discards them).
@@ -120,7 +128,7 @@ pub(crate) fn pick_all(
     picks: &mut [Pick],
     meter: &mut Meter,
 ) -> Result<f64, Cut> {
-    let drift_legs = tables.iter().filter(|t| t.drift.is_some()).count();
+    let drift_legs = count_where(tables, |t| t.drift.is_some());
     spend(meter, work_units::price_step(tables.len(), drift_legs))?;
     let mut gauge = Gauge::metered(meter);
     let total = pick_all_metered(tables, price, s, picks, &mut gauge);
@@ -226,7 +234,7 @@ fn drift_allocate(
     if fastest > budget {
         return Ok(None);
     }
-    let drift_legs = picks.iter().filter(|p| p.choice == Choice::Drift).count();
+    let drift_legs = count_where(picks, |p| p.choice == Choice::Drift);
     let step_units = work_units::price_step(tables.len(), drift_legs);
     // Every evaluation of the drift legs' time is charged first, its roots' evaluations as
     // they run (`?`: the budget ran out).

@@ -210,7 +210,8 @@ pub enum SequenceError {
         /// Which client (0-based).
         index: usize,
     },
-    /// An interval is not finite and positive (position, value).
+    /// An interval is not finite and positive (position, value); or an unused interval (past
+    /// the last arc) is not finite.
     Interval {
         /// Arc position (0-based).
         position: usize,
@@ -474,8 +475,13 @@ pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
         }
     }
     if let Intervals::ByPosition(list) = *intervals {
-        for (position, &value_s) in list.iter().take(n.saturating_sub(1)).indexed() {
-            if !(value_s.is_finite() && value_s > 0.0) {
+        // The arcs' intervals are finite and positive; the slots past the last arc are unused
+        // but travel in the request: finite too (a NaN or an infinity is refused wherever the
+        // request carries it).
+        let arcs = n.saturating_sub(1);
+        for (position, &value_s) in list.iter().indexed() {
+            let used = position < arcs;
+            if !(value_s.is_finite() && (value_s > 0.0 || !used)) {
                 return Err(SequenceError::Interval { position, value_s });
             }
         }
@@ -740,5 +746,47 @@ mod tests {
             Err(SequenceError::First { index: 9 })
         ));
         assert_eq!(untouched, Sequence::new());
+    }
+
+    #[test]
+    fn a_nan_or_infinity_in_an_unused_interval_is_refused_zero_is_not() {
+        // Issue 29 (finite answers): a NaN travels in no answered request, even in the slots
+        // past the last arc, which the search never reads (found by tests/finite_answers.rs).
+        let p = planes(3);
+        let settings = SequenceSettings::default();
+        let run = |list: [f64; MAX_CLIENTS - 1]| {
+            let mut s = Sequence::new();
+            let intervals = Intervals::ByPosition(list);
+            best_order(
+                &G,
+                &p,
+                (Some(0), &intervals),
+                &settings,
+                |_, _, _, _| Some(1.0),
+                &mut s,
+            )
+            .map(|()| s)
+        };
+        let mut list = [0.0; MAX_CLIENTS - 1];
+        list[0] = 8e4;
+        list[1] = 8e4;
+        assert_eq!(run(list).unwrap().len, 3);
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            list[4] = bad;
+            let r = run(list);
+            assert!(
+                matches!(r, Err(SequenceError::Interval { position: 4, value_s })
+                    if value_s.to_bits() == bad.to_bits()),
+                "{bad}: {r:?}"
+            );
+        }
+        // A used interval must still be positive; an unused one may be anything finite.
+        list[4] = -5.0;
+        assert_eq!(run(list).unwrap().len, 3);
+        list[1] = 0.0;
+        assert!(matches!(
+            run(list),
+            Err(SequenceError::Interval { position: 1, .. })
+        ));
     }
 }

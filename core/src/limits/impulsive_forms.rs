@@ -3,8 +3,9 @@
 //! be an ellipse (eccentricity below 1) whose perigee clears `min_perigee_altitude_km`, and ROE
 //! need a chief inclined enough to carry them (`|sin i| >= min_sin_inclination`). Each refusal
 //! names the field, its value and the limit. Orbits given as classical mean elements are
-//! validated by the planner itself ([`crate::impulsive::PlanError`] names them); NaN passes
-//! here and is named by the conversion or the planner.
+//! validated by the planner itself ([`crate::impulsive::PlanError`] names them); a NaN or an
+//! infinity, given or computed (the eccentricity of a state at 1e300 km), passes here and is
+//! named by the conversion or the planner.
 
 use super::impulsive::Limits;
 use super::{at_least, below, LimitViolation, ProblemLimit, Setting};
@@ -257,6 +258,38 @@ mod tests {
         );
         assert!((e.value - 1e-4).abs() < 1e-12, "{}", e.value);
         assert_eq!(e.setting.planner(), crate::wire::Planner::Impulsive);
+    }
+
+    #[test]
+    fn a_violation_carries_finite_numbers_only() {
+        // Issue 29 (finite answers), found by tests/finite_answers.rs: an infinite
+        // `min_sin_inclination` was the limit of a ROE chief's check (`limit: inf`), and the
+        // eccentricity of a state at 1e300 km overflowed to the violation's value. Both now
+        // pass here; the planner names them (the setting by its range, the state as given).
+        let c = chief();
+        let roe = RelativeForm::Roe {
+            initial: roe_of(&c, &zero()),
+            target: roe_of(&c, &zero()),
+        };
+        let settings = Settings {
+            min_sin_inclination: f64::INFINITY,
+            ..Settings::default()
+        };
+        let p = problem(OrbitForm::Classical(c), roe);
+        assert_eq!(Limits::default().check_form(&p, &settings), Ok(()));
+        let mut far = state();
+        far.pos_km[0] = 1e300;
+        assert_eq!(check(&problem(OrbitForm::State(far), elements())), Ok(()));
+        // A finite violation is still refused.
+        let e = check(&problem(
+            OrbitForm::State(CartesianState {
+                pos_km: [7000.0, 0.0, 0.0],
+                vel_km_s: [0.0, 12.0, 0.0],
+            }),
+            elements(),
+        ))
+        .unwrap_err();
+        assert!(e.value.is_finite() && e.limit.is_finite());
     }
 
     #[test]

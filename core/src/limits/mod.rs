@@ -295,46 +295,22 @@ impl Limits {
     }
 }
 
-/// `value <= limit`. A NaN passes here: the planner's own validation names it.
+/// `value <= limit`. A NaN or an infinity passes here (`contract::check_limit`): the
+/// planner's own validation names it.
 fn at_most(setting: Setting, value: f64, limit: f64) -> Result<(), LimitViolation> {
-    if value > limit {
-        Err(LimitViolation {
-            setting,
-            value,
-            limit,
-            rule: Rule::AtMost,
-        })
-    } else {
-        Ok(())
-    }
+    crate::contract::check_limit(setting, Rule::AtMost, value, limit)
 }
 
-/// `value >= limit`. A NaN passes here: the planner's own validation names it.
+/// `value >= limit`. A NaN or an infinity passes here (`contract::check_limit`): the
+/// planner's own validation names it.
 fn at_least(setting: Setting, value: f64, limit: f64) -> Result<(), LimitViolation> {
-    if value < limit {
-        Err(LimitViolation {
-            setting,
-            value,
-            limit,
-            rule: Rule::AtLeast,
-        })
-    } else {
-        Ok(())
-    }
+    crate::contract::check_limit(setting, Rule::AtLeast, value, limit)
 }
 
-/// `value < limit`. A NaN passes here: the planner's own validation names it.
+/// `value < limit`. A NaN or an infinity passes here (`contract::check_limit`): the
+/// planner's own validation names it.
 fn below(setting: Setting, value: f64, limit: f64) -> Result<(), LimitViolation> {
-    if value >= limit {
-        Err(LimitViolation {
-            setting,
-            value,
-            limit,
-            rule: Rule::Below,
-        })
-    } else {
-        Ok(())
-    }
+    crate::contract::check_limit(setting, Rule::Below, value, limit)
 }
 
 /// A work-adding flag: unless `allowed`, `value` must be off.

@@ -145,9 +145,12 @@ impl Anderson {
         if trace <= 0.0 {
             return;
         }
-        // The diagonal: every (MAX_MEMORY + 1)-th entry of the rows laid end to end.
-        for diagonal in normal.iter_mut().flatten().step_by(MAX_MEMORY + 1).take(k) {
-            *diagonal += 1e-10 * trace;
+        // The diagonal (a row has its diagonal entry: `k` is at most MAX_MEMORY). Not a
+        // `step_by` walk: `StepBy::nth` divides, a panic path the C library must not link.
+        for (i, row) in normal.iter_mut().enumerate().take(k) {
+            if let Some(diagonal) = row.get_mut(i) {
+                *diagonal += 1e-10 * trace;
+            }
         }
         if cholesky_in_place(&mut normal, k).is_some()
             || !solve_lower(&normal, k, &mut rhs)

@@ -2,7 +2,7 @@
 //! and triangular solves on the leading `n x n` block. No allocation, no panics.
 //!
 //! Only the lower triangle is read. Rows are walked as slices split at the diagonal and columns
-//! as strided walks over the rows (`column`), so no entry is read through an index that could
+//! as walks over the rows (`column`), so no entry is read through an index that could
 //! miss; a row that a split cannot reach (`n` beyond the array) ends the kernel with a failure
 //! its caller acts on, never with a made-up entry.
 
@@ -31,12 +31,12 @@ fn column<const C: usize>(
     j: usize,
     from: usize,
 ) -> impl Iterator<Item = f64> + '_ {
+    // Each row's entry `j` (a row has none only when `j` is outside the array: then the
+    // column is empty). Not `flatten().step_by(C)`: `StepBy::nth` divides, and its
+    // division-by-zero check is a panic path the abort-proof C library must not link.
     a.iter()
-        .flatten()
-        .skip(j)
-        .step_by(C.max(1))
         .skip(from)
-        .copied()
+        .filter_map(move |row| row.get(j).copied())
 }
 
 /// Cholesky-factor the leading `n x n` block of `a` in place (lower triangle holds L, the

@@ -72,13 +72,16 @@ pub(super) fn write_solution(ws: &mut Workspace, settings: &Settings, out: &mut 
         }
         if separation < least {
             least = separation;
-            out.min_separation_lu = separation;
+            out.min_separation_lu = Some(separation);
             out.min_separation_pair = pair_ids;
             out.min_separation_time_tu = minimum.at_s * ws.setup.transcription.horizon_tu;
         }
     }
+    // No pair (one spacecraft): no separation, absent (not infinite: issue 29, finite answers).
     if ws.setup.transcription.pair_count == 0 {
-        out.min_separation_lu = f64::INFINITY;
+        out.min_separation_lu = None;
+        out.min_separation_pair = (0, 0);
+        out.min_separation_time_tu = 0.0;
     }
     let tr = &ws.setup.transcription;
     let nodes = tr.grid.nodes();

@@ -26,8 +26,10 @@ pub struct Solution {
     pub controls_fu: [[[f64; 3]; MAX_NODES]; MAX_SPACECRAFT],
     /// Control energy `J = 1/2 sum_i int |U_i|^2 dt` (Huang 2012, eq. 18), in FU^2 TU.
     pub cost: f64,
-    /// Least separation of any pair over the continuous interpolated trajectory, in LU.
-    pub min_separation_lu: f64,
+    /// Least separation of any pair over the continuous interpolated trajectory, in LU; `None`
+    /// when there is no pair (one spacecraft), and then `min_separation_pair` is `(0, 0)` and
+    /// `min_separation_time_tu` 0.
+    pub min_separation_lu: Option<f64>,
     /// The pair `(i, j)`, `i < j`, where the least separation occurs.
     pub min_separation_pair: (u8, u8),
     /// When the least separation occurs, in TU.
@@ -165,7 +167,7 @@ impl Solution {
             states: [[[0.0; 6]; MAX_NODES]; MAX_SPACECRAFT],
             controls_fu: [[[0.0; 3]; MAX_NODES]; MAX_SPACECRAFT],
             cost: 0.0,
-            min_separation_lu: 0.0,
+            min_separation_lu: None,
             min_separation_pair: (0, 0),
             min_separation_time_tu: 0.0,
             max_dynamics_error: 0.0,
@@ -204,7 +206,7 @@ impl Solution {
             sc.fill([0.0; 3]);
         }
         self.cost = 0.0;
-        self.min_separation_lu = 0.0;
+        self.min_separation_lu = None;
         self.min_separation_pair = (0, 0);
         self.min_separation_time_tu = 0.0;
         self.max_dynamics_error = 0.0;

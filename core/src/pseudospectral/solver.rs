@@ -427,7 +427,10 @@ fn finish(ws: &mut Workspace, settings: &Settings, out: &mut Solution, end: SqpE
     let verified = write_solution(ws, settings, out);
     // Feasibility is checked on the returned trajectory itself, whatever the iteration says.
     let control_excess = control_excess(out, ws.setup.transcription.max_control_fu);
-    let separation_deficit = ws.setup.transcription.keep_out_lu - out.min_separation_lu;
+    // No pair, no keep-out to miss.
+    let separation_deficit = out
+        .min_separation_lu
+        .map_or(0.0, |s| ws.setup.transcription.keep_out_lu - s);
     out.certificate.max_violation = control_excess.max(separation_deficit).max(0.0);
     let feasible = verified
         && control_excess <= CONTROL_TOL_REL * ws.setup.transcription.max_control_fu
@@ -518,8 +521,26 @@ mod tests {
         std::println!("{:?}", c.multipliers);
         assert_eq!(out.info.status, SolveStatus::Solved);
         assert!((out.cost - 6.743183).abs() < 1e-5, "J = {}", out.cost);
-        assert!(out.min_separation_lu >= 2.0 - 1e-6);
+        assert!(out.min_separation_lu.unwrap() >= 2.0 - 1e-6);
         assert!(out.max_dynamics_error < 1e-9);
+    }
+
+    #[test]
+    fn one_spacecraft_has_no_separation_and_no_infinity() {
+        // Issue 29 (finite answers), found by tests/finite_answers.rs: with no pair the least
+        // separation was written as +inf; it is absent, and the rest of the answer is finite.
+        let out = run(
+            &rest_to_rest(&[([0.0, 0.0, 0.0], [12.0, 12.0, 12.0])], 10, false),
+            &Settings::default(),
+        );
+        assert!(out.info.status.is_usable(), "{:?}", out.info.status);
+        assert_eq!(out.min_separation_lu, None);
+        assert_eq!(
+            (out.min_separation_pair, out.min_separation_time_tu),
+            ((0, 0), 0.0)
+        );
+        assert!(out.certificate.max_violation.is_finite());
+        assert!(out.cost.is_finite() && out.max_dynamics_error.is_finite());
     }
 
     #[test]
@@ -559,7 +580,11 @@ mod tests {
             ..Settings::default()
         };
         let out = run(&paper_case(10, false), &settings);
-        assert!(out.min_separation_lu < 1.0, "{}", out.min_separation_lu);
+        assert!(
+            out.min_separation_lu.unwrap() < 1.0,
+            "{:?}",
+            out.min_separation_lu
+        );
         // Every node check is still met: the violation is between nodes.
         assert!(out.info.max_violation <= 1e-9, "{}", out.info.max_violation);
     }
@@ -680,8 +705,8 @@ mod tests {
             c.min_reduced_eigenvalue
         );
         assert!(
-            out.min_separation_lu >= 2.0 - 1e-7,
-            "{}",
+            out.min_separation_lu.unwrap() >= 2.0 - 1e-7,
+            "{:?}",
             out.min_separation_lu
         );
         // Without the probe the same point was Feasible: the flag is what certifies it.

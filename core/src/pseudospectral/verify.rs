@@ -104,15 +104,18 @@ impl Bernstein {
                 *slot = c * libm::pow(s, k as f64) * libm::pow(1.0 - s, n.saturating_sub(k) as f64);
             }
         }
-        // The identity: every (MAX_NODES + 1)-th entry of the rows laid end to end.
-        for diagonal in inv.iter_mut().flatten().step_by(MAX_NODES + 1).take(size) {
-            *diagonal = 1.0;
+        // The identity (a row has its diagonal entry: `size` is at most MAX_NODES).
+        for (i, row) in inv.iter_mut().enumerate().take(size) {
+            if let Some(diagonal) = row.get_mut(i) {
+                *diagonal = 1.0;
+            }
         }
         for col in 0..size {
             // The first largest entry of column `col` from the diagonal down.
             let mut pivot = col;
             let mut p = 0.0;
-            let column = a.iter().flatten().skip(col).step_by(MAX_NODES).indexed();
+            // Each row's entry `col` (`col < size <= MAX_NODES`: every row has it).
+            let column = a.iter().filter_map(|row| row.get(col)).indexed();
             for (row, &value) in column.skip(col).take(size.saturating_sub(col)) {
                 if row == col || libm::fabs(value) > libm::fabs(p) {
                     pivot = row;

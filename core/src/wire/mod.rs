@@ -52,7 +52,9 @@ pub use messages::{Expiry, Outcome, OutcomeRef, Planner, Rejection, Request};
 ///    settings by id (`limits::Setting`); the LEO sequencing's request carries a
 ///    `SequenceProblem`; `Outcome::Unsupported` answers a request for a planner the front end
 ///    does not carry.
-pub const PROTOCOL_VERSION: u16 = 6;
+/// 7: no answer carries a NaN or an infinity: planner A's `min_separation_lu` is an `Option`
+///    (absent with one spacecraft, where it was infinite).
+pub const PROTOCOL_VERSION: u16 = 7;
 /// First two bytes of a request frame.
 pub const REQUEST_MAGIC: [u8; 2] = *b"RQ";
 /// First two bytes of a response frame.
@@ -68,7 +70,7 @@ pub const CRC_BYTES: usize = 4;
 pub const REQUEST_MAX_BYTES: usize = 1024;
 /// Largest request body, in bytes.
 pub const REQUEST_BODY_MAX_BYTES: usize = REQUEST_MAX_BYTES - REQUEST_HEADER_BYTES - CRC_BYTES;
-/// Largest response frame, in bytes. A planner-A solution at capacity takes 17 345 body bytes
+/// Largest response frame, in bytes. A planner-A solution at capacity takes 17 346 body bytes
 /// (16 241 before its optimality certificate, which lists up to 56 multipliers).
 pub const RESPONSE_MAX_BYTES: usize = 18 * 1024;
 /// Largest response body, in bytes.

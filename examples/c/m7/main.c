@@ -269,6 +269,7 @@ static int plan_g(void) {
         } else {
             add(" status="); add_i(status);
             add(" dv_bits="); add_hex(bits(g_solution.total_dv_mps));
+            add(" work_units="); add_u(g_solution.work_units);
             add(" checksum="); add_hex(geo_checksum(&g_solution));
         }
         add(" stack_bytes="); add_u(used);

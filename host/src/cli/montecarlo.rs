@@ -142,14 +142,16 @@ pub fn study(args: &Args, progress: bool) -> Result<Vec<Row>> {
                     &mut solution,
                 )?;
                 let elapsed = start.elapsed().as_secs_f64();
-                stats.mean_min_separation += solution.min_separation_lu / args.runs as f64;
-                stats.min_min_separation = stats.min_min_separation.min(solution.min_separation_lu);
+                // No pair (one spacecraft): nothing to come close to.
+                let separation = solution.min_separation_lu.unwrap_or(f64::INFINITY);
+                stats.mean_min_separation += separation / args.runs as f64;
+                stats.min_min_separation = stats.min_min_separation.min(separation);
                 stats.mean_cost += solution.cost / args.runs as f64;
                 stats.mean_time_s += elapsed / args.runs as f64;
                 stats.max_time_s = stats.max_time_s.max(elapsed);
                 stats.max_active = stats.max_active.max(solution.info.max_active);
                 stats.max_subproblems = stats.max_subproblems.max(solution.info.sqp_iterations);
-                let separated = solution.min_separation_lu >= problem.keep_out_lu - 1e-6;
+                let separated = separation >= problem.keep_out_lu - 1e-6;
                 let usable = matches!(solution.info.status, SolveStatus::Solved)
                     || (!verify && solution.info.status == SolveStatus::SeparationNotVerified);
                 if !separated || !usable {

@@ -71,25 +71,21 @@ pub fn run(args: &Args) -> Result<ExitCode> {
             let (solution, what) = match result {
                 Ok(()) => {
                     let what = format!(
-                        "{}: {:?}, J = {:.4}, min separation {:.4} (sats {}-{})",
+                        "{}: {:?}, J = {:.4}, min separation {}",
                         f.name,
                         solution.info.status,
                         solution.cost,
-                        solution.min_separation_lu,
-                        solution.min_separation_pair.0 + 1,
-                        solution.min_separation_pair.1 + 1
+                        separation(&solution)
                     );
                     (solution, what)
                 }
                 Err(e) if args.guess => {
                     let g = Box::new(plot::unconstrained_guess(&f.problem));
                     let what = format!(
-                        "{}: unconstrained guess (solver: {e}), J = {:.4}, min separation {:.4} (sats {}-{})",
+                        "{}: unconstrained guess (solver: {e}), J = {:.4}, min separation {}",
                         f.name,
                         g.cost,
-                        g.min_separation_lu,
-                        g.min_separation_pair.0 + 1,
-                        g.min_separation_pair.1 + 1
+                        separation(&g)
                     );
                     (g, what)
                 }
@@ -124,4 +120,18 @@ fn impulsive_plot(problem: &impulsive::Problem, name: &str, out: &std::path::Pat
             .map_or_else(|| "absent".to_string(), |t| format!("{:.1e} m", t.position_m)),
     );
     plot::impulsive_svg(problem, &settings, &solution, &title, out)
+}
+
+/// The least separation and its pair, or "none" with one spacecraft.
+fn separation(s: &pseudospectral::Solution) -> String {
+    s.min_separation_lu.map_or_else(
+        || "none".to_owned(),
+        |d| {
+            format!(
+                "{d:.4} (sats {}-{})",
+                s.min_separation_pair.0 + 1,
+                s.min_separation_pair.1 + 1
+            )
+        },
+    )
 }

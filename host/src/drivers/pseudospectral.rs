@@ -134,13 +134,15 @@ pub fn report(
         );
         println!("  status               {:?}", s.info.status);
         println!("  cost J               {:.6}", s.cost);
-        println!(
-            "  min separation       {:.6} (spacecraft {} and {}, t = {:.4}), continuous",
-            s.min_separation_lu,
-            s.min_separation_pair.0 + 1,
-            s.min_separation_pair.1 + 1,
-            s.min_separation_time_tu
-        );
+        match s.min_separation_lu {
+            Some(d) => println!(
+                "  min separation       {d:.6} (spacecraft {} and {}, t = {:.4}), continuous",
+                s.min_separation_pair.0 + 1,
+                s.min_separation_pair.1 + 1,
+                s.min_separation_time_tu
+            ),
+            None => println!("  min separation       none (one spacecraft)"),
+        }
         println!(
             "  dynamics error       {:.3e} (eq. 29)",
             s.max_dynamics_error

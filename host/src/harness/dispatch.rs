@@ -16,8 +16,8 @@
 //! outside the turns ([`NO_TURN`]).
 
 use super::conduct::{Conducts, Standing};
+use super::job::Job;
 use super::schedule::{Queued, Scheduler, Share};
-use super::service::{Job, RequestHeader};
 use super::{MAX_CLIENTS, MAX_IN_FLIGHT};
 use anyhow::{anyhow, Result};
 use iceoryx2::active_request::ActiveRequest;
@@ -41,6 +41,10 @@ pub struct ServiceOrder {
 
 /// [`ServiceOrder::turn`] of an answer given outside the turns.
 pub const NO_TURN: u64 = u64::MAX;
+
+/// The iceoryx2 user header of a request: its deadline in microseconds after the service
+/// receives it; 0 asks for the service's default (`serve --deadline-ms`).
+pub type RequestHeader = u64;
 
 /// A request received by the service.
 pub type Active = ActiveRequest<ipc::Service, [u8], RequestHeader, [u8], ServiceOrder>;

@@ -203,7 +203,7 @@ pub fn run(items: &[Item], opts: &FeedOptions) -> Result<FeedRun> {
     let rpc = wait_for(opts.wait_service, || {
         node.service_builder(&inst.service_name("rpc")?)
             .request_response::<[u8], [u8]>()
-            .request_user_header::<super::service::RequestHeader>()
+            .request_user_header::<super::dispatch::RequestHeader>()
             .response_user_header::<super::dispatch::ServiceOrder>()
             .open()
             .map_err(|e| anyhow!("{e:?}"))

@@ -108,7 +108,7 @@ pub fn run(opts: &FloodOptions) -> Result<FloodStats> {
         match node
             .service_builder(&inst.service_name("rpc")?)
             .request_response::<[u8], [u8]>()
-            .request_user_header::<super::service::RequestHeader>()
+            .request_user_header::<super::dispatch::RequestHeader>()
             .response_user_header::<super::dispatch::ServiceOrder>()
             .open()
         {

@@ -18,6 +18,7 @@ pub mod faults;
 pub mod feeder;
 pub mod flood;
 pub mod items;
+pub mod job;
 pub mod leo_onboard;
 pub mod order;
 pub mod report;
@@ -90,7 +91,7 @@ impl Instance {
 pub type Pending = iceoryx2::pending_response::PendingResponse<
     ipc::Service,
     [u8],
-    service::RequestHeader,
+    dispatch::RequestHeader,
     [u8],
     dispatch::ServiceOrder,
 >;

@@ -24,7 +24,8 @@
 //! SIGTERM / SIGINT end the `WaitSet` wait; the service then finishes jobs in progress, answers
 //! them, drops its ports and node (which removes its shared memory) and exits 0.
 
-use super::dispatch::{Dispatcher, ServiceOrder};
+use super::dispatch::{Dispatcher, RequestHeader, ServiceOrder};
+use super::job::Job;
 use super::worker::{Worker, WORKER_STACK_BYTES};
 use super::{affinity, Instance, MAX_CLIENTS, MAX_IN_FLIGHT};
 use anyhow::{anyhow, Context, Result};
@@ -32,7 +33,7 @@ use iceoryx2::identifiers::UniqueClientId;
 use iceoryx2::prelude::*;
 use iceoryx2::waitset::WaitSetRunResult;
 use reconfig_core::limits::Limits;
-use reconfig_core::wire::{REQUEST_MAX_BYTES, RESPONSE_MAX_BYTES};
+use reconfig_core::wire::RESPONSE_MAX_BYTES;
 use std::sync::mpsc::{sync_channel, Receiver, SyncSender, TryRecvError};
 use std::time::Duration;
 use std::time::Instant;
@@ -50,33 +51,6 @@ pub struct ServiceOptions {
     pub limits: Limits,
     /// Deadline of a request that does not carry its own (counted from its receipt).
     pub default_deadline: Duration,
-}
-
-/// A request travelling to a worker and its response travelling back. Built once per worker.
-pub struct Job {
-    /// Which worker owns this buffer.
-    pub worker: usize,
-    /// Request frame bytes.
-    pub request: [u8; REQUEST_MAX_BYTES],
-    /// Used length of `request`.
-    pub request_len: usize,
-    /// Response frame bytes.
-    pub response: [u8; RESPONSE_MAX_BYTES],
-    /// Used length of `response`.
-    pub response_len: usize,
-}
-
-impl Job {
-    /// A job buffer for worker `worker` (allocated once, at start-up).
-    pub fn boxed(worker: usize) -> Box<Self> {
-        Box::new(Self {
-            worker,
-            request: [0; REQUEST_MAX_BYTES],
-            request_len: 0,
-            response: [0; RESPONSE_MAX_BYTES],
-            response_len: 0,
-        })
-    }
 }
 
 /// Start-up for a thread that will block on `rx`: the first blocking receive on a std channel
@@ -119,10 +93,6 @@ type Rpc = iceoryx2::service::port_factory::request_response::PortFactory<
     [u8],
     ServiceOrder,
 >;
-
-/// The iceoryx2 user header of a request: its deadline in microseconds after the service
-/// receives it; 0 asks for the service's default (`serve --deadline-ms`).
-pub type RequestHeader = u64;
 
 /// Longest wait of the dispatcher between two looks at its queues, events or not (see the
 /// module's documentation: iceoryx2 can lose a wake-up).

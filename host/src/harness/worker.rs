@@ -81,11 +81,15 @@ pub fn summarize(outcome: &Outcome) -> (String, String, String, String) {
         Outcome::Pseudospectral(s) => (
             format!("{:?}", s.info.status),
             format!("J={:.4}", s.cost),
-            format!(
-                "{:.4} ({}-{})",
-                s.min_separation_lu,
-                s.min_separation_pair.0 + 1,
-                s.min_separation_pair.1 + 1
+            s.min_separation_lu.map_or_else(
+                || "none".to_owned(),
+                |d| {
+                    format!(
+                        "{d:.4} ({}-{})",
+                        s.min_separation_pair.0 + 1,
+                        s.min_separation_pair.1 + 1
+                    )
+                },
             ),
             format!("{}", s.info.sqp_iterations),
         ),

@@ -390,7 +390,7 @@ pub fn unconstrained_guess(problem: &pseudospectral::Problem) -> pseudospectral:
             }
         }
     }
-    s.min_separation_lu = best.0;
+    s.min_separation_lu = best.0.is_finite().then_some(best.0);
     s.min_separation_pair = best.1;
     s.min_separation_time_tu = best.2;
     s

@@ -1,0 +1,250 @@
+//! The README's Cortex-M7 lines of "Where we stand", generated from the two M7 records
+//! (`fixtures/golden/m7-figures.toml`, `fixtures/golden/m7-figures-leo.toml`, which the QEMU
+//! tests write) between `<!-- readme-m7:begin ... -->` and `<!-- readme-m7:end -->`: one short
+//! line per figure (what, target, measured, met or not, where it is explained).
+//! `tests/tests/m7_docs.rs` fails when the README differs from what the records generate.
+
+use crate::m7_record::{grouped, root, splice_between, RECORD_FILE};
+use std::fmt::Write as _;
+
+/// The README, relative to the workspace.
+pub const README_FILE: &str = "README.md";
+/// The LEO image's record, relative to the workspace.
+pub const LEO_RECORD_FILE: &str = "fixtures/golden/m7-figures-leo.toml";
+/// Start marker of the generated lines.
+pub const README_BEGIN: &str =
+    "<!-- readme-m7:begin (generated from fixtures/golden/m7-figures*.toml; do not edit) -->";
+/// End marker of the generated lines.
+pub const README_END: &str = "<!-- readme-m7:end -->";
+
+/// A fixture's or an image's figures: a table of the record.
+type Entry = toml::Table;
+
+fn parse(text: &str, file: &str) -> Result<toml::Table, String> {
+    toml::from_str(text).map_err(|e| format!("{file}: {e}"))
+}
+
+fn entries<'a>(record: &'a toml::Table, key: &str) -> Vec<&'a Entry> {
+    record
+        .get(key)
+        .and_then(toml::Value::as_array)
+        .map(|a| a.iter().filter_map(toml::Value::as_table).collect())
+        .unwrap_or_default()
+}
+
+fn named<'a>(list: &[&'a Entry], name: &str) -> Result<&'a Entry, String> {
+    list.iter()
+        .copied()
+        .find(|e| e.get("name").and_then(toml::Value::as_str) == Some(name))
+        .ok_or_else(|| format!("no record entry named {name}"))
+}
+
+fn int(e: &Entry, key: &str) -> Result<u64, String> {
+    e.get(key)
+        .and_then(toml::Value::as_integer)
+        .and_then(|v| u64::try_from(v).ok())
+        .ok_or_else(|| format!("record entry lacks `{key}`"))
+}
+
+/// Instructions in millions, one decimal (`6.7 M`).
+fn mega(v: u64) -> String {
+    format!("{:.1} M", v as f64 / 1e6)
+}
+
+/// Instructions in billions, two decimals (`0.46 G`).
+fn giga(v: u64) -> String {
+    format!("{:.2} G", v as f64 / 1e9)
+}
+
+fn met(ok: bool) -> &'static str {
+    if ok {
+        "met"
+    } else {
+        "**not met**"
+    }
+}
+
+/// One line: what, target, measured, met, link.
+fn line(md: &mut String, what: &str, target: &str, measured: &str, ok: bool, link: &str) {
+    let _ = writeln!(
+        md,
+        "| {what} | {target} | {measured} | {} | {link} |",
+        met(ok)
+    );
+}
+
+/// The largest instruction count over `fixtures` whose name satisfies `pick`, with its name.
+fn largest(fixtures: &[&Entry], pick: impl Fn(&str) -> bool) -> Result<(u64, String), String> {
+    let mut best: Option<(u64, String)> = None;
+    for f in fixtures {
+        let name = f.get("name").and_then(toml::Value::as_str).unwrap_or("");
+        if pick(name) {
+            let n = int(f, "instructions")?;
+            if best.as_ref().is_none_or(|(b, _)| n > *b) {
+                best = Some((n, name.to_owned()));
+            }
+        }
+    }
+    best.ok_or_else(|| "no fixture matched".to_owned())
+}
+
+/// The generated lines (without the markers) for the two records' texts.
+///
+/// # Errors
+/// A record does not parse or lacks a figure.
+pub fn render_readme(record: &str, leo_record: &str) -> Result<String, String> {
+    let record = parse(record, RECORD_FILE)?;
+    let leo = parse(leo_record, LEO_RECORD_FILE)?;
+    let fixtures = entries(&record, "fixture");
+    let geo = entries(&record, "geo_fixture");
+    let leo_fixtures = entries(&leo, "leo_fixture");
+    let firmware = "[firmware](docs/firmware.md)";
+    let mut md = String::new();
+
+    let paper = int(
+        named(&fixtures, "huang2012-three-sats-n10")?,
+        "instructions",
+    )?;
+    line(
+        &mut md,
+        "M7: planner A, paper case N = 10",
+        "≤ 40 M instructions",
+        &mega(paper),
+        paper <= 40_000_000,
+        firmware,
+    );
+    let crossing = int(named(&fixtures, "crossing-8-sats-n16")?, "instructions")?;
+    line(
+        &mut md,
+        "M7: planner A, 8-spacecraft crossing",
+        "≤ 200 M instructions",
+        &mega(crossing),
+        crossing <= 200_000_000,
+        firmware,
+    );
+    // Requests given as osculating states convert them first (their budget is 20 M).
+    let (fixed, fixed_name) = largest(&fixtures, |n| {
+        n.ends_with("+fixed-point") && !n.contains("-state")
+    })?;
+    line(
+        &mut md,
+        "M7: planner B, fixed-point plan, every mean-element or ROE fixture",
+        "≤ 2 M instructions",
+        &format!("{} at most (`{fixed_name}`)", mega(fixed)),
+        fixed <= 2_000_000,
+        firmware,
+    );
+    let searches: Vec<u64> = (2..=4)
+        .map(|k| {
+            int(
+                named(&fixtures, &format!("wang2018-gco-to-pco-search-{k}imp"))?,
+                "instructions",
+            )
+        })
+        .collect::<Result<_, _>>()?;
+    line(
+        &mut md,
+        "M7: planner B, search for 2 / 3 / 4 impulses",
+        "≤ 400 M instructions",
+        &searches
+            .iter()
+            .map(|&n| mega(n))
+            .collect::<Vec<_>>()
+            .join(" / "),
+        searches.iter().all(|&n| n <= 400_000_000),
+        firmware,
+    );
+    let mut images: Vec<(String, u64, u64)> = entries(&record, "image")
+        .iter()
+        .map(|i| {
+            let planner = i
+                .get("planner")
+                .and_then(toml::Value::as_str)
+                .unwrap_or("?");
+            Ok((
+                planner.to_owned(),
+                int(i, "ram_bytes")?,
+                int(i, "ram_bytes_budget")?,
+            ))
+        })
+        .collect::<Result<_, String>>()?;
+    if let Some(g) = record.get("geo_image").and_then(toml::Value::as_table) {
+        images.push((
+            "geo-tour".into(),
+            int(g, "ram_bytes")?,
+            int(g, "ram_bytes_budget")?,
+        ));
+    }
+    let worst = images
+        .iter()
+        .max_by_key(|(_, ram, budget)| ram * 1000 / budget.max(&1))
+        .ok_or("no images in the record")?;
+    line(
+        &mut md,
+        "M7: RAM (static + stack) of each one-planner image",
+        &format!("≤ {} B", grouped(worst.2)),
+        &format!(
+            "{} B at most ({}: {} B to spare)",
+            grouped(worst.1),
+            worst.0,
+            grouped(worst.2.saturating_sub(worst.1))
+        ),
+        images.iter().all(|(_, ram, budget)| ram <= budget),
+        firmware,
+    );
+    let published = int(named(&geo, "geo-servicing-published-60d")?, "instructions")?;
+    let sixteen = int(named(&geo, "geo-servicing-16-targets")?, "instructions")?;
+    line(
+        &mut md,
+        "M7: GEO tour, published 60-day case / 16 clients",
+        "≤ 20 M instructions",
+        &format!("{} / {}", mega(published), mega(sixteen)),
+        published.max(sixteen) <= 20_000_000,
+        "[geo-tour](docs/geo-tour.md)",
+    );
+    let arc = named(&leo_fixtures, "leo-tour-example1-single-arc")?;
+    let onboard = named(&leo_fixtures, "leo-tour-example1-sequence")?;
+    let (arc_n, onboard_n) = (int(arc, "instructions")?, int(onboard, "instructions")?);
+    line(
+        &mut md,
+        "M7: LEO tour, one arc / the on-board part (order + 4 arcs)",
+        "reported (issue 13; ≤ 8 G ceiling)",
+        &format!(
+            "{} / {}, stack {} / {} B",
+            giga(arc_n),
+            giga(onboard_n),
+            grouped(int(arc, "stack_bytes")?),
+            grouped(int(onboard, "stack_bytes")?)
+        ),
+        arc_n.max(onboard_n) <= 8_000_000_000,
+        "[leo-tour](docs/leo-tour.md)",
+    );
+    Ok(md)
+}
+
+/// The README with its generated lines replaced by what the records on disk generate.
+///
+/// # Errors
+/// A file cannot be read, does not parse, or the markers are missing.
+pub fn expected_readme() -> Result<(String, String), String> {
+    let read =
+        |file: &str| std::fs::read_to_string(root().join(file)).map_err(|e| format!("{file}: {e}"));
+    let readme = read(README_FILE)?;
+    let generated = render_readme(&read(RECORD_FILE)?, &read(LEO_RECORD_FILE)?)?;
+    let expected = splice_between(&readme, README_BEGIN, README_END, &generated)?;
+    Ok((readme, expected))
+}
+
+/// Rewrite the README's generated lines from the records on disk; returns whether they changed.
+///
+/// # Errors
+/// As [`expected_readme`], or the README cannot be written.
+pub fn update_readme() -> Result<bool, String> {
+    let (readme, expected) = expected_readme()?;
+    if readme == expected {
+        return Ok(false);
+    }
+    std::fs::write(root().join(README_FILE), expected)
+        .map_err(|e| format!("{README_FILE}: {e}"))?;
+    Ok(true)
+}
