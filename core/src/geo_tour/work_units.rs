@@ -3,10 +3,10 @@
 //! solver step at its dearest branch, a drift or radial evaluation, a Lambert arc's set-up, a
 //! leg's share of a price step, and so on. A unit is about 100 Cortex-M7 instructions: each
 //! constant below is the measured M7 instruction count of its kernel on its dearest path
-//! (docs/geo-tour.md, "Work budget"; `kernels.rs` runs them, the QEMU test records them),
-//! divided by 90 and rounded up. So a solve's units bound its instructions by construction:
-//! instructions <= units x the largest instructions per unit over the kernels, which the
-//! record holds below [`MAX_INSTRUCTIONS_PER_UNIT`].
+//! (`kernels.rs` runs them; docs/geo-tour.md, "Work budget", says what is measured and what
+//! is not yet checked in CI), divided by 90 and rounded up. So a solve's units bound its
+//! instructions: instructions <= units x the largest instructions per unit over the kernels,
+//! at most [`MAX_INSTRUCTIONS_PER_UNIT`] as measured.
 //!
 //! An iteration is charged as it starts, not by its loop's bound up front: a Lambert solve
 //! runs 2-4 of its up to `3 lambert_max_iter` steps and a root 4-20 of its up to
@@ -21,7 +21,7 @@ use super::types::{MethodPolicy, Settings};
 use crate::work::Meter;
 
 /// The largest Cortex-M7 instructions per work unit over the charged kernels, as measured
-/// (docs/geo-tour.md, "Work budget"; the QEMU test fails when a kernel measures above it).
+/// when the constants were set (docs/geo-tour.md, "Work budget": not yet a QEMU test in CI).
 pub const MAX_INSTRUCTIONS_PER_UNIT: u64 = 100;
 
 /// The default work budget: `DEFAULT_WORK_BUDGET x MAX_INSTRUCTIONS_PER_UNIT` = 400 M
