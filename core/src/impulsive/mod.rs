@@ -35,6 +35,8 @@ mod form_problem;
 mod forms;
 mod gve;
 pub(crate) mod kepler;
+#[doc(hidden)]
+pub mod kernels;
 mod min_fuel;
 mod model;
 pub(crate) mod nonlinear;

@@ -37,7 +37,7 @@ use crate::capacity::MAX_IMPULSES;
 use crate::indexed::IndexedExt as _;
 
 /// Phases of one candidate, rad; the first `n` are used.
-type Phases = [f64; MAX_IMPULSES];
+pub(super) type Phases = [f64; MAX_IMPULSES];
 
 /// The search's candidate store (lives in the workspace).
 #[derive(Clone, Debug)]
@@ -135,9 +135,9 @@ pub(crate) fn points_of(
 /// A scored candidate: least-fuel total (m/s, infinite when infeasible or failed) and its dual
 /// certificate in F's rows (km/s units of dY per unit of dv).
 #[derive(Clone, Copy, Debug)]
-struct Score {
-    cost: f64,
-    dual: [f64; 6],
+pub(super) struct Score {
+    pub(super) cost: f64,
+    pub(super) dual: [f64; 6],
 }
 
 const INFEASIBLE: Score = Score {
@@ -146,12 +146,12 @@ const INFEASIBLE: Score = Score {
 };
 
 /// What a search evaluation needs besides the candidate.
-struct Scorer<'a> {
-    ctx: &'a Context,
-    settings: &'a Settings,
-    n: usize,
-    u0: f64,
-    max_revolutions: i32,
+pub(super) struct Scorer<'a> {
+    pub(super) ctx: &'a Context,
+    pub(super) settings: &'a Settings,
+    pub(super) n: usize,
+    pub(super) u0: f64,
+    pub(super) max_revolutions: i32,
 }
 
 impl Scorer<'_> {
@@ -159,7 +159,7 @@ impl Scorer<'_> {
     /// zero impulses, the next at the minimum-norm impulses of the previous one), the cone
     /// program solved to `tol_mps`. With `incumbent = (dual, cost)`, a candidate whose dual
     /// lower bound is not below `cost` is returned as that bound without the cone program.
-    fn score(
+    pub(super) fn score(
         &self,
         phi: &Phases,
         linearisations: u16,

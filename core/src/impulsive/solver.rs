@@ -321,7 +321,7 @@ pub(crate) fn solve_points(
 ///
 /// # Errors
 /// The failing [`Stage`].
-fn conditioning_at(
+pub(super) fn conditioning_at(
     ctx: &Context,
     pts: &Points,
     dv: &XVector,
@@ -363,7 +363,7 @@ fn min_norm_of_system(
 /// superlinearly. Stops when the largest scaled terminal error is below `correction_tol`, at
 /// most `correction_max_iter` steps (each one exact propagation and one minimum-norm solve,
 /// plus one linear propagation to start). Returns whether it converged.
-fn correct(
+pub(super) fn correct(
     ctx: &Context,
     pts: &Points,
     settings: &Settings,
