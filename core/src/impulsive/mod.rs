@@ -117,7 +117,7 @@ pub fn solve(
     workspace
         .seq
         .work
-        .reserve(work_units::final_checks(impulses));
+        .reserve(work_units::final_reserve(impulses, settings));
     let evaluations = match &problem.plan {
         ImpulsePlan::Fixed(points) => {
             workspace.points = transfer::Points::new();
@@ -143,7 +143,7 @@ pub fn solve(
                 &mut workspace.search,
             );
             // The final solve at the best points may spend what the search left.
-            let checks = work_units::final_checks(usize::from(*impulses));
+            let checks = work_units::final_reserve(usize::from(*impulses), settings);
             workspace.seq.work.next_stage(checks);
             used.saturating_add(1)
         }

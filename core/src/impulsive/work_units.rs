@@ -1,10 +1,22 @@
 //! Planner B's work units: the cost of each metered step from the impulse count `n` (F is
-//! 6 x 3n), about one unit per multiply-add (a transcendental function counts as a few),
-//! calibrated against M7 instructions in `docs/firmware.md`. The hooks charge these at their
-//! loop heads (`crate::work::Meter`).
+//! 6 x 3n), each step charged at least its dearest measured cost divided by
+//! [`MAX_INSTRUCTIONS_PER_UNIT`]: the kernel cases (`super::kernels`, run one at a time on the
+//! Cortex-M7 by the `reconfig-firmware-kb` image) cost at most that many M7 instructions per
+//! unit they are charged. The hooks charge these at their loop heads (`crate::work::Meter`).
 
-use super::settings::Settings;
+use super::settings::{Settings, DEFAULT_WORK_BUDGET};
+use crate::capacity::MAX_IMPULSES;
 use crate::work::units;
+
+/// The bound the units are set for: no kernel case costs more M7 instructions per unit charged
+/// (measured under QEMU, `reconfig-firmware-kb`).
+pub const MAX_INSTRUCTIONS_PER_UNIT: u64 = 21;
+
+/// The instructions the default budget must bound (the planner's on-board promise).
+const MAX_SOLVE_INSTRUCTIONS: u64 = 400_000_000;
+
+// The default budget times the bound per unit stays within the promise.
+const _: () = assert!(DEFAULT_WORK_BUDGET * MAX_INSTRUCTIONS_PER_UNIT <= MAX_SOLVE_INSTRUCTIONS);
 
 /// One propagation with the linear impulse model: per impulse a Kepler solve, the GVE matrix
 /// B (trigonometry of the arc), the J2 drift.
@@ -23,9 +35,10 @@ fn system(n: usize) -> u64 {
 }
 
 /// The equilibrated Cholesky minimum-norm solve: the 6x6 Gram matrix of F, its factor, and
-/// the back-substitution to 3n impulses.
-fn min_norm(n: usize) -> u64 {
-    units(&[110, n]).saturating_add(250)
+/// the back-substitution to the impulses. It runs on the whole capacity-sized F whatever `n`
+/// (measured: 27.7 k M7 instructions a correction step at n = 2), so it is charged at capacity.
+fn min_norm(_n: usize) -> u64 {
+    units(&[110, MAX_IMPULSES]).saturating_add(250)
 }
 
 /// One fixed-point iteration: a linear propagation, F, and the minimum-norm solve.
@@ -38,25 +51,42 @@ pub(super) fn fixed_point_iteration(n: usize) -> u64 {
 /// One rank-revealing SVD of F (one-sided Jacobi sweeps), when the Cholesky solve declines
 /// and for the rank and condition of the returned plan.
 pub(super) fn svd(n: usize) -> u64 {
-    units(&[800, n])
+    units(&[800, n]).saturating_add(600)
 }
 
-/// `iterations` interior-point iterations of the least-fuel cone program (a 6x6 Cholesky, the
-/// scalings of n cones, two solves), charged once they are done.
+/// A least-fuel cone program that made `iterations` interior-point iterations, charged once
+/// done: its set-up (row compression, blocks, Gram matrices, the certificates, the dual back in
+/// F's rows), and `iterations + 1` iterations (a 6x6 Cholesky with up to four shifts, the
+/// scalings of n cones, two refined solves; the last one is the pass that stopped it, by
+/// convergence or by a numerical failure, which `iterations` does not count). Measured: set-up
+/// 40-55 k M7 instructions, an iteration 12.7 k at n = 2 and 25.5 k at n = 6.
 pub(super) fn cone_program(n: usize, iterations: u16) -> u64 {
-    units(&[150, n])
-        .saturating_add(300)
-        .saturating_mul(u64::from(iterations))
+    let iteration = units(&[180, n]).saturating_add(340);
+    units(&[200, n])
+        .saturating_add(1_700)
+        .saturating_add(iteration.saturating_mul(u64::from(iterations).saturating_add(1)))
+}
+
+/// What the loops keep back for the end of a solve: the final checks, and one cone program at
+/// its iteration cap (a cone program is charged once done, so the last one may pass the
+/// loops' share by that much).
+pub(super) fn final_reserve(n: usize, settings: &Settings) -> u64 {
+    let cone = if settings.min_fuel {
+        cone_program(n, settings.min_fuel_max_iter)
+    } else {
+        0
+    };
+    final_checks(n).saturating_add(cone)
 }
 
 /// Fixed cost of a search evaluation whatever its size: the candidate's points (sorting,
-/// wrapping), the cone program's set-up, the bookkeeping of the pattern search (calibrated: the
-/// intercept of instructions against units over the 2- to 6-impulse searches).
+/// wrapping), the bookkeeping of the pattern search (measured with the whole search, the
+/// `search-64` kernel cases).
 const EVALUATION_OVERHEAD: u64 = 1_100;
 
 /// One short-period evaluation of the osculating <-> mean conversion (`osculating.rs`):
 /// `SAMPLES` Kepler solves and J2 rates, two Fourier analyses of `SAMPLES^2 / 2` terms with a
-/// sine and cosine each (calibrated: about 0.9 M M7 instructions per evaluation).
+/// sine and cosine each (measured: 0.74 M M7 instructions per evaluation).
 pub(super) fn osculating_evaluation() -> u64 {
     units(&[super::osculating::SAMPLES, 1_200])
 }
