@@ -245,7 +245,15 @@ mod tests {
         let mut ws = Workspace::new();
         let mut sol = Solution::new();
         solve(p, &settings, &mut ws, &mut sol).unwrap();
-        assert_eq!(sol.info.status, SolveStatus::Solved);
+        // A usable plan: a search may stop at the work budget with a verified plan.
+        assert!(
+            matches!(
+                sol.info.status,
+                SolveStatus::Solved | SolveStatus::BudgetExhausted { verified: true }
+            ),
+            "{:?}",
+            sol.info.status
+        );
         let at = |t: f64| {
             relative_position_rtn_km(p, &settings, &sol, t)
                 .unwrap()
