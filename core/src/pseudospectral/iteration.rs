@@ -346,6 +346,8 @@ impl Sqp {
             if !settings.continuous_verification {
                 return Step::Done(SqpEnd::Converged);
             }
+            ws.work
+                .charge(work_units::convergence_search(&ws.setup.transcription));
             let (deepest, clean) = follow_minima(ws, settings, false);
             if deepest <= 0.0 {
                 ws.verification.searched_clean = clean;

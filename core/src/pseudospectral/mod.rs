@@ -81,6 +81,8 @@ mod curvature;
 mod guess;
 mod iteration;
 mod kernel;
+#[doc(hidden)]
+pub mod kernels;
 mod lanczos;
 mod lgl;
 mod linalg;

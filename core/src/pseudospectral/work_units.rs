@@ -9,7 +9,7 @@ use super::certificate::POWER_ITERATIONS;
 use super::curvature::MAX_ENVELOPES;
 use super::kernel::MAX_BLOCKS;
 use super::transcription::Transcription;
-use crate::capacity::{MAX_ACTIVE, MAX_FREE_PER_AXIS};
+use crate::capacity::{MAX_ACTIVE, MAX_CHECKS_PER_PAIR, MAX_FREE_PER_AXIS, MAX_NODES};
 use crate::work::units;
 
 /// A coefficient vector at capacity: the loops clear and copy whole fixed-size arrays, a cost
@@ -41,37 +41,75 @@ fn size(tr: &Transcription) -> Size {
     }
 }
 
-/// Building the transcription: LGL nodes and matrices, the Bernstein conversion, the basis
-/// (cubic in the nodes), and the guess's node values.
+/// Building the transcription: the analytic guess, LGL nodes and matrices, the Bernstein
+/// conversion, the basis (cubic in the nodes), each pair's pruning window and test points
+/// ([`SETUP_PAIR`]), the first iterate, and the fixed-size clears ([`SETUP_FIXED`]).
 pub(super) fn setup(tr: &Transcription) -> u64 {
     let s = size(tr);
-    units(&[8, s.nodes, s.nodes, s.nodes]).saturating_add(units(&[s.blocks, s.nodes, s.free]))
+    units(&[8, s.nodes, s.nodes, s.nodes])
+        .saturating_add(units(&[s.blocks, s.nodes, s.free]))
+        .saturating_add(units(&[SETUP_PAIR, s.pairs]))
+        .saturating_add(SETUP_FIXED)
 }
 
-/// One SQP iteration's set-up: follow each pair's continuous minimum (a refinement over the
-/// nodes), linearise every check (its relative position over the nodes and its row over the
-/// free variables), and the Anderson step over the coefficients.
+/// A pair's part of the set-up (its window, its test points and their rows): measured at most
+/// 115 k M7 instructions at N = 10 and 130 k at N = 24 (`kernels.rs`, `setup-*`).
+const SETUP_PAIR: usize = 14_000;
+/// The set-up's part that does not scale with the sizes (the guess's Newton solves, clears
+/// of whole fixed-size arrays).
+const SETUP_FIXED: u64 = 12_000;
+
+/// One SQP iteration's set-up: scan each pair's checks for near contact (the continuous
+/// minima searched are charged per pair as they run, [`pair_search`]), linearise every check
+/// (its relative position over the nodes and its row over the free variables), the Anderson
+/// step over the coefficients, and the line search's and convergence test's passes over them.
 pub(super) fn sqp_iteration(tr: &Transcription) -> u64 {
     let s = size(tr);
     units(&[60, s.pairs, s.nodes])
-        .saturating_add(units(&[6, s.checks, s.nodes.saturating_add(s.free)]))
-        .saturating_add(units(&[4, s.blocks, s.free]))
-        .saturating_add(units(&[8, VECTOR]))
+        .saturating_add(units(&[9, s.checks, s.nodes.saturating_add(s.free)]))
+        .saturating_add(units(&[6, s.blocks, s.free]))
+        .saturating_add(units(&[12, VECTOR]))
 }
 
-/// The QP's search for the most violated row: every control row (blocks x nodes, a dot product
-/// over `free`) and every keep-out row (six blocks' worth of `free`, but pruned and active rows
-/// are skipped: about half of them, calibrated).
+/// One pair's continuous minimum searched by `linearise::follow_minima` (the SQP's moving
+/// checks, and the convergence test's search at the answer, which was charged nowhere): the
+/// search itself (`pair_minimum`) and the pair's share of the check scan.
+pub(super) fn pair_search(tr: &Transcription) -> u64 {
+    let s = size(tr);
+    pair_minimum(&s).saturating_add(units(&[30, MAX_CHECKS_PER_PAIR]))
+}
+
+/// The convergence test's search outside its pairs' minima (charged by [`pair_search`]): the
+/// node table of the iterate (cleared at capacity) and every pair's check scan.
+pub(super) fn convergence_search(tr: &Transcription) -> u64 {
+    let s = size(tr);
+    units(&[s.blocks, s.nodes, s.free])
+        .saturating_add(units(&[MAX_BLOCKS, MAX_NODES]))
+        .saturating_add(units(&[30, s.checks]))
+}
+
+/// The QP's search for the most violated row, at its dearest path (no row active, pruned or
+/// elastic: every row evaluated): every control row (blocks x nodes, a dot product over
+/// `free`), the node table (cleared at capacity), and every keep-out row (its relative
+/// position from the node table and its normal, about 300 M7 instructions whatever `free`).
 pub(super) fn qp_scan(tr: &Transcription) -> u64 {
     let s = size(tr);
-    units(&[s.blocks, s.nodes, s.free]).saturating_add(units(&[3, s.checks, s.free]))
+    units(&[s.blocks, s.nodes, s.free.saturating_add(2)])
+        .saturating_add(units(&[
+            s.checks,
+            s.free.saturating_mul(3).saturating_add(50),
+        ]))
+        .saturating_add(units(&[MAX_BLOCKS, MAX_NODES]))
 }
 
-/// The check of the previous QP's `hint` working rows before a scan: each row's view and its
-/// product with the iterate (a keep-out row spans six blocks).
+/// The check of the previous QP's `hint` working rows before a scan: each row's view (about
+/// 1,000 M7 instructions for a keep-out row whatever `free`) and its product with the iterate
+/// (a keep-out row spans six blocks).
 pub(super) fn qp_hint(tr: &Transcription, hint: usize) -> u64 {
     let s = size(tr);
-    units(&[6, hint, s.free]).saturating_add(units(&[8, hint]))
+    units(&[6, hint, s.free])
+        .saturating_add(units(&[150, hint]))
+        .saturating_add(100)
 }
 
 /// One active-set step with `k` working rows: `k` row products and updates (a keep-out row spans
@@ -114,7 +152,7 @@ pub(super) fn finish(tr: &Transcription, working: usize) -> u64 {
     // corrections (at most `MAX_ENVELOPES`, six blocks each way), the dense vector operations.
     let power_step = projected_curvature(&s, working);
     verify_round(tr)
-        .saturating_add(units(&[6, s.blocks, s.nodes, s.free]))
+        .saturating_add(units(&[12, s.blocks, s.nodes, s.free]))
         .saturating_add(power_step.saturating_mul(units(&[POWER_ITERATIONS])))
 }
 
