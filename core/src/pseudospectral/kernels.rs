@@ -10,20 +10,22 @@
 //! convergence test's separation search, a QP scan from an empty working set (no row active:
 //! every row scanned), the previous working set's rows at `MAX_ACTIVE`, whole QPs cut after
 //! `j` active-set steps, dual sweeps from zero, a verification round over every pair (none
-//! taken as clean), the final checks (`solver::finish`), the second-order step, and whole
-//! solves. The problems are 8 spacecraft crossing through the centre of a circle (every pair
+//! taken as clean), the final checks (`solver::finish`), the second-order step, the elastic
+//! QP's naming of the unmet constraints (every row named) and its two scans of the held rows
+//! (every row held), the turn of every pair's swerve direction, a saddle escape's step, a row
+//! dropped from a full working set (the re-factored Gram matrix), and whole solves. The problems are 8 spacecraft crossing through the centre of a circle (every pair
 //! meets, so no check is pruned), at the capacity N = 24 and at N = 10, and 2 spacecraft at the
 //! least degree N = 4 (where the fixed-size clears weigh most).
 
-use super::iteration::{sqp, SqpEnd};
+use super::iteration::{name_unmet, sqp, turn_unmet_pairs, SqpEnd};
 use super::linearise::{follow_minima, linearise, refine_moving_checks};
 use super::problem::{Problem, Spacecraft};
 use super::qp_state::Mode;
 use super::settings::Settings;
 use super::setup::{initial_iterate, setup};
-use super::solution::Solution;
-use super::solver::{finish, guess_laws, verification_round};
-use super::transcription::RowId;
+use super::solution::{Solution, Unmet};
+use super::solver::{finish, guess_laws, step_along, verification_round};
+use super::transcription::{RowId, Transcription};
 use super::workspace::Workspace;
 use super::{newton, qp, qp_dual, qp_scan, work_units};
 use crate::capacity::MAX_ACTIVE;
@@ -92,6 +94,19 @@ enum Kind {
     Finish(u16),
     /// The second-order step (set-up and CG iterations).
     Newton(u16),
+    /// `iteration::name_unmet` naming every row (its dearest path: every row described and
+    /// offered to the sorted list).
+    NameUnmet(u16),
+    /// The elastic QP's two scans of its held rows (`qp_scan::most_met_elastic` and
+    /// `qp_scan::elastic_slack_left`) with every row held elastic.
+    ElasticScans(u16),
+    /// `iteration::turn_unmet_pairs` with no keep-out named (every pair turned).
+    TurnSwerves(u16),
+    /// `solver::step_along` (a saddle escape's or a flat probe's step).
+    StepAlong(u16),
+    /// A row dropped from a working set of `MAX_ACTIVE` rows (`QpState::drop_row`: the Gram
+    /// matrix of the rest re-factored).
+    Refactor(u16),
     /// A whole solve with this budget (0: the default).
     Solve(u64),
 }
@@ -160,6 +175,20 @@ pub const CASES: &[Case] = &[
     case("newton-cap-w3", CAP, Kind::Newton(3)),
     case("newton-cap-w8", CAP, Kind::Newton(8)),
     case("newton-n10-w3", N10, Kind::Newton(3)),
+    case("name-unmet-cap-w3", CAP, Kind::NameUnmet(3)),
+    case("name-unmet-n10-w3", N10, Kind::NameUnmet(3)),
+    case("name-unmet-small-w1", SMALL, Kind::NameUnmet(1)),
+    case("elastic-scans-cap-w3", CAP, Kind::ElasticScans(3)),
+    case("elastic-scans-n10-w3", N10, Kind::ElasticScans(3)),
+    case("elastic-scans-small-w1", SMALL, Kind::ElasticScans(1)),
+    case("turn-swerves-cap-w3", CAP, Kind::TurnSwerves(3)),
+    case("turn-swerves-n10-w3", N10, Kind::TurnSwerves(3)),
+    case("turn-swerves-small-w1", SMALL, Kind::TurnSwerves(1)),
+    case("step-along-cap-w3", CAP, Kind::StepAlong(3)),
+    case("step-along-small-w1", SMALL, Kind::StepAlong(1)),
+    case("refactor-cap-w3", CAP, Kind::Refactor(3)),
+    case("refactor-n10-w3", N10, Kind::Refactor(3)),
+    case("refactor-small-w1", SMALL, Kind::Refactor(1)),
     case("solve-cap-1m", CAP, Kind::Solve(1_000_000)),
     case("solve-n10-default", N10, Kind::Solve(0)),
     case("solve-small-default", SMALL, Kind::Solve(0)),
@@ -189,6 +218,50 @@ fn problem(shape: Shape) -> Problem {
     }
 }
 
+/// Every row of the transcription: control rows (both sides), then unpruned keep-out rows.
+fn for_each_row(tr: &Transcription, mut f: impl FnMut(RowId)) {
+    for block in 0..tr.blocks() {
+        for node in 0..tr.grid.nodes() {
+            for upper in [true, false] {
+                f(RowId::Control {
+                    block: u8::try_from(block).unwrap_or(u8::MAX),
+                    node: u8::try_from(node).unwrap_or(u8::MAX),
+                    upper,
+                });
+            }
+        }
+    }
+    for_each_keep_out(tr, f);
+}
+
+/// Every unpruned keep-out row, then the control rows' upper sides.
+fn for_each_row_keep_out_first(tr: &Transcription, mut f: impl FnMut(RowId)) {
+    for_each_keep_out(tr, &mut f);
+    for block in 0..tr.blocks() {
+        for node in 0..tr.grid.nodes() {
+            f(RowId::Control {
+                block: u8::try_from(block).unwrap_or(u8::MAX),
+                node: u8::try_from(node).unwrap_or(u8::MAX),
+                upper: true,
+            });
+        }
+    }
+}
+
+/// Every unpruned keep-out row.
+fn for_each_keep_out(tr: &Transcription, mut f: impl FnMut(RowId)) {
+    for pair in 0..tr.pair_count {
+        for (check, c) in tr.checks_of(pair) {
+            if !c.pruned {
+                f(RowId::KeepOut {
+                    pair: u8::try_from(pair).unwrap_or(u8::MAX),
+                    check: u8::try_from(check).unwrap_or(u8::MAX),
+                });
+            }
+        }
+    }
+}
+
 /// What [`prepare`] made for [`run`]: nothing past the workspace's state.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Prepared {
@@ -207,7 +280,12 @@ fn warm_of(kind: Kind) -> Option<u16> {
         | Kind::Dual(w, _)
         | Kind::Verify(w)
         | Kind::Finish(w)
-        | Kind::Newton(w) => Some(w),
+        | Kind::Newton(w)
+        | Kind::NameUnmet(w)
+        | Kind::ElasticScans(w)
+        | Kind::TurnSwerves(w)
+        | Kind::StepAlong(w)
+        | Kind::Refactor(w) => Some(w),
     }
 }
 
@@ -245,10 +323,45 @@ pub fn prepare(index: usize, ws: &mut Workspace, out: &mut Solution) -> Prepared
     ws.iterates.trial = ws.iterates.iterate;
     if matches!(
         c.kind,
-        Kind::QpScan(_) | Kind::QpHint(_) | Kind::Qp(..) | Kind::Dual(..)
+        Kind::QpScan(_)
+            | Kind::QpHint(_)
+            | Kind::Qp(..)
+            | Kind::Dual(..)
+            | Kind::NameUnmet(_)
+            | Kind::ElasticScans(_)
+            | Kind::Refactor(_)
     ) {
         let _ = follow_minima(ws, &settings, true);
         linearise(ws);
+    }
+    match c.kind {
+        Kind::ElasticScans(_) => {
+            ws.iterates.qp.reset();
+            let tr = &ws.setup.transcription;
+            let qp = &mut ws.iterates.qp;
+            for_each_row(tr, |id| qp.mark_elastic(id, true));
+        }
+        Kind::Refactor(_) => {
+            // Up to `MAX_ACTIVE` independent working rows, keep-out rows first (six blocks
+            // each), in factor mode: a row whose factor fails is left out.
+            let tr = &ws.setup.transcription;
+            let qp = &mut ws.iterates.qp;
+            qp.reset();
+            for_each_row_keep_out_first(tr, |id| {
+                let count = qp.count;
+                if let Some(slot) = qp.active.get_mut(count) {
+                    *slot = id;
+                    qp.count = count.saturating_add(1);
+                    if !qp.refactor(tr) {
+                        qp.count = count;
+                    }
+                }
+            });
+            if !qp.refactor(tr) {
+                return failed;
+            }
+        }
+        _ => {}
     }
     Prepared::default()
 }
@@ -410,6 +523,33 @@ pub fn run(index: usize, ws: &mut Workspace, out: &mut Solution, prepared: &Prep
                 &mut ws.work,
             ));
             ws.work.used().saturating_sub(before)
+        }
+        Kind::NameUnmet(_) => {
+            let tr = &ws.setup.transcription;
+            name_unmet(tr, &ws.iterates.iterate, f64::NEG_INFINITY, &mut out.unmet);
+            black_box(&out.unmet);
+            work_units::name_unmet(tr)
+        }
+        Kind::ElasticScans(_) => {
+            let tr = &ws.setup.transcription;
+            let (qp, y) = (&ws.iterates.qp, &ws.iterates.iterate);
+            black_box(qp_scan::most_met_elastic(tr, qp, y, f64::NEG_INFINITY));
+            black_box(qp_scan::elastic_slack_left(tr, qp, y, f64::NEG_INFINITY));
+            work_units::elastic_scans(tr, qp.elastic_count)
+        }
+        Kind::TurnSwerves(_) => {
+            black_box(turn_unmet_pairs(ws, &Unmet::new(), 1));
+            work_units::turn_swerves(&ws.setup.transcription)
+        }
+        Kind::StepAlong(_) => {
+            step_along(ws, 1.0);
+            black_box(&ws.iterates.iterate);
+            work_units::step_along()
+        }
+        Kind::Refactor(_) => {
+            let k = ws.iterates.qp.count;
+            black_box(ws.iterates.qp.drop_row(&ws.setup.transcription, 0));
+            work_units::refactor(&ws.setup.transcription, k.saturating_sub(1))
         }
         Kind::Solve(budget) => {
             let p = problem(c.shape);

@@ -29,6 +29,7 @@ pub use settings::{
 pub use solution::{Solution, Unmet, UnmetConstraint, MAX_UNMET};
 pub use status::{SolveInfo, SolveStatus, Stage};
 mod workspace;
+pub use work_units::{MAX_INSTRUCTIONS_PER_UNIT, MAX_SOLVE_INSTRUCTIONS};
 pub use workspace::Workspace;
 
 /// Planner A in the planners' contract ([`crate::contract::Planner`]): [`solve`] from the

@@ -140,6 +140,7 @@ fn run(
                 out.info.saddle_escapes = escapes;
                 let saddle_cost = out.cost;
                 ws.iterates.saved = ws.iterates.iterate;
+                ws.work.charge(work_units::step_along());
                 step_along(ws, 1.0);
                 answer = iterate_and_check(ws, settings, out);
                 if !answer.status.is_usable() || out.cost >= saddle_cost {
@@ -168,6 +169,7 @@ fn run(
             Step::ProbeFlat { side, flat_cost } => {
                 if ws.work.has_room() {
                     ws.iterates.saved = ws.iterates.iterate;
+                    ws.work.charge(work_units::step_along());
                     step_along(ws, side);
                     answer = iterate_and_check(ws, settings, out);
                     let tolerance = certificate::FLAT_PROBE_TOL_REL * (1.0 + flat_cost);
@@ -304,7 +306,7 @@ pub(crate) const MAX_SADDLE_ESCAPES: u8 = 2;
 /// largest component has the sign of `side` (deterministic), and `alpha` a quarter of `|y|` (at
 /// least 0.1): large enough to leave the saddle's neighbourhood, small enough to stay in its
 /// basin.
-fn step_along(ws: &mut Workspace, side: f64) {
+pub(super) fn step_along(ws: &mut Workspace, side: f64) {
     let direction = &ws.iterates.trial;
     let mut largest = 0.0f64;
     let mut norm2 = 0.0;

@@ -1,6 +1,10 @@
 //! Planner A's work units: the cost of each metered step from the transcription's sizes, about
-//! one unit per multiply-add of its inner loops (calibrated against M7 instructions in
-//! `docs/firmware.md`). The hooks charge these at their loop heads (`crate::work::Meter`).
+//! one unit per multiply-add of its inner loops, weighted so that no step costs more than
+//! [`MAX_INSTRUCTIONS_PER_UNIT`] Cortex-M7 instructions per unit it is charged: every charged
+//! step has a case in `kernels.rs` run on its dearest path, and the QEMU test
+//! `tests/tests/qemu_firmware/kernels_a_image.rs` fails when a case costs more (the table in
+//! `docs/planner-a.md`, "Work budget"). The hooks charge these at their loop heads
+//! (`crate::work::Meter`).
 //!
 //! Sizes: `blocks` = 3 M coefficient blocks of `free` variables, `nodes` = N + 1, `pairs`,
 //! `checks` = keep-out rows over all pairs, `k` = rows in the QP's working set.
@@ -11,6 +15,21 @@ use super::kernel::MAX_BLOCKS;
 use super::transcription::Transcription;
 use crate::capacity::{MAX_ACTIVE, MAX_CHECKS_PER_PAIR, MAX_FREE_PER_AXIS, MAX_NODES};
 use crate::work::units;
+
+/// The most Cortex-M7 instructions any charged step may cost per unit it is charged, on every
+/// kernel case (`kernels.rs`, checked on the M7 by `tests/tests/qemu_firmware/kernels_a_image.rs`):
+/// a solve within `budget` units then runs at most `budget x MAX_INSTRUCTIONS_PER_UNIT`
+/// instructions on the paths the cases cover (the default 40 M units: 400 M instructions).
+pub const MAX_INSTRUCTIONS_PER_UNIT: u64 = 10;
+
+/// The most Cortex-M7 instructions a planner-A solve within the default budget may run (issue 33
+/// item 1): `DEFAULT_WORK_BUDGET x MAX_INSTRUCTIONS_PER_UNIT` must not pass it.
+pub const MAX_SOLVE_INSTRUCTIONS: u64 = 400_000_000;
+
+const _: () = assert!(
+    super::settings::DEFAULT_WORK_BUDGET.saturating_mul(MAX_INSTRUCTIONS_PER_UNIT)
+        <= MAX_SOLVE_INSTRUCTIONS
+);
 
 /// A coefficient vector at capacity: the loops clear and copy whole fixed-size arrays, a cost
 /// that does not shrink with the problem.
@@ -195,6 +214,73 @@ pub(super) fn newton_step(tr: &Transcription, working: usize) -> u64 {
 pub(super) fn newton_iteration(tr: &Transcription, working: usize) -> u64 {
     let s = size(tr);
     projected_curvature(&s, working.min(MAX_ACTIVE))
+}
+
+/// Re-factoring the Gram matrix of `k` working rows after one leaves (`QpState::drop_row`): `k
+/// (k + 1) / 2` row products (a keep-out row spans six blocks) and the Cholesky factor.
+pub(super) fn refactor(tr: &Transcription, k: usize) -> u64 {
+    let s = size(tr);
+    let k = k.min(MAX_ACTIVE);
+    let products = units(&[k, k.saturating_add(1)]) / 2;
+    products
+        .saturating_mul(units(&[3, s.free]).saturating_add(REFACTOR_PRODUCT))
+        .saturating_add(units(&[k, k, k]) / 3)
+        .saturating_add(units(&[MAX_ACTIVE]))
+}
+
+/// A row product's part that does not scale with `free` (the two rows' views).
+const REFACTOR_PRODUCT: u64 = 60;
+
+/// The elastic QP's two scans of its held rows after a full scan found no violated row
+/// (`qp_scan::most_met_elastic`, then `qp_scan::elastic_slack_left`), with `elastic` rows held:
+/// each walks the flag tables and evaluates every held row (its view and its product with the
+/// answer, a keep-out row's six blocks at most).
+pub(super) fn elastic_scans(tr: &Transcription, elastic: usize) -> u64 {
+    let s = size(tr);
+    let walk = units(&[s.blocks, s.nodes]).saturating_add(units(&[s.checks]));
+    let rows =
+        units(&[elastic, 6, s.free]).saturating_add(units(&[elastic]).saturating_mul(ELASTIC_ROW));
+    units(&[2]).saturating_mul(walk.saturating_add(rows))
+}
+
+/// An elastic row's evaluation past its product (its flag, its view and the comparison: about
+/// 300 M7 instructions per row and scan at N = 4, measured `elastic-scans-small-w1`).
+const ELASTIC_ROW: u64 = 45;
+
+/// Naming the constraints an elastic answer misses (`iteration::name_unmet`), at its dearest
+/// path (every row missed, so every row described and offered to the sorted list): every
+/// control row's and keep-out row's product with the answer, its description and its place in
+/// the list of `MAX_UNMET`.
+pub(super) fn name_unmet(tr: &Transcription) -> u64 {
+    let s = size(tr);
+    let rows = units(&[2, s.blocks, s.nodes]).saturating_add(units(&[s.checks]));
+    units(&[2, s.blocks, s.nodes, s.free])
+        .saturating_add(units(&[6, s.checks, s.free]))
+        .saturating_add(rows.saturating_mul(NAMED_ROW))
+}
+
+/// A named row's part past its product: its view, its description (a keep-out check's time)
+/// and its place in the sorted list of `MAX_UNMET` entries (about 550 M7 instructions per row
+/// at N = 10, measured `name-unmet-n10-w3`).
+const NAMED_ROW: u64 = 60;
+
+/// Turning the fallback swerve direction of every pair (`iteration::turn_unmet_pairs`, at its
+/// dearest path: an elastic answer naming no keep-out turns every pair): each pair's analytic
+/// closest approach (a sampled search of the guess's tracks) and the turn.
+pub(super) fn turn_swerves(tr: &Transcription) -> u64 {
+    let s = size(tr);
+    units(&[s.pairs]).saturating_mul(TURN_PAIR)
+}
+
+/// One pair's turn (`swerve::turn_fallback`): the analytic closest approach's 17 samples and up
+/// to 60 refinement steps, the relative motion there, and the rotation (37 k M7 instructions
+/// per pair measured on the crossing, `turn-swerves-cap-w3`).
+const TURN_PAIR: u64 = 6_000;
+
+/// A step off a saddle or along a flat direction (`solver::step_along`): two passes over a
+/// coefficient vector at capacity.
+pub(super) fn step_along() -> u64 {
+    units(&[2, VECTOR])
 }
 
 /// What a solve keeps back for its final checks with `working` rows in the largest working set
