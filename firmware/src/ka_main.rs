@@ -3,11 +3,12 @@
 //! Planner A's charged steps on the Cortex-M7, one at a time (issue 33 item 1): every case of
 //! `reconfig_core::pseudospectral::kernels`, its set-up outside the instruction markers, its
 //! run between them. One line per case:
-//! `kernel index=.. name=.. units=.. systick_instructions=..`; the exact count is the QEMU
-//! plugin's (`tools/qemu-insn-plugin`), one `reconfig-insns` line per case in case order.
-//! Build and run: `cargo build --release --target thumbv7em-none-eabihf -p reconfig-firmware
-//! --bin reconfig-firmware-ka --no-default-features --features kernels_a`, then QEMU with the
-//! plugin on the markers (docs/planner-a.md, "Work budget").
+//! `fixture index=.. name=.. planner=kernels-a stack_bytes=.. systick_instructions=..
+//! work_units=..` (the default image's protocol, `work_units` the units the solve charges for
+//! the case); the exact count is the QEMU plugin's (`tools/qemu-insn-plugin`), one
+//! `reconfig-insns` line per case in case order. Built and run by the QEMU test
+//! `tests/tests/qemu_firmware/kernels_a_image.rs`, which fails when a charged case costs more
+//! than `MAX_INSTRUCTIONS_PER_UNIT` instructions per unit (docs/planner-a.md, "Work budget").
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[cfg(target_os = "none")]
@@ -75,11 +76,12 @@ mod image {
             });
             let _ = writeln!(
                 out,
-                "kernel index={index} name={} units={} systick_instructions={} stack_bytes={}",
+                "fixture index={index} name={} planner=kernels-a stack_bytes={} \
+                 systick_instructions={} work_units={}",
                 case.name,
-                run.result,
+                run.stack_bytes,
                 run.ticks * systick::INSTRUCTIONS_PER_TICK,
-                run.stack_bytes
+                run.result
             );
         }
         let _ = writeln!(out, "done cases={}", kernels::CASES.len());

@@ -418,6 +418,101 @@ fn update_all() -> Result<bool, String> {
     Ok(readme_changed)
 }
 
+// Planner A's kernel image (`tests/tests/qemu_firmware/kernels_a_image.rs`): the record's
+// `[[ka_kernel]]` tables and `docs/planner-a.md`'s generated "Work budget" table.
+
+/// The document with the kernel image's table, relative to the workspace.
+pub const KA_DOCS_FILE: &str = "docs/planner-a.md";
+/// Start marker of the kernel image's generated table.
+pub const KA_BEGIN: &str =
+    "<!-- m7-kernels-a:begin (generated from fixtures/golden/m7-figures.toml; do not edit) -->";
+/// End marker of the kernel image's generated table.
+pub const KA_END: &str = "<!-- m7-kernels-a:end -->";
+
+/// The kernel image's table (without the markers) for a record's text: each case's M7
+/// instructions, its units and their ratio, and what the largest ratio bounds.
+///
+/// # Errors
+/// The record does not parse, lacks a figure or has no kernel cases.
+pub fn render_kernels_a(record: &str) -> Result<String, String> {
+    use reconfig_core::pseudospectral::{
+        Settings, MAX_INSTRUCTIONS_PER_UNIT, MAX_SOLVE_INSTRUCTIONS,
+    };
+    let file: toml::Table = toml::from_str(record).map_err(|e| format!("{RECORD_FILE}: {e}"))?;
+    let kernels: Vec<&toml::Table> = file
+        .get("ka_kernel")
+        .and_then(toml::Value::as_array)
+        .into_iter()
+        .flatten()
+        .filter_map(toml::Value::as_table)
+        .collect();
+    if kernels.is_empty() {
+        return Err(format!("{RECORD_FILE}: no [[ka_kernel]] tables"));
+    }
+    let mut md = String::from(
+        "| case | M7 instructions | units charged | instructions per unit |\n\
+         | --- | ---: | ---: | ---: |\n",
+    );
+    let mut worst: Option<(f64, String)> = None;
+    for t in &kernels {
+        let name = t
+            .get("name")
+            .and_then(toml::Value::as_str)
+            .ok_or_else(|| format!("{RECORD_FILE}: a [[ka_kernel]] without a name"))?;
+        let charged = t
+            .get("charged")
+            .and_then(toml::Value::as_bool)
+            .unwrap_or(true);
+        let (count, units) = (int(t, "instructions")?, int(t, "units")?);
+        let ratio = if charged && units > 0 {
+            let r = count as f64 / units as f64;
+            if worst.as_ref().is_none_or(|(w, _)| r > *w) {
+                worst = Some((r, name.to_owned()));
+            }
+            format!("{r:.2}")
+        } else {
+            "not charged".to_owned()
+        };
+        let _ = writeln!(
+            md,
+            "| `{name}` | {} | {} | {ratio} |",
+            grouped(count),
+            grouped(units)
+        );
+    }
+    let budget = Settings::default().work_budget;
+    if let Some((ratio, name)) = worst {
+        let _ = write!(
+            md,
+            "\nLargest over the charged cases: {ratio:.2} instructions per unit (`{name}`); the \
+             QEMU test fails above `MAX_INSTRUCTIONS_PER_UNIT` = {MAX_INSTRUCTIONS_PER_UNIT}. \
+             Default budget {} units x {MAX_INSTRUCTIONS_PER_UNIT} = {} instructions (at most \
+             {}).\n",
+            grouped(budget),
+            grouped(budget.saturating_mul(MAX_INSTRUCTIONS_PER_UNIT)),
+            grouped(MAX_SOLVE_INSTRUCTIONS),
+        );
+    }
+    Ok(md)
+}
+
+/// `docs/planner-a.md` with its kernel table regenerated from the record on disk; returns
+/// whether it changed.
+///
+/// # Errors
+/// A file cannot be read or written, or does not parse.
+pub fn update_kernels_a_docs() -> Result<bool, String> {
+    let record = std::fs::read_to_string(root().join(RECORD_FILE)).map_err(|e| e.to_string())?;
+    let path = root().join(KA_DOCS_FILE);
+    let docs = std::fs::read_to_string(&path).map_err(|e| e.to_string())?;
+    let new = splice_between(&docs, KA_BEGIN, KA_END, &render_kernels_a(&record)?)?;
+    if new != docs {
+        std::fs::write(&path, &new).map_err(|e| e.to_string())?;
+        return Ok(true);
+    }
+    Ok(false)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

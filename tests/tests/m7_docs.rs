@@ -77,3 +77,21 @@ fn the_readme_m7_lines_are_the_record() {
          {UPDATE_DOCS_COMMAND}"
     );
 }
+
+#[test]
+fn the_planner_a_kernel_table_is_the_record() {
+    use reconfig_tests::m7_record::{KA_BEGIN, KA_DOCS_FILE, KA_END};
+    if std::env::var("RECONFIG_UPDATE_DOCS").as_deref() == Ok("1") {
+        m7_record::update_kernels_a_docs().expect("regenerate the kernel table");
+    }
+    let record = std::fs::read_to_string(m7_record::root().join(RECORD_FILE)).expect("record");
+    let docs = std::fs::read_to_string(m7_record::root().join(KA_DOCS_FILE)).expect("docs");
+    let generated = m7_record::render_kernels_a(&record).expect("render the kernel table");
+    let expected = m7_record::splice_between(&docs, KA_BEGIN, KA_END, &generated)
+        .expect("kernel table markers");
+    assert!(
+        expected == docs,
+        "{KA_DOCS_FILE}'s kernel table differs from what {RECORD_FILE} generates; regenerate \
+         with\n  {UPDATE_DOCS_COMMAND}"
+    );
+}

@@ -120,6 +120,14 @@ pub struct Case {
     kind: Kind,
 }
 
+impl Case {
+    /// Whether the solve charges what the case runs: every case but the analytic guess (which
+    /// the `setup-*` cases run inside their span, so the set-up's charge covers it).
+    pub const fn charged(&self) -> bool {
+        !matches!(self.kind, Kind::Guess)
+    }
+}
+
 const fn case(name: &'static str, shape: Shape, kind: Kind) -> Case {
     Case { name, shape, kind }
 }
