@@ -84,10 +84,24 @@ const SETUP_FIXED: u64 = 12_000;
 /// step over the coefficients, and the line search's and convergence test's passes over them.
 pub(super) fn sqp_iteration(tr: &Transcription) -> u64 {
     let s = size(tr);
-    units(&[60, s.pairs, s.nodes])
-        .saturating_add(units(&[9, s.checks, s.nodes.saturating_add(s.free)]))
-        .saturating_add(units(&[6, s.blocks, s.free]))
-        .saturating_add(units(&[12, VECTOR]))
+    scaled(
+        units(&[60, s.pairs, s.nodes])
+            .saturating_add(units(&[9, s.checks, s.nodes.saturating_add(s.free)]))
+            .saturating_add(units(&[6, s.blocks, s.free]))
+            .saturating_add(units(&[12, VECTOR])),
+        10,
+        23,
+    )
+}
+
+/// `units x num / den`, saturating: a weight rescaled to the M7's measured cost (each kernel's
+/// dearest case at about 9 instructions per unit).
+const fn scaled(units: u64, num: u64, den: u64) -> u64 {
+    // A zero `den` (none is written) would charge the most, not panic.
+    match units.saturating_mul(num).checked_div(den) {
+        Some(scaled) => scaled,
+        None => u64::MAX,
+    }
 }
 
 /// One pair's continuous minimum searched by `linearise::follow_minima` (the SQP's moving
@@ -95,16 +109,24 @@ pub(super) fn sqp_iteration(tr: &Transcription) -> u64 {
 /// search itself (`pair_minimum`) and the pair's share of the check scan.
 pub(super) fn pair_search(tr: &Transcription) -> u64 {
     let s = size(tr);
-    pair_minimum(&s).saturating_add(units(&[30, MAX_CHECKS_PER_PAIR]))
+    scaled(
+        pair_minimum(&s).saturating_add(units(&[30, MAX_CHECKS_PER_PAIR])),
+        10,
+        23,
+    )
 }
 
 /// The convergence test's search outside its pairs' minima (charged by [`pair_search`]): the
 /// node table of the iterate (cleared at capacity) and every pair's check scan.
 pub(super) fn convergence_search(tr: &Transcription) -> u64 {
     let s = size(tr);
-    units(&[s.blocks, s.nodes, s.free])
-        .saturating_add(units(&[MAX_BLOCKS, MAX_NODES]))
-        .saturating_add(units(&[30, s.checks]))
+    scaled(
+        units(&[s.blocks, s.nodes, s.free])
+            .saturating_add(units(&[MAX_BLOCKS, MAX_NODES]))
+            .saturating_add(units(&[30, s.checks])),
+        2,
+        5,
+    )
 }
 
 /// The QP's search for the most violated row, at its dearest path (no row active, pruned or
@@ -114,39 +136,53 @@ pub(super) fn convergence_search(tr: &Transcription) -> u64 {
 pub(super) fn qp_scan(tr: &Transcription) -> u64 {
     let s = size(tr);
     units(&[s.blocks, s.nodes, s.free.saturating_add(2)])
-        .saturating_add(units(&[
-            s.checks,
-            s.free.saturating_mul(3).saturating_add(50),
-        ]))
+        .saturating_add(units(&[SCAN_CHECK, s.checks]))
         .saturating_add(units(&[MAX_BLOCKS, MAX_NODES]))
 }
+
+/// A keep-out row's evaluation in the scan: about 300 M7 instructions whatever `free` (fitted
+/// to `qp-scan-cap-w0`, `qp-scan-n10-w3` and `qp-scan-small-w1`).
+const SCAN_CHECK: usize = 34;
 
 /// The check of the previous QP's `hint` working rows before a scan: each row's view (about
 /// 1,000 M7 instructions for a keep-out row whatever `free`) and its product with the iterate
 /// (a keep-out row spans six blocks).
 pub(super) fn qp_hint(tr: &Transcription, hint: usize) -> u64 {
     let s = size(tr);
-    units(&[6, hint, s.free])
-        .saturating_add(units(&[150, hint]))
-        .saturating_add(100)
+    scaled(
+        units(&[6, hint, s.free])
+            .saturating_add(units(&[150, hint]))
+            .saturating_add(100),
+        5,
+        9,
+    )
 }
 
 /// One active-set step with `k` working rows: `k` row products and updates (a keep-out row spans
 /// six blocks), two triangular solves of order `k`, and the dense direction.
 pub(super) fn qp_step(tr: &Transcription, k: usize) -> u64 {
     let s = size(tr);
-    units(&[12, k, s.free])
-        .saturating_add(units(&[2, k, k]))
-        .saturating_add(units(&[4, s.blocks, s.free]))
-        .saturating_add(units(&[2, VECTOR]))
+    scaled(
+        units(&[12, k, s.free])
+            .saturating_add(units(&[2, k, k]))
+            .saturating_add(units(&[4, s.blocks, s.free]))
+            .saturating_add(units(&[2, VECTOR])),
+        8,
+        11,
+    )
 }
 
 /// One sweep of the dual coordinate ascent: every control row and every keep-out row, each
 /// evaluated and (when it moves) applied.
 pub(super) fn dual_sweep(tr: &Transcription) -> u64 {
     let s = size(tr);
-    units(&[2, s.blocks, s.nodes, s.free]).saturating_add(units(&[24, s.checks, s.free]))
+    units(&[2, s.blocks, s.nodes, s.free])
+        .saturating_add(units(&[s.checks, s.free.saturating_add(DUAL_CHECK)]))
 }
+
+/// A keep-out row's evaluation and update in a dual sweep past its `free` products: about 630
+/// M7 instructions plus 7 per free variable (fitted to `dual-1-cap-w3` and `dual-4-n10-w3`).
+const DUAL_CHECK: usize = 75;
 
 /// One pair's continuous minimum: Bernstein coefficients of the three axes, the squared
 /// distance's product coefficients, and the branch-and-bound subdivisions (degree 2N).
@@ -154,10 +190,15 @@ fn pair_minimum(s: &Size) -> u64 {
     units(&[40, s.nodes, s.nodes])
 }
 
-/// One verification round: every pair's continuous minimum.
+/// One verification round: every pair's continuous minimum, about `63 nodes^2 + 505 nodes +
+/// 3,600` M7 instructions a pair (fitted to `verify-cap-w3`, `verify-n10-w3` and
+/// `verify-small-w1`).
 pub(super) fn verify_round(tr: &Transcription) -> u64 {
     let s = size(tr);
-    units(&[s.pairs]).saturating_mul(pair_minimum(&s))
+    let pair = units(&[7, s.nodes, s.nodes])
+        .saturating_add(units(&[56, s.nodes]))
+        .saturating_add(400);
+    units(&[s.pairs]).saturating_mul(pair)
 }
 
 /// The final checks of a returned iterate (`solver::finish`): the continuous verification of
@@ -170,7 +211,8 @@ pub(super) fn finish(tr: &Transcription, working: usize) -> u64 {
     // triangular solves), each active keep-out row's curvature (over the nodes), the envelope
     // corrections (at most `MAX_ENVELOPES`, six blocks each way), the dense vector operations.
     let power_step = projected_curvature(&s, working);
-    verify_round(tr)
+    units(&[s.pairs])
+        .saturating_mul(pair_minimum(&s))
         .saturating_add(units(&[12, s.blocks, s.nodes, s.free]))
         .saturating_add(power_step.saturating_mul(units(&[POWER_ITERATIONS])))
 }
@@ -204,8 +246,12 @@ fn projected_curvature(s: &Size, working: usize) -> u64 {
 pub(super) fn newton_step(tr: &Transcription, working: usize) -> u64 {
     let s = size(tr);
     let working = working.min(MAX_ACTIVE);
-    units(&[20, s.checks, s.nodes])
-        .saturating_add(units(&[2]).saturating_mul(projected_curvature(&s, working)))
+    scaled(
+        units(&[20, s.checks, s.nodes])
+            .saturating_add(units(&[2]).saturating_mul(projected_curvature(&s, working))),
+        5,
+        6,
+    )
 }
 
 /// One conjugate-gradient iteration of the second-order step with `working` rows: one
@@ -213,7 +259,7 @@ pub(super) fn newton_step(tr: &Transcription, working: usize) -> u64 {
 /// that ends early costs what it did.
 pub(super) fn newton_iteration(tr: &Transcription, working: usize) -> u64 {
     let s = size(tr);
-    projected_curvature(&s, working.min(MAX_ACTIVE))
+    scaled(projected_curvature(&s, working.min(MAX_ACTIVE)), 5, 6)
 }
 
 /// Re-factoring the Gram matrix of `k` working rows after one leaves (`QpState::drop_row`): `k
@@ -222,10 +268,14 @@ pub(super) fn refactor(tr: &Transcription, k: usize) -> u64 {
     let s = size(tr);
     let k = k.min(MAX_ACTIVE);
     let products = units(&[k, k.saturating_add(1)]) / 2;
-    products
-        .saturating_mul(units(&[3, s.free]).saturating_add(REFACTOR_PRODUCT))
-        .saturating_add(units(&[k, k, k]) / 3)
-        .saturating_add(units(&[MAX_ACTIVE]))
+    scaled(
+        products
+            .saturating_mul(units(&[3, s.free]).saturating_add(REFACTOR_PRODUCT))
+            .saturating_add(units(&[k, k, k]) / 3)
+            .saturating_add(units(&[MAX_ACTIVE])),
+        4,
+        5,
+    )
 }
 
 /// A row product's part that does not scale with `free` (the two rows' views).
@@ -240,7 +290,7 @@ pub(super) fn elastic_scans(tr: &Transcription, elastic: usize) -> u64 {
     let walk = units(&[s.blocks, s.nodes]).saturating_add(units(&[s.checks]));
     let rows =
         units(&[elastic, 6, s.free]).saturating_add(units(&[elastic]).saturating_mul(ELASTIC_ROW));
-    units(&[2]).saturating_mul(walk.saturating_add(rows))
+    scaled(units(&[2]).saturating_mul(walk.saturating_add(rows)), 7, 10)
 }
 
 /// An elastic row's evaluation past its product (its flag, its view and the comparison: about
@@ -254,9 +304,13 @@ const ELASTIC_ROW: u64 = 45;
 pub(super) fn name_unmet(tr: &Transcription) -> u64 {
     let s = size(tr);
     let rows = units(&[2, s.blocks, s.nodes]).saturating_add(units(&[s.checks]));
-    units(&[2, s.blocks, s.nodes, s.free])
-        .saturating_add(units(&[6, s.checks, s.free]))
-        .saturating_add(rows.saturating_mul(NAMED_ROW))
+    scaled(
+        units(&[2, s.blocks, s.nodes, s.free])
+            .saturating_add(units(&[6, s.checks, s.free]))
+            .saturating_add(rows.saturating_mul(NAMED_ROW)),
+        6,
+        7,
+    )
 }
 
 /// A named row's part past its product: its view, its description (a keep-out check's time)
@@ -275,7 +329,7 @@ pub(super) fn turn_swerves(tr: &Transcription) -> u64 {
 /// One pair's turn (`swerve::turn_fallback`): the analytic closest approach's 17 samples and up
 /// to 60 refinement steps, the relative motion there, and the rotation (37 k M7 instructions
 /// per pair measured on the crossing, `turn-swerves-cap-w3`).
-const TURN_PAIR: u64 = 6_000;
+const TURN_PAIR: u64 = 4_100;
 
 /// A step off a saddle or along a flat direction (`solver::step_along`): two passes over a
 /// coefficient vector at capacity.
