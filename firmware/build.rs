@@ -11,7 +11,7 @@ mod fixture_set;
 #[path = "image_limits.rs"]
 mod image_limits;
 
-use reconfig_core::wire::Planner;
+use reconfig_core::contract::PlannerKind;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
@@ -58,10 +58,10 @@ fn main() {
     for f in &fixtures {
         println!("cargo:rerun-if-changed={}", f.file.display());
         let carried = match f.planner {
-            Planner::Pseudospectral => with_a,
-            Planner::Impulsive => with_b,
-            Planner::GeoTour => with_geo,
-            Planner::LeoArc | Planner::LeoSequence => with_leo,
+            PlannerKind::Pseudospectral => with_a,
+            PlannerKind::Impulsive => with_b,
+            PlannerKind::GeoTour => with_geo,
+            PlannerKind::LeoArc | PlannerKind::LeoSequence => with_leo,
             // A planner no image carries yet.
             #[allow(unreachable_patterns)]
             _ => false,

@@ -10,8 +10,9 @@
 
 #![allow(dead_code)] // each includer uses part of it
 
+use reconfig_core::contract::PlannerKind;
 use reconfig_core::limits::Limits;
-use reconfig_core::wire::{Planner, Request};
+use reconfig_core::wire::Request;
 use reconfig_host::fixture::{self, Fixture, FixtureRequest};
 use std::path::{Path, PathBuf};
 
@@ -25,7 +26,7 @@ pub struct EncodedRequest {
     /// The fixture file it came from.
     pub file: PathBuf,
     /// Its planner (`Request::planner`).
-    pub planner: Planner,
+    pub planner: PlannerKind,
     /// The LEO tour's on-board part it belongs to (the fixture's name), if any.
     pub part_of: Option<String>,
     /// The `postcard` encoding of the `wire::Request`.

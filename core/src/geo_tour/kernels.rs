@@ -491,7 +491,7 @@ pub fn run(index: usize, ws: &mut Workspace, prepared: &Prepared) -> u64 {
             let x_max =
                 model.max_depth_km(5.0, d.min_radius_km, d.root_max_iter, &mut Gauge::paid());
             let x_max = black_box(x_max.unwrap_or(100.0));
-            let _ = meter.spend(wu::price_curve());
+            let _ = meter.spend(PriceCurve::work_units());
             black_box(PriceCurve::new(&model, x_max));
             meter.used()
         }

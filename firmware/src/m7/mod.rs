@@ -15,7 +15,7 @@
 //! done fixtures=5
 //! ```
 //! One `fixture` line per baked request (`fixtures` counts requests). `planner` is the
-//! request's (`wire::Planner::name`); `outcome=ok` when the planner planned (the answer carries
+//! request's (`contract::PlannerKind::name`); `outcome=ok` when the planner planned (the answer carries
 //! a plan, usable or not), `error` when the request was refused or rejected. `hex` is the
 //! postcard encoding of the answer's `wire::Outcome`. `stack_bytes` is the stack high-water
 //! mark during that request's decode and answer, measured from the top of the stack (so it

@@ -13,7 +13,7 @@ use crate::record::{
     assert_figures, assert_systick_agrees, read_record, record_entries, record_image_ram,
     tables_by, updating, BUDGET_RAM_BYTES, BUDGET_STACK_BYTES, FIGURES_FILE, RECORD_LOCK,
 };
-use reconfig_core::wire::Planner;
+use reconfig_core::contract::PlannerKind;
 
 /// The GEO image's binary.
 const BIN: &str = "reconfig-firmware-geo";
@@ -47,7 +47,7 @@ fn geo_results_are_bit_identical_to_the_host() {
     let Some(run) = or_skip(test, run()) else {
         return;
     };
-    assert_bit_identical(run, &fixtures_of(&[Planner::GeoTour]), "GEO");
+    assert_bit_identical(run, &fixtures_of(&[PlannerKind::GeoTour]), "GEO");
 }
 
 #[test]

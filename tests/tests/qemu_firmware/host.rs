@@ -4,14 +4,15 @@
 
 use std::fmt::Write as _;
 
-use reconfig_core::wire::{self, AllPlanners, Planner, Request};
+use reconfig_core::contract::PlannerKind;
+use reconfig_core::wire::{self, AllPlanners, Request};
 
 use crate::fixture_set::EncodedRequest;
 use crate::image::Run;
 use crate::image_limits::IMAGE_LIMITS;
 
 /// The repository's requests of some planners, encoded as the firmware bakes them.
-pub fn fixtures_of(planners: &[Planner]) -> Vec<EncodedRequest> {
+pub fn fixtures_of(planners: &[PlannerKind]) -> Vec<EncodedRequest> {
     crate::fixture_set::encode_all(
         &crate::prerequisites::root().join("fixtures"),
         &IMAGE_LIMITS,
