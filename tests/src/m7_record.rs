@@ -65,12 +65,12 @@ const DEFAULT_TABLE: FixtureTable = FixtureTable {
     work_units: true,
 };
 
-/// The GEO image: `[geo_binary]`, `[[geo_fixture]]`.
+/// The GEO image: `[geo_binary]`, `[[geo_fixture]]`, with work units.
 const GEO_TABLE: FixtureTable = FixtureTable {
     binary: "geo_binary",
     fixtures: "geo_fixture",
     label: "GEO fixture",
-    work_units: false,
+    work_units: true,
 };
 
 /// An image's fixture table, rendered.
