@@ -1,7 +1,9 @@
 //! The charged kernels, one at a time, for the work-unit bound (docs/geo-tour.md, "Work
-//! budget"). Not part of the planner's interface: an M7 image runs every case between its
-//! instruction markers and divides each case's M7 instructions by its units (the firmware and
-//! QEMU test side of that is on branch `geo-kernels-wip`, not yet in CI).
+//! budget"). Not part of the planner's interface: the GEO image (`cargo firmware-geo`) runs
+//! every case between its instruction markers after its fixtures, and the QEMU test
+//! (`tests/tests/qemu_firmware/geo_image.rs`) records each case's M7 instructions and units in
+//! `fixtures/golden/m7-figures.toml` and fails when one takes more than its units x
+//! [`MAX_INSTRUCTIONS_PER_UNIT`](super::MAX_INSTRUCTIONS_PER_UNIT).
 //!
 //! Each case runs the solve's own code for one metered kernel and returns the units the solve
 //! charges for what it ran:

@@ -4,8 +4,9 @@ use crate::astro::EARTH_RADIUS_KM;
 use crate::contract::{check_range, Range, SettingError};
 use serde::{Deserialize, Serialize};
 
-/// The largest Cortex-M7 instructions per work unit over the charged kernels (`work_units.rs`), as measured
-/// when the constants were set (docs/geo-tour.md, "Work budget": not yet a QEMU test in CI).
+/// The bound on Cortex-M7 instructions per work unit over the charged kernels
+/// (`work_units.rs`): the QEMU test fails when a kernel case takes more than its units times
+/// this (docs/geo-tour.md, "Work budget", has the measured ratios).
 pub const MAX_INSTRUCTIONS_PER_UNIT: u64 = 100;
 
 /// The default work budget: `DEFAULT_WORK_BUDGET x MAX_INSTRUCTIONS_PER_UNIT` = 400 M

@@ -3,10 +3,11 @@
 //! solver step at its dearest branch, a drift or radial evaluation, a Lambert arc's set-up, a
 //! leg's share of a price step, and so on. A unit is about 100 Cortex-M7 instructions: each
 //! constant below is the measured M7 instruction count of its kernel on its dearest path
-//! (`kernels.rs` runs them; docs/geo-tour.md, "Work budget", says what is measured and what
-//! is not yet checked in CI), divided by 90 and rounded up. So a solve's units bound its
+//! (`kernels.rs` runs them), divided by 90 and rounded up. So a solve's units bound its
 //! instructions: instructions <= units x the largest instructions per unit over the kernels,
-//! at most [`MAX_INSTRUCTIONS_PER_UNIT`](super::MAX_INSTRUCTIONS_PER_UNIT) as measured.
+//! at most [`MAX_INSTRUCTIONS_PER_UNIT`](super::MAX_INSTRUCTIONS_PER_UNIT). The GEO image measures every kernel case on the M7
+//! under QEMU in CI and fails above that bound (`tests/tests/qemu_firmware/geo_image.rs`; the
+//! figures and the argument: docs/geo-tour.md, "Work budget").
 //!
 //! An iteration is charged as it starts, not by its loop's bound up front: a Lambert solve
 //! runs 2-4 of its up to `3 lambert_max_iter` steps and a root 4-20 of its up to

@@ -23,6 +23,16 @@ pub fn fixtures_of(planners: &[PlannerKind]) -> Vec<EncodedRequest> {
     .collect()
 }
 
+/// The GEO image's requests, as `firmware/build.rs` bakes them: the GEO fixtures, then the GEO
+/// worst cases (`fixtures/worst-case/`).
+pub fn geo_image_fixtures() -> Vec<EncodedRequest> {
+    let mut set = fixtures_of(&[PlannerKind::GeoTour]);
+    let worst = crate::fixture_set::geo_worst_cases(&crate::prerequisites::root(), &IMAGE_LIMITS)
+        .expect("worst cases load");
+    crate::fixture_set::append_unique(&mut set, worst).expect("unique names");
+    set
+}
+
 pub fn hex(bytes: &[u8]) -> String {
     bytes.iter().fold(String::new(), |mut s, b| {
         let _ = write!(s, "{b:02x}");
