@@ -202,6 +202,27 @@ pub fn render_readme(record: &str, leo_record: &str) -> Result<String, String> {
         published.max(sixteen) <= 20_000_000,
         "[geo-tour](docs/geo-tour.md)",
     );
+    let budget = record
+        .get("geo_work_budget")
+        .and_then(toml::Value::as_table)
+        .ok_or("no [geo_work_budget] in the record")?;
+    let bound = int(budget, "worst_case_instructions")?;
+    let heaviest = int(
+        named(&geo, "geo-16-clients-0p7deg-200d-west")?,
+        "instructions",
+    )?;
+    line(
+        &mut md,
+        "M7: GEO tour, any request within the limits (budget × kernels' largest instructions per unit)",
+        "≤ 400 M instructions",
+        &format!(
+            "≤ {} by the kernels measured in CI; heaviest found {}",
+            mega(bound),
+            mega(heaviest)
+        ),
+        bound <= 400_000_000 && heaviest <= bound,
+        "[geo-tour](docs/geo-tour.md)",
+    );
     let arc = named(&leo_fixtures, "leo-tour-example1-single-arc")?;
     let onboard = named(&leo_fixtures, "leo-tour-example1-sequence")?;
     let (arc_n, onboard_n) = (int(arc, "instructions")?, int(onboard, "instructions")?);
