@@ -7,7 +7,9 @@
 //! about to run (its rows times its variables, its propagations, its pairs times its
 //! intervals...); the weights are calibrated against Cortex-M7 instruction counts measured
 //! under QEMU (`docs/firmware.md`, "Work budget"), so that `budget x instructions per unit`
-//! bounds a solve's instructions.
+//! bounds a solve's instructions. The GEO tour's weights are each kernel's measured dearest
+//! cost, checked in CI; planners A's and B's are still fitted over the fixtures and are not
+//! yet a proven bound (docs/firmware.md says what was found).
 //!
 //! Every count saturates (no overflow, no float): the meter is plain integer arithmetic.
 
