@@ -39,7 +39,7 @@ pub struct Pseudospectral;
 
 crate::impl_planner!(
     Pseudospectral: Problem, Settings, Workspace, Solution, PlanError, SolveStatus,
-    crate::wire::Planner::Pseudospectral, solve, reset |out| out.reset()
+    Pseudospectral, solve, reset |out| out.reset()
 );
 
 /// Solve a reconfiguration problem from the analytic Pontryagin guess.

@@ -20,7 +20,7 @@ crate::settings_table! {
     /// `O(MAX_ACTIVE^2 + M N (N - 3))` flops, and by the work budget (`docs/firmware.md`).
     pub struct Settings;
     /// Planner A's settings, by name (stable codes on the wire and in the C interface).
-    pub enum SettingId in crate::limits::Setting::Pseudospectral;
+    pub enum SettingId for Pseudospectral;
     {
         /// Most convex subproblems (SQP / convex-concave iterations) per verification round.
         sqp_max_iter, SqpMaxIter = 0: u16 = 60,
@@ -84,7 +84,7 @@ impl Settings {
     ///
     /// # Errors
     /// [`SettingError`] naming the first setting out of range, its value and its range.
-    pub fn validate(&self) -> Result<(), SettingError> {
+    pub fn validate(&self) -> Result<(), SettingError<SettingId>> {
         self.check_ranges()
     }
 }
