@@ -10,8 +10,9 @@
 
 #![allow(dead_code)] // each includer uses part of it
 
+use reconfig_core::contract::PlannerKind;
 use reconfig_core::limits::Limits;
-use reconfig_core::wire::{Planner, Request};
+use reconfig_core::wire::Request;
 use reconfig_host::fixture::{self, Fixture, FixtureRequest};
 use std::path::{Path, PathBuf};
 
@@ -25,7 +26,7 @@ pub struct EncodedRequest {
     /// The fixture file it came from.
     pub file: PathBuf,
     /// Its planner (`Request::planner`).
-    pub planner: Planner,
+    pub planner: PlannerKind,
     /// The LEO tour's on-board part it belongs to (the fixture's name), if any.
     pub part_of: Option<String>,
     /// The `postcard` encoding of the `wire::Request`.
@@ -109,6 +110,54 @@ fn requests_of(
     })
 }
 
+/// The folder of the worst-case requests (relative to the workspace): the heaviest requests
+/// found within the built-in limits (docs/harness.md).
+pub const WORST_CASE_DIR: &str = "fixtures/worst-case";
+
+/// The GEO tour's worst-case requests (the GEO requests of [`WORST_CASE_DIR`] under `root`),
+/// which the GEO image runs after the GEO fixtures of `fixtures/` (docs/geo-tour.md, "Work
+/// budget"). The other planners' worst cases stay out of the images: planner A's would not fit
+/// the default image's instruction run.
+///
+/// # Errors
+/// As [`encode_all`].
+pub fn geo_worst_cases(root: &Path, limits: &Limits) -> Result<Vec<EncodedRequest>, String> {
+    Ok(encode_all(&root.join(WORST_CASE_DIR), limits)?
+        .into_iter()
+        .filter(|f| f.planner == PlannerKind::GeoTour)
+        .collect())
+}
+
+/// Whether a request comes from [`WORST_CASE_DIR`].
+pub fn is_worst_case(f: &EncodedRequest) -> bool {
+    f.file
+        .parent()
+        .and_then(Path::file_name)
+        .is_some_and(|n| n == "worst-case")
+}
+
+/// `more` appended to `set`, failing on a name `set` already holds.
+///
+/// # Errors
+/// A name used twice.
+pub fn append_unique(
+    set: &mut Vec<EncodedRequest>,
+    more: Vec<EncodedRequest>,
+) -> Result<(), String> {
+    for f in more {
+        if let Some(other) = set.iter().find(|o| o.name == f.name) {
+            return Err(format!(
+                "fixture name {:?} is used by both {} and {}",
+                f.name,
+                other.file.display(),
+                f.file.display()
+            ));
+        }
+        set.push(f);
+    }
+    Ok(())
+}
+
 /// `result` with its error as text naming the fixture.
 fn named<T, E: std::fmt::Display>(name: &str, result: Result<T, E>) -> Result<T, String> {
     result.map_err(|e| format!("{name}: {e:#}"))
@@ -126,21 +175,15 @@ pub fn encode_all(dir: &Path, limits: &Limits) -> Result<Vec<EncodedRequest>, St
         let fixture = fixture::load(&file).map_err(|e| format!("{e:#}"))?;
         let requests = requests_of(fixture, limits)?;
         for (name, part_of, r) in requests {
-            if let Some(other) = out.iter().find(|f| f.name == name) {
-                return Err(format!(
-                    "fixture name {name:?} is used by both {} and {}",
-                    other.file.display(),
-                    file.display()
-                ));
-            }
             let request: &Request = &r.request;
-            out.push(EncodedRequest {
+            let encoded = EncodedRequest {
                 planner: request.planner(),
                 request: postcard::to_stdvec(request).map_err(|e| format!("{name}: {e}"))?,
                 name,
                 file: file.clone(),
                 part_of,
-            });
+            };
+            append_unique(&mut out, vec![encoded])?;
         }
     }
     Ok(out)

@@ -5,8 +5,8 @@
 //! allocation.
 
 use core::ffi::c_char;
+use reconfig_core::contract::PlannerKind;
 use reconfig_core::limits::ProblemLimit;
-use reconfig_core::wire::Planner;
 use reconfig_core::{geo_tour, impulsive, pseudospectral};
 
 /// Planner A (`reconfig_pseudospectral_*`).
@@ -17,9 +17,9 @@ pub const RECONFIG_PLANNER_IMPULSIVE: i32 = 1;
 pub const RECONFIG_PLANNER_GEO_TOUR: i32 = 2;
 
 // Literals so that the header can spell them; the wire's planner codes decide.
-const _: () = assert!(RECONFIG_PLANNER_PSEUDOSPECTRAL == Planner::Pseudospectral as i32);
-const _: () = assert!(RECONFIG_PLANNER_IMPULSIVE == Planner::Impulsive as i32);
-const _: () = assert!(RECONFIG_PLANNER_GEO_TOUR == Planner::GeoTour as i32);
+const _: () = assert!(RECONFIG_PLANNER_PSEUDOSPECTRAL == PlannerKind::Pseudospectral as i32);
+const _: () = assert!(RECONFIG_PLANNER_IMPULSIVE == PlannerKind::Impulsive as i32);
+const _: () = assert!(RECONFIG_PLANNER_GEO_TOUR == PlannerKind::GeoTour as i32);
 
 /// Bytes of one name slot, the NUL included.
 const NAME_BYTES: usize = 40;

@@ -272,7 +272,9 @@ impl ReconfigError {
 }
 
 /// The C refusal of a setting outside its range.
-pub fn setting_error_to_c(e: &reconfig_core::contract::SettingError) -> ReconfigError {
+pub fn setting_error_to_c<S: reconfig_core::contract::SettingId>(
+    e: &reconfig_core::contract::SettingError<S>,
+) -> ReconfigError {
     let r = e.range;
     let (detail, limit) = if !e.value.is_finite() {
         (2, r.max)

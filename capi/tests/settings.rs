@@ -33,8 +33,9 @@ use reconfig_capi::types_a::*;
 use reconfig_capi::types_b::*;
 use reconfig_capi::types_b_form::*;
 use reconfig_capi::types_geo::*;
+use reconfig_core::contract::Rule;
 use reconfig_core::contract::{check_limit, Range};
-use reconfig_core::limits::{Rule, Setting};
+use reconfig_core::limits::Setting;
 use reconfig_core::{geo_tour, impulsive, pseudospectral};
 
 /// Caller memory of `size` bytes aligned to 8.

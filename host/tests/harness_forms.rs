@@ -7,8 +7,9 @@
 mod harness_common;
 
 use harness_common::*;
+use reconfig_core::contract::Rule;
 use reconfig_core::impulsive::{self, end_state, EndState, OrbitForm, RelativeForm};
-use reconfig_core::limits::{Rule, Setting};
+use reconfig_core::limits::Setting;
 use reconfig_core::wire::{self, Outcome, Request};
 use reconfig_host::fixture;
 use reconfig_host::harness::worker::Worker;

@@ -1,7 +1,9 @@
 //! The M7 figures record (`fixtures/golden/m7-figures.toml`, written by the QEMU test) and the
 //! tables of `docs/firmware.md` generated from it, between the markers
 //! `<!-- m7-figures:begin -->` and `<!-- m7-figures:end -->` (the default image),
-//! `<!-- m7-geo-figures:... -->` (the GEO image) and `<!-- m7-images:... -->` (RAM per image).
+//! `<!-- m7-geo-figures:... -->` (the GEO image) and `<!-- m7-images:... -->` (RAM per image),
+//! and the GEO work budget's tables of `docs/geo-tour.md` (`<!-- geo-work-budget:... -->`: the
+//! kernel cases' instructions per unit, the bound they give).
 //!
 //! `tests/tests/m7_docs.rs` fails when the docs differ from what the record generates;
 //! `RECONFIG_UPDATE_DOCS=1 cargo test -p reconfig-tests --test m7_docs` rewrites them (the QEMU
@@ -65,12 +67,12 @@ const DEFAULT_TABLE: FixtureTable = FixtureTable {
     work_units: true,
 };
 
-/// The GEO image: `[geo_binary]`, `[[geo_fixture]]`.
+/// The GEO image: `[geo_binary]`, `[[geo_fixture]]`, with work units.
 const GEO_TABLE: FixtureTable = FixtureTable {
     binary: "geo_binary",
     fixtures: "geo_fixture",
     label: "GEO fixture",
-    work_units: false,
+    work_units: true,
 };
 
 /// An image's fixture table, rendered.
@@ -379,16 +381,116 @@ pub fn splice_between(
 ) -> Result<String, String> {
     let start = docs
         .find(begin)
-        .ok_or_else(|| format!("{DOCS_FILE} lacks the marker {begin}"))?;
+        .ok_or_else(|| format!("the document lacks the marker {begin}"))?;
     let stop = docs
         .find(end)
         .filter(|&e| e > start)
-        .ok_or_else(|| format!("{DOCS_FILE} lacks the marker {end} after its begin marker"))?;
+        .ok_or_else(|| format!("the document lacks the marker {end} after its begin marker"))?;
     Ok(format!(
         "{}{begin}\n{generated}{}",
         &docs[..start],
         &docs[stop..]
     ))
+}
+
+/// The GEO tour's document, relative to the workspace.
+pub const GEO_DOCS_FILE: &str = "docs/geo-tour.md";
+/// Start marker of the GEO work budget's generated tables (in [`GEO_DOCS_FILE`]).
+pub const GEO_WORK_BEGIN: &str =
+    "<!-- geo-work-budget:begin (generated from fixtures/golden/m7-figures.toml; do not edit) -->";
+/// End marker of the GEO work budget's generated tables.
+pub const GEO_WORK_END: &str = "<!-- geo-work-budget:end -->";
+
+/// `instructions / units` with one decimal.
+fn per_unit(instructions: u64, units: u64) -> String {
+    format!("{:.1}", instructions as f64 / units.max(1) as f64)
+}
+
+/// The generated Markdown (without the markers) of the GEO work budget: each kernel case
+/// (`[[geo_kernel]]`: instructions, units, instructions per unit), the largest ratio against
+/// `MAX_INSTRUCTIONS_PER_UNIT`, the bound it gives (`[geo_work_budget]`), and each GEO request
+/// the image ran (`[[geo_fixture]]`) with its ratio.
+///
+/// # Errors
+/// The record does not parse or lacks a figure.
+pub fn render_geo_work(record: &str) -> Result<String, String> {
+    use reconfig_core::geo_tour::MAX_INSTRUCTIONS_PER_UNIT;
+    let file: toml::Table = toml::from_str(record).map_err(|e| format!("{RECORD_FILE}: {e}"))?;
+    let array = |key: &str| {
+        file.get(key)
+            .and_then(toml::Value::as_array)
+            .ok_or_else(|| format!("{RECORD_FILE}: no [[{key}]]"))
+    };
+    let name = |t: &toml::Table| {
+        t.get("name")
+            .and_then(toml::Value::as_str)
+            .map(str::to_owned)
+            .ok_or_else(|| format!("{RECORD_FILE}: an entry without name"))
+    };
+    let mut md = String::from(
+        "| kernel case | M7 instructions | units charged | instructions per unit |\n\
+         | --- | ---: | ---: | ---: |\n",
+    );
+    let mut largest = (0.0_f64, String::new());
+    for k in array("geo_kernel")? {
+        let k = k.as_table().ok_or("a [[geo_kernel]] is not a table")?;
+        let (instructions, units) = (int(k, "instructions")?, int(k, "units")?);
+        let ratio = instructions as f64 / units.max(1) as f64;
+        if ratio > largest.0 {
+            largest = (ratio, name(k)?);
+        }
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {} |",
+            name(k)?,
+            grouped(instructions),
+            grouped(units),
+            per_unit(instructions, units)
+        );
+    }
+    let bound = file
+        .get("geo_work_budget")
+        .and_then(toml::Value::as_table)
+        .ok_or_else(|| format!("{RECORD_FILE}: no [geo_work_budget]"))?;
+    let milli = int(bound, "max_instructions_per_unit_milli")?;
+    let within = milli <= MAX_INSTRUCTIONS_PER_UNIT * 1000;
+    let _ = write!(
+        md,
+        "\nLargest instructions per unit over the kernel cases: **{:.3}** (`{}`), against the bound \
+         `MAX_INSTRUCTIONS_PER_UNIT` = {MAX_INSTRUCTIONS_PER_UNIT}: {}. Default budget {} units x \
+         {:.3} = **{} instructions** at most per request (400 M allowed).\n\n\
+         | GEO request (the GEO image) | M7 instructions | work units | instructions per unit |\n\
+         | --- | ---: | ---: | ---: |\n",
+        milli as f64 / 1000.0,
+        largest.1,
+        if within { "within" } else { "**over**" },
+        grouped(int(bound, "default_work_budget")?),
+        milli as f64 / 1000.0,
+        grouped(int(bound, "worst_case_instructions")?),
+    );
+    for f in array("geo_fixture")? {
+        let f = f.as_table().ok_or("a [[geo_fixture]] is not a table")?;
+        let (instructions, units) = (int(f, "instructions")?, int(f, "work_units")?);
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {} |",
+            name(f)?,
+            grouped(instructions),
+            grouped(units),
+            per_unit(instructions, units)
+        );
+    }
+    Ok(md)
+}
+
+/// `docs` (the text of [`GEO_DOCS_FILE`]) with its GEO work budget tables replaced by
+/// `generated`.
+///
+/// # Errors
+/// The markers are missing or out of order.
+pub fn splice_geo_work(docs: &str, generated: &str) -> Result<String, String> {
+    splice_between(docs, GEO_WORK_BEGIN, GEO_WORK_END, generated)
+        .map_err(|e| format!("{GEO_DOCS_FILE}: {e}"))
 }
 
 /// Regenerate the docs' generated parts (all of them, the RAM-per-image table among them) from
@@ -411,11 +513,113 @@ fn update_all() -> Result<bool, String> {
     let new = splice_geo(&new, &render_geo(&record)?)?;
     let new = splice_between(&new, IMAGES_BEGIN, IMAGES_END, &render_images(&record)?)?;
     let readme_changed = crate::readme_figures::update_readme()?;
+    let geo_path = root().join(GEO_DOCS_FILE);
+    let geo_docs = std::fs::read_to_string(&geo_path).map_err(|e| e.to_string())?;
+    let new_geo = splice_geo_work(&geo_docs, &render_geo_work(&record)?)?;
+    let geo_changed = new_geo != geo_docs;
+    if geo_changed {
+        std::fs::write(&geo_path, &new_geo).map_err(|e| e.to_string())?;
+    }
     if new != docs {
         std::fs::write(&docs_path, &new).map_err(|e| e.to_string())?;
         return Ok(true);
     }
-    Ok(readme_changed)
+    Ok(readme_changed || geo_changed)
+}
+
+// Planner A's kernel image (`tests/tests/qemu_firmware/kernels_a_image.rs`): the record's
+// `[[ka_kernel]]` tables and `docs/planner-a.md`'s generated "Work budget" table.
+
+/// The document with the kernel image's table, relative to the workspace.
+pub const KA_DOCS_FILE: &str = "docs/planner-a.md";
+/// Start marker of the kernel image's generated table.
+pub const KA_BEGIN: &str =
+    "<!-- m7-kernels-a:begin (generated from fixtures/golden/m7-figures.toml; do not edit) -->";
+/// End marker of the kernel image's generated table.
+pub const KA_END: &str = "<!-- m7-kernels-a:end -->";
+
+/// The kernel image's table (without the markers) for a record's text: each case's M7
+/// instructions, its units and their ratio, and what the largest ratio bounds.
+///
+/// # Errors
+/// The record does not parse, lacks a figure or has no kernel cases.
+pub fn render_kernels_a(record: &str) -> Result<String, String> {
+    use reconfig_core::pseudospectral::{
+        Settings, MAX_INSTRUCTIONS_PER_UNIT, MAX_SOLVE_INSTRUCTIONS,
+    };
+    let file: toml::Table = toml::from_str(record).map_err(|e| format!("{RECORD_FILE}: {e}"))?;
+    let kernels: Vec<&toml::Table> = file
+        .get("ka_kernel")
+        .and_then(toml::Value::as_array)
+        .into_iter()
+        .flatten()
+        .filter_map(toml::Value::as_table)
+        .collect();
+    if kernels.is_empty() {
+        return Err(format!("{RECORD_FILE}: no [[ka_kernel]] tables"));
+    }
+    let mut md = String::from(
+        "| case | M7 instructions | units charged | instructions per unit |\n\
+         | --- | ---: | ---: | ---: |\n",
+    );
+    let mut worst: Option<(f64, String)> = None;
+    for t in &kernels {
+        let name = t
+            .get("name")
+            .and_then(toml::Value::as_str)
+            .ok_or_else(|| format!("{RECORD_FILE}: a [[ka_kernel]] without a name"))?;
+        let charged = t
+            .get("charged")
+            .and_then(toml::Value::as_bool)
+            .unwrap_or(true);
+        let (count, units) = (int(t, "instructions")?, int(t, "units")?);
+        let ratio = if charged && units > 0 {
+            let r = count as f64 / units as f64;
+            if worst.as_ref().is_none_or(|(w, _)| r > *w) {
+                worst = Some((r, name.to_owned()));
+            }
+            format!("{r:.2}")
+        } else {
+            "not charged".to_owned()
+        };
+        let _ = writeln!(
+            md,
+            "| `{name}` | {} | {} | {ratio} |",
+            grouped(count),
+            grouped(units)
+        );
+    }
+    let budget = Settings::default().work_budget;
+    if let Some((ratio, name)) = worst {
+        let _ = write!(
+            md,
+            "\nLargest over the charged cases: {ratio:.2} instructions per unit (`{name}`); the \
+             QEMU test fails above `MAX_INSTRUCTIONS_PER_UNIT` = {MAX_INSTRUCTIONS_PER_UNIT}. \
+             Default budget {} units x {MAX_INSTRUCTIONS_PER_UNIT} = {} instructions (at most \
+             {}).\n",
+            grouped(budget),
+            grouped(budget.saturating_mul(MAX_INSTRUCTIONS_PER_UNIT)),
+            grouped(MAX_SOLVE_INSTRUCTIONS),
+        );
+    }
+    Ok(md)
+}
+
+/// `docs/planner-a.md` with its kernel table regenerated from the record on disk; returns
+/// whether it changed.
+///
+/// # Errors
+/// A file cannot be read or written, or does not parse.
+pub fn update_kernels_a_docs() -> Result<bool, String> {
+    let record = std::fs::read_to_string(root().join(RECORD_FILE)).map_err(|e| e.to_string())?;
+    let path = root().join(KA_DOCS_FILE);
+    let docs = std::fs::read_to_string(&path).map_err(|e| e.to_string())?;
+    let new = splice_between(&docs, KA_BEGIN, KA_END, &render_kernels_a(&record)?)?;
+    if new != docs {
+        std::fs::write(&path, &new).map_err(|e| e.to_string())?;
+        return Ok(true);
+    }
+    Ok(false)
 }
 
 #[cfg(test)]

@@ -139,7 +139,7 @@ fn the_contract_solves_as_the_function_does() {
     GeoTour::solve(&f.problem, &f.settings, &mut ws, &mut out).unwrap();
     assert_eq!(*out, *run(&f.problem, &f.settings));
     assert_eq!(GeoTour::status(&out), out.info.status);
-    assert_eq!(GeoTour::KIND, reconfig_core::wire::Planner::GeoTour);
+    assert_eq!(GeoTour::KIND, reconfig_core::contract::PlannerKind::GeoTour);
 }
 
 #[test]

@@ -152,7 +152,7 @@ fn every_bad_setting_is_named() {
         let PlanError::InvalidSetting(refusal) = e else {
             panic!("{id:?}: {e:?}")
         };
-        assert_eq!(refusal.setting, id.into(), "{e}");
+        assert_eq!(refusal.setting, id, "{e}");
         assert!(e.to_string().contains(id.name()), "{e}");
         assert!(!refusal.range.contains(refusal.value), "{e}");
     }

@@ -486,7 +486,7 @@ fn invalid_settings_name_the_setting_the_value_and_the_range() {
         let PlanError::InvalidSetting(e) = reject(&p, &s) else {
             panic!("{id:?}: not a setting refusal")
         };
-        assert_eq!((e.setting, e.value), (id.into(), value), "{id:?}");
+        assert_eq!((e.setting, e.value), (id, value), "{id:?}");
         let broken = if value < e.range.min {
             e.range.min
         } else {

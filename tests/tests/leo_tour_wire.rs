@@ -4,11 +4,12 @@
 //! planner's ranges is answered with the planner's error naming the field.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+use reconfig_core::contract::Rule;
 use reconfig_core::leo_tour::{
     solve_arc, ArcProblem, ArcSolution, Field, PlanError, Settings, SolveStatus, Workspace,
 };
 use reconfig_core::limits::Limits;
-use reconfig_core::limits::{Rule, Setting};
+use reconfig_core::limits::Setting;
 use reconfig_core::wire::{
     decode_request, decode_response, encode_request, encode_response, Outcome, OutcomeRef, Request,
     REQUEST_MAX_BYTES, RESPONSE_MAX_BYTES,

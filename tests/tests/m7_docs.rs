@@ -1,6 +1,7 @@
-//! `docs/firmware.md`'s M7 tables and the README's M7 lines are generated from the records
-//! `fixtures/golden/m7-figures.toml` and `m7-figures-leo.toml`: this fails when they differ,
-//! with the command that regenerates them. No QEMU needed.
+//! `docs/firmware.md`'s M7 tables, `docs/geo-tour.md`'s work budget tables and the README's M7
+//! lines are generated from the records `fixtures/golden/m7-figures.toml` and
+//! `m7-figures-leo.toml`: this fails when they differ, with the command that regenerates them.
+//! No QEMU needed.
 
 use reconfig_tests::m7_record::{self, DOCS_FILE, RECORD_FILE, UPDATE_DOCS_COMMAND};
 
@@ -43,6 +44,23 @@ fn the_docs_geo_table_is_the_record() {
 }
 
 #[test]
+fn the_geo_work_budget_tables_are_the_record() {
+    use m7_record::GEO_DOCS_FILE;
+    if std::env::var("RECONFIG_UPDATE_DOCS").as_deref() == Ok("1") {
+        m7_record::update_geo_docs().expect("regenerate the docs");
+    }
+    let record = std::fs::read_to_string(m7_record::root().join(RECORD_FILE)).expect("record");
+    let docs = std::fs::read_to_string(m7_record::root().join(GEO_DOCS_FILE)).expect("docs");
+    let generated = m7_record::render_geo_work(&record).expect("render the GEO work budget");
+    let expected = m7_record::splice_geo_work(&docs, &generated).expect("GEO work markers");
+    assert!(
+        expected == docs,
+        "{GEO_DOCS_FILE}'s work budget tables differ from what {RECORD_FILE} generates; \
+         regenerate with\n  {UPDATE_DOCS_COMMAND}"
+    );
+}
+
+#[test]
 fn the_docs_ram_per_image_table_is_the_record() {
     if std::env::var("RECONFIG_UPDATE_DOCS").as_deref() == Ok("1") {
         m7_record::update_images_docs().expect("regenerate the docs");
@@ -75,5 +93,23 @@ fn the_readme_m7_lines_are_the_record() {
         expected == readme,
         "{README_FILE}'s M7 lines differ from what the M7 records generate; regenerate with\n  \
          {UPDATE_DOCS_COMMAND}"
+    );
+}
+
+#[test]
+fn the_planner_a_kernel_table_is_the_record() {
+    use reconfig_tests::m7_record::{KA_BEGIN, KA_DOCS_FILE, KA_END};
+    if std::env::var("RECONFIG_UPDATE_DOCS").as_deref() == Ok("1") {
+        m7_record::update_kernels_a_docs().expect("regenerate the kernel table");
+    }
+    let record = std::fs::read_to_string(m7_record::root().join(RECORD_FILE)).expect("record");
+    let docs = std::fs::read_to_string(m7_record::root().join(KA_DOCS_FILE)).expect("docs");
+    let generated = m7_record::render_kernels_a(&record).expect("render the kernel table");
+    let expected = m7_record::splice_between(&docs, KA_BEGIN, KA_END, &generated)
+        .expect("kernel table markers");
+    assert!(
+        expected == docs,
+        "{KA_DOCS_FILE}'s kernel table differs from what {RECORD_FILE} generates; regenerate \
+         with\n  {UPDATE_DOCS_COMMAND}"
     );
 }

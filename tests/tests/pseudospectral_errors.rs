@@ -186,7 +186,7 @@ fn invalid_settings_name_the_setting_the_value_and_the_range() {
     };
     assert_eq!(
         (e.setting, e.value, e.range.min),
-        (SettingId::QpMaxIter.into(), 0.0, 1.0)
+        (SettingId::QpMaxIter, 0.0, 1.0)
     );
     assert_eq!(e.setting.name(), "qp_max_iter");
     let nan = Settings {
@@ -197,7 +197,7 @@ fn invalid_settings_name_the_setting_the_value_and_the_range() {
     else {
         panic!("a setting refusal")
     };
-    assert_eq!(e.setting, SettingId::QpTolFeas.into());
+    assert_eq!(e.setting, SettingId::QpTolFeas);
     assert!(e.value.is_nan());
     assert!(
         e.to_string()

@@ -47,7 +47,7 @@ pub trait Planner {
     type Status: Status;
 
     /// Which planner, on the wire.
-    const KIND: crate::wire::Planner;
+    const KIND: super::PlannerKind;
 
     /// Plan `problem` with `settings` in `workspace`, writing the answer into `out`.
     ///
@@ -75,7 +75,7 @@ pub trait Planner {
 macro_rules! impl_planner {
     (
         $Unit:ident: $Problem:ty, $Settings:ty, $Workspace:ty, $Solution:ty, $Error:ty,
-        $Status:ty, $kind:expr, $solve:path, reset $reset:expr
+        $Status:ty, $kind:ident, $solve:path, reset $reset:expr
     ) => {
         impl $crate::contract::Planner for $Unit {
             type Problem = $Problem;
@@ -84,7 +84,7 @@ macro_rules! impl_planner {
             type Solution = $Solution;
             type Error = $Error;
             type Status = $Status;
-            const KIND: $crate::wire::Planner = $kind;
+            const KIND: $crate::contract::PlannerKind = $crate::contract::PlannerKind::$kind;
 
             fn solve(
                 problem: &$Problem,

@@ -4,8 +4,100 @@
 //! keys and refusal names alike), the limits check and the generic accessors the C mirror is
 //! tested with all follow from that one line.
 
-use crate::limits::{LimitViolation, Rule, Setting};
+use super::PlannerKind;
 use serde::{Deserialize, Serialize};
+
+/// A setting's identity, for the refusals that name it: a planner's settings id (written by
+/// [`settings_table!`](crate::settings_table)) and the request path's name of any planner's
+/// setting (`limits::Setting`) both are one.
+pub trait SettingName: Copy {
+    /// The setting's name: its field, fixture key and limits-file key.
+    fn setting_name(self) -> &'static str;
+}
+
+/// A planner's settings id: its planner and its code within that planner's table.
+pub trait SettingId: SettingName {
+    /// The planner the settings table belongs to.
+    const PLANNER: PlannerKind;
+    /// The setting's stable wire and C code within its planner.
+    fn code(self) -> u8;
+}
+
+/// How a value must relate to its limit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[repr(u8)]
+pub enum Rule {
+    /// At most the limit (loop bounds, tolerances).
+    AtMost = 0,
+    /// At least the limit (margins and singularity thresholds).
+    AtLeast = 1,
+    /// Must be on (a safety check); value and limit are 0 (off) or 1 (on).
+    MustBeOn = 2,
+    /// Must be off (extra work the limits do not allow); value and limit are 0 or 1.
+    MustBeOff = 3,
+    /// Strictly below the limit (an eccentricity below 1).
+    Below = 4,
+}
+
+/// A request outside the limits: which setting (`S`: a planner's settings id, or the request
+/// path's `limits::Setting`), the requested value, the limit and the rule. Integers and flags
+/// are carried as `f64` (exact up to 2^53; flags as 0 / 1).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LimitViolation<S> {
+    /// The setting.
+    pub setting: S,
+    /// The value the request asked for.
+    pub value: f64,
+    /// The limit it broke.
+    pub limit: f64,
+    /// How the value must relate to the limit.
+    pub rule: Rule,
+}
+
+impl<S> LimitViolation<S> {
+    /// The same violation, its setting named by `name` (a planner's id as the request path's
+    /// setting).
+    pub fn naming<T>(self, name: impl FnOnce(S) -> T) -> LimitViolation<T> {
+        LimitViolation {
+            setting: name(self.setting),
+            value: self.value,
+            limit: self.limit,
+            rule: self.rule,
+        }
+    }
+}
+
+impl<S: SettingName> core::fmt::Display for LimitViolation<S> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        let name = self.setting.setting_name();
+        let onoff = |v: f64| if v > 0.5 { "on" } else { "off" };
+        match self.rule {
+            Rule::AtMost => write!(
+                f,
+                "{name} = {} is above the limit {}",
+                self.value, self.limit
+            ),
+            Rule::AtLeast => write!(
+                f,
+                "{name} = {} is below the limit {}",
+                self.value, self.limit
+            ),
+            Rule::Below => write!(
+                f,
+                "{name} = {} is not below the limit {}",
+                self.value, self.limit
+            ),
+            Rule::MustBeOn | Rule::MustBeOff => write!(
+                f,
+                "{name} = {}: the limits require it {}",
+                onoff(self.value),
+                onoff(self.limit)
+            ),
+        }
+    }
+}
+
+impl<S: SettingName + core::fmt::Debug> core::error::Error for LimitViolation<S> {}
 
 /// The values a setting may take: finite, and between `min` and `max`, each end open or
 /// closed. `f64::MAX` stands for "no upper end" (a range never holds an infinity, so a refusal
@@ -109,34 +201,34 @@ impl core::fmt::Display for Range {
 /// A setting outside its accepted range: which setting, the value given (as the caller gave
 /// it: a NaN stays NaN) and the range it must be in.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct SettingError {
-    /// The setting.
-    pub setting: Setting,
+pub struct SettingError<S> {
+    /// The setting (its planner's settings id).
+    pub setting: S,
     /// The value given.
     pub value: f64,
     /// The values accepted.
     pub range: Range,
 }
 
-impl core::fmt::Display for SettingError {
+impl<S: SettingName> core::fmt::Display for SettingError<S> {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         write!(
             f,
             "setting {} = {} is outside {}",
-            self.setting.name(),
+            self.setting.setting_name(),
             self.value,
             self.range
         )
     }
 }
 
-impl core::error::Error for SettingError {}
+impl<S: SettingName + core::fmt::Debug> core::error::Error for SettingError<S> {}
 
 /// Check `value` of `setting` against `range`.
 ///
 /// # Errors
 /// [`SettingError`] when `value` is not finite or outside the range.
-pub fn check_range(setting: Setting, value: f64, range: Range) -> Result<(), SettingError> {
+pub fn check_range<S>(setting: S, value: f64, range: Range) -> Result<(), SettingError<S>> {
     if range.contains(value) {
         Ok(())
     } else {
@@ -155,12 +247,12 @@ pub fn check_range(setting: Setting, value: f64, range: Range) -> Result<(), Set
 /// in the value or the limit, passes here: a violation carries finite numbers only (an answer
 /// has no NaN or infinity, issue 29), and the planner's own validation names a non-finite
 /// value the request gave (a setting by its range, a problem number by its field).
-pub fn check_limit(
-    setting: Setting,
+pub fn check_limit<S>(
+    setting: S,
     rule: Rule,
     value: f64,
     limit: f64,
-) -> Result<(), LimitViolation> {
+) -> Result<(), LimitViolation<S>> {
     if !(value.is_finite() && limit.is_finite()) {
         return Ok(());
     }
@@ -267,7 +359,7 @@ macro_rules! settings_table {
         $(#[$smeta:meta])*
         pub struct $Settings:ident;
         $(#[$imeta:meta])*
-        pub enum $Id:ident in $Global:path;
+        pub enum $Id:ident for $kind:ident;
         {
             $(
                 $(#[$fmeta:meta])*
@@ -338,7 +430,7 @@ macro_rules! settings_table {
 
             /// How a request's value must relate to the service limit, or `None` when the
             /// setting has no limit.
-            pub const fn limit_rule(self) -> Option<$crate::limits::Rule> {
+            pub const fn limit_rule(self) -> Option<$crate::contract::Rule> {
                 match self {
                     $( Self::$Var => $crate::settings_table!(@rule $rule), )+
                 }
@@ -353,9 +445,16 @@ macro_rules! settings_table {
             }
         }
 
-        impl From<$Id> for $crate::limits::Setting {
-            fn from(id: $Id) -> Self {
-                $Global(id)
+        impl $crate::contract::SettingName for $Id {
+            fn setting_name(self) -> &'static str {
+                self.name()
+            }
+        }
+
+        impl $crate::contract::SettingId for $Id {
+            const PLANNER: $crate::contract::PlannerKind = $crate::contract::PlannerKind::$kind;
+            fn code(self) -> u8 {
+                self as u8
             }
         }
 
@@ -387,10 +486,10 @@ macro_rules! settings_table {
             ///
             /// # Errors
             /// The first [`SettingError`](crate::contract::SettingError).
-            pub fn check_ranges(&self) -> Result<(), $crate::contract::SettingError> {
+            pub fn check_ranges(&self) -> Result<(), $crate::contract::SettingError<$Id>> {
                 $(
                     $crate::contract::check_range(
-                        $Global($Id::$Var),
+                        $Id::$Var,
                         $crate::contract::SettingValue::to_f64(self.$field),
                         $range,
                     )?;
@@ -403,12 +502,15 @@ macro_rules! settings_table {
             /// declaration order.
             ///
             /// # Errors
-            /// The first [`LimitViolation`](crate::limits::LimitViolation).
-            pub fn check_limits(&self, limits: &Self) -> Result<(), $crate::limits::LimitViolation> {
+            /// The first [`LimitViolation`](crate::contract::LimitViolation).
+            pub fn check_limits(
+                &self,
+                limits: &Self,
+            ) -> Result<(), $crate::contract::LimitViolation<$Id>> {
                 for &id in $Id::ALL {
                     if let Some(rule) = id.limit_rule() {
                         $crate::contract::check_limit(
-                            $Global(id),
+                            id,
                             rule,
                             self.value(id),
                             limits.value(id),
@@ -419,10 +521,10 @@ macro_rules! settings_table {
             }
         }
     };
-    (@rule AtMost) => { Some($crate::limits::Rule::AtMost) };
-    (@rule AtLeast) => { Some($crate::limits::Rule::AtLeast) };
-    (@rule MustBeOn) => { Some($crate::limits::Rule::MustBeOn) };
-    (@rule MustBeOff) => { Some($crate::limits::Rule::MustBeOff) };
+    (@rule AtMost) => { Some($crate::contract::Rule::AtMost) };
+    (@rule AtLeast) => { Some($crate::contract::Rule::AtLeast) };
+    (@rule MustBeOn) => { Some($crate::contract::Rule::MustBeOn) };
+    (@rule MustBeOff) => { Some($crate::contract::Rule::MustBeOff) };
     (@rule Free) => { None };
 }
 
@@ -434,7 +536,7 @@ mod tests {
     fn a_limit_violation_carries_finite_numbers_only() {
         // Issue 29 (finite answers): a NaN or an infinity on either side passes the limits;
         // the planner's validation names the request's (tests/finite_answers.rs).
-        let s = Setting::Problem(crate::limits::ProblemLimit::ChiefEccentricity);
+        let s = crate::limits::Setting::Problem(crate::limits::ProblemLimit::ChiefEccentricity);
         for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
             for rule in [Rule::AtMost, Rule::AtLeast, Rule::Below] {
                 assert_eq!(check_limit(s, rule, x, 1.0), Ok(()));
@@ -456,7 +558,7 @@ mod tests {
         assert!(!Range::closed_open(1.0, 2.0).contains(2.0));
         assert!(Range::any().contains(-1e300));
         let e = check_range(
-            Setting::Pseudospectral(crate::pseudospectral::SettingId::VerifyTolLu),
+            crate::pseudospectral::SettingId::VerifyTolLu,
             f64::NAN,
             Range::positive(),
         )

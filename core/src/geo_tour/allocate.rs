@@ -15,8 +15,8 @@
 use super::geo::Geo;
 use super::lambert_phasing::well_minimum;
 use super::root::illinois;
-use super::table::{bounds, direction_of, LegTable, Point, PointKind, MAX_POINTS};
-use super::types::{Settings, MAX_TARGETS};
+use super::table::{bounds, direction_of, LegTable, Point, MAX_POINTS};
+use super::types::{PointKind, Settings, MAX_TARGETS};
 use super::work_units::{self, spend, Cut, Gauge};
 use crate::indexed::IndexedExt as _;
 use crate::work::Meter;

@@ -37,7 +37,7 @@ pub enum PlanError {
     /// No clients.
     NoTargets,
     /// A setting is out of its range: the setting, the value and the range.
-    InvalidSetting(SettingError),
+    InvalidSetting(SettingError<super::SettingId>),
 }
 
 impl core::fmt::Display for PlanError {

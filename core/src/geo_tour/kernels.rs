@@ -1,7 +1,9 @@
 //! The charged kernels, one at a time, for the work-unit bound (docs/geo-tour.md, "Work
-//! budget"). Not part of the planner's interface: an M7 image runs every case between its
-//! instruction markers and divides each case's M7 instructions by its units (the firmware and
-//! QEMU test side of that is on branch `geo-kernels-wip`, not yet in CI).
+//! budget"). Not part of the planner's interface: the GEO image (`cargo firmware-geo`) runs
+//! every case between its instruction markers after its fixtures, and the QEMU test
+//! (`tests/tests/qemu_firmware/geo_image.rs`) records each case's M7 instructions and units in
+//! `fixtures/golden/m7-figures.toml` and fails when one takes more than its units x
+//! [`MAX_INSTRUCTIONS_PER_UNIT`](super::MAX_INSTRUCTIONS_PER_UNIT).
 //!
 //! Each case runs the solve's own code for one metered kernel and returns the units the solve
 //! charges for what it ran:
@@ -491,7 +493,7 @@ pub fn run(index: usize, ws: &mut Workspace, prepared: &Prepared) -> u64 {
             let x_max =
                 model.max_depth_km(5.0, d.min_radius_km, d.root_max_iter, &mut Gauge::paid());
             let x_max = black_box(x_max.unwrap_or(100.0));
-            let _ = meter.spend(wu::price_curve());
+            let _ = meter.spend(PriceCurve::work_units());
             black_box(PriceCurve::new(&model, x_max));
             meter.used()
         }

@@ -49,11 +49,10 @@ pub use maneuver::{Burn, Direction, Maneuver, Method, MAX_BURNS};
 pub use radial::radial;
 pub use solution::{Leg, Solution, SolveInfo, SolveStatus};
 pub use types::{
-    MethodPolicy, Problem, SettingId, Settings, SweepChoice, MAX_GAP_LEGS, MAX_LAMBERT_REVOLUTIONS,
-    MAX_TARGETS,
+    MethodPolicy, Problem, SettingId, Settings, SweepChoice, DEFAULT_WORK_BUDGET, MAX_GAP_LEGS,
+    MAX_INSTRUCTIONS_PER_UNIT, MAX_LAMBERT_REVOLUTIONS, MAX_TARGETS,
 };
 pub use validate::{MAX_BURN_CAP_MPS, MAX_MISSION_TIME_S};
-pub use work_units::{DEFAULT_WORK_BUDGET, MAX_INSTRUCTIONS_PER_UNIT};
 pub use workspace::Workspace;
 
 use crate::astro::wrap_two_pi;
@@ -74,7 +73,7 @@ pub struct GeoTour;
 
 crate::impl_planner!(
     GeoTour: Problem, Settings, Workspace, Solution, PlanError, SolveStatus,
-    crate::wire::Planner::GeoTour, solve, reset |out| *out = Solution::new()
+    GeoTour, solve, reset |out| *out = Solution::new()
 );
 
 /// Plan the tour of `problem` into `out`.
@@ -260,7 +259,7 @@ fn solve_sweep(
             Choice::Point(i) => Some(
                 t.points
                     .get(usize::from(i))
-                    .map_or(table::PointKind::Stay, |pt| pt.kind),
+                    .map_or(types::PointKind::Stay, |pt| pt.kind),
             ),
         };
         meter.charge(work_units::leg_assembly(s, kind));

@@ -41,6 +41,12 @@ fn node_depth(x_max_km: f64, k: f64) -> f64 {
 }
 
 impl PriceCurve {
+    /// The work units of building a curve ([`PriceCurve::new`]): `PRICE_NODES + 1` drift
+    /// evaluations.
+    pub(crate) fn work_units() -> u64 {
+        work_units::DRIFT_EVAL.saturating_mul((PRICE_NODES as u64).saturating_add(1))
+    }
+
     /// Tabulate `model`'s price on `(0, x_max_km]` (`PRICE_NODES` evaluations).
     pub fn new(model: &Drift, x_max_km: f64) -> Self {
         let mut root_price = [0.0; PRICE_NODES];

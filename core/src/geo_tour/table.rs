@@ -11,27 +11,12 @@ use super::lambert_phasing::{
 use super::maneuver::{Direction, Maneuver, Method};
 use super::price_curve::PriceCurve;
 use super::radial::{radial, radial_gauged};
-use super::types::{MethodPolicy, Settings, MAX_LAMBERT_REVOLUTIONS};
+use super::types::{MethodPolicy, PointKind, Settings, MAX_LAMBERT_REVOLUTIONS};
 use super::work_units::{self, spend, Cut, Gauge};
 use crate::work::Meter;
 
 /// Most point options of a leg: Hohmann, radial, direct Lambert and one per Lambert well.
 pub(crate) const MAX_POINTS: usize = 4 + MAX_LAMBERT_REVOLUTIONS as usize;
-
-/// Which point option.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum PointKind {
-    /// Client in the same slot.
-    Stay,
-    /// One-revolution Hohmann-type phasing.
-    Hohmann,
-    /// Radial-impulse phasing.
-    Radial,
-    /// Direct (0-revolution) Lambert in `lambert_direct_time_s`.
-    Direct,
-    /// Bottom of Lambert well m (K = m - 1 revolutions).
-    Well(u16),
-}
 
 /// A point option.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -300,7 +285,7 @@ pub(crate) fn finish(
     meter: &mut Meter,
 ) -> Result<(), Cut> {
     if let Some(d) = t.drift.as_mut() {
-        spend(meter, work_units::price_curve())?;
+        spend(meter, PriceCurve::work_units())?;
         d.curve = Some(PriceCurve::new(&d.model, d.x_max_km));
     }
     if !has_wells(t, policy) {

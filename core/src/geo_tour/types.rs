@@ -4,6 +4,15 @@ use crate::astro::EARTH_RADIUS_KM;
 use crate::contract::{check_range, Range, SettingError};
 use serde::{Deserialize, Serialize};
 
+/// The bound on Cortex-M7 instructions per work unit over the charged kernels
+/// (`work_units.rs`): the QEMU test fails when a kernel case takes more than its units times
+/// this (docs/geo-tour.md, "Work budget", has the measured ratios).
+pub const MAX_INSTRUCTIONS_PER_UNIT: u64 = 100;
+
+/// The default work budget: `DEFAULT_WORK_BUDGET x MAX_INSTRUCTIONS_PER_UNIT` = 400 M
+/// Cortex-M7 instructions, the most a request within the default limits may take.
+pub const DEFAULT_WORK_BUDGET: u64 = 400_000_000 / MAX_INSTRUCTIONS_PER_UNIT;
+
 /// Most clients of one tour.
 pub const MAX_TARGETS: usize = 16;
 /// Highest Lambert revolution limit the settings accept.
@@ -67,7 +76,7 @@ crate::settings_table! {
     /// instructions (docs/geo-tour.md, "Work budget").
     pub struct Settings;
     /// The GEO tour's settings, by name (stable codes on the wire and in the C interface).
-    pub enum SettingId in crate::limits::Setting::GeoTour;
+    pub enum SettingId for GeoTour;
     {
         /// Most whole revolutions of a Lambert transfer (wells 1..=this+1), <= 8.
         lambert_max_revolutions, LambertMaxRevolutions = 0: u16 = 3,
@@ -124,7 +133,7 @@ crate::settings_table! {
         /// returned, checked, with `SolveStatus::BudgetExhausted`. Part of it is kept for the
         /// checks of the returned plan. The default bounds every request within the default
         /// limits to 400 M Cortex-M7 instructions (docs/geo-tour.md, "Work budget").
-        work_budget, WorkBudget = 15: u64 = super::work_units::DEFAULT_WORK_BUDGET,
+        work_budget, WorkBudget = 15: u64 = DEFAULT_WORK_BUDGET,
         unit "units", range Range::any(), limit AtMost;
     }
 }
@@ -135,17 +144,33 @@ impl Settings {
     ///
     /// # Errors
     /// [`SettingError`] naming the first setting out of range, its value and its range.
-    pub fn validate(&self) -> Result<(), SettingError> {
+    pub fn validate(&self) -> Result<(), SettingError<SettingId>> {
         self.check_ranges()?;
         check_range(
-            SettingId::RuleHohmannAboveRad.into(),
+            SettingId::RuleHohmannAboveRad,
             self.rule_hohmann_above_rad,
             Range::closed(0.0, self.rule_drift_above_rad),
         )?;
         check_range(
-            SettingId::RuleRadialAboveRad.into(),
+            SettingId::RuleRadialAboveRad,
             self.rule_radial_above_rad,
             Range::closed(0.0, self.rule_hohmann_above_rad),
         )
     }
+}
+
+/// Which point option of a leg (`table::Point`): the manoeuvres a leg's table holds, whose
+/// costs `work_units` bounds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum PointKind {
+    /// Client in the same slot.
+    Stay,
+    /// One-revolution Hohmann-type phasing.
+    Hohmann,
+    /// Radial-impulse phasing.
+    Radial,
+    /// Direct (0-revolution) Lambert in `lambert_direct_time_s`.
+    Direct,
+    /// Bottom of Lambert well m (K = m - 1 revolutions).
+    Well(u16),
 }

@@ -3,10 +3,11 @@
 //! solver step at its dearest branch, a drift or radial evaluation, a Lambert arc's set-up, a
 //! leg's share of a price step, and so on. A unit is about 100 Cortex-M7 instructions: each
 //! constant below is the measured M7 instruction count of its kernel on its dearest path
-//! (`kernels.rs` runs them; docs/geo-tour.md, "Work budget", says what is measured and what
-//! is not yet checked in CI), divided by 90 and rounded up. So a solve's units bound its
+//! (`kernels.rs` runs them), divided by 90 and rounded up. So a solve's units bound its
 //! instructions: instructions <= units x the largest instructions per unit over the kernels,
-//! at most [`MAX_INSTRUCTIONS_PER_UNIT`] as measured.
+//! at most [`MAX_INSTRUCTIONS_PER_UNIT`](super::MAX_INSTRUCTIONS_PER_UNIT). The GEO image measures every kernel case on the M7
+//! under QEMU in CI and fails above that bound (`tests/tests/qemu_firmware/geo_image.rs`; the
+//! figures and the argument: docs/geo-tour.md, "Work budget").
 //!
 //! An iteration is charged as it starts, not by its loop's bound up front: a Lambert solve
 //! runs 2-4 of its up to `3 lambert_max_iter` steps and a root 4-20 of its up to
@@ -15,18 +16,8 @@
 //! the end of a sweep (the returned plan's legs rebuilt and checked, or why a request is
 //! infeasible) is charged at its bound, from the reserve kept for it.
 
-use super::price_curve::PRICE_NODES;
-use super::table::PointKind;
-use super::types::{MethodPolicy, Settings};
+use super::types::{MethodPolicy, PointKind, Settings};
 use crate::work::Meter;
-
-/// The largest Cortex-M7 instructions per work unit over the charged kernels, as measured
-/// when the constants were set (docs/geo-tour.md, "Work budget": not yet a QEMU test in CI).
-pub const MAX_INSTRUCTIONS_PER_UNIT: u64 = 100;
-
-/// The default work budget: `DEFAULT_WORK_BUDGET x MAX_INSTRUCTIONS_PER_UNIT` = 400 M
-/// Cortex-M7 instructions, the most a request within the default limits may take.
-pub const DEFAULT_WORK_BUDGET: u64 = 400_000_000 / MAX_INSTRUCTIONS_PER_UNIT;
 
 /// One Householder step of a direct (0-revolution) Lambert solve (`lambert::householder_step`),
 /// its dearest branch (the hypergeometric series of a near-parabolic transfer), with the
@@ -168,11 +159,6 @@ pub(crate) fn leg_table(allowed: [bool; 4]) -> u64 {
     } else {
         LEG_TABLE
     }
-}
-
-/// The drift's price curve (`PriceCurve::new`): `PRICE_NODES + 1` evaluations.
-pub(crate) fn price_curve() -> u64 {
-    times(plus(PRICE_NODES as u64, 1), DRIFT_EVAL)
 }
 
 /// One price step over `legs` legs of which `drift_legs` may pick their drift (`pick_all`,

@@ -30,11 +30,6 @@ pub enum Orbit {
     DeputyTarget = 2,
 }
 
-/// Largest semi-major axis accepted, km. Beyond 100 000 km (about 2.4 GEO radii) the Moon's and
-/// the Sun's gravity exceed J2 by orders of magnitude and the J2-only model no longer describes
-/// the motion; the limit also keeps `a^7` (the J2 rate) far from overflow.
-pub const MAX_SMA_KM: f64 = 100_000.0;
-
 /// Largest magnitude of an input angle (Omega, omega, M, their differences, impulse points),
 /// rad. At 1e4 rad an f64 still resolves 2e-12 rad (15 um on a GEO orbit); beyond it the phase
 /// loses the precision the millimetre terminal check needs.
@@ -115,7 +110,7 @@ pub enum PlanError {
     /// No impulse in the plan.
     NoImpulses = 8,
     /// A setting is out of its range: the setting, the value and the range.
-    InvalidSetting(SettingError) = 9,
+    InvalidSetting(SettingError<super::SettingId>) = 9,
     /// Perigee altitude `a (1 - e) - Re` below `Settings::min_perigee_altitude_km`: the orbit
     /// enters the atmosphere (or the Earth).
     PerigeeTooLow {

@@ -57,7 +57,7 @@ mod validate;
 mod work_units;
 mod workspace;
 
-pub use error::{Orbit, PlanError, Quantity, MAX_ANGLE_RAD, MAX_SMA_KM};
+pub use error::{Orbit, PlanError, Quantity, MAX_ANGLE_RAD};
 pub use form_problem::{
     end_state, EndForm, EndState, FormPart, FormProblem, OrbitForm, RelativeForm,
 };
@@ -67,7 +67,9 @@ pub use forms::{
     relative_of_roe, roe_of, CartesianState, FormError, Roe, OSCULATING_MAX_ITER, OSCULATING_TOL,
 };
 pub use model::{point_phase, Phase};
-pub use settings::{ElementSet, SettingId, Settings, DEFAULT_WORK_BUDGET, MAX_SEARCH_STARTS};
+pub use settings::{
+    ElementSet, SettingId, Settings, DEFAULT_WORK_BUDGET, MAX_SEARCH_STARTS, MAX_SMA_KM,
+};
 pub use socp::{least_fuel_rows, LeastFuel, SocpStatus};
 pub use solution::{Impulse, Solution, TerminalError};
 pub use status::{SolveInfo, SolveStatus, Stage};
@@ -83,7 +85,7 @@ pub struct Impulsive;
 
 crate::impl_planner!(
     Impulsive: Problem, Settings, Workspace, Solution, PlanError, SolveStatus,
-    crate::wire::Planner::Impulsive, solve, reset |out| *out = Solution::new()
+    Impulsive, solve, reset |out| *out = Solution::new()
 );
 
 /// Plan the impulses of `problem`: at its fixed impulse points, or by a bounded search over

@@ -1,9 +1,13 @@
 //! Planner-B settings: every loop bound, tolerance and threshold of a solve.
 
-use super::error::MAX_SMA_KM;
 use crate::astro::EARTH_RADIUS_KM;
 use crate::contract::{check_range, Range, SettingError, SettingValue};
 use serde::{Deserialize, Serialize};
+
+/// Largest semi-major axis accepted, km. Beyond 100 000 km (about 2.4 GEO radii) the Moon's and
+/// the Sun's gravity exceed J2 by orders of magnitude and the J2-only model no longer describes
+/// the motion; the limit also keeps `a^7` (the J2 rate) far from overflow.
+pub const MAX_SMA_KM: f64 = 100_000.0;
 
 /// Most local searches the impulse-point search runs (workspace capacity).
 pub const MAX_SEARCH_STARTS: usize = 16;
@@ -31,7 +35,7 @@ crate::settings_table! {
     /// one cone program (as above), then one full fixed-point solve as above.
     pub struct Settings;
     /// Planner B's settings, by name (stable codes on the wire and in the C interface).
-    pub enum SettingId in crate::limits::Setting::Impulsive;
+    pub enum SettingId for Impulsive;
     {
         /// Most fixed-point iterations (Wang 2018, section 2), per phase (minimum norm, min
         /// fuel).
@@ -206,10 +210,10 @@ impl Settings {
     ///
     /// # Errors
     /// [`SettingError`] naming the first setting out of range, its value and its range.
-    pub fn validate(&self) -> Result<(), SettingError> {
+    pub fn validate(&self) -> Result<(), SettingError<SettingId>> {
         self.check_ranges()?;
         check_range(
-            SettingId::SearchSamples.into(),
+            SettingId::SearchSamples,
             f64::from(self.search_samples),
             Range::closed_open(
                 f64::from(self.search_starts),
@@ -222,10 +226,9 @@ impl Settings {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::limits::Setting;
 
     /// The refused setting and its value.
-    fn refused(s: &Settings) -> (Setting, f64) {
+    fn refused(s: &Settings) -> (SettingId, f64) {
         let e = s.validate().unwrap_err();
         (e.setting, e.value)
     }
@@ -237,35 +240,32 @@ mod tests {
             kepler_max_iter: 0,
             ..Settings::default()
         };
-        assert_eq!(refused(&s), (SettingId::KeplerMaxIter.into(), 0.0));
+        assert_eq!(refused(&s), (SettingId::KeplerMaxIter, 0.0));
         let s = Settings {
             correction_tol: f64::NAN,
             ..Settings::default()
         };
         let e = s.validate().unwrap_err();
-        assert_eq!(e.setting, SettingId::CorrectionTol.into());
+        assert_eq!(e.setting, SettingId::CorrectionTol);
         assert!(e.value.is_nan());
         let s = Settings {
             min_eccentricity: 0.0,
             ..Settings::default()
         };
-        assert_eq!(refused(&s), (SettingId::MinEccentricity.into(), 0.0));
+        assert_eq!(refused(&s), (SettingId::MinEccentricity, 0.0));
         for bad in [-1.0, f64::INFINITY, 1e6] {
             let s = Settings {
                 min_perigee_altitude_km: bad,
                 ..Settings::default()
             };
-            assert_eq!(refused(&s), (SettingId::MinPerigeeAltitudeKm.into(), bad));
+            assert_eq!(refused(&s), (SettingId::MinPerigeeAltitudeKm, bad));
         }
         let s = Settings {
             search_starts: 200,
             ..Settings::default()
         };
         let e = s.validate().unwrap_err();
-        assert_eq!(
-            (e.setting, e.value),
-            (SettingId::SearchStarts.into(), 200.0)
-        );
+        assert_eq!((e.setting, e.value), (SettingId::SearchStarts, 200.0));
         assert_eq!(e.range.max, MAX_SEARCH_STARTS as f64);
         let s = Settings {
             search_samples: 20_000,
@@ -274,7 +274,7 @@ mod tests {
         let e = s.validate().unwrap_err();
         assert_eq!(
             (e.setting, e.value, e.range.max),
-            (SettingId::SearchSamples.into(), 20_000.0, 1800.0)
+            (SettingId::SearchSamples, 20_000.0, 1800.0)
         );
     }
 

@@ -3,10 +3,11 @@
 //! and the impulse points; builds the solve's [`Context`].
 
 use super::elements::{from_mean, from_relative, sub, Elements, A, E, EARTH_RADIUS_KM, I};
-use super::error::{Orbit, PlanError, Quantity, MAX_ANGLE_RAD, MAX_SMA_KM};
+use super::error::{Orbit, PlanError, Quantity, MAX_ANGLE_RAD};
 use super::model::{point_phase, Model};
 use super::settings::ElementSet;
 use super::settings::Settings;
+use super::settings::MAX_SMA_KM;
 use super::transfer::Context;
 use super::types::{ImpulsePlan, Problem};
 use crate::capacity::MAX_IMPULSES;

@@ -107,7 +107,7 @@ pub struct LeoArc;
 
 crate::impl_planner!(
     LeoArc: ArcProblem, Settings, Workspace, ArcSolution, PlanError, SolveStatus,
-    crate::wire::Planner::LeoArc, solve_arc, reset |out| out.reset()
+    LeoArc, solve_arc, reset |out| out.reset()
 );
 
 /// Why the search's context could not be built.

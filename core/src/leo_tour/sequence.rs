@@ -64,7 +64,7 @@ crate::settings_table! {
     /// estimates' settings travel beside them ([`super::Settings`]).
     pub struct SequenceSettings;
     /// The sequencing's settings, by name (stable codes on the wire and in the C interface).
-    pub enum SettingId in crate::limits::Setting::LeoSequence;
+    pub enum SettingId for LeoSequence;
     {
         /// Most arcs planned (the callback's calls); the enumeration stops there.
         max_arcs, MaxArcs = 0: u32 = DEFAULT_MAX_ARCS,
@@ -219,7 +219,9 @@ pub enum SequenceError {
         value_s: f64,
     },
     /// A setting is out of its range: the setting, the value and the range.
-    InvalidSetting(SettingError),
+    InvalidSetting(SettingError<SettingId>),
+    /// A setting of the arcs (every estimate's) is out of its range.
+    InvalidArcSetting(SettingError<crate::leo_tour::SettingId>),
 }
 
 impl core::fmt::Display for SequenceError {
@@ -235,6 +237,7 @@ impl core::fmt::Display for SequenceError {
                 "interval {position} = {value_s} s is not finite and positive"
             ),
             Self::InvalidSetting(e) => write!(f, "{e}"),
+            Self::InvalidArcSetting(e) => write!(f, "arc {e}"),
         }
     }
 }

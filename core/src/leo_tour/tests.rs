@@ -136,7 +136,7 @@ fn requests_outside_the_limits_are_refused_by_name() {
     let PlanError::InvalidSetting(refusal) = e else {
         panic!("{e:?}")
     };
-    assert_eq!(refusal.setting, SettingId::StepS.into());
+    assert_eq!(refusal.setting, SettingId::StepS);
     assert_eq!((refusal.value, refusal.range.min), (0.0, 0.1));
 }
 
@@ -190,7 +190,7 @@ fn a_refusal_leaves_the_answer_untouched_and_the_status_keeps_the_contract() {
         }
     ));
     assert_eq!(out.total_dv_mps, 7.0);
-    assert_eq!(LeoArc::KIND, crate::wire::Planner::LeoArc);
+    assert_eq!(LeoArc::KIND, crate::contract::PlannerKind::LeoArc);
     assert_eq!(ArcSolution::default().info.status, SolveStatus::Unsolved);
     for (status, code, usable, budget) in [
         (SolveStatus::Unsolved, 0, false, None),

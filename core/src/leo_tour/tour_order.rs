@@ -144,7 +144,7 @@ pub fn solve_sequence(
     // The arcs' settings are every estimate's: out of range, each would be refused.
     arc_settings
         .check_ranges()
-        .map_err(SequenceError::InvalidSetting)?;
+        .map_err(SequenceError::InvalidArcSetting)?;
     let SequenceWorkspace { states, arcs, arc } = workspace;
     states.clear();
     arcs.clear();
@@ -207,7 +207,7 @@ pub struct LeoSequence;
 
 crate::impl_planner!(
     LeoSequence: SequenceProblem, SequencePlanSettings, SequenceWorkspace, Sequence,
-    SequenceError, SequenceStatus, crate::wire::Planner::LeoSequence, solve_with,
+    SequenceError, SequenceStatus, LeoSequence, solve_with,
     reset |out| out.reset()
 );
 
@@ -503,7 +503,7 @@ mod tests {
         };
         assert_eq!(
             refusal.setting,
-            super::super::sequence::SettingId::BoundMargin.into()
+            super::super::sequence::SettingId::BoundMargin
         );
         assert!(refusal.value.is_nan());
         assert!(
@@ -521,16 +521,16 @@ mod tests {
             ..Settings::default()
         };
         let e = choose_order(&tour(&[a, b]), &s, &bad_arc).unwrap_err();
-        let SequenceError::InvalidSetting(refusal) = e else {
+        let SequenceError::InvalidArcSetting(refusal) = e else {
             panic!("{e:?}")
         };
-        assert_eq!(refusal.setting, super::super::SettingId::StepS.into());
+        assert_eq!(refusal.setting, super::super::SettingId::StepS);
     }
 
     #[test]
     fn the_sequencing_is_a_planner_of_the_contract() {
         use crate::contract::{Planner, Status};
-        assert_eq!(LeoSequence::KIND, crate::wire::Planner::LeoSequence);
+        assert_eq!(LeoSequence::KIND, crate::contract::PlannerKind::LeoSequence);
         assert_eq!(Sequence::new().info.status, SequenceStatus::Unsolved);
         assert_eq!(SequenceStatus::default().code(), 0);
         assert_eq!(SequenceStatus::Optimal.code(), 1);

@@ -25,7 +25,7 @@ crate::settings_table! {
     /// their cost.
     pub struct Settings;
     /// The LEO arc's settings, by name (stable codes on the wire and in the C interface).
-    pub enum SettingId in crate::limits::Setting::LeoArc;
+    pub enum SettingId for LeoArc;
     {
         /// Gravitational parameter, km^3/s^2.
         mu_km3_s2, MuKm3S2 = 0: f64 = EARTH_MU_KM3_S2,
@@ -285,7 +285,7 @@ impl Field {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub enum PlanError {
     /// A setting is out of its range: the setting, the value and the range.
-    InvalidSetting(SettingError),
+    InvalidSetting(SettingError<SettingId>),
     /// A value is NaN, infinite or outside `[min, max]`.
     OutOfRange {
         /// Which field.

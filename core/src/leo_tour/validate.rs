@@ -36,7 +36,7 @@ pub fn check(problem: &ArcProblem, settings: &Settings) -> Result<(), PlanError>
     )?;
     settings.check_ranges().map_err(PlanError::InvalidSetting)?;
     check_range(
-        SettingId::MinGapS.into(),
+        SettingId::MinGapS,
         settings.min_gap_s,
         Range::closed(0.0, problem.duration_s / 8.0),
     )

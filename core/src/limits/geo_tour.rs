@@ -30,19 +30,22 @@ impl Limits {
             targets,
             f64::from(self.targets),
         )?;
-        settings.check_limits(&self.settings)
+        settings
+            .check_limits(&self.settings)
+            .map_err(|v| v.naming(Setting::from))
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::contract::Rule;
     use crate::geo_tour::SettingId;
-    use crate::limits::Rule;
 
     impl Limits {
         fn check_settings(&self, s: &Settings) -> Result<(), LimitViolation> {
             s.check_limits(&self.settings)
+                .map_err(|v| v.naming(Setting::from))
         }
     }
 

@@ -67,14 +67,15 @@ impl Limits {
     /// The first [`LimitViolation`], in declaration order.
     pub fn check_settings(&self, s: &Settings) -> Result<(), LimitViolation> {
         s.check_limits(&self.settings)
+            .map_err(|v| v.naming(Setting::from))
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::contract::Rule;
     use crate::impulsive::SettingId;
-    use crate::limits::Rule;
 
     #[test]
     fn defaults_pass_and_the_issue_request_is_named() {

@@ -102,11 +102,11 @@ fn sin_inclination(orbit: &OrbitForm) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::contract::Rule;
     use crate::impulsive::{
         equinoctial_of, osculating_state_of_mean, roe_of, CartesianState, ImpulsePlan,
         MeanElements, RelativeElements,
     };
-    use crate::limits::Rule;
 
     fn chief() -> MeanElements {
         MeanElements::test_sso_chief()
@@ -257,7 +257,7 @@ mod tests {
             )
         );
         assert!((e.value - 1e-4).abs() < 1e-12, "{}", e.value);
-        assert_eq!(e.setting.planner(), crate::wire::Planner::Impulsive);
+        assert_eq!(e.setting.planner(), crate::contract::PlannerKind::Impulsive);
     }
 
     #[test]

@@ -51,7 +51,9 @@ impl Limits {
             f64::from(self.clients),
         )?;
         self.check_impulses(problem.impulses)?;
-        settings.check_limits(&self.sequence)?;
+        settings
+            .check_limits(&self.sequence)
+            .map_err(|v| v.naming(Setting::from))?;
         self.check_settings(arc_settings)
     }
 
@@ -73,14 +75,15 @@ impl Limits {
     /// The first [`LimitViolation`], in declaration order.
     pub fn check_settings(&self, s: &Settings) -> Result<(), LimitViolation> {
         s.check_limits(&self.arc)
+            .map_err(|v| v.naming(Setting::from))
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::contract::Rule;
     use crate::leo_tour::SettingId;
-    use crate::limits::Rule;
 
     #[test]
     fn defaults_pass_and_a_loosened_setting_is_named() {
@@ -102,7 +105,7 @@ mod tests {
             )
         );
         assert_eq!(e.setting.name(), "hop_rounds");
-        assert_eq!(e.setting.planner(), crate::wire::Planner::LeoArc);
+        assert_eq!(e.setting.planner(), crate::contract::PlannerKind::LeoArc);
         let e = l
             .check_settings(&Settings {
                 search_min_step_s: 1e-3,

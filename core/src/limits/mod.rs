@@ -54,6 +54,7 @@ mod impulsive_forms;
 pub mod leo_tour;
 pub mod pseudospectral;
 
+use crate::contract::{PlannerKind, Rule};
 use crate::wire::Request;
 use serde::{Deserialize, Serialize};
 
@@ -91,14 +92,13 @@ impl Setting {
     }
 
     /// The planner the setting belongs to.
-    pub const fn planner(self) -> crate::wire::Planner {
-        use crate::wire::Planner;
+    pub const fn planner(self) -> PlannerKind {
         match self {
-            Self::Pseudospectral(_) => Planner::Pseudospectral,
-            Self::Impulsive(_) => Planner::Impulsive,
-            Self::GeoTour(_) => Planner::GeoTour,
-            Self::LeoArc(_) => Planner::LeoArc,
-            Self::LeoSequence(_) => Planner::LeoSequence,
+            Self::Pseudospectral(_) => PlannerKind::Pseudospectral,
+            Self::Impulsive(_) => PlannerKind::Impulsive,
+            Self::GeoTour(_) => PlannerKind::GeoTour,
+            Self::LeoArc(_) => PlannerKind::LeoArc,
+            Self::LeoSequence(_) => PlannerKind::LeoSequence,
             Self::Problem(p) => p.planner(),
         }
     }
@@ -178,79 +178,44 @@ impl ProblemLimit {
     }
 
     /// The planner the quantity belongs to.
-    pub const fn planner(self) -> crate::wire::Planner {
-        use crate::wire::Planner;
+    pub const fn planner(self) -> PlannerKind {
         match self {
-            Self::Spacecraft | Self::Degree => Planner::Pseudospectral,
-            Self::Targets => Planner::GeoTour,
-            Self::ArcImpulses => Planner::LeoArc,
-            Self::Clients => Planner::LeoSequence,
-            _ => Planner::Impulsive,
+            Self::Spacecraft | Self::Degree => PlannerKind::Pseudospectral,
+            Self::Targets => PlannerKind::GeoTour,
+            Self::ArcImpulses => PlannerKind::LeoArc,
+            Self::Clients => PlannerKind::LeoSequence,
+            _ => PlannerKind::Impulsive,
         }
     }
 }
 
-/// How a value must relate to its limit.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[repr(u8)]
-pub enum Rule {
-    /// At most the limit (loop bounds, tolerances).
-    AtMost = 0,
-    /// At least the limit (margins and singularity thresholds).
-    AtLeast = 1,
-    /// Must be on (a safety check); value and limit are 0 (off) or 1 (on).
-    MustBeOn = 2,
-    /// Must be off (extra work the limits do not allow); value and limit are 0 or 1.
-    MustBeOff = 3,
-    /// Strictly below the limit (an eccentricity below 1).
-    Below = 4,
-}
+/// A request outside the limits, naming any planner's setting or problem quantity.
+pub type LimitViolation = crate::contract::LimitViolation<Setting>;
 
-/// A request outside the limits: which setting, the requested value, the limit and the rule.
-/// Integers and flags are carried as `f64` (exact up to 2^53; flags as 0 / 1).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct LimitViolation {
-    /// The setting.
-    pub setting: Setting,
-    /// The value the request asked for.
-    pub value: f64,
-    /// The limit it broke.
-    pub limit: f64,
-    /// How the value must relate to the limit.
-    pub rule: Rule,
-}
-
-impl core::fmt::Display for LimitViolation {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        let name = self.setting.name();
-        let onoff = |v: f64| if v > 0.5 { "on" } else { "off" };
-        match self.rule {
-            Rule::AtMost => write!(
-                f,
-                "{name} = {} is above the limit {}",
-                self.value, self.limit
-            ),
-            Rule::AtLeast => write!(
-                f,
-                "{name} = {} is below the limit {}",
-                self.value, self.limit
-            ),
-            Rule::Below => write!(
-                f,
-                "{name} = {} is not below the limit {}",
-                self.value, self.limit
-            ),
-            Rule::MustBeOn | Rule::MustBeOff => write!(
-                f,
-                "{name} = {}: the limits require it {}",
-                onoff(self.value),
-                onoff(self.limit)
-            ),
-        }
+impl crate::contract::SettingName for Setting {
+    fn setting_name(self) -> &'static str {
+        self.name()
     }
 }
 
-impl core::error::Error for LimitViolation {}
+/// A planner's settings id names its setting on the request path.
+macro_rules! setting_of_planner {
+    ($($Variant:ident($Id:ty)),+ $(,)?) => {$(
+        impl From<$Id> for Setting {
+            fn from(id: $Id) -> Self {
+                Self::$Variant(id)
+            }
+        }
+    )+};
+}
+
+setting_of_planner!(
+    Pseudospectral(crate::pseudospectral::SettingId),
+    Impulsive(crate::impulsive::SettingId),
+    GeoTour(crate::geo_tour::SettingId),
+    LeoArc(crate::leo_tour::SettingId),
+    LeoSequence(crate::leo_tour::sequence::SettingId),
+);
 
 planner_limits! {
     /// The limits of every planner (built in: each planner's default settings and compiled

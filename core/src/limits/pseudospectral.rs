@@ -26,7 +26,9 @@ impl Limits {
     /// The first [`LimitViolation`]: sizes first, then settings in declaration order.
     pub fn check(&self, problem: &Problem, settings: &Settings) -> Result<(), LimitViolation> {
         self.check_problem(problem)?;
-        settings.check_limits(&self.settings)
+        settings
+            .check_limits(&self.settings)
+            .map_err(|v| v.naming(Setting::from))
     }
 
     /// Check the problem sizes that bound a solve's loops (M and N), up to the compiled
@@ -56,11 +58,12 @@ impl Limits {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::limits::Rule;
+    use crate::contract::Rule;
     use crate::pseudospectral::SettingId;
 
     fn check_settings(s: &Settings) -> Result<(), LimitViolation> {
         s.check_limits(&Limits::default().settings)
+            .map_err(|v| v.naming(Setting::from))
     }
 
     #[test]

@@ -98,7 +98,7 @@ pub enum PlanError {
         axis: u8,
     } = 6,
     /// A setting is out of its range: the setting, the value and the range.
-    InvalidSetting(SettingError) = 7,
+    InvalidSetting(SettingError<super::SettingId>) = 7,
     /// The warm start does not match the problem (spacecraft count or degree).
     WarmStartMismatch = 8,
     /// A number is outside the range the planner is built for: every magnitude at most

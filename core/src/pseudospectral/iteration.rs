@@ -206,6 +206,10 @@ impl Sqp {
             break outcome;
         };
         if outcome == QpOutcome::Elastic {
+            // Charged as it runs, at its dearest path (every row named); the next step's
+            // `spend` is bounded by it.
+            ws.work
+                .charge(work_units::name_unmet(&ws.setup.transcription));
             name_unmet(
                 &ws.setup.transcription,
                 &ws.iterates.trial,
@@ -219,13 +223,16 @@ impl Sqp {
         // A pair that cannot be separated may only be swerving the wrong way: turn the
         // fallback direction of every named pair by 45 degrees and linearise again, at most
         // `MAX_SWERVE_TURNS` times per run, before the answer is `Infeasible`.
-        if outcome == QpOutcome::Elastic
-            && self.turns < MAX_SWERVE_TURNS
-            && turn_unmet_pairs(ws, &out.unmet, self.turns.saturating_add(1))
-        {
-            self.turns = self.turns.saturating_add(1);
-            out.unmet = Unmet::new();
-            return Step::Linearise;
+        if outcome == QpOutcome::Elastic && self.turns < MAX_SWERVE_TURNS {
+            // Charged as it runs, at its dearest path (every pair turned); the next step's
+            // `spend` is bounded by it.
+            ws.work
+                .charge(work_units::turn_swerves(&ws.setup.transcription));
+            if turn_unmet_pairs(ws, &out.unmet, self.turns.saturating_add(1)) {
+                self.turns = self.turns.saturating_add(1);
+                out.unmet = Unmet::new();
+                return Step::Linearise;
+            }
         }
         let failure = match outcome {
             QpOutcome::Optimal | QpOutcome::Approximate => None,
@@ -346,6 +353,8 @@ impl Sqp {
             if !settings.continuous_verification {
                 return Step::Done(SqpEnd::Converged);
             }
+            ws.work
+                .charge(work_units::convergence_search(&ws.setup.transcription));
             let (deepest, clean) = follow_minima(ws, settings, false);
             if deepest <= 0.0 {
                 ws.verification.searched_clean = clean;
@@ -440,7 +449,7 @@ pub(super) const MAX_SWERVE_TURNS: u8 = 2;
 /// keep-out), to `eighths` of a turn from its first (`swerve::turn_fallback`). A fallback
 /// direction only acts where a violated check meets head on, so turning one elsewhere changes
 /// nothing. Returns whether any pair was turned.
-fn turn_unmet_pairs(ws: &mut Workspace, unmet: &Unmet, eighths: u8) -> bool {
+pub(super) fn turn_unmet_pairs(ws: &mut Workspace, unmet: &Unmet, eighths: u8) -> bool {
     let keep_out_named = unmet
         .named()
         .iter()
@@ -464,7 +473,7 @@ fn turn_unmet_pairs(ws: &mut Workspace, unmet: &Unmet, eighths: u8) -> bool {
 /// the test by which the elastic QP said a slack is left, so the list is never empty then), in
 /// the list's order. Not inlined: its frame is on the stack only while it runs.
 #[inline(never)]
-fn name_unmet(tr: &Transcription, y: &Coefficients, tol: f64, unmet: &mut Unmet) {
+pub(super) fn name_unmet(tr: &Transcription, y: &Coefficients, tol: f64, unmet: &mut Unmet) {
     *unmet = Unmet::new();
     let free = tr.basis.free;
     let mut offer = |id: RowId, scale: f64| {

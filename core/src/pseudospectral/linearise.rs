@@ -10,6 +10,7 @@ use super::transcription::{
     block_dot, spacecraft_blocks, NodeDots, Pair, Transcription, MAX_POINTS,
 };
 use super::verify::{Minimum, MAX_PRODUCT};
+use super::work_units;
 use super::workspace::Workspace;
 use crate::capacity::{MAX_CHECKS_PER_PAIR, MAX_FREE_PER_AXIS, MAX_NODES, MAX_PAIRS};
 use crate::indexed::IndexedExt as _;
@@ -255,6 +256,10 @@ pub(super) fn follow_minima(ws: &mut Workspace, settings: &Settings, place: bool
         }
         // A pair whose minimum cannot be searched is not clean (and the returned answer's own
         // search, `output::write_solution`, leaves it unverified).
+        // Charged as it runs (each pair searched at its dearest cost); it then bounds the
+        // next step the meter allows.
+        ws.work
+            .charge(work_units::pair_search(&ws.setup.transcription));
         let Some(minimum) = pair_minimum(ws, pair, settings) else {
             continue;
         };

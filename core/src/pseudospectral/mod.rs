@@ -29,6 +29,7 @@ pub use settings::{
 pub use solution::{Solution, Unmet, UnmetConstraint, MAX_UNMET};
 pub use status::{SolveInfo, SolveStatus, Stage};
 mod workspace;
+pub use work_units::{MAX_INSTRUCTIONS_PER_UNIT, MAX_SOLVE_INSTRUCTIONS};
 pub use workspace::Workspace;
 
 /// Planner A in the planners' contract ([`crate::contract::Planner`]): [`solve`] from the
@@ -38,7 +39,7 @@ pub struct Pseudospectral;
 
 crate::impl_planner!(
     Pseudospectral: Problem, Settings, Workspace, Solution, PlanError, SolveStatus,
-    crate::wire::Planner::Pseudospectral, solve, reset |out| out.reset()
+    Pseudospectral, solve, reset |out| out.reset()
 );
 
 /// Solve a reconfiguration problem from the analytic Pontryagin guess.
@@ -81,6 +82,8 @@ mod curvature;
 mod guess;
 mod iteration;
 mod kernel;
+#[doc(hidden)]
+pub mod kernels;
 mod lanczos;
 mod lgl;
 mod linalg;

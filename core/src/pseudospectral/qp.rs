@@ -67,7 +67,15 @@ pub(crate) fn solve(
         let picked = match hinted {
             Some(row) => Some(row),
             None => {
-                if !work.spend(work_units::qp_scan(tr)) {
+                // With rows held elastic, no violated row found is followed by the two scans
+                // of the held rows (`most_met_elastic`, then `elastic_slack_left` at the end):
+                // charged with the scan, at their dearest (both run).
+                let elastic = if state.elastic_count > 0 {
+                    work_units::elastic_scans(tr, state.elastic_count)
+                } else {
+                    0
+                };
+                if !work.spend(work_units::qp_scan(tr).saturating_add(elastic)) {
                     return QpOutcome::IterationLimit;
                 }
                 qp_scan::most_violated(tr, state, y)
@@ -237,6 +245,9 @@ pub(crate) fn solve(
                 return QpOutcome::Infeasible;
             };
             let leaving_id = state.active.get(leaving).copied();
+            // The drop re-factors the Gram matrix of the rows left: charged as it runs (the
+            // next step's `spend` is bounded by it).
+            work.charge(work_units::refactor(tr, k.saturating_sub(1)));
             if !state.drop_row(tr, leaving) {
                 return QpOutcome::FactorFailure;
             }

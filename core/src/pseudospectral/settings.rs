@@ -8,7 +8,8 @@ pub const MAX_ACCELERATION_MEMORY: u8 = super::anderson::MAX_MEMORY as u8;
 /// Most verification rounds a solve may be set to.
 pub const MAX_VERIFY_ROUNDS: u8 = 8;
 
-/// Default work budget, in units (`docs/firmware.md`, "Work budget").
+/// Default work budget, in units: `DEFAULT_WORK_BUDGET x MAX_INSTRUCTIONS_PER_UNIT` <= 400 M
+/// Cortex-M7 instructions (`docs/planner-a.md`, "Work budget").
 pub const DEFAULT_WORK_BUDGET: u64 = 40_000_000;
 
 crate::settings_table! {
@@ -19,7 +20,7 @@ crate::settings_table! {
     /// `O(MAX_ACTIVE^2 + M N (N - 3))` flops, and by the work budget (`docs/firmware.md`).
     pub struct Settings;
     /// Planner A's settings, by name (stable codes on the wire and in the C interface).
-    pub enum SettingId in crate::limits::Setting::Pseudospectral;
+    pub enum SettingId for Pseudospectral;
     {
         /// Most convex subproblems (SQP / convex-concave iterations) per verification round.
         sqp_max_iter, SqpMaxIter = 0: u16 = 60,
@@ -70,8 +71,9 @@ crate::settings_table! {
         unit "", range Range::at_least(1.0), limit AtMost;
         /// Work budget of a solve, in work units (`crate::work`): past it the solve stops with
         /// `SolveStatus::BudgetExhausted`. Part of it is kept for the checks of the returned
-        /// answer. The default bounds the worst request within the default limits to 400 M
-        /// Cortex-M7 instructions (`docs/firmware.md`, "Work budget").
+        /// answer. No charged step costs more than `MAX_INSTRUCTIONS_PER_UNIT` (10) Cortex-M7
+        /// instructions per unit, so the default bounds a solve to 400 M instructions
+        /// (`docs/planner-a.md`, "Work budget").
         work_budget, WorkBudget = 12: u64 = DEFAULT_WORK_BUDGET,
         unit "units", range Range::any(), limit AtMost;
     }
@@ -82,7 +84,7 @@ impl Settings {
     ///
     /// # Errors
     /// [`SettingError`] naming the first setting out of range, its value and its range.
-    pub fn validate(&self) -> Result<(), SettingError> {
+    pub fn validate(&self) -> Result<(), SettingError<SettingId>> {
         self.check_ranges()
     }
 }

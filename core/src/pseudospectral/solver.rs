@@ -50,7 +50,27 @@ pub(crate) fn solve(
             }
         }
     }
-    // The analytic guess per axis (eq. 24-26); an unreachable axis rejects the request.
+    ws.setup.laws = guess_laws(problem, settings)?;
+    out.reset();
+    out.degree = problem.degree;
+    out.spacecraft_count = u8_of(m);
+    out.horizon_tu = problem.horizon_tu;
+    let status = run(problem, settings, ws, warm, lift, out);
+    out.info.status = status;
+    if status != SolveStatus::Infeasible {
+        // Named by an elastic subproblem of a run whose answer was not kept (a saddle escape's
+        // or a flat probe's): the list belongs to `Infeasible` alone.
+        out.unmet = super::solution::Unmet::new();
+    }
+    out.info.work_units = ws.work.used();
+    Ok(())
+}
+
+/// The analytic guess per axis (eq. 24-26); an unreachable axis rejects the request.
+pub(super) fn guess_laws(
+    problem: &Problem,
+    settings: &Settings,
+) -> Result<[[AxisLaw; 3]; MAX_SPACECRAFT], PlanError> {
     let mut laws = [[AxisLaw::default(); 3]; MAX_SPACECRAFT];
     for (sc, (row, craft)) in laws.iter_mut().zip(problem.spacecraft.iter()).indexed() {
         let ends = per_axis(&craft.initial_state)
@@ -80,20 +100,7 @@ pub(crate) fn solve(
             };
         }
     }
-    ws.setup.laws = laws;
-    out.reset();
-    out.degree = problem.degree;
-    out.spacecraft_count = u8_of(m);
-    out.horizon_tu = problem.horizon_tu;
-    let status = run(problem, settings, ws, warm, lift, out);
-    out.info.status = status;
-    if status != SolveStatus::Infeasible {
-        // Named by an elastic subproblem of a run whose answer was not kept (a saddle escape's
-        // or a flat probe's): the list belongs to `Infeasible` alone.
-        out.unmet = super::solution::Unmet::new();
-    }
-    out.info.work_units = ws.work.used();
-    Ok(())
+    Ok(laws)
 }
 
 /// Set up and iterate; returns the final status. `out` receives the solution in every case.
@@ -133,6 +140,7 @@ fn run(
                 out.info.saddle_escapes = escapes;
                 let saddle_cost = out.cost;
                 ws.iterates.saved = ws.iterates.iterate;
+                ws.work.charge(work_units::step_along());
                 step_along(ws, 1.0);
                 answer = iterate_and_check(ws, settings, out);
                 if !answer.status.is_usable() || out.cost >= saddle_cost {
@@ -161,6 +169,7 @@ fn run(
             Step::ProbeFlat { side, flat_cost } => {
                 if ws.work.has_room() {
                     ws.iterates.saved = ws.iterates.iterate;
+                    ws.work.charge(work_units::step_along());
                     step_along(ws, side);
                     answer = iterate_and_check(ws, settings, out);
                     let tolerance = certificate::FLAT_PROBE_TOL_REL * (1.0 + flat_cost);
@@ -297,7 +306,7 @@ pub(crate) const MAX_SADDLE_ESCAPES: u8 = 2;
 /// largest component has the sign of `side` (deterministic), and `alpha` a quarter of `|y|` (at
 /// least 0.1): large enough to leave the saddle's neighbourhood, small enough to stay in its
 /// basin.
-fn step_along(ws: &mut Workspace, side: f64) {
+pub(super) fn step_along(ws: &mut Workspace, side: f64) {
     let direction = &ws.iterates.trial;
     let mut largest = 0.0f64;
     let mut norm2 = 0.0;
@@ -343,7 +352,7 @@ fn iterate_and_verify(ws: &mut Workspace, settings: &Settings, out: &mut Solutio
 /// One continuous-verification round after a run of the iteration that ended with `end`, the
 /// `rounds + 1`-th: add a check where a pair dips below d, or raise its margin. Returns whether
 /// it changed the transcription (then the iteration runs again).
-fn verification_round(
+pub(super) fn verification_round(
     ws: &mut Workspace,
     settings: &Settings,
     out: &mut Solution,
@@ -419,7 +428,12 @@ fn verification_round(
 /// `iterate_and_check` calls beside it (inlined there, it added 8.2 KB to the M7's stack
 /// high-water).
 #[inline(never)]
-fn finish(ws: &mut Workspace, settings: &Settings, out: &mut Solution, end: SqpEnd) -> SolveStatus {
+pub(super) fn finish(
+    ws: &mut Workspace,
+    settings: &Settings,
+    out: &mut Solution,
+    end: SqpEnd,
+) -> SolveStatus {
     ws.work.charge(work_units::finish(
         &ws.setup.transcription,
         ws.iterates.qp.count,

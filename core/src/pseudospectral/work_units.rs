@@ -1,6 +1,10 @@
 //! Planner A's work units: the cost of each metered step from the transcription's sizes, about
-//! one unit per multiply-add of its inner loops (calibrated against M7 instructions in
-//! `docs/firmware.md`). The hooks charge these at their loop heads (`crate::work::Meter`).
+//! one unit per multiply-add of its inner loops, weighted so that no step costs more than
+//! [`MAX_INSTRUCTIONS_PER_UNIT`] Cortex-M7 instructions per unit it is charged: every charged
+//! step has a case in `kernels.rs` run on its dearest path, and the QEMU test
+//! `tests/tests/qemu_firmware/kernels_a_image.rs` fails when a case costs more (the table in
+//! `docs/planner-a.md`, "Work budget"). The hooks charge these at their loop heads
+//! (`crate::work::Meter`).
 //!
 //! Sizes: `blocks` = 3 M coefficient blocks of `free` variables, `nodes` = N + 1, `pairs`,
 //! `checks` = keep-out rows over all pairs, `k` = rows in the QP's working set.
@@ -9,8 +13,23 @@ use super::certificate::POWER_ITERATIONS;
 use super::curvature::MAX_ENVELOPES;
 use super::kernel::MAX_BLOCKS;
 use super::transcription::Transcription;
-use crate::capacity::{MAX_ACTIVE, MAX_FREE_PER_AXIS};
+use crate::capacity::{MAX_ACTIVE, MAX_CHECKS_PER_PAIR, MAX_FREE_PER_AXIS, MAX_NODES};
 use crate::work::units;
+
+/// The most Cortex-M7 instructions any charged step may cost per unit it is charged, on every
+/// kernel case (`kernels.rs`, checked on the M7 by `tests/tests/qemu_firmware/kernels_a_image.rs`):
+/// a solve within `budget` units then runs at most `budget x MAX_INSTRUCTIONS_PER_UNIT`
+/// instructions on the paths the cases cover (the default 40 M units: 400 M instructions).
+pub const MAX_INSTRUCTIONS_PER_UNIT: u64 = 10;
+
+/// The most Cortex-M7 instructions a planner-A solve within the default budget may run (issue 33
+/// item 1): `DEFAULT_WORK_BUDGET x MAX_INSTRUCTIONS_PER_UNIT` must not pass it.
+pub const MAX_SOLVE_INSTRUCTIONS: u64 = 400_000_000;
+
+const _: () = assert!(
+    super::settings::DEFAULT_WORK_BUDGET.saturating_mul(MAX_INSTRUCTIONS_PER_UNIT)
+        <= MAX_SOLVE_INSTRUCTIONS
+);
 
 /// A coefficient vector at capacity: the loops clear and copy whole fixed-size arrays, a cost
 /// that does not shrink with the problem.
@@ -41,55 +60,129 @@ fn size(tr: &Transcription) -> Size {
     }
 }
 
-/// Building the transcription: LGL nodes and matrices, the Bernstein conversion, the basis
-/// (cubic in the nodes), and the guess's node values.
+/// Building the transcription: the analytic guess, LGL nodes and matrices, the Bernstein
+/// conversion, the basis (cubic in the nodes), each pair's pruning window and test points
+/// ([`SETUP_PAIR`]), the first iterate, and the fixed-size clears ([`SETUP_FIXED`]).
 pub(super) fn setup(tr: &Transcription) -> u64 {
     let s = size(tr);
-    units(&[8, s.nodes, s.nodes, s.nodes]).saturating_add(units(&[s.blocks, s.nodes, s.free]))
+    units(&[8, s.nodes, s.nodes, s.nodes])
+        .saturating_add(units(&[s.blocks, s.nodes, s.free]))
+        .saturating_add(units(&[SETUP_PAIR, s.pairs]))
+        .saturating_add(SETUP_FIXED)
 }
 
-/// One SQP iteration's set-up: follow each pair's continuous minimum (a refinement over the
-/// nodes), linearise every check (its relative position over the nodes and its row over the
-/// free variables), and the Anderson step over the coefficients.
+/// A pair's part of the set-up (its window, its test points and their rows): measured at most
+/// 115 k M7 instructions at N = 10 and 130 k at N = 24 (`kernels.rs`, `setup-*`).
+const SETUP_PAIR: usize = 14_000;
+/// The set-up's part that does not scale with the sizes (the guess's Newton solves, clears
+/// of whole fixed-size arrays).
+const SETUP_FIXED: u64 = 12_000;
+
+/// One SQP iteration's set-up: scan each pair's checks for near contact (the continuous
+/// minima searched are charged per pair as they run, [`pair_search`]), linearise every check
+/// (its relative position over the nodes and its row over the free variables), the Anderson
+/// step over the coefficients, and the line search's and convergence test's passes over them.
 pub(super) fn sqp_iteration(tr: &Transcription) -> u64 {
     let s = size(tr);
-    units(&[60, s.pairs, s.nodes])
-        .saturating_add(units(&[6, s.checks, s.nodes.saturating_add(s.free)]))
-        .saturating_add(units(&[4, s.blocks, s.free]))
-        .saturating_add(units(&[8, VECTOR]))
+    scaled(
+        units(&[60, s.pairs, s.nodes])
+            .saturating_add(units(&[9, s.checks, s.nodes.saturating_add(s.free)]))
+            .saturating_add(units(&[6, s.blocks, s.free]))
+            .saturating_add(units(&[12, VECTOR])),
+        10,
+        23,
+    )
 }
 
-/// The QP's search for the most violated row: every control row (blocks x nodes, a dot product
-/// over `free`) and every keep-out row (six blocks' worth of `free`, but pruned and active rows
-/// are skipped: about half of them, calibrated).
+/// `units x num / den`, saturating: a weight rescaled to the M7's measured cost (each kernel's
+/// dearest case at about 9 instructions per unit).
+const fn scaled(units: u64, num: u64, den: u64) -> u64 {
+    // A zero `den` (none is written) would charge the most, not panic.
+    match units.saturating_mul(num).checked_div(den) {
+        Some(scaled) => scaled,
+        None => u64::MAX,
+    }
+}
+
+/// One pair's continuous minimum searched by `linearise::follow_minima` (the SQP's moving
+/// checks, and the convergence test's search at the answer, which was charged nowhere): the
+/// search itself (`pair_minimum`) and the pair's share of the check scan.
+pub(super) fn pair_search(tr: &Transcription) -> u64 {
+    let s = size(tr);
+    scaled(
+        pair_minimum(&s).saturating_add(units(&[30, MAX_CHECKS_PER_PAIR])),
+        10,
+        23,
+    )
+}
+
+/// The convergence test's search outside its pairs' minima (charged by [`pair_search`]): the
+/// node table of the iterate (cleared at capacity) and every pair's check scan.
+pub(super) fn convergence_search(tr: &Transcription) -> u64 {
+    let s = size(tr);
+    scaled(
+        units(&[s.blocks, s.nodes, s.free])
+            .saturating_add(units(&[MAX_BLOCKS, MAX_NODES]))
+            .saturating_add(units(&[30, s.checks])),
+        2,
+        5,
+    )
+}
+
+/// The QP's search for the most violated row, at its dearest path (no row active, pruned or
+/// elastic: every row evaluated): every control row (blocks x nodes, a dot product over
+/// `free`), the node table (cleared at capacity), and every keep-out row (its relative
+/// position from the node table and its normal, about 300 M7 instructions whatever `free`).
 pub(super) fn qp_scan(tr: &Transcription) -> u64 {
     let s = size(tr);
-    units(&[s.blocks, s.nodes, s.free]).saturating_add(units(&[3, s.checks, s.free]))
+    units(&[s.blocks, s.nodes, s.free.saturating_add(2)])
+        .saturating_add(units(&[SCAN_CHECK, s.checks]))
+        .saturating_add(units(&[MAX_BLOCKS, MAX_NODES]))
 }
 
-/// The check of the previous QP's `hint` working rows before a scan: each row's view and its
-/// product with the iterate (a keep-out row spans six blocks).
+/// A keep-out row's evaluation in the scan: about 300 M7 instructions whatever `free` (fitted
+/// to `qp-scan-cap-w0`, `qp-scan-n10-w3` and `qp-scan-small-w1`).
+const SCAN_CHECK: usize = 34;
+
+/// The check of the previous QP's `hint` working rows before a scan: each row's view (about
+/// 1,000 M7 instructions for a keep-out row whatever `free`) and its product with the iterate
+/// (a keep-out row spans six blocks).
 pub(super) fn qp_hint(tr: &Transcription, hint: usize) -> u64 {
     let s = size(tr);
-    units(&[6, hint, s.free]).saturating_add(units(&[8, hint]))
+    scaled(
+        units(&[6, hint, s.free])
+            .saturating_add(units(&[150, hint]))
+            .saturating_add(100),
+        5,
+        9,
+    )
 }
 
 /// One active-set step with `k` working rows: `k` row products and updates (a keep-out row spans
 /// six blocks), two triangular solves of order `k`, and the dense direction.
 pub(super) fn qp_step(tr: &Transcription, k: usize) -> u64 {
     let s = size(tr);
-    units(&[12, k, s.free])
-        .saturating_add(units(&[2, k, k]))
-        .saturating_add(units(&[4, s.blocks, s.free]))
-        .saturating_add(units(&[2, VECTOR]))
+    scaled(
+        units(&[12, k, s.free])
+            .saturating_add(units(&[2, k, k]))
+            .saturating_add(units(&[4, s.blocks, s.free]))
+            .saturating_add(units(&[2, VECTOR])),
+        8,
+        11,
+    )
 }
 
 /// One sweep of the dual coordinate ascent: every control row and every keep-out row, each
 /// evaluated and (when it moves) applied.
 pub(super) fn dual_sweep(tr: &Transcription) -> u64 {
     let s = size(tr);
-    units(&[2, s.blocks, s.nodes, s.free]).saturating_add(units(&[24, s.checks, s.free]))
+    units(&[2, s.blocks, s.nodes, s.free])
+        .saturating_add(units(&[s.checks, s.free.saturating_add(DUAL_CHECK)]))
 }
+
+/// A keep-out row's evaluation and update in a dual sweep past its `free` products: about 630
+/// M7 instructions plus 7 per free variable (fitted to `dual-1-cap-w3` and `dual-4-n10-w3`).
+const DUAL_CHECK: usize = 75;
 
 /// One pair's continuous minimum: Bernstein coefficients of the three axes, the squared
 /// distance's product coefficients, and the branch-and-bound subdivisions (degree 2N).
@@ -97,10 +190,15 @@ fn pair_minimum(s: &Size) -> u64 {
     units(&[40, s.nodes, s.nodes])
 }
 
-/// One verification round: every pair's continuous minimum.
+/// One verification round: every pair's continuous minimum, about `63 nodes^2 + 505 nodes +
+/// 3,600` M7 instructions a pair (fitted to `verify-cap-w3`, `verify-n10-w3` and
+/// `verify-small-w1`).
 pub(super) fn verify_round(tr: &Transcription) -> u64 {
     let s = size(tr);
-    units(&[s.pairs]).saturating_mul(pair_minimum(&s))
+    let pair = units(&[7, s.nodes, s.nodes])
+        .saturating_add(units(&[56, s.nodes]))
+        .saturating_add(400);
+    units(&[s.pairs]).saturating_mul(pair)
 }
 
 /// The final checks of a returned iterate (`solver::finish`): the continuous verification of
@@ -113,8 +211,9 @@ pub(super) fn finish(tr: &Transcription, working: usize) -> u64 {
     // triangular solves), each active keep-out row's curvature (over the nodes), the envelope
     // corrections (at most `MAX_ENVELOPES`, six blocks each way), the dense vector operations.
     let power_step = projected_curvature(&s, working);
-    verify_round(tr)
-        .saturating_add(units(&[6, s.blocks, s.nodes, s.free]))
+    units(&[s.pairs])
+        .saturating_mul(pair_minimum(&s))
+        .saturating_add(units(&[12, s.blocks, s.nodes, s.free]))
         .saturating_add(power_step.saturating_mul(units(&[POWER_ITERATIONS])))
 }
 
@@ -147,8 +246,12 @@ fn projected_curvature(s: &Size, working: usize) -> u64 {
 pub(super) fn newton_step(tr: &Transcription, working: usize) -> u64 {
     let s = size(tr);
     let working = working.min(MAX_ACTIVE);
-    units(&[20, s.checks, s.nodes])
-        .saturating_add(units(&[2]).saturating_mul(projected_curvature(&s, working)))
+    scaled(
+        units(&[20, s.checks, s.nodes])
+            .saturating_add(units(&[2]).saturating_mul(projected_curvature(&s, working))),
+        5,
+        6,
+    )
 }
 
 /// One conjugate-gradient iteration of the second-order step with `working` rows: one
@@ -156,7 +259,82 @@ pub(super) fn newton_step(tr: &Transcription, working: usize) -> u64 {
 /// that ends early costs what it did.
 pub(super) fn newton_iteration(tr: &Transcription, working: usize) -> u64 {
     let s = size(tr);
-    projected_curvature(&s, working.min(MAX_ACTIVE))
+    scaled(projected_curvature(&s, working.min(MAX_ACTIVE)), 5, 6)
+}
+
+/// Re-factoring the Gram matrix of `k` working rows after one leaves (`QpState::drop_row`): `k
+/// (k + 1) / 2` row products (a keep-out row spans six blocks) and the Cholesky factor.
+pub(super) fn refactor(tr: &Transcription, k: usize) -> u64 {
+    let s = size(tr);
+    let k = k.min(MAX_ACTIVE);
+    let products = units(&[k, k.saturating_add(1)]) / 2;
+    scaled(
+        products
+            .saturating_mul(units(&[3, s.free]).saturating_add(REFACTOR_PRODUCT))
+            .saturating_add(units(&[k, k, k]) / 3)
+            .saturating_add(units(&[MAX_ACTIVE])),
+        4,
+        5,
+    )
+}
+
+/// A row product's part that does not scale with `free` (the two rows' views).
+const REFACTOR_PRODUCT: u64 = 60;
+
+/// The elastic QP's two scans of its held rows after a full scan found no violated row
+/// (`qp_scan::most_met_elastic`, then `qp_scan::elastic_slack_left`), with `elastic` rows held:
+/// each walks the flag tables and evaluates every held row (its view and its product with the
+/// answer, a keep-out row's six blocks at most).
+pub(super) fn elastic_scans(tr: &Transcription, elastic: usize) -> u64 {
+    let s = size(tr);
+    let walk = units(&[s.blocks, s.nodes]).saturating_add(units(&[s.checks]));
+    let rows =
+        units(&[elastic, 6, s.free]).saturating_add(units(&[elastic]).saturating_mul(ELASTIC_ROW));
+    scaled(units(&[2]).saturating_mul(walk.saturating_add(rows)), 7, 10)
+}
+
+/// An elastic row's evaluation past its product (its flag, its view and the comparison: about
+/// 300 M7 instructions per row and scan at N = 4, measured `elastic-scans-small-w1`).
+const ELASTIC_ROW: u64 = 45;
+
+/// Naming the constraints an elastic answer misses (`iteration::name_unmet`), at its dearest
+/// path (every row missed, so every row described and offered to the sorted list): every
+/// control row's and keep-out row's product with the answer, its description and its place in
+/// the list of `MAX_UNMET`.
+pub(super) fn name_unmet(tr: &Transcription) -> u64 {
+    let s = size(tr);
+    let rows = units(&[2, s.blocks, s.nodes]).saturating_add(units(&[s.checks]));
+    scaled(
+        units(&[2, s.blocks, s.nodes, s.free])
+            .saturating_add(units(&[6, s.checks, s.free]))
+            .saturating_add(rows.saturating_mul(NAMED_ROW)),
+        6,
+        7,
+    )
+}
+
+/// A named row's part past its product: its view, its description (a keep-out check's time)
+/// and its place in the sorted list of `MAX_UNMET` entries (about 550 M7 instructions per row
+/// at N = 10, measured `name-unmet-n10-w3`).
+const NAMED_ROW: u64 = 60;
+
+/// Turning the fallback swerve direction of every pair (`iteration::turn_unmet_pairs`, at its
+/// dearest path: an elastic answer naming no keep-out turns every pair): each pair's analytic
+/// closest approach (a sampled search of the guess's tracks) and the turn.
+pub(super) fn turn_swerves(tr: &Transcription) -> u64 {
+    let s = size(tr);
+    units(&[s.pairs]).saturating_mul(TURN_PAIR)
+}
+
+/// One pair's turn (`swerve::turn_fallback`): the analytic closest approach's 17 samples and up
+/// to 60 refinement steps, the relative motion there, and the rotation (37 k M7 instructions
+/// per pair measured on the crossing, `turn-swerves-cap-w3`).
+const TURN_PAIR: u64 = 4_100;
+
+/// A step off a saddle or along a flat direction (`solver::step_along`): two passes over a
+/// coefficient vector at capacity.
+pub(super) fn step_along() -> u64 {
+    units(&[2, VECTOR])
 }
 
 /// What a solve keeps back for its final checks with `working` rows in the largest working set

@@ -8,8 +8,9 @@
 //! it does not carry are not linked in (the trait's methods for them are the default `None`,
 //! which the optimiser folds away).
 
-use super::{OutcomeRef, Planner, Request};
+use super::{OutcomeRef, Request};
 use crate::contract::Planner as _;
+use crate::contract::PlannerKind;
 use crate::leo_tour::sequence::Sequence;
 use crate::leo_tour::tour_order::{LeoSequence, SequencePlanSettings, SequenceWorkspace};
 use crate::limits::Limits;
@@ -203,7 +204,7 @@ fn run_form<'a>(
     slot: Lent<'a, impulsive::Workspace, impulsive::Solution>,
 ) -> OutcomeRef<'a> {
     let Some((workspace, out)) = slot else {
-        return OutcomeRef::Unsupported(Planner::Impulsive);
+        return OutcomeRef::Unsupported(PlannerKind::Impulsive);
     };
     impulsive::Impulsive::reset(out);
     match impulsive::solve_form(problem, settings, workspace, out) {

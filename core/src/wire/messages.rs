@@ -1,6 +1,7 @@
 //! What a frame carries: the requests a feeder sends and the outcomes the service answers.
 
 use super::FrameError;
+use crate::contract::PlannerKind;
 use crate::{geo_tour, impulsive, leo_tour, pseudospectral};
 use serde::{Deserialize, Serialize};
 
@@ -9,14 +10,14 @@ use serde::{Deserialize, Serialize};
 #[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum Request {
-    /// Planner A.
+    /// PlannerKind A.
     Pseudospectral {
         /// The problem.
         problem: pseudospectral::Problem,
         /// Loop bounds and tolerances.
         settings: pseudospectral::Settings,
     },
-    /// Planner B.
+    /// PlannerKind B.
     Impulsive {
         /// The problem.
         problem: impulsive::Problem,
@@ -30,7 +31,7 @@ pub enum Request {
         /// Loop bounds, tolerances and the paper's rule.
         settings: geo_tour::Settings,
     },
-    /// Planner B with its orbits in the forms the user gave (equinoctial elements, osculating
+    /// PlannerKind B with its orbits in the forms the user gave (equinoctial elements, osculating
     /// ECI states, ROE, the deputy's own orbits), converted in the service by the core's
     /// `impulsive::forms`.
     ImpulsiveForm {
@@ -59,42 +60,13 @@ pub enum Request {
 
 impl Request {
     /// Which planner the request is for.
-    pub fn planner(&self) -> Planner {
+    pub fn planner(&self) -> PlannerKind {
         match self {
-            Self::Pseudospectral { .. } => Planner::Pseudospectral,
-            Self::Impulsive { .. } | Self::ImpulsiveForm { .. } => Planner::Impulsive,
-            Self::GeoTour { .. } => Planner::GeoTour,
-            Self::LeoArc { .. } => Planner::LeoArc,
-            Self::LeoSequence { .. } => Planner::LeoSequence,
-        }
-    }
-}
-
-/// The planners.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
-#[repr(u8)]
-pub enum Planner {
-    /// Planner A.
-    Pseudospectral = 0,
-    /// Planner B.
-    Impulsive = 1,
-    /// The GEO servicing tour.
-    GeoTour = 2,
-    /// One arc of the LEO tour.
-    LeoArc = 3,
-    /// The LEO tour's order.
-    LeoSequence = 4,
-}
-
-impl Planner {
-    /// The planner's name in reports, records and fixture files.
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::Pseudospectral => "pseudospectral",
-            Self::Impulsive => "impulsive",
-            Self::GeoTour => "geo-tour",
-            Self::LeoArc => "leo-arc",
-            Self::LeoSequence => "leo-sequence",
+            Self::Pseudospectral { .. } => PlannerKind::Pseudospectral,
+            Self::Impulsive { .. } | Self::ImpulsiveForm { .. } => PlannerKind::Impulsive,
+            Self::GeoTour { .. } => PlannerKind::GeoTour,
+            Self::LeoArc { .. } => PlannerKind::LeoArc,
+            Self::LeoSequence { .. } => PlannerKind::LeoSequence,
         }
     }
 }
@@ -104,13 +76,13 @@ impl Planner {
 #[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum Outcome {
-    /// Planner A iterated; the solution's `info.status` says how it ended.
+    /// PlannerKind A iterated; the solution's `info.status` says how it ended.
     Pseudospectral(pseudospectral::Solution),
-    /// Planner A rejected the request before iterating.
+    /// PlannerKind A rejected the request before iterating.
     PseudospectralRejected(pseudospectral::PlanError),
-    /// Planner B iterated; the solution's `info.status` says how it ended.
+    /// PlannerKind B iterated; the solution's `info.status` says how it ended.
     Impulsive(impulsive::Solution),
-    /// Planner B rejected the request before iterating.
+    /// PlannerKind B rejected the request before iterating.
     ImpulsiveRejected(impulsive::PlanError),
     /// The request frame could not be decoded; says what was wrong.
     BadRequest(FrameError),
@@ -123,7 +95,7 @@ pub enum Outcome {
     GeoTour(geo_tour::Solution),
     /// The GEO tour rejected the request.
     GeoTourRejected(geo_tour::PlanError),
-    /// Planner B iterated on a [`Request::ImpulsiveForm`]; the solution's `info.status` says how
+    /// PlannerKind B iterated on a [`Request::ImpulsiveForm`]; the solution's `info.status` says how
     /// it ended, the end state is in the form the request gave its target in. (A rejection is
     /// [`Outcome::ImpulsiveRejected`].)
     ImpulsiveForm {
@@ -142,7 +114,7 @@ pub enum Outcome {
     LeoSequenceRejected(leo_tour::sequence::SequenceError),
     /// The front end that answered does not carry the request's planner (a one-planner flight
     /// image); nothing was solved.
-    Unsupported(Planner),
+    Unsupported(PlannerKind),
 }
 
 /// How long an expired request waited and the deadline it had, in microseconds.
@@ -191,7 +163,7 @@ pub enum OutcomeRef<'a> {
     /// See [`Outcome::LeoSequenceRejected`].
     LeoSequenceRejected(leo_tour::sequence::SequenceError),
     /// See [`Outcome::Unsupported`].
-    Unsupported(Planner),
+    Unsupported(PlannerKind),
 }
 
 /// A planner's refusal of a request before planning (its `PlanError`), as a report shows it.

@@ -33,7 +33,7 @@ pub use frame::{
     decode_request, decode_response, encode_outcome, encode_request, encode_response,
     peek_request_seq, view_response, RequestFrame, ResponseFrame, ResponseView,
 };
-pub use messages::{Expiry, Outcome, OutcomeRef, Planner, Rejection, Request};
+pub use messages::{Expiry, Outcome, OutcomeRef, Rejection, Request};
 
 /// Protocol version carried in every frame; a frame of another version is refused.
 /// 2: planner A's solution carries its certificate, planner B's settings and solve info
@@ -54,7 +54,12 @@ pub use messages::{Expiry, Outcome, OutcomeRef, Planner, Rejection, Request};
 ///    does not carry.
 /// 7: no answer carries a NaN or an infinity: planner A's `min_separation_lu` is an `Option`
 ///    (absent with one spacecraft, where it was infinite).
-pub const PROTOCOL_VERSION: u16 = 7;
+/// 8: a planner's refusal of a setting names it by that planner's own settings id
+///    (`SettingError<SettingId>`, no planner tag: the planner is the outcome's), so the planners
+///    no longer depend on the request path's `limits::Setting`; the LEO sequencing refuses an
+///    arc setting as `SequenceError::InvalidArcSetting`; the planner kinds are
+///    `contract::PlannerKind` (same codes).
+pub const PROTOCOL_VERSION: u16 = 8;
 /// First two bytes of a request frame.
 pub const REQUEST_MAGIC: [u8; 2] = *b"RQ";
 /// First two bytes of a response frame.

@@ -142,7 +142,10 @@ fn impulsive_form_requests_and_outcomes_round_trip_in_every_form() {
             let n = encode_request(7, &req, &mut buf).unwrap();
             let frame = decode_request(&buf[..n]).unwrap();
             assert_eq!(frame.request, req);
-            assert_eq!(frame.request.planner(), Planner::Impulsive);
+            assert_eq!(
+                frame.request.planner(),
+                crate::contract::PlannerKind::Impulsive
+            );
         }
     }
     let solution = impulsive::Solution::new();

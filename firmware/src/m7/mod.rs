@@ -12,10 +12,11 @@
 //! planners leo_workspace_bytes=.. leo_sequence_workspace_bytes=.. leo_arc_solution_bytes=.. leo_sequence_bytes=..   (LEO image only)
 //! fixture index=0 name=.. planner=pseudospectral outcome=ok|error stack_bytes=.. systick_instructions=.. work_units=.. (work_units when the planner meters its work)
 //! result index=0 hex=..
+//! kernel index=0 name=.. units=.. stack_bytes=.. systick_instructions=..   (GEO image only, after the fixtures)
 //! done fixtures=5
 //! ```
 //! One `fixture` line per baked request (`fixtures` counts requests). `planner` is the
-//! request's (`wire::Planner::name`); `outcome=ok` when the planner planned (the answer carries
+//! request's (`contract::PlannerKind::name`); `outcome=ok` when the planner planned (the answer carries
 //! a plan, usable or not), `error` when the request was refused or rejected. `hex` is the
 //! postcard encoding of the answer's `wire::Outcome`. `stack_bytes` is the stack high-water
 //! mark during that request's decode and answer, measured from the top of the stack (so it
@@ -24,6 +25,11 @@
 //! `systick_instructions` is the answer's SysTick time converted to instructions (40 per
 //! tick): meaningful only under `-icount shift=0` (the runner sets it), and accurate to about
 //! 40 instructions; the exact count comes from the QEMU plugin.
+//!
+//! The GEO image then runs each case of `geo_tour::kernels` (one charged kernel on its dearest
+//! path: its set-up outside the markers, the kernel between them, measurement `fixtures + index`)
+//! and prints a `kernel` line: `units` is what the solve charges for what the case ran
+//! (docs/geo-tour.md, "Work budget").
 
 use core::fmt::Write as _;
 use core::hint::black_box;
@@ -235,6 +241,8 @@ fn main() -> ! {
         let marker = u32::try_from(index).unwrap_or(u32::MAX);
         answer(&mut out, (index, marker, fixture), &mut image);
     }
+    #[cfg(feature = "geo_tour")]
+    run_geo_kernels(&mut out, &mut *image.geo_tour.0);
     let _ = writeln!(out, "done fixtures={}", FIXTURES.len());
     debug::exit(debug::EXIT_SUCCESS);
     #[allow(clippy::empty_loop)]
@@ -269,6 +277,35 @@ fn answer(out: &mut Out, (index, marker, fixture): (usize, u32, &Fixture), image
         (run.ticks, run.result.work_units()),
     );
     print_result(out, index, &run.result);
+}
+
+/// Every case of `geo_tour::kernels` (the GEO image), after the fixtures: its set-up outside
+/// the markers, its run between them (measurement `FIXTURES.len() + index`); one `kernel` line
+/// each. Never inlined, as [`answer`].
+#[cfg(feature = "geo_tour")]
+#[inline(never)]
+fn run_geo_kernels(out: &mut Out, workspace: &mut geo_tour::Workspace) {
+    use geo_tour::kernels;
+    for (index, case) in kernels::CASES.iter().enumerate() {
+        let prepared = kernels::prepare(index, workspace);
+        repaint_stack();
+        let marker = u32::try_from(FIXTURES.len() + index).unwrap_or(u32::MAX);
+        let run = measured(marker, || {
+            kernels::run(
+                black_box(index),
+                black_box(&mut *workspace),
+                black_box(&prepared),
+            )
+        });
+        let _ = writeln!(
+            out,
+            "kernel index={index} name={} units={} stack_bytes={} systick_instructions={}",
+            case.name,
+            run.result,
+            run.stack_bytes,
+            run.ticks * systick::INSTRUCTIONS_PER_TICK
+        );
+    }
 }
 
 /// A baked request decoded (`build.rs` encoded these bytes from a `wire::Request`: a failure

@@ -3,7 +3,8 @@
 
 use super::feeder::{Item, Payload};
 use crate::scenario;
-use reconfig_core::wire::{self, Planner, Request, CRC_BYTES, REQUEST_HEADER_BYTES};
+use reconfig_core::contract::PlannerKind;
+use reconfig_core::wire::{self, Request, CRC_BYTES, REQUEST_HEADER_BYTES};
 use reconfig_core::{impulsive, pseudospectral};
 
 fn valid_frame(seq: u64) -> Vec<u8> {
@@ -136,6 +137,6 @@ pub fn items(first_seq: u64) -> Vec<Item> {
             settings: impulsive::Settings::default(),
         },
     ));
-    let _ = Planner::Pseudospectral;
+    let _ = PlannerKind::Pseudospectral;
     out
 }

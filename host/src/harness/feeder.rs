@@ -10,7 +10,8 @@
 use super::{affinity, Instance, Pending, MAX_IN_FLIGHT};
 use anyhow::{anyhow, bail, Result};
 use iceoryx2::prelude::*;
-use reconfig_core::wire::{self, Planner, Request, REQUEST_MAX_BYTES};
+use reconfig_core::contract::PlannerKind;
+use reconfig_core::wire::{self, Request, REQUEST_MAX_BYTES};
 use std::time::{Duration, Instant};
 
 /// What one feed item sends.
@@ -28,7 +29,7 @@ pub struct Item {
     /// Name for the results table.
     pub label: String,
     /// Planner (None for raw fault frames).
-    pub planner: Option<Planner>,
+    pub planner: Option<PlannerKind>,
     /// Problem size class for the report, e.g. `M3 N10` or `K3`.
     pub size: String,
     /// What to send.

@@ -5,7 +5,7 @@
 use std::fmt::Write as _;
 use std::sync::OnceLock;
 
-use reconfig_core::wire::Planner;
+use reconfig_core::contract::PlannerKind;
 
 use crate::disassembly::assert_no_fused_multiply_add;
 use crate::host::{assert_bit_identical, fixtures_of};
@@ -98,7 +98,7 @@ fn results_are_bit_identical_to_the_host() {
     // The GEO and LEO tours run in their own images (geo_ and leo_ tests).
     assert_bit_identical(
         run,
-        &fixtures_of(&[Planner::Pseudospectral, Planner::Impulsive]),
+        &fixtures_of(&[PlannerKind::Pseudospectral, PlannerKind::Impulsive]),
         "default",
     );
 }
@@ -178,17 +178,18 @@ fn figures_are_within_budget() {
     let static_ram = run.binary["static_ram_bytes"];
     for (fixture, &count) in run.fixtures.iter().zip(instructions) {
         let recorded = recorded_fixtures.get(&fixture.name).copied();
-        let (default_instructions, work_budget) = if fixture.planner == Planner::Impulsive.name() {
-            (
-                BUDGET_INSTRUCTIONS_IMPULSIVE,
-                reconfig_core::impulsive::Settings::default().work_budget,
-            )
-        } else {
-            (
-                BUDGET_INSTRUCTIONS_PSEUDOSPECTRAL,
-                reconfig_core::pseudospectral::Settings::default().work_budget,
-            )
-        };
+        let (default_instructions, work_budget) =
+            if fixture.planner == PlannerKind::Impulsive.name() {
+                (
+                    BUDGET_INSTRUCTIONS_IMPULSIVE,
+                    reconfig_core::impulsive::Settings::default().work_budget,
+                )
+            } else {
+                (
+                    BUDGET_INSTRUCTIONS_PSEUDOSPECTRAL,
+                    reconfig_core::pseudospectral::Settings::default().work_budget,
+                )
+            };
         let work_units = fixture
             .work_units
             .unwrap_or_else(|| panic!("{}: the firmware printed no work_units", fixture.name));
@@ -258,6 +259,13 @@ fn figures_are_within_budget() {
         // The GEO image's part of the record is its own test's (geo_figures_are_within_budget).
         let existing = std::fs::read_to_string(&path).unwrap_or_default();
         let geo_part = crate::geo_image::record_part(&existing);
+        // So is the kernel image's part (kernels_a_image), between the main and GEO parts.
+        let kernels_part = crate::kernels_a_image::record_part(&existing);
+        if !kernels_part.is_empty() {
+            text.push('\n');
+            text.push_str(kernels_part.trim_end());
+            text.push('\n');
+        }
         if !geo_part.is_empty() {
             text.push('\n');
             text.push_str(geo_part);

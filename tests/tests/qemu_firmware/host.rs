@@ -4,14 +4,15 @@
 
 use std::fmt::Write as _;
 
-use reconfig_core::wire::{self, AllPlanners, Planner, Request};
+use reconfig_core::contract::PlannerKind;
+use reconfig_core::wire::{self, AllPlanners, Request};
 
 use crate::fixture_set::EncodedRequest;
 use crate::image::Run;
 use crate::image_limits::IMAGE_LIMITS;
 
 /// The repository's requests of some planners, encoded as the firmware bakes them.
-pub fn fixtures_of(planners: &[Planner]) -> Vec<EncodedRequest> {
+pub fn fixtures_of(planners: &[PlannerKind]) -> Vec<EncodedRequest> {
     crate::fixture_set::encode_all(
         &crate::prerequisites::root().join("fixtures"),
         &IMAGE_LIMITS,
@@ -20,6 +21,16 @@ pub fn fixtures_of(planners: &[Planner]) -> Vec<EncodedRequest> {
     .into_iter()
     .filter(|f| planners.contains(&f.planner))
     .collect()
+}
+
+/// The GEO image's requests, as `firmware/build.rs` bakes them: the GEO fixtures, then the GEO
+/// worst cases (`fixtures/worst-case/`).
+pub fn geo_image_fixtures() -> Vec<EncodedRequest> {
+    let mut set = fixtures_of(&[PlannerKind::GeoTour]);
+    let worst = crate::fixture_set::geo_worst_cases(&crate::prerequisites::root(), &IMAGE_LIMITS)
+        .expect("worst cases load");
+    crate::fixture_set::append_unique(&mut set, worst).expect("unique names");
+    set
 }
 
 pub fn hex(bytes: &[u8]) -> String {

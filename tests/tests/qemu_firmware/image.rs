@@ -17,9 +17,21 @@ pub struct FixtureReport {
     pub stack_bytes: u64,
     /// The firmware's own SysTick estimate (to within 40 instructions).
     pub systick_instructions: u64,
-    /// Work units the solve reported (`SolveInfo::work_units`); the GEO tour has none.
+    /// Work units the solve reported (`SolveInfo::work_units`), when the planner meters its
+    /// work.
     pub work_units: Option<u64>,
     pub hex: String,
+}
+
+/// One kernel case of the GEO image (`kernel` line, after the fixtures).
+#[derive(Debug, Clone)]
+pub struct KernelReport {
+    pub name: String,
+    /// The units the solve charges for what the case ran.
+    pub units: u64,
+    pub stack_bytes: u64,
+    /// The firmware's own SysTick estimate (to within 40 instructions).
+    pub systick_instructions: u64,
 }
 
 /// Everything one firmware run produced.
@@ -30,6 +42,10 @@ pub struct Run {
     pub fixtures: Vec<FixtureReport>,
     /// Instructions per solve, by fixture index; `None` without the plugin.
     pub instructions: Option<Vec<u64>>,
+    /// The GEO image's kernel cases (none in the other images).
+    pub kernels: Vec<KernelReport>,
+    /// Instructions per kernel case, by kernel index; `None` without the plugin.
+    pub kernel_instructions: Option<Vec<u64>>,
 }
 
 impl Run {
@@ -313,15 +329,18 @@ pub fn run_firmware(elf: &Path, plugin: Option<&Path>) -> Result<Run, String> {
                 counts.insert(number(&f, "measurement")?, number(&f, "instructions")?);
             }
         }
-        let counts: Vec<u64> = counts.into_values().collect();
-        if counts.len() != run.fixtures.len() {
+        let mut counts: Vec<u64> = counts.into_values().collect();
+        if counts.len() != run.fixtures.len() + run.kernels.len() {
             return Err(format!(
-                "the plugin reported {} measurements for {} fixtures; stderr:\n{}",
+                "the plugin reported {} measurements for {} fixtures and {} kernels; stderr:\n{}",
                 counts.len(),
                 run.fixtures.len(),
+                run.kernels.len(),
                 tail(&stderr)
             ));
         }
+        // The fixtures' measurements come first, then the kernels'.
+        run.kernel_instructions = Some(counts.split_off(run.fixtures.len()));
         run.instructions = Some(counts);
     }
     Ok(run)
@@ -343,6 +362,7 @@ fn number(fields: &BTreeMap<&str, &str>, key: &str) -> Result<u64, String> {
 fn parse_output(elf: &Path, stdout: &str) -> Result<Run, String> {
     let mut binary = BTreeMap::new();
     let mut fixtures: Vec<FixtureReport> = Vec::new();
+    let mut kernels: Vec<KernelReport> = Vec::new();
     let mut done = false;
     for line in stdout.lines() {
         let (kind, rest) = line.split_once(' ').unwrap_or((line, ""));
@@ -382,6 +402,17 @@ fn parse_output(elf: &Path, stdout: &str) -> Result<Run, String> {
                     .ok_or("result line before its fixture line")?;
                 report.hex = f.get("hex").ok_or("result without hex")?.to_string();
             }
+            "kernel" => {
+                if number(&f, "index")? != kernels.len() as u64 {
+                    return Err(format!("kernel lines out of order at {line}"));
+                }
+                kernels.push(KernelReport {
+                    name: f.get("name").ok_or("kernel without name")?.to_string(),
+                    units: number(&f, "units")?,
+                    stack_bytes: number(&f, "stack_bytes")?,
+                    systick_instructions: number(&f, "systick_instructions")?,
+                });
+            }
             "done" => done = true,
             _ => {}
         }
@@ -394,5 +425,7 @@ fn parse_output(elf: &Path, stdout: &str) -> Result<Run, String> {
         binary,
         fixtures,
         instructions: None,
+        kernels,
+        kernel_instructions: None,
     })
 }

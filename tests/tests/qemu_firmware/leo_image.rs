@@ -17,7 +17,7 @@ use crate::record::{
     assert_figures, assert_systick_agrees, read_record, record_entries, record_image_ram,
     tables_by, updating, BUDGET_STACK_BYTES,
 };
-use reconfig_core::wire::Planner;
+use reconfig_core::contract::PlannerKind;
 
 /// The LEO image's binary.
 const BIN: &str = "reconfig-firmware-leo";
@@ -63,7 +63,7 @@ fn leo_results_are_bit_identical_to_the_host() {
     };
     assert_bit_identical(
         run,
-        &fixtures_of(&[Planner::LeoArc, Planner::LeoSequence]),
+        &fixtures_of(&[PlannerKind::LeoArc, PlannerKind::LeoSequence]),
         "LEO",
     );
 }
@@ -119,7 +119,7 @@ fn leo_figures_match_the_record() {
     );
     let recorded_fixtures = tables_by(&file, "leo_fixture", "name");
     let parts: BTreeMap<String, Option<String>> =
-        fixtures_of(&[Planner::LeoArc, Planner::LeoSequence])
+        fixtures_of(&[PlannerKind::LeoArc, PlannerKind::LeoSequence])
             .into_iter()
             .map(|f| (f.name, f.part_of))
             .collect();

@@ -24,7 +24,9 @@
 //! an image), [`host`] (the host's answer to a baked request), [`record`] (the figures file, drift
 //! and budget checks), [`disassembly`] (the fused multiply-add check), [`default_image`],
 //! [`geo_image`] and [`leo_image`] (the tests of each image; the LEO arc image's record is its
-//! own file, `fixtures/golden/m7-figures-leo.toml`).
+//! own file, `fixtures/golden/m7-figures-leo.toml`), and [`kernels_a_image`] (planner A's
+//! charged steps one at a time: fails when one costs more than
+//! `pseudospectral::MAX_INSTRUCTIONS_PER_UNIT` M7 instructions per unit it is charged).
 
 #[path = "../../../firmware/fixture_set.rs"]
 mod fixture_set;
@@ -36,6 +38,7 @@ mod disassembly;
 mod geo_image;
 mod host;
 mod image;
+mod kernels_a_image;
 mod leo_image;
 mod prerequisites;
 mod record;
