@@ -4,8 +4,9 @@
 //! `reconfig_core::impulsive::kernels`, its set-up outside the instruction markers, its
 //! run between them. One line per case:
 //! `fixture index=.. name=.. planner=kernels-b stack_bytes=.. systick_instructions=..
-//! work_units=..` (the default image's protocol, `work_units` the units the solve charges for
-//! the case); the exact count is the QEMU plugin's (`tools/qemu-insn-plugin`), one
+//! work_units=.. kepler_solves=.. kepler_steps=..` (the default image's protocol, `work_units`
+//! the units the solve charges for the case, then the Kepler solves and Newton steps the case
+//! took: the test allows each solve the most steps a request may take); the exact count is the QEMU plugin's (`tools/qemu-insn-plugin`), one
 //! `reconfig-insns` line per case in case order. Built and run by the QEMU test
 //! `tests/tests/qemu_firmware/kernels_b_image.rs`, which fails when a charged case costs more
 //! than `impulsive::work_units::MAX_INSTRUCTIONS_PER_UNIT` instructions per unit (docs/planner-b.md, "Work budget").
@@ -26,7 +27,9 @@ mod image {
 
     use cortex_m_rt::{entry, exception, ExceptionFrame};
     use cortex_m_semihosting::{debug, hio};
-    use reconfig_core::impulsive::{kernels, Solution, Workspace};
+    use reconfig_core::impulsive::{
+        kernels, newton_counts, newton_counts_reset, Solution, Workspace,
+    };
 
     use crate::measure::{measured, systick};
 
@@ -66,6 +69,7 @@ mod image {
         for (index, case) in kernels::CASES.iter().enumerate() {
             let prepared = kernels::prepare(index, WORKSPACE, SOLUTION);
             let marker = u32::try_from(index).unwrap_or(u32::MAX);
+            newton_counts_reset();
             let run = measured(marker, || {
                 kernels::run(
                     black_box(index),
@@ -74,10 +78,11 @@ mod image {
                     black_box(&prepared),
                 )
             });
+            let (solves, steps) = newton_counts();
             let _ = writeln!(
                 out,
                 "fixture index={index} name={} planner=kernels-b stack_bytes={} \
-                 systick_instructions={} work_units={}",
+                 systick_instructions={} work_units={} kepler_solves={solves} kepler_steps={steps}",
                 case.name,
                 run.stack_bytes,
                 run.ticks * systick::INSTRUCTIONS_PER_TICK,

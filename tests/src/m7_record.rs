@@ -527,99 +527,211 @@ fn update_all() -> Result<bool, String> {
     Ok(readme_changed || geo_changed)
 }
 
-// Planner A's kernel image (`tests/tests/qemu_firmware/kernels_a_image.rs`): the record's
-// `[[ka_kernel]]` tables and `docs/planner-a.md`'s generated "Work budget" table.
+// The kernel images (`tests/tests/qemu_firmware/kernels_image.rs`): the record's
+// `[[ka_kernel]]` / `[[kb_kernel]]` tables and the planners' generated "Work budget" tables.
 
-/// The document with the kernel image's table, relative to the workspace.
-pub const KA_DOCS_FILE: &str = "docs/planner-a.md";
-/// Start marker of the kernel image's generated table.
-pub const KA_BEGIN: &str =
-    "<!-- m7-kernels-a:begin (generated from fixtures/golden/m7-figures.toml; do not edit) -->";
-/// End marker of the kernel image's generated table.
-pub const KA_END: &str = "<!-- m7-kernels-a:end -->";
+/// One kernel image's docs table: where it goes and what bounds it states.
+pub struct KernelDocs {
+    /// The record's table name (`ka_kernel`, `kb_kernel`).
+    pub key: &'static str,
+    /// The document, relative to the workspace, and its markers.
+    pub file: &'static str,
+    pub begin: &'static str,
+    pub end: &'static str,
+    /// The planner's default work budget, per-unit bound and on-board instruction promise.
+    pub budget: u64,
+    pub max_instructions_per_unit: u64,
+    pub max_solve_instructions: u64,
+}
 
-/// The kernel image's table (without the markers) for a record's text: each case's M7
-/// instructions, its units and their ratio, and what the largest ratio bounds.
+/// Planner A's kernel table in `docs/planner-a.md`.
+pub const KERNELS_A_DOCS: KernelDocs = KernelDocs {
+    key: "ka_kernel",
+    file: "docs/planner-a.md",
+    begin:
+        "<!-- m7-kernels-a:begin (generated from fixtures/golden/m7-figures.toml; do not edit) -->",
+    end: "<!-- m7-kernels-a:end -->",
+    budget: reconfig_core::pseudospectral::DEFAULT_WORK_BUDGET,
+    max_instructions_per_unit: reconfig_core::pseudospectral::MAX_INSTRUCTIONS_PER_UNIT,
+    max_solve_instructions: reconfig_core::pseudospectral::MAX_SOLVE_INSTRUCTIONS,
+};
+
+/// Planner B's kernel table in `docs/planner-b.md`.
+pub const KERNELS_B_DOCS: KernelDocs = KernelDocs {
+    key: "kb_kernel",
+    file: "docs/planner-b.md",
+    begin:
+        "<!-- m7-kernels-b:begin (generated from fixtures/golden/m7-figures.toml; do not edit) -->",
+    end: "<!-- m7-kernels-b:end -->",
+    budget: reconfig_core::impulsive::DEFAULT_WORK_BUDGET,
+    max_instructions_per_unit: reconfig_core::impulsive::MAX_INSTRUCTIONS_PER_UNIT,
+    max_solve_instructions: reconfig_core::impulsive::MAX_SOLVE_INSTRUCTIONS,
+};
+
+/// A kernel case's instructions as the bound holds it: with planner B's Newton-step allowance
+/// (`instructions_worst_kepler`) when the record has one.
+fn held_instructions(t: &toml::Table) -> Result<u64, String> {
+    match t.get("instructions_worst_kepler") {
+        Some(_) => int(t, "instructions_worst_kepler"),
+        None => int(t, "instructions"),
+    }
+}
+
+/// The largest instructions per unit over a record's charged kernel cases of one image (as the
+/// bound holds them) and its case; `None` without charged cases.
+///
+/// # Errors
+/// The record lacks a figure.
+pub fn kernels_worst_ratio(file: &toml::Table, key: &str) -> Result<Option<(f64, String)>, String> {
+    let mut worst: Option<(f64, String)> = None;
+    for t in file
+        .get(key)
+        .and_then(toml::Value::as_array)
+        .into_iter()
+        .flatten()
+        .filter_map(toml::Value::as_table)
+    {
+        if t.get("charged").and_then(toml::Value::as_bool) != Some(true) {
+            continue;
+        }
+        let name = t.get("name").and_then(toml::Value::as_str).unwrap_or("?");
+        let r = held_instructions(t)? as f64 / int(t, "units")?.max(1) as f64;
+        if worst.as_ref().is_none_or(|(w, _)| r > *w) {
+            worst = Some((r, name.to_owned()));
+        }
+    }
+    Ok(worst)
+}
+
+/// A kernel image's table (without the markers) for a record's text: each case's M7
+/// instructions, its units and their ratio (planner B: also with the Newton-step allowance),
+/// and what the largest ratio bounds.
 ///
 /// # Errors
 /// The record does not parse, lacks a figure or has no kernel cases.
-pub fn render_kernels_a(record: &str) -> Result<String, String> {
-    use reconfig_core::pseudospectral::{
-        Settings, MAX_INSTRUCTIONS_PER_UNIT, MAX_SOLVE_INSTRUCTIONS,
-    };
+pub fn render_kernels(docs: &KernelDocs, record: &str) -> Result<String, String> {
     let file: toml::Table = toml::from_str(record).map_err(|e| format!("{RECORD_FILE}: {e}"))?;
+    let key = docs.key;
     let kernels: Vec<&toml::Table> = file
-        .get("ka_kernel")
+        .get(key)
         .and_then(toml::Value::as_array)
         .into_iter()
         .flatten()
         .filter_map(toml::Value::as_table)
         .collect();
     if kernels.is_empty() {
-        return Err(format!("{RECORD_FILE}: no [[ka_kernel]] tables"));
+        return Err(format!("{RECORD_FILE}: no [[{key}]] tables"));
     }
-    let mut md = String::from(
-        "| case | M7 instructions | units charged | instructions per unit |\n\
-         | --- | ---: | ---: | ---: |\n",
-    );
-    let mut worst: Option<(f64, String)> = None;
+    let kepler = kernels
+        .iter()
+        .any(|t| t.contains_key("instructions_worst_kepler"));
+    let mut md = if kepler {
+        String::from(
+            "| case | M7 instructions | Kepler solves / Newton steps | with every solve at the \
+             step limit | units charged | instructions per unit (at the limit) |\n\
+             | --- | ---: | ---: | ---: | ---: | ---: |\n",
+        )
+    } else {
+        String::from(
+            "| case | M7 instructions | units charged | instructions per unit |\n\
+             | --- | ---: | ---: | ---: |\n",
+        )
+    };
     for t in &kernels {
         let name = t
             .get("name")
             .and_then(toml::Value::as_str)
-            .ok_or_else(|| format!("{RECORD_FILE}: a [[ka_kernel]] without a name"))?;
+            .ok_or_else(|| format!("{RECORD_FILE}: a [[{key}]] without a name"))?;
         let charged = t
             .get("charged")
             .and_then(toml::Value::as_bool)
             .unwrap_or(true);
         let (count, units) = (int(t, "instructions")?, int(t, "units")?);
+        let held = held_instructions(t)?;
         let ratio = if charged && units > 0 {
-            let r = count as f64 / units as f64;
-            if worst.as_ref().is_none_or(|(w, _)| r > *w) {
-                worst = Some((r, name.to_owned()));
-            }
-            format!("{r:.2}")
+            format!("{:.2}", held as f64 / units as f64)
         } else {
             "not charged".to_owned()
         };
-        let _ = writeln!(
+        if kepler {
+            let _ = writeln!(
+                md,
+                "| `{name}` | {} | {} / {} | {} | {} | {ratio} |",
+                grouped(count),
+                int(t, "kepler_solves")?,
+                int(t, "kepler_steps")?,
+                grouped(held),
+                grouped(units)
+            );
+        } else {
+            let _ = writeln!(
+                md,
+                "| `{name}` | {} | {} | {ratio} |",
+                grouped(count),
+                grouped(units)
+            );
+        }
+    }
+    let max = docs.max_instructions_per_unit;
+    if kepler {
+        let part = file
+            .get(key.trim_end_matches("_kernel"))
+            .and_then(toml::Value::as_table)
+            .ok_or_else(|| format!("{RECORD_FILE}: no [{}]", key.trim_end_matches("_kernel")))?;
+        let _ = write!(
             md,
-            "| `{name}` | {} | {} | {ratio} |",
-            grouped(count),
-            grouped(units)
+            "\nA Newton step of Kepler's equation costs {} instructions (`kepler-2` minus \
+             `kepler-1`); each case is held to its instructions plus the steps its solves did not \
+             take, up to {} per solve (`kepler_max_iter`'s built-in limit).\n",
+            int(part, "newton_step_instructions")?,
+            int(part, "newton_steps_allowed")?
         );
     }
-    let budget = Settings::default().work_budget;
-    if let Some((ratio, name)) = worst {
+    if let Some((ratio, name)) = kernels_worst_ratio(&file, key)? {
         let _ = write!(
             md,
             "\nLargest over the charged cases: {ratio:.2} instructions per unit (`{name}`); the \
-             QEMU test fails above `MAX_INSTRUCTIONS_PER_UNIT` = {MAX_INSTRUCTIONS_PER_UNIT}. \
-             Default budget {} units x {MAX_INSTRUCTIONS_PER_UNIT} = {} instructions (at most \
-             {}).\n",
-            grouped(budget),
-            grouped(budget.saturating_mul(MAX_INSTRUCTIONS_PER_UNIT)),
-            grouped(MAX_SOLVE_INSTRUCTIONS),
+             QEMU test fails above `MAX_INSTRUCTIONS_PER_UNIT` = {max}. Default budget {} units \
+             x {max} = {} instructions (at most {}).\n",
+            grouped(docs.budget),
+            grouped(docs.budget.saturating_mul(max)),
+            grouped(docs.max_solve_instructions),
         );
     }
     Ok(md)
 }
 
-/// `docs/planner-a.md` with its kernel table regenerated from the record on disk; returns
-/// whether it changed.
+/// The docs page with its kernel table regenerated from the record on disk; returns whether it
+/// changed.
 ///
 /// # Errors
 /// A file cannot be read or written, or does not parse.
-pub fn update_kernels_a_docs() -> Result<bool, String> {
+pub fn update_kernels_docs(docs: &KernelDocs) -> Result<bool, String> {
     let record = std::fs::read_to_string(root().join(RECORD_FILE)).map_err(|e| e.to_string())?;
-    let path = root().join(KA_DOCS_FILE);
-    let docs = std::fs::read_to_string(&path).map_err(|e| e.to_string())?;
-    let new = splice_between(&docs, KA_BEGIN, KA_END, &render_kernels_a(&record)?)?;
-    if new != docs {
+    let path = root().join(docs.file);
+    let text = std::fs::read_to_string(&path).map_err(|e| e.to_string())?;
+    let new = splice_between(&text, docs.begin, docs.end, &render_kernels(docs, &record)?)?;
+    if new != text {
         std::fs::write(&path, &new).map_err(|e| e.to_string())?;
         return Ok(true);
     }
     Ok(false)
+}
+
+/// Planner A's kernel table regenerated (`update_kernels_docs`).
+///
+/// # Errors
+/// As `update_kernels_docs`.
+pub fn update_kernels_a_docs() -> Result<bool, String> {
+    update_kernels_docs(&KERNELS_A_DOCS)
+}
+
+/// Planner B's kernel table regenerated (`update_kernels_docs`).
+///
+/// # Errors
+/// As `update_kernels_docs`.
+pub fn update_kernels_b_docs() -> Result<bool, String> {
+    update_kernels_docs(&KERNELS_B_DOCS)
 }
 
 #[cfg(test)]

@@ -236,7 +236,23 @@ fn search_reaches_the_paper_bests_deterministically() {
     for (n, best) in bests {
         let p = problem(&format!("wang2018-gco-to-pco-search-{n}imp"));
         let a = run(&p, &settings);
-        assert_eq!(a.info.status, SolveStatus::Solved, "{n}");
+        // The 3- and 4-impulse searches stop at the default budget (issue 33: the units hold
+        // every step to 21 M7 instructions), their plans verified (usable) and still within
+        // 0.1 % of the best known; with the budget lifted they finish Solved.
+        let status = a.info.status;
+        assert!(
+            status == SolveStatus::Solved
+                || (n > 2 && status == SolveStatus::BudgetExhausted { verified: true }),
+            "{n}: {status:?}"
+        );
+        assert!(status.is_usable());
+        if n > 2 {
+            let lifted = Settings {
+                work_budget: 100_000_000,
+                ..settings
+            };
+            assert_eq!(run(&p, &lifted).info.status, SolveStatus::Solved, "{n}");
+        }
         assert_eq!(a.impulses.len(), n);
         assert!(
             a.total_dv_mps <= best,

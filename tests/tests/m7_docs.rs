@@ -96,20 +96,30 @@ fn the_readme_m7_lines_are_the_record() {
     );
 }
 
-#[test]
-fn the_planner_a_kernel_table_is_the_record() {
-    use reconfig_tests::m7_record::{KA_BEGIN, KA_DOCS_FILE, KA_END};
+/// A kernel image's docs table is what the record generates (regenerated first when updating).
+fn kernel_table_is_the_record(docs: &m7_record::KernelDocs) {
     if std::env::var("RECONFIG_UPDATE_DOCS").as_deref() == Ok("1") {
-        m7_record::update_kernels_a_docs().expect("regenerate the kernel table");
+        m7_record::update_kernels_docs(docs).expect("regenerate the kernel table");
     }
     let record = std::fs::read_to_string(m7_record::root().join(RECORD_FILE)).expect("record");
-    let docs = std::fs::read_to_string(m7_record::root().join(KA_DOCS_FILE)).expect("docs");
-    let generated = m7_record::render_kernels_a(&record).expect("render the kernel table");
-    let expected = m7_record::splice_between(&docs, KA_BEGIN, KA_END, &generated)
+    let text = std::fs::read_to_string(m7_record::root().join(docs.file)).expect("docs");
+    let generated = m7_record::render_kernels(docs, &record).expect("render the kernel table");
+    let expected = m7_record::splice_between(&text, docs.begin, docs.end, &generated)
         .expect("kernel table markers");
     assert!(
-        expected == docs,
-        "{KA_DOCS_FILE}'s kernel table differs from what {RECORD_FILE} generates; regenerate \
-         with\n  {UPDATE_DOCS_COMMAND}"
+        expected == text,
+        "{}'s kernel table differs from what {RECORD_FILE} generates; regenerate with\n  \
+         {UPDATE_DOCS_COMMAND}",
+        docs.file
     );
+}
+
+#[test]
+fn the_planner_a_kernel_table_is_the_record() {
+    kernel_table_is_the_record(&m7_record::KERNELS_A_DOCS);
+}
+
+#[test]
+fn the_planner_b_kernel_table_is_the_record() {
+    kernel_table_is_the_record(&m7_record::KERNELS_B_DOCS);
 }

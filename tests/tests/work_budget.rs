@@ -105,11 +105,16 @@ fn planner_a_stops_at_its_budget_with_a_truthful_status() {
 #[test]
 fn planner_b_search_stops_at_its_budget_and_still_returns_a_verified_plan() {
     let problem = impulsive_fixture("wang2018-gco-to-pco-search-3imp");
-    let defaults = impulsive::Settings::default();
+    // The whole search needs more than the default budget (it stops there, verified: issue 33),
+    // so the full run has the budget lifted.
+    let defaults = impulsive::Settings {
+        work_budget: 100_000_000,
+        ..impulsive::Settings::default()
+    };
     let full = solve_impulsive(&problem, &defaults);
     assert_eq!(full.info.status, impulsive::SolveStatus::Solved);
     let needed = full.info.work_units;
-    assert!(needed > 0 && needed <= defaults.work_budget);
+    assert!(needed > impulsive::DEFAULT_WORK_BUDGET && needed <= defaults.work_budget);
     for percent in [30u64, 60, 90] {
         let settings = impulsive::Settings {
             work_budget: needed * percent / 100,
@@ -198,4 +203,48 @@ fn planner_b_fixed_point_cut_short_is_not_usable() {
     );
     assert!(cut.info.work_units <= settings.work_budget);
     assert_eq!(solve_impulsive(&problem, &settings), cut);
+}
+
+/// The kernel images run each planner's worst-case request whole at the default budget (their
+/// `solve-cap-default` and `solve-search-n6-default` cases), so its M7 instructions are
+/// measured in CI: the cases' problems are the worst-case fixtures' (planner A's to the
+/// fixture's six printed decimals, planner B's exactly).
+#[test]
+fn the_kernel_images_solve_the_worst_case_requests() {
+    use reconfig_core::impulsive::kernels as kb;
+    use reconfig_core::pseudospectral::kernels as ka;
+    let index_a = ka::CASES
+        .iter()
+        .position(|c| c.name == "solve-cap-default")
+        .expect("planner A's whole worst-case solve");
+    let case_a = ka::case_problem(index_a).expect("a whole-solve case");
+    let fixture_a = pseudospectral_fixture("worst-case/crossing-8-sats-n24");
+    assert_eq!(
+        (case_a.degree, case_a.test_points, case_a.spacecraft.len()),
+        (
+            fixture_a.degree,
+            fixture_a.test_points,
+            fixture_a.spacecraft.len()
+        )
+    );
+    let scalars = |p: &pseudospectral::Problem| [p.horizon_tu, p.max_control_fu, p.keep_out_lu];
+    assert_eq!(scalars(&case_a), scalars(&fixture_a));
+    for (a, b) in case_a.spacecraft.iter().zip(&fixture_a.spacecraft) {
+        assert_eq!(a.mass_mu, b.mass_mu);
+        for (x, y) in a
+            .initial_state
+            .iter()
+            .chain(&a.final_state)
+            .zip(b.initial_state.iter().chain(&b.final_state))
+        {
+            assert!((x - y).abs() <= 5e-7, "{x} vs {y}");
+        }
+    }
+    let index_b = kb::CASES
+        .iter()
+        .position(|c| c.name == "solve-search-n6-default")
+        .expect("planner B's whole worst-case solve");
+    let case_b = kb::case_problem(index_b).expect("a whole-solve case");
+    assert_eq!(case_b, impulsive_fixture("worst-case/wang2018-search-6imp"));
+    assert_eq!(ka::case_problem(0), None);
 }

@@ -3,6 +3,46 @@
 
 use super::elements::{wrap_pi, TWO_PI};
 
+/// The most Newton steps [`eccentric_anomaly`] takes at any mean anomaly and any eccentricity
+/// up to the largest the planner accepts, 0.936 (semi-major axis at `MAX_SMA_KM`, perigee on
+/// the Earth's surface; the limits demand 100 km above it): the test
+/// `newton_steps_are_bounded_on_accepted_orbits` scans them. The default and built-in limit of
+/// `kepler_max_iter` (12) leave two more for transfer arcs beyond those orbits, and planner B's
+/// per-unit bound allows every Kepler solve that limit (`tests/tests/qemu_firmware/`).
+pub const WORST_NEWTON_STEPS: u16 = 10;
+
+/// Kepler solves and Newton steps taken since the last [`newton_counts_reset`], for the kernel
+/// image (`firmware/src/kb_main.rs`), whose test adds to each case the steps it did not take
+/// up to `kepler_max_iter`'s limit per solve. Plain loads and stores: one core, no contention.
+#[cfg(feature = "kernel-counters")]
+mod counters {
+    use core::sync::atomic::{AtomicU32, Ordering::Relaxed};
+
+    static SOLVES: AtomicU32 = AtomicU32::new(0);
+    static STEPS: AtomicU32 = AtomicU32::new(0);
+
+    pub(super) fn count_solve() {
+        SOLVES.store(SOLVES.load(Relaxed).wrapping_add(1), Relaxed);
+    }
+
+    pub(super) fn count_step() {
+        STEPS.store(STEPS.load(Relaxed).wrapping_add(1), Relaxed);
+    }
+
+    /// Zero both counts.
+    pub fn newton_counts_reset() {
+        SOLVES.store(0, Relaxed);
+        STEPS.store(0, Relaxed);
+    }
+
+    /// `(solves, Newton steps)` since the last reset.
+    pub fn newton_counts() -> (u32, u32) {
+        (SOLVES.load(Relaxed), STEPS.load(Relaxed))
+    }
+}
+#[cfg(feature = "kernel-counters")]
+pub use counters::{newton_counts, newton_counts_reset};
+
 /// Eccentric anomaly from the mean anomaly.
 ///
 /// Units: rad in, rad out. The start `E0 = M + e sin M` (e < 0.8) or `E0 = pi sgn M`
@@ -17,7 +57,11 @@ pub(crate) fn eccentric_anomaly(mean_anomaly_rad: f64, ecc: f64, max_iter: u16) 
     } else {
         core::f64::consts::PI
     };
+    #[cfg(feature = "kernel-counters")]
+    counters::count_solve();
     for _ in 0..max_iter {
+        #[cfg(feature = "kernel-counters")]
+        counters::count_step();
         let f = e_anom - ecc * libm::sin(e_anom) - m;
         let fp = 1.0 - ecc * libm::cos(e_anom);
         let step = f / fp;
@@ -92,6 +136,41 @@ mod tests {
         let (e_anom, _) = eccentric_anomaly(1.0, 0.0678, 60);
         assert!((e_anom - 0.0678 * libm::sin(e_anom) - 1.0).abs() < 1e-15);
         assert!(f > e_anom && e_anom > 1.0);
+    }
+
+    use crate::astro::EARTH_RADIUS_KM;
+    use crate::impulsive::settings::MAX_SMA_KM;
+
+    /// The largest eccentricity of an orbit the planner accepts: semi-major axis at
+    /// `MAX_SMA_KM`, perigee on the Earth's surface.
+    const MAX_ACCEPTED_ECCENTRICITY: f64 = 1.0 - EARTH_RADIUS_KM / MAX_SMA_KM;
+
+    /// Newton steps of one solve (to convergence, at most 60).
+    fn steps(m: f64, ecc: f64) -> u16 {
+        (1..=60)
+            .find(|&k| eccentric_anomaly(m, ecc, k).1)
+            .unwrap_or(u16::MAX)
+    }
+
+    #[test]
+    fn newton_steps_are_bounded_on_accepted_orbits() {
+        // Every eccentricity up to the accepted largest, every mean anomaly, denser near
+        // perigee (M -> 0 at high e, where the start E = pi is farthest from the root).
+        let mut worst = 0;
+        for i in 0..=400u32 {
+            let ecc = MAX_ACCEPTED_ECCENTRICITY * f64::from(i) / 400.0;
+            for j in 0..=1500u32 {
+                let x = f64::from(j) / 1500.0;
+                for m in [core::f64::consts::PI * x * x * x, core::f64::consts::PI * x] {
+                    worst = worst.max(steps(m, ecc)).max(steps(-m, ecc));
+                }
+            }
+        }
+        assert_eq!(
+            worst, WORST_NEWTON_STEPS,
+            "the scan's worst Newton step count"
+        );
+        assert!((MAX_ACCEPTED_ECCENTRICITY - 0.93622).abs() < 1e-5);
     }
 
     #[test]

@@ -4,18 +4,19 @@
 //! case between its instruction markers and divides each case's M7 instructions by the units
 //! the solve charges for it.
 //!
-//! Each case runs the solve's own code for one metered step, on a state [`prepare`] made
-//! outside the measured span (the context, the impulse points, the minimum-norm and the
-//! least-fuel impulses of a fixed-point solve, the incumbent's dual certificate), and returns
-//! the units the solve charges for what it ran: one fixed-point iteration (Cholesky path, and
-//! the SVD path at coincident points), one least-fuel fixed-point iteration, an SVD, cone
-//! programs cut after 1 iteration and run to the 40-iteration cap, search evaluations (a
-//! sample's, a local search's with the incumbent's dual bound computed and not conclusive,
-//! four linearisations), a search with its sampling and bookkeeping, an osculating
-//! evaluation, a Jacobian column, the correction (Jacobian and k Broyden steps), the final
-//! checks, and whole solves. The problems are Wang 2018's (e = 0.0678) at the capacity of 6
-//! impulses and at 2, the same in the classical set, and a high-eccentricity chief (e = 0.75,
-//! where Kepler's equation takes the most Newton steps on the fixtures' kind of orbit).
+//! Each case runs the solve's own code for one metered step, on a state [`prepare`] made outside
+//! the measured span (the context, the impulse points, the minimum-norm and the least-fuel impulses
+//! of a fixed-point solve, the incumbent's dual certificate), and returns the units the solve
+//! charges for what it ran: one fixed-point iteration (Cholesky path, and the SVD path at
+//! coincident points), one least-fuel fixed-point iteration, an SVD (cut after one and two sweeps,
+//! and to convergence), cone programs cut after 1 iteration and run to the 40-iteration cap, search
+//! evaluations (a sample's, a local search's with the incumbent's dual bound computed and not
+//! conclusive, four linearisations), a search with its sampling and bookkeeping, an osculating
+//! evaluation, a Jacobian column, the correction (Jacobian and k Broyden steps), the final checks,
+//! and whole solves. The problems are Wang 2018's (e = 0.0678) at the capacity of 6 impulses and at
+//! 2, the same in the classical set, and a high-eccentricity chief (e = 0.75). The image also
+//! counts each case's Kepler solves and Newton steps (feature `kernel-counters`), and its test
+//! holds each case to every solve at `kepler_max_iter`'s limit.
 
 use super::elements::M_PER_KM;
 use super::kepler::true_anomaly;
@@ -77,8 +78,10 @@ enum Kind {
     /// One least-fuel fixed-point iteration from the minimum-norm impulses, with the least-fuel
     /// tolerance in m/s (0: the default).
     MinFuelIteration(f64),
-    /// `pinv::solve_min_norm` on F at the minimum-norm impulses.
-    Svd,
+    /// `pinv::solve_min_norm` on F at the minimum-norm impulses, cut after this many sweeps
+    /// (0: `svd_max_iter`, to convergence). The first sweeps rotate every column pair, the
+    /// dearest a sweep can be.
+    Svd(u16),
     /// `socp::least_fuel` on F at the minimum-norm impulses (tolerance m/s, iteration cap).
     Cone(f64, u16),
     /// One search evaluation of the points' phases (linearisations, tolerance m/s, with the
@@ -101,7 +104,7 @@ enum Kind {
     Kepler(u16),
     /// A whole solve at fixed points (budget; 0: the default).
     Solve(u64),
-    /// A whole search solve (budget).
+    /// A whole search solve with this budget (0: the default).
     SolveSearch(u64),
 }
 
@@ -112,6 +115,14 @@ pub struct Case {
     pub name: &'static str,
     shape: Shape,
     kind: Kind,
+}
+
+impl Case {
+    /// Whether the solve charges what the case runs: every case but the Kepler solves (part of
+    /// every propagation; two of them give the cost of one Newton step).
+    pub const fn charged(&self) -> bool {
+        !matches!(self.kind, Kind::Kepler(_))
+    }
 }
 
 const fn case(name: &'static str, shape: Shape, kind: Kind) -> Case {
@@ -136,9 +147,12 @@ pub const CASES: &[Case] = &[
         N2,
         Kind::MinFuelIteration(1e-300),
     ),
-    case("svd-n6", N6, Kind::Svd),
-    case("svd-n2", N2, Kind::Svd),
-    case("svd-n6-coincident", N6_COINCIDENT, Kind::Svd),
+    case("svd-1-sweep-n6", N6, Kind::Svd(1)),
+    case("svd-2-sweeps-n6", N6, Kind::Svd(2)),
+    case("svd-1-sweep-n2", N2, Kind::Svd(1)),
+    case("svd-n6", N6, Kind::Svd(0)),
+    case("svd-n2", N2, Kind::Svd(0)),
+    case("svd-n6-coincident", N6_COINCIDENT, Kind::Svd(0)),
     case("cone-1-n6", N6, Kind::Cone(1e-9, 1)),
     case("cone-1-n2", N2, Kind::Cone(1e-9, 1)),
     case("cone-default-n6", N6, Kind::Cone(1e-9, 40)),
@@ -167,6 +181,9 @@ pub const CASES: &[Case] = &[
     case("solve-fixed-n6-coincident", N6_COINCIDENT, Kind::Solve(0)),
     case("solve-search-n6-1m", N6, Kind::SolveSearch(1_000_000)),
     case("solve-search-n2-1m", N2, Kind::SolveSearch(1_000_000)),
+    // The worst planner-B request within the built-in limits, whole, at the default budget:
+    // `fixtures/worst-case/wang2018-search-6imp.toml`'s problem (a test holds them equal).
+    case("solve-search-n6-default", N6, Kind::SolveSearch(0)),
 ];
 
 /// The fixed points of the cases (deg, revolutions): Table 5's four, two more.
@@ -397,16 +414,22 @@ pub fn run(index: usize, ws: &mut Workspace, out: &mut Solution, prepared: &Prep
             black_box((r.is_ok(), dv));
             metered(ws)
         }
-        Kind::Svd => {
+        Kind::Svd(max_sweeps) => {
+            let mut sweeps = 0;
             let r = pinv::solve_min_norm(
                 &ws.seq.f,
                 columns,
                 &ws.seq.dy,
                 settings.rank_rcond,
-                settings.svd_max_iter,
+                if max_sweeps == 0 {
+                    settings.svd_max_iter
+                } else {
+                    max_sweeps
+                },
+                &mut sweeps,
             );
             black_box(r.is_ok());
-            work_units::svd(n)
+            work_units::svd(n, sweeps)
         }
         Kind::Cone(tol_mps, max_iter) => {
             let mut y = [0.0; 6];
@@ -493,7 +516,8 @@ pub fn run(index: usize, ws: &mut Workspace, out: &mut Solution, prepared: &Prep
             black_box(start.map(|m| m.pos_m).ok());
             let rep = solve_report(dv);
             write_solution(ctx, pts, &settings, &mut ws.seq, &rep, 1, out);
-            work_units::final_checks(n)
+            // The SVD of `conditioning_at` is metered once done.
+            work_units::final_checks(n).saturating_add(metered(ws))
         }
         Kind::Kepler(steps) => {
             let m = black_box(ctx.chief0[super::elements::MA] + 2.0);
@@ -517,13 +541,27 @@ pub fn run(index: usize, ws: &mut Workspace, out: &mut Solution, prepared: &Prep
         Kind::SolveSearch(budget) => {
             let p = problem(c.shape, true);
             let s = Settings {
-                work_budget: budget,
+                work_budget: if budget == 0 {
+                    settings.work_budget
+                } else {
+                    budget
+                },
                 ..settings
             };
             let r = super::solve(&p, &s, ws, out);
             black_box(r.is_ok());
             out.info.work_units
         }
+    }
+}
+
+/// The problem a whole-solve case solves (`None` for the other cases).
+pub fn case_problem(index: usize) -> Option<Problem> {
+    let c = CASES.get(index)?;
+    match c.kind {
+        Kind::Solve(_) => Some(problem(c.shape, false)),
+        Kind::SolveSearch(_) => Some(problem(c.shape, true)),
+        _ => None,
     }
 }
 
@@ -557,9 +595,7 @@ mod tests {
             let prepared = prepare(index, &mut ws, &mut out);
             assert!(!prepared.failed, "{}", c.name);
             let units = run(index, &mut ws, &mut out, &prepared);
-            if !matches!(c.kind, Kind::Kepler(_)) {
-                assert!(units > 0, "{}", c.name);
-            }
+            assert_eq!(units > 0, c.charged(), "{}", c.name);
         }
     }
 }

@@ -7,9 +7,12 @@ use super::settings::Settings;
 use super::socp::{least_fuel, LeastFuel};
 use super::status::Stage;
 use super::transfer::{FMatrix, XVector};
+use super::work_units;
+use crate::work::Meter;
 use nalgebra::SVector;
 
-/// `F^+ y` by the equilibrated Cholesky fast path, or the SVD when it declines.
+/// `F^+ y` by the equilibrated Cholesky fast path, or the SVD when it declines (charged to
+/// `work` once done, by its sweeps: the caller's step is charged at the Cholesky's cost).
 ///
 /// # Errors
 /// [`Stage::Svd`] from the SVD.
@@ -18,11 +21,22 @@ pub(crate) fn min_norm(
     columns: usize,
     y: &SVector<f64, 6>,
     settings: &Settings,
+    work: &mut Meter,
 ) -> Result<XVector, Stage> {
     match solve_full_row_rank(f, y) {
         Some(x) => Ok(x),
         None => {
-            solve_min_norm(f, columns, y, settings.rank_rcond, settings.svd_max_iter).map(|r| r.0)
+            let mut sweeps = 0;
+            let r = solve_min_norm(
+                f,
+                columns,
+                y,
+                settings.rank_rcond,
+                settings.svd_max_iter,
+                &mut sweeps,
+            );
+            work.charge(work_units::svd(columns.div_ceil(3), sweeps));
+            r.map(|r| r.0)
         }
     }
 }

@@ -35,6 +35,9 @@ mod form_problem;
 mod forms;
 mod gve;
 pub(crate) mod kepler;
+pub use kepler::WORST_NEWTON_STEPS;
+#[cfg(feature = "kernel-counters")]
+pub use kepler::{newton_counts, newton_counts_reset};
 #[doc(hidden)]
 pub mod kernels;
 mod min_fuel;
@@ -55,6 +58,7 @@ mod transfer;
 mod types;
 mod validate;
 mod work_units;
+pub use work_units::{MAX_INSTRUCTIONS_PER_UNIT, MAX_SOLVE_INSTRUCTIONS};
 mod workspace;
 
 pub use error::{Orbit, PlanError, Quantity, MAX_ANGLE_RAD};

@@ -41,7 +41,8 @@ fn rotate(p: &mut [f64], q: &mut [f64], c: f64, s: f64) {
 
 /// `x = F^+ y` with singular values below `rcond * sigma_max` treated as zero. `columns` is the
 /// number of unknowns in use (3 per impulse); the remaining columns of `f` are ignored and the
-/// matching entries of `x` are zero. At most `max_sweeps` Jacobi sweeps of 15 rotations.
+/// matching entries of `x` are zero. At most `max_sweeps` Jacobi sweeps of 15 rotations;
+/// `sweeps` is set to the sweeps made (the caller charges them, `work_units::svd`).
 ///
 /// # Errors
 /// [`Stage::Svd`] when the sweeps do not converge or a value is not finite.
@@ -51,7 +52,9 @@ pub(crate) fn solve_min_norm(
     y: &SVector<f64, 6>,
     rcond: f64,
     max_sweeps: u16,
+    sweeps: &mut u16,
 ) -> Result<(XVector, Conditioning), Stage> {
+    *sweeps = 0;
     let used = columns.clamp(1, MAX_UNKNOWNS);
     // w[j] = row j of F = column j of A = F^T; v accumulates the right rotations (A V = W).
     let mut w = [[0.0f64; MAX_UNKNOWNS]; 6];
@@ -81,6 +84,7 @@ pub(crate) fn solve_min_norm(
     let orthogonal = f64::EPSILON * (used as f64);
     let mut converged = false;
     for _ in 0..max_sweeps {
+        *sweeps = sweeps.saturating_add(1);
         let mut rotated = false;
         for p in 0..6usize {
             for q in p.saturating_add(1)..6 {
@@ -212,7 +216,7 @@ mod tests {
             }
         }
         let y = SVector::<f64, 6>::new(1.0, -2.0, 0.5, 0.3, 0.0, 1.5);
-        let (x, cond) = solve_min_norm(&f, 9, &y, 1e-12, 200).unwrap();
+        let (x, cond) = solve_min_norm(&f, 9, &y, 1e-12, 200, &mut 0).unwrap();
         assert_eq!(cond.rank, 6);
         assert!(cond.condition_number.is_finite() && cond.condition_number > 1.0);
         // Solves the system.
@@ -239,7 +243,7 @@ mod tests {
             }
         }
         let y = SVector::<f64, 6>::new(1.0, 1.0, 1.0, 1.0, 1.0, 1.0);
-        let (x, cond) = solve_min_norm(&f, 6, &y, 1e-10, 200).unwrap();
+        let (x, cond) = solve_min_norm(&f, 6, &y, 1e-10, 200, &mut 0).unwrap();
         assert_eq!(cond.rank, 3);
         assert!(cond.condition_number.is_infinite());
         // Least squares: the residual is orthogonal to the range of F.
@@ -264,7 +268,7 @@ mod tests {
             f[(5, 3 * k + 2)] = *g * 0.125 * if k == 0 { 0.1 } else { 1.0 };
         }
         let y = SVector::<f64, 6>::new(3.0, 0.0, 0.0, 1.5, 0.0, 0.0);
-        let (x, cond) = solve_min_norm(&f, 9, &y, 1e-10, 60).unwrap();
+        let (x, cond) = solve_min_norm(&f, 9, &y, 1e-10, 60, &mut 0).unwrap();
         assert_eq!(cond.rank, 3);
         assert!((f * x - y).norm() < 1e-12, "{}", (f * x - y).norm());
     }
@@ -284,7 +288,7 @@ mod tests {
             }
         }
         let y = SVector::<f64, 6>::new(1.0, -2.0e-4, 5e-5, 3e-5, 0.0, 1.5e-4);
-        let (x_svd, _) = solve_min_norm(&f, 9, &y, 1e-12, 200).unwrap();
+        let (x_svd, _) = solve_min_norm(&f, 9, &y, 1e-12, 200, &mut 0).unwrap();
         let x = solve_full_row_rank(&f, &y).unwrap();
         assert!(
             (x - x_svd).norm() < 1e-12 * x_svd.norm(),
@@ -306,6 +310,9 @@ mod tests {
         let mut f = FMatrix::zeros();
         f[(0, 0)] = f64::NAN;
         let y = SVector::<f64, 6>::zeros();
-        assert_eq!(solve_min_norm(&f, 3, &y, 1e-10, 50), Err(Stage::Svd));
+        assert_eq!(
+            solve_min_norm(&f, 3, &y, 1e-10, 50, &mut 0),
+            Err(Stage::Svd)
+        );
     }
 }

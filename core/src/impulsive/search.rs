@@ -185,7 +185,7 @@ impl Scorer<'_> {
             }
             build_system(self.ctx, pts, seq);
             if j.saturating_add(1) < linearisations {
-                match min_norm(&seq.f, columns, &seq.dy, self.settings) {
+                match min_norm(&seq.f, columns, &seq.dy, self.settings, &mut seq.work) {
                     Ok(x) => dv = x,
                     Err(_) => return INFEASIBLE,
                 }

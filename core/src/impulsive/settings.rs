@@ -75,11 +75,15 @@ crate::settings_table! {
         /// `|domega|`, `|dM|` (dimensionless / rad).
         correction_tol, CorrectionTol = 8: f64 = 1e-12,
         unit "", range Range::positive(), limit AtMost;
-        /// Most Newton steps for Kepler's equation.
-        kepler_max_iter, KeplerMaxIter = 9: u16 = 30,
+        /// Most Newton steps for Kepler's equation: no accepted orbit needs more than
+        /// `kepler::WORST_NEWTON_STEPS` (10); a transfer arc beyond the accepted eccentricities
+        /// that needs more is a `Kepler` failure, not unbounded work.
+        kepler_max_iter, KeplerMaxIter = 9: u16 = 12,
         unit "", range Range::at_least(1.0), limit AtMost;
-        /// Most implicit-shift QR steps of one SVD.
-        svd_max_iter, SvdMaxIter = 10: u16 = 200,
+        /// Most Jacobi sweeps of one SVD (one-sided Jacobi converges quadratically: the cases
+        /// take 4; 200 until 27 Nov). Each sweep is charged, and the final reserve keeps SVDs at
+        /// this many.
+        svd_max_iter, SvdMaxIter = 10: u16 = 30,
         unit "", range Range::at_least(1.0), limit AtMost;
         /// Singular values below `rank_rcond * sigma_max` count as zero (rank, pseudo-inverse).
         rank_rcond, RankRcond = 11: f64 = 1e-10,

@@ -76,7 +76,6 @@ pub(crate) fn fixed_point(
                 x
             }
             None => {
-                seq.work.charge(work_units::svd(pts.n));
                 let (x, cond) = min_norm_of_system(seq, columns, settings)?;
                 out.conditioning = cond;
                 if cond.rank < 6 {
@@ -336,22 +335,28 @@ pub(super) fn conditioning_at(
 }
 
 /// The minimum-norm solution (by the SVD, with the settings' rank tolerance and sweep bound)
-/// of the system `F x = dy` built in `seq`, over its first `columns` unknowns.
+/// of the system `F x = dy` built in `seq`, over its first `columns` unknowns; the SVD is
+/// charged once done, by its sweeps (the final reserve keeps one at `svd_max_iter`).
 ///
 /// # Errors
 /// [`Stage::Svd`] when the SVD fails.
 fn min_norm_of_system(
-    seq: &Sequence,
+    seq: &mut Sequence,
     columns: usize,
     settings: &Settings,
 ) -> Result<(XVector, Conditioning), Stage> {
-    solve_min_norm(
+    let mut sweeps = 0;
+    let r = solve_min_norm(
         &seq.f,
         columns,
         &seq.dy,
         settings.rank_rcond,
         settings.svd_max_iter,
-    )
+        &mut sweeps,
+    );
+    seq.work
+        .charge(work_units::svd(columns.div_ceil(3), sweeps));
+    r
 }
 
 /// Nonlinear correction: Broyden's method on the defect `e(dv)` of the exact model (exact
@@ -382,7 +387,7 @@ pub(super) fn correct(
         if !seq.work.spend(work_units::correction_step(pts.n)) {
             break;
         }
-        let d = min_norm(&jac, columns, &e, settings)?;
+        let d = min_norm(&jac, columns, &e, settings, &mut seq.work)?;
         dv.axpy(-1.0, &d, 1.0);
         rep.correction_steps = rep.correction_steps.saturating_add(1);
         rep.correction_used = true;

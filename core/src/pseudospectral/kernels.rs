@@ -200,6 +200,9 @@ pub const CASES: &[Case] = &[
     case("solve-cap-1m", CAP, Kind::Solve(1_000_000)),
     case("solve-n10-default", N10, Kind::Solve(0)),
     case("solve-small-default", SMALL, Kind::Solve(0)),
+    // The worst planner-A request within the built-in limits, whole, at the default budget:
+    // `fixtures/worst-case/crossing-8-sats-n24.toml`'s problem (a test holds them equal).
+    case("solve-cap-default", CAP, Kind::Solve(0)),
 ];
 
 /// The crossing problem of `shape`.
@@ -223,6 +226,15 @@ fn problem(shape: Shape) -> Problem {
         degree: shape.degree,
         test_points: true,
         spacecraft,
+    }
+}
+
+/// The problem a whole-solve case solves (`None` for the other cases).
+pub fn case_problem(index: usize) -> Option<Problem> {
+    let c = CASES.get(index)?;
+    match c.kind {
+        Kind::Solve(_) => Some(problem(c.shape)),
+        _ => None,
     }
 }
 

@@ -256,20 +256,9 @@ fn figures_are_within_budget() {
     let updating = updating();
     if updating {
         let _lock = RECORD_LOCK.lock().unwrap_or_else(|e| e.into_inner());
-        // The GEO image's part of the record is its own test's (geo_figures_are_within_budget).
+        // The kernel images' and the GEO image's parts of the record are their own tests'.
         let existing = std::fs::read_to_string(&path).unwrap_or_default();
-        let geo_part = crate::geo_image::record_part(&existing);
-        // So is the kernel image's part (kernels_a_image), between the main and GEO parts.
-        let kernels_part = crate::kernels_a_image::record_part(&existing);
-        if !kernels_part.is_empty() {
-            text.push('\n');
-            text.push_str(kernels_part.trim_end());
-            text.push('\n');
-        }
-        if !geo_part.is_empty() {
-            text.push('\n');
-            text.push_str(geo_part);
-        }
+        let text = crate::record::with_part(&existing, None, &text);
         std::fs::write(&path, &text).unwrap_or_else(|e| panic!("{FIGURES_FILE}: {e}"));
         notice(&format!("wrote the measured figures to {FIGURES_FILE}"));
         let changed = reconfig_tests::m7_record::update_docs().expect("regenerate the docs");

@@ -1,7 +1,7 @@
 //! The GEO servicing tour's image (`cargo firmware-geo`): its own build and a short QEMU run of
 //! the GEO fixtures alone (`fixtures/geo-*` and the GEO worst cases of `fixtures/worst-case/`),
 //! so that the default two-planner image keeps its RAM, then of the work meter's kernel cases
-//! (`geo_tour::kernels`). Its figures are the record's GEO part (after [`RECORD_MARKER`]),
+//! (`geo_tour::kernels`). Its figures are the record's GEO part (after `record::GEO_MARKER`),
 //! written by its own test: per fixture its instructions, work units, stack and RAM; per kernel
 //! case its instructions and the units the solve charges for it; and the work budget's bound,
 //! the largest instructions per unit over the kernels (at most `MAX_INSTRUCTIONS_PER_UNIT`) times
@@ -17,16 +17,13 @@ use crate::image::{build_and_run, instructions_or_skip, or_skip, Run};
 use crate::prerequisites::{notice, root};
 use crate::record::{
     assert_figures, assert_systick_agrees, read_record, record_entries, record_image_ram,
-    table_u64, tables_by, updating, Figure, BUDGET_RAM_BYTES, BUDGET_STACK_BYTES, FIGURES_FILE,
-    RECORD_LOCK,
+    table_u64, tables_by, updating, with_part, Figure, BUDGET_RAM_BYTES, BUDGET_STACK_BYTES,
+    FIGURES_FILE, GEO_MARKER, RECORD_LOCK,
 };
 use reconfig_core::geo_tour::{kernels, DEFAULT_WORK_BUDGET, MAX_INSTRUCTIONS_PER_UNIT};
 
 /// The GEO image's binary.
 const BIN: &str = "reconfig-firmware-geo";
-/// First line of the record's GEO part; everything after it belongs to the GEO image.
-const RECORD_MARKER: &str =
-    "# GEO servicing tour image (cargo firmware-geo): written by geo_figures_are_within_budget.";
 /// Instructions per GEO tour solve (issue 12: at most 20 M for 16 clients).
 const BUDGET_INSTRUCTIONS_GEO_TOUR: u64 = 20_000_000;
 /// Instructions of any GEO request within the built-in limits, the worst cases among them
@@ -40,11 +37,6 @@ const BINARY_FIGURES: [(&str, u64); 4] = [
 ];
 
 static RUN: OnceLock<Result<Run, String>> = OnceLock::new();
-
-/// The record's GEO part (from its marker to the end; empty when absent).
-pub fn record_part(record: &str) -> &str {
-    record.find(RECORD_MARKER).map_or("", |at| &record[at..])
-}
 
 /// The GEO image's run (shared by the GEO tests), or why there is none.
 fn run() -> &'static Result<Run, String> {
@@ -76,7 +68,7 @@ fn geo_figures_are_within_budget() {
     let recorded_fixtures = tables_by(&file, "geo_fixture", "name");
     let mut figures = Vec::new();
     let mut text =
-        format!("{RECORD_MARKER}\n# Its own QEMU run of the GEO fixtures.\n\n[geo_binary]\n");
+        format!("{GEO_MARKER}\n# Its own QEMU run of the GEO fixtures.\n\n[geo_binary]\n");
     let binary: Vec<(&str, u64, u64)> = BINARY_FIGURES
         .iter()
         .map(|&(key, default_budget)| {
@@ -178,10 +170,7 @@ fn geo_figures_are_within_budget() {
     if updating {
         let _lock = RECORD_LOCK.lock().unwrap_or_else(|e| e.into_inner());
         let existing = std::fs::read_to_string(&path).unwrap_or_default();
-        let main_part = &existing[..existing.len() - record_part(&existing).len()];
-        let mut record = main_part.trim_end().to_owned();
-        record.push_str("\n\n");
-        record.push_str(&text);
+        let record = with_part(&existing, Some(GEO_MARKER), &text);
         std::fs::write(&path, &record).unwrap_or_else(|e| panic!("{FIGURES_FILE}: {e}"));
         notice(&format!("wrote the GEO image's figures to {FIGURES_FILE}"));
         reconfig_tests::m7_record::update_geo_docs().expect("regenerate the docs");

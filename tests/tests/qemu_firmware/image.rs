@@ -20,6 +20,8 @@ pub struct FixtureReport {
     /// Work units the solve reported (`SolveInfo::work_units`), when the planner meters its
     /// work.
     pub work_units: Option<u64>,
+    /// Kepler solves and their Newton steps in the case (planner B's kernel image only).
+    pub kepler: Option<(u64, u64)>,
     pub hex: String,
 }
 
@@ -390,6 +392,12 @@ fn parse_output(elf: &Path, stdout: &str) -> Result<Run, String> {
                     systick_instructions: number(&f, "systick_instructions")?,
                     work_units: match f.get("work_units") {
                         Some(_) => Some(number(&f, "work_units")?),
+                        None => None,
+                    },
+                    kepler: match f.get("kepler_solves") {
+                        Some(_) => {
+                            Some((number(&f, "kepler_solves")?, number(&f, "kepler_steps")?))
+                        }
                         None => None,
                     },
                     hex: String::new(),

@@ -24,9 +24,10 @@
 //! an image), [`host`] (the host's answer to a baked request), [`record`] (the figures file, drift
 //! and budget checks), [`disassembly`] (the fused multiply-add check), [`default_image`],
 //! [`geo_image`] and [`leo_image`] (the tests of each image; the LEO arc image's record is its
-//! own file, `fixtures/golden/m7-figures-leo.toml`), and [`kernels_a_image`] (planner A's
-//! charged steps one at a time: fails when one costs more than
-//! `pseudospectral::MAX_INSTRUCTIONS_PER_UNIT` M7 instructions per unit it is charged).
+//! own file, `fixtures/golden/m7-figures-leo.toml`), and [`kernels_a_image`] /
+//! [`kernels_b_image`] (planners A's and B's charged steps one at a time, checked by
+//! [`kernels_image`]: fails when one costs more than the planner's `MAX_INSTRUCTIONS_PER_UNIT`
+//! M7 instructions per unit it is charged).
 
 #[path = "../../../firmware/fixture_set.rs"]
 mod fixture_set;
@@ -39,6 +40,8 @@ mod geo_image;
 mod host;
 mod image;
 mod kernels_a_image;
+mod kernels_b_image;
+mod kernels_image;
 mod leo_image;
 mod prerequisites;
 mod record;

@@ -30,6 +30,72 @@ pub const BUDGET_STACK_BYTES: u64 = 64 * 1024;
 /// RAM (static + stack high-water) of each one-planner image: 230 KiB, 90 % of 256 KiB.
 pub const BUDGET_ONE_PLANNER_IMAGE_RAM_BYTES: u64 = 230 * 1024;
 
+/// The record's parts after the default image's, in file order: each starts with its marker
+/// line and is written by its own test (the default image's part is everything before the first).
+pub const KERNELS_A_MARKER: &str = "# Planner A's kernel image (reconfig-firmware-ka): written by \
+                                    kernels_a_cases_are_within_the_per_unit_bound.";
+pub const KERNELS_B_MARKER: &str = "# Planner B's kernel image (reconfig-firmware-kb): written by \
+                                    kernels_b_cases_are_within_the_per_unit_bound.";
+pub const GEO_MARKER: &str =
+    "# GEO servicing tour image (cargo firmware-geo): written by geo_figures_are_within_budget.";
+const PART_MARKERS: [&str; 3] = [KERNELS_A_MARKER, KERNELS_B_MARKER, GEO_MARKER];
+
+/// The record split into its parts: the default image's, then one per marker (empty when
+/// absent), in [`PART_MARKERS`] order.
+fn parts(record: &str) -> (&str, [&str; 3]) {
+    let starts: Vec<Option<usize>> = PART_MARKERS.iter().map(|m| record.find(m)).collect();
+    let first = starts
+        .iter()
+        .flatten()
+        .min()
+        .copied()
+        .unwrap_or(record.len());
+    let mut out = [""; 3];
+    for (slot, start) in out.iter_mut().zip(&starts) {
+        if let Some(start) = *start {
+            let end = starts
+                .iter()
+                .flatten()
+                .filter(|&&other| other > start)
+                .min()
+                .copied()
+                .unwrap_or(record.len());
+            *slot = &record[start..end];
+        }
+    }
+    (&record[..first], out)
+}
+
+/// The part of `record` that starts with `marker` (empty when absent).
+pub fn record_part<'a>(record: &'a str, marker: &str) -> &'a str {
+    let (_, rest) = parts(record);
+    PART_MARKERS
+        .iter()
+        .zip(rest)
+        .find_map(|(m, part)| (*m == marker).then_some(part))
+        .unwrap_or("")
+}
+
+/// `record` with one part replaced by `text`: the default image's (`marker` `None`) or the one
+/// that starts with `marker`; the others kept, in file order.
+pub fn with_part(record: &str, marker: Option<&str>, text: &str) -> String {
+    let (main, rest) = parts(record);
+    let mut out = match marker {
+        None => text.trim_end().to_owned(),
+        Some(_) => main.trim_end().to_owned(),
+    };
+    out.push('\n');
+    for (m, part) in PART_MARKERS.iter().zip(rest) {
+        let part = if marker == Some(*m) { text } else { part };
+        if !part.trim().is_empty() {
+            out.push('\n');
+            out.push_str(part.trim_end());
+            out.push('\n');
+        }
+    }
+    out
+}
+
 /// Both tests that may rewrite the record take this first.
 pub static RECORD_LOCK: Mutex<()> = Mutex::new(());
 
@@ -197,5 +263,31 @@ pub fn assert_figures(
         over.is_empty(),
         "{image} figures over budget on the emulated Cortex-M7:\n{}",
         over.join("\n"),
+    );
+}
+
+#[test]
+fn record_parts_are_replaced_one_at_a_time() {
+    let record = format!("main\n\n{KERNELS_A_MARKER}\nka\n\n{GEO_MARKER}\ngeo\n");
+    assert_eq!(record_part(&record, KERNELS_B_MARKER), "");
+    assert_eq!(
+        record_part(&record, GEO_MARKER),
+        format!("{GEO_MARKER}\ngeo\n")
+    );
+    let with_b = with_part(
+        &record,
+        Some(KERNELS_B_MARKER),
+        &format!("{KERNELS_B_MARKER}\nkb\n"),
+    );
+    assert_eq!(
+        with_b,
+        format!("main\n\n{KERNELS_A_MARKER}\nka\n\n{KERNELS_B_MARKER}\nkb\n\n{GEO_MARKER}\ngeo\n")
+    );
+    assert_eq!(with_part(&with_b, None, "main"), with_b);
+    let new_main = with_part(&with_b, None, "other");
+    assert!(new_main.starts_with("other\n\n") && new_main.ends_with("geo\n"));
+    assert_eq!(
+        record_part(&new_main, KERNELS_A_MARKER),
+        format!("{KERNELS_A_MARKER}\nka\n\n")
     );
 }
