@@ -43,7 +43,11 @@ pub fn grouped(v: u64) -> String {
     out
 }
 
-fn int(t: &toml::Table, key: &str) -> Result<u64, String> {
+/// A record table's integer `key` as `u64`.
+///
+/// # Errors
+/// The key is missing, not an integer or negative.
+pub(crate) fn int(t: &toml::Table, key: &str) -> Result<u64, String> {
     t.get(key)
         .and_then(toml::Value::as_integer)
         .and_then(|v| u64::try_from(v).ok())

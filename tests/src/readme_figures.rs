@@ -4,7 +4,7 @@
 //! line per figure (what, target, measured, met or not, where it is explained).
 //! `tests/tests/m7_docs.rs` fails when the README differs from what the records generate.
 
-use crate::m7_record::{grouped, root, splice_between, RECORD_FILE};
+use crate::m7_record::{grouped, int, root, splice_between, RECORD_FILE};
 use std::fmt::Write as _;
 
 /// The README, relative to the workspace.
@@ -37,13 +37,6 @@ fn named<'a>(list: &[&'a Entry], name: &str) -> Result<&'a Entry, String> {
         .copied()
         .find(|e| e.get("name").and_then(toml::Value::as_str) == Some(name))
         .ok_or_else(|| format!("no record entry named {name}"))
-}
-
-fn int(e: &Entry, key: &str) -> Result<u64, String> {
-    e.get(key)
-        .and_then(toml::Value::as_integer)
-        .and_then(|v| u64::try_from(v).ok())
-        .ok_or_else(|| format!("record entry lacks `{key}`"))
 }
 
 /// Instructions in millions, one decimal (`6.7 M`).

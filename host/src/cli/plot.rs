@@ -1,5 +1,6 @@
 //! `reconfig plot FILE -o out.svg`: solve a fixture and draw the plan.
 
+use crate::drivers::pseudospectral::least_separation;
 use crate::fixture::{self, Fixture};
 use crate::plot;
 use anyhow::{bail, Result};
@@ -75,7 +76,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
                         f.name,
                         solution.info.status,
                         solution.cost,
-                        separation(&solution)
+                        least_separation(&solution)
                     );
                     (solution, what)
                 }
@@ -85,7 +86,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
                         "{}: unconstrained guess (solver: {e}), J = {:.4}, min separation {}",
                         f.name,
                         g.cost,
-                        separation(&g)
+                        least_separation(&g)
                     );
                     (g, what)
                 }
@@ -120,18 +121,4 @@ fn impulsive_plot(problem: &impulsive::Problem, name: &str, out: &std::path::Pat
             .map_or_else(|| "absent".to_string(), |t| format!("{:.1e} m", t.position_m)),
     );
     plot::impulsive_svg(problem, &settings, &solution, &title, out)
-}
-
-/// The least separation and its pair, or "none" with one spacecraft.
-fn separation(s: &pseudospectral::Solution) -> String {
-    s.min_separation_lu.map_or_else(
-        || "none".to_owned(),
-        |d| {
-            format!(
-                "{d:.4} (sats {}-{})",
-                s.min_separation_pair.0 + 1,
-                s.min_separation_pair.1 + 1
-            )
-        },
-    )
 }

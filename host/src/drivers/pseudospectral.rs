@@ -181,6 +181,21 @@ pub fn report(
     Ok(exit_code(s.info.status.is_usable()))
 }
 
+/// The least continuous separation and its pair (numbered from 1) for a one-line summary, or
+/// "none" with one spacecraft: the CLI's plot titles and the harness's result lines.
+pub fn least_separation(s: &Solution) -> String {
+    s.min_separation_lu.map_or_else(
+        || "none".to_owned(),
+        |d| {
+            format!(
+                "{d:.4} (sats {}-{})",
+                s.min_separation_pair.0 + 1,
+                s.min_separation_pair.1 + 1
+            )
+        },
+    )
+}
+
 /// One constraint an `Infeasible` answer names, for a person (spacecraft numbered from 1).
 pub fn describe_unmet(unmet: &UnmetConstraint) -> String {
     match unmet.constraint {

@@ -81,16 +81,7 @@ pub fn summarize(outcome: &Outcome) -> (String, String, String, String) {
         Outcome::Pseudospectral(s) => (
             format!("{:?}", s.info.status),
             format!("J={:.4}", s.cost),
-            s.min_separation_lu.map_or_else(
-                || "none".to_owned(),
-                |d| {
-                    format!(
-                        "{d:.4} ({}-{})",
-                        s.min_separation_pair.0 + 1,
-                        s.min_separation_pair.1 + 1
-                    )
-                },
-            ),
+            crate::drivers::pseudospectral::least_separation(s),
             format!("{}", s.info.sqp_iterations),
         ),
         Outcome::Impulsive(s) | Outcome::ImpulsiveForm { solution: s, .. } => figures(
