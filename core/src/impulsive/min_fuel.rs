@@ -2,7 +2,7 @@
 //! eq. 13 searched exactly), by the cone program of [`super::socp`]; and the minimum-norm solve
 //! and totals the rest of the planner shares.
 
-use super::pinv::{solve_full_row_rank, solve_min_norm};
+use super::pinv::{solve_full_row_rank, solve_min_norm, Conditioning};
 use super::settings::Settings;
 use super::socp::{least_fuel, LeastFuel};
 use super::status::Stage;
@@ -25,20 +25,34 @@ pub(crate) fn min_norm(
 ) -> Result<XVector, Stage> {
     match solve_full_row_rank(f, y) {
         Some(x) => Ok(x),
-        None => {
-            let mut sweeps = 0;
-            let r = solve_min_norm(
-                f,
-                columns,
-                y,
-                settings.rank_rcond,
-                settings.svd_max_iter,
-                &mut sweeps,
-            );
-            work.charge(work_units::svd(columns.div_ceil(3), sweeps));
-            r.map(|r| r.0)
-        }
+        None => svd_min_norm(f, columns, y, settings, work).map(|r| r.0),
     }
+}
+
+/// `F^+ y` and F's conditioning by the SVD (the settings' rank tolerance and sweep bound),
+/// charged to `work` once done by its sweeps (the final reserve keeps SVDs at
+/// `svd_max_iter`).
+///
+/// # Errors
+/// [`Stage::Svd`] when the SVD fails.
+pub(crate) fn svd_min_norm(
+    f: &FMatrix,
+    columns: usize,
+    y: &SVector<f64, 6>,
+    settings: &Settings,
+    work: &mut Meter,
+) -> Result<(XVector, Conditioning), Stage> {
+    let mut sweeps = 0;
+    let r = solve_min_norm(
+        f,
+        columns,
+        y,
+        settings.rank_rcond,
+        settings.svd_max_iter,
+        &mut sweeps,
+    );
+    work.charge(work_units::svd(columns.div_ceil(3), sweeps));
+    r
 }
 
 /// Euclidean norm of one impulse block.

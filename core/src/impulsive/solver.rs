@@ -3,9 +3,9 @@
 //! and correction. The returned plan's checks are in [`super::returned`].
 
 use super::elements::{sub, Elements, A, M_PER_KM};
-use super::min_fuel::{min_norm, solve_least_fuel, total};
+use super::min_fuel::{min_norm, solve_least_fuel, svd_min_norm, total};
 use super::nonlinear::relative_position_rtn;
-use super::pinv::{solve_full_row_rank, solve_min_norm, Conditioning};
+use super::pinv::{solve_full_row_rank, Conditioning};
 use super::settings::ElementSet;
 use super::settings::Settings;
 use super::status::{SolveStatus, Stage};
@@ -334,9 +334,8 @@ pub(super) fn conditioning_at(
     Ok(c)
 }
 
-/// The minimum-norm solution (by the SVD, with the settings' rank tolerance and sweep bound)
-/// of the system `F x = dy` built in `seq`, over its first `columns` unknowns; the SVD is
-/// charged once done, by its sweeps (the final reserve keeps one at `svd_max_iter`).
+/// The minimum-norm solution and conditioning (by the SVD, charged once done) of the system
+/// `F x = dy` built in `seq`, over its first `columns` unknowns.
 ///
 /// # Errors
 /// [`Stage::Svd`] when the SVD fails.
@@ -345,18 +344,7 @@ fn min_norm_of_system(
     columns: usize,
     settings: &Settings,
 ) -> Result<(XVector, Conditioning), Stage> {
-    let mut sweeps = 0;
-    let r = solve_min_norm(
-        &seq.f,
-        columns,
-        &seq.dy,
-        settings.rank_rcond,
-        settings.svd_max_iter,
-        &mut sweeps,
-    );
-    seq.work
-        .charge(work_units::svd(columns.div_ceil(3), sweeps));
-    r
+    svd_min_norm(&seq.f, columns, &seq.dy, settings, &mut seq.work)
 }
 
 /// Nonlinear correction: Broyden's method on the defect `e(dv)` of the exact model (exact
