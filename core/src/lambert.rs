@@ -247,6 +247,26 @@ pub fn solve(
     )
 }
 
+/// Work units of one Householder step of a direct (0-revolution) solve
+/// ([`householder_step`]) on its dearest branch (the hypergeometric series of a near-parabolic
+/// transfer), with the loop's bookkeeping and the meter's check, for the planners that meter
+/// a solve step by step ([`solve_from_stepped`]: the GEO and LEO tours, whose unit is at most
+/// 100 Cortex-M7 instructions): the M7 instructions measured by the GEO tour's kernel cases
+/// (`geo_tour/kernels.rs`), divided by 90 and rounded up.
+pub(crate) const STEP_UNITS_DIRECT: u64 = 21;
+/// One Householder or Halley step of a multi-revolution solve ([`householder_step`],
+/// [`halley_step`]; no series), likewise.
+pub(crate) const STEP_UNITS: u64 = 15;
+
+/// The units of one step of a solve of `revs` revolutions.
+pub(crate) const fn step_units(revs: u16) -> u64 {
+    if revs == 0 {
+        STEP_UNITS_DIRECT
+    } else {
+        STEP_UNITS
+    }
+}
+
 /// [`solve`] started from `guess` (the `x` of a solution of a nearby problem, e.g. the same
 /// family a little earlier or later) instead of Izzo's initial guess: the same root to the
 /// tolerance in fewer Householder steps. The guess is kept only when the iteration converges

@@ -6,11 +6,10 @@
 //! units are charged at the loop heads of the planners, in proportion to the cost of the step
 //! about to run (its rows times its variables, its propagations, its pairs times its
 //! intervals...), so that `budget x instructions per unit` bounds a solve's instructions.
-//! Planner A's and the GEO tour's weights are set so that each charged step, measured alone on
-//! its dearest path on the Cortex-M7 under QEMU, costs at most its planner's
-//! `MAX_INSTRUCTIONS_PER_UNIT` instructions per unit (`pseudospectral/kernels.rs`,
-//! `geo_tour/kernels.rs`, checked by the QEMU tests); planner B's are still fitted over its
-//! fixtures and are not yet a proven bound (`docs/firmware.md`, "Work budget").
+//! Every planner's weights are set so that each charged step, measured alone on its dearest
+//! path on the Cortex-M7 under QEMU, costs at most its planner's `MAX_INSTRUCTIONS_PER_UNIT`
+//! instructions per unit (`pseudospectral/kernels.rs`, `impulsive/kernels.rs`,
+//! `geo_tour/kernels.rs`, `leo_tour/kernels.rs`, checked by the QEMU tests).
 //!
 //! Every count saturates (no overflow, no float): the meter is plain integer arithmetic.
 

@@ -1,8 +1,9 @@
 //! The LEO tour's flight models, wall clock: one flight of the search model (the first-order
 //! J2 theory in closed form, `mean_j2::fly`), the state of a mean orbit at an epoch
-//! (`MeanOrbit::state_at`) and one RK4 step of the planning model. The work units charged for a
-//! search-model flight and state (`mean_j2::FLIGHT_UNITS`, `STATE_UNITS`) are these costs in
-//! RK4 steps (the meter's unit); compare the medians.
+//! (`MeanOrbit::state_at`) and one RK4 step of the planning model, on the host. The work units
+//! charged for them (`leo_tour::work_units`) are not set from these: they are the Cortex-M7
+//! instructions of each on its dearest path, measured by the kernel image (docs/leo-tour.md,
+//! "Work budget").
 //!
 //! `cargo bench -p reconfig-host --bench leo_flight`
 

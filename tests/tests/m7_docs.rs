@@ -123,3 +123,8 @@ fn the_planner_a_kernel_table_is_the_record() {
 fn the_planner_b_kernel_table_is_the_record() {
     kernel_table_is_the_record(&m7_record::KERNELS_B_DOCS);
 }
+
+#[test]
+fn the_leo_arc_kernel_table_is_the_record() {
+    kernel_table_is_the_record(&m7_record::KERNELS_LEO_DOCS);
+}

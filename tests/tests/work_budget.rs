@@ -247,4 +247,48 @@ fn the_kernel_images_solve_the_worst_case_requests() {
     let case_b = kb::case_problem(index_b).expect("a whole-solve case");
     assert_eq!(case_b, impulsive_fixture("worst-case/wang2018-search-6imp"));
     assert_eq!(ka::case_problem(0), None);
+    // The LEO arc's: the single-arc fixture's request, searched in the planning model (the
+    // dearest search) at the default budget, which it spends whole.
+    use reconfig_core::leo_tour::kernels as kl;
+    let index_l = kl::CASES
+        .iter()
+        .position(|c| c.name == "solve-planning-model-default")
+        .expect("the LEO arc's whole solve at the default budget");
+    let case_l = kl::case_problem(index_l).expect("a whole-solve case");
+    let fixture = reconfig_host::fixture::leo_tour::load(
+        &reconfig_tests::fixtures_dir().join("leo-tour-example1-single-arc.toml"),
+    )
+    .expect("the single-arc fixture");
+    let requests = fixture.requests().expect("its request");
+    let [request] = requests.as_slice() else {
+        panic!("one arc request");
+    };
+    let reconfig_core::wire::Request::LeoArc { problem, .. } = request.request else {
+        panic!("an arc request");
+    };
+    assert_eq!(
+        (case_l.duration_s, case_l.impulses),
+        (problem.duration_s, problem.impulses)
+    );
+    for (x, y) in case_l
+        .from
+        .iter()
+        .chain(&case_l.to)
+        .zip(problem.from.iter().chain(&problem.to))
+    {
+        assert!((x - y).abs() <= 1e-9 * (1.0 + y.abs()), "{x} vs {y}");
+    }
+    let settings = reconfig_core::leo_tour::Settings {
+        search_model: reconfig_core::leo_tour::flight::Model::Planning,
+        ..Default::default()
+    };
+    let mut ws = Box::new(reconfig_core::leo_tour::Workspace::new());
+    let mut out = reconfig_core::leo_tour::ArcSolution::new();
+    reconfig_core::leo_tour::solve_arc(&case_l, &settings, &mut ws, &mut out).expect("planned");
+    let budget = settings.work_budget;
+    assert!(
+        out.info.work_units * 100 >= budget * 99 && out.info.work_units <= budget,
+        "the case spends the default budget: {} of {budget} units",
+        out.info.work_units
+    );
 }

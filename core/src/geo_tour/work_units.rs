@@ -19,13 +19,11 @@
 use super::types::{MethodPolicy, PointKind, Settings};
 use crate::work::Meter;
 
-/// One Householder step of a direct (0-revolution) Lambert solve (`lambert::householder_step`),
-/// its dearest branch (the hypergeometric series of a near-parabolic transfer), with the
-/// loop's bookkeeping and the meter's check.
-pub(crate) const LAMBERT_STEP_DIRECT: u64 = 21;
-/// One Householder or Halley step of a multi-revolution Lambert solve
-/// (`lambert::householder_step`, `lambert::halley_step`; no series), likewise.
-pub(crate) const LAMBERT_STEP: u64 = 15;
+/// The Lambert solver's steps (shared with the LEO tour, whose unit is the same).
+pub(crate) use crate::lambert::{
+    step_units as lambert_step, STEP_UNITS as LAMBERT_STEP,
+    STEP_UNITS_DIRECT as LAMBERT_STEP_DIRECT,
+};
 /// One Lambert arc outside its steps: the two slot states, the solver's set-up, guess and
 /// velocities, the burns in the local frame, and the golden-section step or the table entry
 /// around it.
@@ -114,15 +112,6 @@ fn times(a: u64, b: u64) -> u64 {
 
 fn plus(a: u64, b: u64) -> u64 {
     a.saturating_add(b)
-}
-
-/// The step units of a Lambert solve of `revs` revolutions.
-pub(crate) const fn lambert_step(revs: u16) -> u64 {
-    if revs == 0 {
-        LAMBERT_STEP_DIRECT
-    } else {
-        LAMBERT_STEP
-    }
 }
 
 /// A Lambert arc of `revs` revolutions at its bound (for the reserve): `lambert_max_iter`

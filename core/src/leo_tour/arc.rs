@@ -16,10 +16,11 @@
 
 use super::flight::{Flight, Model};
 use super::j2::{join, pos, vel, State};
-use super::mean_j2::{self, MeanOrbit};
+use super::mean_j2::MeanOrbit;
 use super::shoot::{corrected_lambert_from, shoot, Family, Offset, Secant, Shot};
 use super::track::Track;
 use super::types::{Burn, Settings, MAX_IMPULSES, MAX_VARS};
+use super::work_units;
 use crate::astro::Gravity;
 use crate::indexed::IndexedExt as _;
 use crate::lambert::Branch;
@@ -156,7 +157,7 @@ impl Ctx<'_> {
         match self.flight.model {
             Model::Planning => track?.state_at(&self.flight, t_s, &mut self.meter),
             Model::MeanElements => {
-                if !self.meter.spend(mean_j2::STATE_UNITS) {
+                if !self.meter.spend(work_units::MEAN_STATE) {
                     return None;
                 }
                 mean?.state_at(&self.g, t_s)
@@ -202,6 +203,10 @@ impl Ctx<'_> {
         &mut self,
         x: &[f64; MAX_VARS],
     ) -> Option<([(State, Vec3); MAX_IMPULSES], State, [f64; MAX_IMPULSES])> {
+        // Charged before the epochs are checked: an evaluation refused there still ran.
+        if !self.meter.spend(work_units::EVALUATION) {
+            return None;
+        }
         let t = self.epochs(x)?;
         let t1 = *t.first()?;
         let mut s = self.client_state(Client::A, t1)?;
@@ -234,6 +239,9 @@ impl Ctx<'_> {
         fam: Family,
         off: &Offset,
     ) -> Option<f64> {
+        if !self.meter.spend(work_units::LAST_LEG) {
+            return None;
+        }
         let t_last = *t.get(self.impulses.checked_sub(2)?)?;
         let guess = self
             .lambert_guess
@@ -445,6 +453,9 @@ impl Ctx<'_> {
     }
 
     fn finish_in_planning_model(&mut self, p: &Point) -> Option<Flown> {
+        if !self.meter.spend(work_units::FINISH) {
+            return None;
+        }
         let (pre, s, t) = self.fly_to_last_leg(&p.x)?;
         let last = self.impulses.checked_sub(2)?;
         let t_last = *t.get(last)?;

@@ -5,8 +5,9 @@
 
 use super::arc::{families, period_s, Client, Ctx, Point};
 use super::j2::{join, pos, vel, State};
-use super::shoot::{corrected_lambert, Family, Offset, Secant};
+use super::shoot::{corrected_lambert, metered_lambert, Family, Offset, Secant};
 use super::types::{Settings, MAX_CANDIDATES, MAX_VARS};
+use super::work_units;
 use crate::indexed::IndexedExt as _;
 use crate::lambert::{self, Branch};
 use crate::vec3::{add, cross, dot, norm, scale, sub, Vec3};
@@ -67,12 +68,15 @@ impl Ctx<'_> {
     /// client from `t_s` to the arrival differ (the transfer ends on that orbit).
     pub(crate) fn client_offset(&mut self, t_s: f64) -> Option<Offset> {
         let sb = self.client_state(Client::B, t_s)?;
+        if !self.meter.spend(work_units::two_body_propagation()) {
+            return None;
+        }
         let (r, v) = lambert::propagate(
             self.settings.mu_km3_s2,
             &pos(&sb),
             &vel(&sb),
             self.tf - t_s,
-            60,
+            work_units::TWO_BODY_MAX_ITER,
         )?;
         Some(Offset {
             dr_km: sub(&r, &pos(&self.b_end)),
@@ -88,7 +92,14 @@ impl Ctx<'_> {
         let span = self.tf - self.settings.min_gap_s;
         let g = f64::from(self.settings.grid_points);
         let spacing = span / g;
+        // Every family is scanned against the window at each epoch.
+        let scanned = families(self.settings.max_revolutions).count() as u64;
+        let epoch_units =
+            work_units::GRID_POINT.saturating_add(scanned.saturating_mul(work_units::GRID_FAMILY));
         for j in 0..self.settings.grid_points {
+            if !self.meter.spend(epoch_units) {
+                return;
+            }
             let t1 = f64::from(j) * spacing;
             let Some(sa) = self.client_state(Client::A, t1) else {
                 break;
@@ -122,11 +133,17 @@ impl Ctx<'_> {
                 if cheapest.is_none_or(|(_, b)| c < b) {
                     cheapest = Some((fam, c));
                 }
+                if !self.meter.spend(work_units::GRID_INSERT) {
+                    return;
+                }
                 let p = self.initial_point(t1, &sa, dv1, fam, off, c);
                 insert(out, keep, p, 1.5 * spacing);
             }
             if self.impulses > 2 {
                 if let Some(p) = self.plane_seed(t1, &sa, cheapest.map(|(f, _)| f)) {
+                    if !self.meter.spend(work_units::GRID_INSERT) {
+                        return;
+                    }
                     insert(out, keep, p, 1.5 * spacing);
                 }
             }
@@ -150,22 +167,19 @@ impl Ctx<'_> {
         let at = 0.5 * (norm(&ra) + rb);
         let mu = self.settings.mu_km3_s2;
         let tof = core::f64::consts::PI * libm::sqrt(at * at * at / mu);
-        if !self.meter.spend(super::shoot::LAMBERT_UNITS) {
-            return None;
-        }
         let normal = cross(&ra, &vel(sa));
-        let leg = lambert::solve(
-            mu,
-            &ra,
-            &rm,
-            tof,
-            0,
-            Branch::Left,
+        let direct = Family {
+            revs: 0,
+            branch: Branch::Left,
+        };
+        let leg = metered_lambert(
+            self.settings,
+            (&ra, &rm, tof),
+            direct,
             &normal,
-            self.settings.lambert_max_iter,
-            self.settings.lambert_tol,
-        )
-        .ok()?;
+            None,
+            &mut self.meter,
+        )?;
         let dv1 = sub(&leg.v1_km_s, &vel(sa));
         let mut x = [0.0; MAX_VARS];
         let free = self.impulses.saturating_sub(1);

@@ -5,6 +5,7 @@ use super::arc::{period_s, rtn, rtn_axes, Client, Ctx, Point};
 use super::j2::State;
 use super::shoot::Secant;
 use super::types::{MAX_HOPS, MAX_VARS};
+use super::work_units;
 use crate::indexed::IndexedExt as _;
 use crate::vec3::{add, scale, Vec3};
 
@@ -25,6 +26,9 @@ impl Ctx<'_> {
         // Moves: epoch k alone for k < free, then every free epoch; each +half and -half.
         let moves = (0..=free).flat_map(|k| [half, -half].map(move |d| (k, d)));
         for (slot, (k, d)) in out.iter_mut().zip(moves) {
+            if !self.meter.spend(work_units::HOP) {
+                break;
+            }
             let mut x = p.x;
             let mut ok = true;
             for (j, xj) in x.iter_mut().take(free).indexed() {

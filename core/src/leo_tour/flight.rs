@@ -1,11 +1,10 @@
 //! One flight of a coasting state, in the model the search is using: the planning model
 //! (fixed-step RK4 of two-body + J2, [`super::j2`]) or the search model (the first-order J2
-//! theory in closed form, [`super::mean_j2`]). Both are charged to the work meter: RK4 one
-//! unit per step, the closed form [`super::mean_j2::FLIGHT_UNITS`] per flight whatever its
-//! span.
+//! theory in closed form, [`super::mean_j2`]). Both are charged to the work meter
+//! ([`super::work_units`]): RK4 by its steps, the closed form by the flight whatever its span.
 
 use super::j2::{propagate_steps, step_count, State};
-use super::mean_j2;
+use super::{mean_j2, work_units};
 use crate::astro::Gravity;
 use crate::work::Meter;
 use serde::{Deserialize, Serialize};
@@ -53,13 +52,13 @@ impl Flight {
         match self.model {
             Model::Planning => {
                 let n = step_count(dt_s, self.step_s, self.max_steps)?;
-                if !meter.spend(u64::from(n)) {
+                if !meter.spend(work_units::flight(n)) {
                     return None;
                 }
                 propagate_steps(&self.g, s, dt_s, n)
             }
             Model::MeanElements => {
-                if !dt_s.is_finite() || !meter.spend(mean_j2::FLIGHT_UNITS) {
+                if !dt_s.is_finite() || !meter.spend(work_units::MEAN_FLIGHT) {
                     return None;
                 }
                 mean_j2::fly(&self.g, s, dt_s)

@@ -29,17 +29,11 @@ use crate::impulsive::secular::rates_with;
 // The secular rates are those of the last three elements (node, perigee, mean anomaly).
 const _: () = assert!(RAAN + 1 == ARGP && ARGP + 1 == MA && MA == 5);
 
-/// Newton steps of one Kepler solve.
-const KEPLER_MAX_ITER: u16 = 30;
-
-/// Work units charged for one flight: its cost in RK4 steps of the planning model, measured
-/// by `cargo bench -p reconfig-host --bench leo_flight` (0.72 us against 0.077 us per RK4 step
-/// on the development machine: 9.3).
-pub const FLIGHT_UNITS: u64 = 9;
-
-/// Work units charged for the state of a [`MeanOrbit`] at an epoch (the conversion to mean
-/// elements made once): measured as [`FLIGHT_UNITS`], 0.34 us (4.4 RK4 steps).
-pub const STATE_UNITS: u64 = 4;
+/// Newton steps of one Kepler solve: the most an orbit of eccentricity up to 0.936 needs
+/// (`impulsive::kepler::WORST_NEWTON_STEPS`, scanned) and two more, planner B's limit; the
+/// work units of a flight allow every solve this many (`work_units.rs`). An orbit closer to
+/// parabolic may not converge: its flight fails, as any flight that leaves the model.
+pub const KEPLER_MAX_ITER: u16 = crate::impulsive::WORST_NEWTON_STEPS + 2;
 
 /// The first-order short-period J2 terms added to `el` (`sign = 1`: mean to osculating;
 /// `sign = -1`: osculating to mean, to first order). `None` when Kepler's equation does not

@@ -36,6 +36,7 @@ pub mod bound;
 pub mod elements;
 pub mod flight;
 pub mod j2;
+pub mod kernels;
 pub mod mean_j2;
 pub mod schedule;
 pub mod sequence;
@@ -44,6 +45,7 @@ pub mod tour_order;
 pub mod track;
 mod types;
 pub mod validate;
+pub mod work_units;
 mod workspace;
 
 #[cfg(test)]
@@ -136,8 +138,8 @@ fn context<'a>(
     let g = settings.gravity();
     let mut meter = Meter::new(settings.work_budget);
     let tf = problem.duration_s;
-    // The clients' mean orbits: one conversion each (charged as a flight).
-    meter.charge(2 * mean_j2::FLIGHT_UNITS);
+    // The solve's fixed part and the clients' mean orbits (one conversion each).
+    meter.charge(work_units::SOLVE + 2 * work_units::MEAN_ORBIT);
     let mean_a = mean_j2::MeanOrbit::of_state(&g, &problem.from);
     let mean_b = mean_j2::MeanOrbit::of_state(&g, &problem.to);
     let (a, b, b_end) = if let Some((a, b)) = tracks {
@@ -155,13 +157,13 @@ fn context<'a>(
             .ok_or_else(|| failed(&meter, Field::To))?;
         let n = step_count(tf, settings.step_s, settings.max_steps.saturating_mul(64))
             .ok_or(PlanError::Propagation { field: Field::To })?;
-        meter.charge(u64::from(n));
+        meter.charge(work_units::flight(n));
         let b_end = propagate_steps(&g, &problem.to, tf, n)
             .ok_or(PlanError::Propagation { field: Field::To })?;
         (Some(&*a), Some(&*b), b_end)
     } else {
         // An estimate aims at the client's arrival in the search model.
-        meter.charge(mean_j2::STATE_UNITS);
+        meter.charge(work_units::MEAN_STATE);
         let b_end = mean_b
             .and_then(|m| m.state_at(&g, tf))
             .ok_or(PlanError::Propagation { field: Field::To })?;
@@ -208,6 +210,7 @@ pub fn estimate_arc_mps(
         return Ok(ArcEstimate {
             dv_mps: status.is_usable().then_some(planned.total_dv_mps),
             status,
+            work_units: planned.info.work_units,
         });
     }
     let Workspace {
@@ -216,15 +219,17 @@ pub fn estimate_arc_mps(
     let mut ctx = match context(problem, settings, None) {
         Ok(ctx) => ctx,
         Err(NoContext::Refused(e)) => return Err(e),
-        Err(NoContext::Exhausted(_)) => {
+        Err(NoContext::Exhausted(used)) => {
             return Ok(ArcEstimate {
                 dv_mps: None,
                 status: SolveStatus::BudgetExhausted { verified: false },
+                work_units: used,
             })
         }
     };
     let kept = search(&mut ctx, None, (candidates, hops));
     let exhausted = ctx.meter.exhausted();
+    let work_units = ctx.meter.used();
     Ok(match kept.first().copied().flatten() {
         Some(p) if p.shot && p.cost.is_finite() => ArcEstimate {
             dv_mps: Some(p.cost * 1e3),
@@ -233,6 +238,7 @@ pub fn estimate_arc_mps(
             } else {
                 SolveStatus::Solved
             },
+            work_units,
         },
         _ => ArcEstimate {
             dv_mps: None,
@@ -241,6 +247,7 @@ pub fn estimate_arc_mps(
             } else {
                 SolveStatus::NoTransfer
             },
+            work_units,
         },
     })
 }

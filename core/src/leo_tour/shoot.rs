@@ -15,12 +15,10 @@
 use super::flight::Flight;
 use super::j2::{join, pos, vel, State};
 use super::types::Settings;
+use super::work_units;
 use crate::lambert::{self, Branch};
 use crate::vec3::{add, cross, dot, norm, scale, sub, Vec3};
 use crate::work::Meter;
-
-/// Work units charged for one Lambert solve.
-pub const LAMBERT_UNITS: u64 = 8;
 
 /// A Lambert family: whole revolutions and branch.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -68,26 +66,41 @@ pub fn corrected_lambert_from(
     guess: Option<f64>,
     meter: &mut Meter,
 ) -> Option<(Vec3, Vec3, f64)> {
-    if !meter.spend(LAMBERT_UNITS) {
-        return None;
-    }
     let r1 = pos(from);
     let normal = cross(&r1, &vel(from));
     let aim = add(target_r, &off.dr_km);
-    let sol = lambert::solve_from(
+    let sol = metered_lambert(settings, (&r1, &aim, tof_s), fam, &normal, guess, meter)?;
+    Some((sol.v1_km_s, add(&sol.v2_km_s, &off.dv_km_s), sol.x))
+}
+
+/// A Lambert solve from `r1` to `r2` in `tof_s` (`guess` as in [`lambert::solve_from`])
+/// charged to `meter`: its set-up, then each step as it starts (a refused step ends the solve
+/// with no answer).
+pub(crate) fn metered_lambert(
+    settings: &Settings,
+    (r1, r2, tof_s): (&Vec3, &Vec3, f64),
+    fam: Family,
+    normal: &Vec3,
+    guess: Option<f64>,
+    meter: &mut Meter,
+) -> Option<lambert::LambertSolution> {
+    if !meter.spend(work_units::LAMBERT_SOLVE) {
+        return None;
+    }
+    let step_units = lambert::step_units(fam.revs);
+    lambert::solve_from_stepped(
         settings.mu_km3_s2,
-        &r1,
-        &aim,
+        r1,
+        r2,
         tof_s,
         fam.revs,
         fam.branch,
-        &normal,
-        settings.lambert_max_iter,
-        settings.lambert_tol,
+        normal,
+        (settings.lambert_max_iter, settings.lambert_tol),
         guess,
+        &mut || meter.spend(step_units),
     )
-    .ok()?;
-    Some((sol.v1_km_s, add(&sol.v2_km_s, &off.dv_km_s), sol.x))
+    .ok()
 }
 
 /// Broyden's estimate of the inverse Jacobian of the arrival miss over the aim offset: the
@@ -169,6 +182,9 @@ pub fn shoot(
     let mut anchor: Option<(Vec3, Vec3)> = None;
     let mut failures_in_a_row = 0_u8;
     for _ in 0..settings.shoot_max_iter {
+        if !meter.spend(work_units::SHOOT_ITERATION) {
+            break;
+        }
         // A Lambert solve that fails on a moved aim point ends the iteration with the best
         // shot so far (the caller checks its miss).
         let Some((v_dep, v_arr_2b)) = corrected_lambert(

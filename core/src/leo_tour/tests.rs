@@ -83,11 +83,12 @@ fn paper_single_arc_is_solved_below_the_published_cost() {
 fn the_search_model_finds_the_planning_models_plan_for_a_tenth_of_the_work() {
     // The same arc searched in the planning model throughout (the reference) and in the
     // search model (first-order J2 in closed form, then the planning model's polish and
-    // check). Measured: 411.810 m/s with 33.0 M work units against 411.778 with 0.88 M.
+    // check). The reference needs more than the on-board budget: it is given 1 G units.
     let reference = solve(
         &paper_arc(),
         &Settings {
             search_model: flight::Model::Planning,
+            work_budget: 1_000_000_000,
             ..Settings::default()
         },
     )
@@ -152,11 +153,7 @@ fn a_tiny_budget_is_a_status_with_no_plan_not_a_refusal() {
         SolveStatus::BudgetExhausted { verified: false }
     );
     assert_eq!((sol.impulses, sol.total_dv_mps, sol.miss_m), (0, 0.0, None));
-    assert!(
-        sol.info.work_units <= 1000 + 64 * 50,
-        "{}",
-        sol.info.work_units
-    );
+    assert!(sol.info.work_units <= 1000, "{}", sol.info.work_units);
     assert!(!sol.info.status.is_usable());
     // The estimate says the same, without a Δv.
     let e = estimate_arc_mps(
@@ -164,13 +161,12 @@ fn a_tiny_budget_is_a_status_with_no_plan_not_a_refusal() {
         &s,
         &mut std::boxed::Box::new(Workspace::new()),
     );
+    let e = e.unwrap();
     assert_eq!(
-        e,
-        Ok(ArcEstimate {
-            dv_mps: None,
-            status: SolveStatus::BudgetExhausted { verified: false }
-        })
+        (e.dv_mps, e.status),
+        (None, SolveStatus::BudgetExhausted { verified: false })
     );
+    assert!(e.work_units <= 1000, "{}", e.work_units);
 }
 
 #[test]
@@ -266,7 +262,7 @@ fn the_quasi_newton_shooting_converges_in_a_few_iterations() {
         )
         .unwrap();
         let steps = u64::from(j2::step_count(tof_s, settings.step_s, 100_000).unwrap());
-        (shot, meter.used() / (steps + shoot::LAMBERT_UNITS))
+        (shot, meter.used() / work_units::flight(steps as u32))
     };
     let mut secant = Secant::default();
     let (shot, iterations) = run(&p.from, p.duration_s, &Offset::default(), &mut secant);

@@ -83,9 +83,10 @@ crate::settings_table! {
         /// the arc.
         min_gap_s, MinGapS = 17: f64 = 60.0,
         unit "s", range Range::closed(0.0, 3e6), limit Free;
-        /// Work budget (units: one RK4 step = 1 unit, one Lambert solve = 8 units, one flight
-        /// of the search model 9 units, one client state of the search model 4 units).
-        work_budget, WorkBudget = 18: u64 = 400_000_000,
+        /// Work budget, in units of at most `work_units::MAX_INSTRUCTIONS_PER_UNIT` (100)
+        /// Cortex-M7 instructions each (`work_units.rs`: every step charged by its dearest
+        /// path, proven per kernel on the M7).
+        work_budget, WorkBudget = 18: u64 = super::work_units::DEFAULT_WORK_BUDGET,
         unit "units", range Range::closed(1.0, 1e10), limit AtMost;
         /// The model of the grid, the local searches and the hops: `MeanElements` (the
         /// first-order J2 theory in closed form, then a polish in the planning model) or
@@ -252,6 +253,8 @@ pub struct ArcEstimate {
     /// `verified`: an estimate was shot before), `NoTransfer`; with `search_model =
     /// Planning` the planned arc's status (an estimate only when it is usable).
     pub status: SolveStatus,
+    /// Work units used (`work_budget`).
+    pub work_units: u64,
 }
 
 /// A field of the request.

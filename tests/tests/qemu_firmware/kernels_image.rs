@@ -1,15 +1,16 @@
 //! The kernel images, one per metered planner: planner A's (`reconfig-firmware-ka`, feature
-//! `kernels_a`, module `kernels_a_image`) and planner B's (`reconfig-firmware-kb`, feature
-//! `kernels_b`, module `kernels_b_image`). Each runs every case of the planner's `kernels`
+//! `kernels_a`, module `kernels_a_image`), planner B's (`reconfig-firmware-kb`, feature
+//! `kernels_b`, module `kernels_b_image`) and the LEO arc's (`reconfig-firmware-kl`, feature
+//! `kernels_leo`, module `kernels_leo_image`). Each runs every case of the planner's `kernels`
 //! module (each charged step of a solve, on its dearest path) between the instruction markers,
 //! one `fixture` line per case whose `work_units` are the units the solve charges for it. The
 //! test fails when a charged case's M7 instructions exceed its units x the planner's
 //! `MAX_INSTRUCTIONS_PER_UNIT`: that per-unit bound is what makes `work_budget x
 //! MAX_INSTRUCTIONS_PER_UNIT` bound a solve's instructions (issue 33 item 1).
 //!
-//! Planner B's cases also report their Kepler solves and Newton steps. A solve's Newton steps
+//! Planner B's and the LEO arc's cases also report their Kepler solves and Newton steps. A solve's Newton steps
 //! depend on the orbit, so each case is held to its instructions plus the steps it did not take
-//! up to `kepler_max_iter`'s built-in limit per solve, at the measured cost of one step (the
+//! up to the built-in limit per solve, at the measured cost of one step (the
 //! difference of the `kepler-2` and `kepler-1` cases): the bound holds at any accepted orbit.
 //!
 //! Each image's figures are its own part of the record (from its marker line), written by its

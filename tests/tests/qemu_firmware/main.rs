@@ -25,9 +25,9 @@
 //! and budget checks), [`disassembly`] (the fused multiply-add check), [`default_image`],
 //! [`geo_image`] and [`leo_image`] (the tests of each image; the LEO arc image's record is its
 //! own file, `fixtures/golden/m7-figures-leo.toml`), and [`kernels_a_image`] /
-//! [`kernels_b_image`] (planners A's and B's charged steps one at a time, checked by
-//! [`kernels_image`]: fails when one costs more than the planner's `MAX_INSTRUCTIONS_PER_UNIT`
-//! M7 instructions per unit it is charged).
+//! [`kernels_b_image`] / [`kernels_leo_image`] (planners A's and B's and the LEO arc's charged
+//! steps one at a time, checked by [`kernels_image`]: fails when one costs more than the
+//! planner's `MAX_INSTRUCTIONS_PER_UNIT` M7 instructions per unit it is charged).
 
 #[path = "../../../firmware/fixture_set.rs"]
 mod fixture_set;
@@ -42,6 +42,7 @@ mod image;
 mod kernels_a_image;
 mod kernels_b_image;
 mod kernels_image;
+mod kernels_leo_image;
 mod leo_image;
 mod prerequisites;
 mod record;

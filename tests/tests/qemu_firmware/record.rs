@@ -36,13 +36,22 @@ pub const KERNELS_A_MARKER: &str = "# Planner A's kernel image (reconfig-firmwar
                                     kernels_a_cases_are_within_the_per_unit_bound.";
 pub const KERNELS_B_MARKER: &str = "# Planner B's kernel image (reconfig-firmware-kb): written by \
                                     kernels_b_cases_are_within_the_per_unit_bound.";
+pub const KERNELS_LEO_MARKER: &str =
+    "# The LEO arc's kernel image (reconfig-firmware-kl): written \
+                                      by kernels_leo_cases_are_within_the_per_unit_bound.";
 pub const GEO_MARKER: &str =
     "# GEO servicing tour image (cargo firmware-geo): written by geo_figures_are_within_budget.";
-const PART_MARKERS: [&str; 3] = [KERNELS_A_MARKER, KERNELS_B_MARKER, GEO_MARKER];
+const PARTS: usize = 4;
+const PART_MARKERS: [&str; PARTS] = [
+    KERNELS_A_MARKER,
+    KERNELS_B_MARKER,
+    KERNELS_LEO_MARKER,
+    GEO_MARKER,
+];
 
 /// The record split into its parts: the default image's, then one per marker (empty when
 /// absent), in [`PART_MARKERS`] order.
-fn parts(record: &str) -> (&str, [&str; 3]) {
+fn parts(record: &str) -> (&str, [&str; PARTS]) {
     let starts: Vec<Option<usize>> = PART_MARKERS.iter().map(|m| record.find(m)).collect();
     let first = starts
         .iter()
@@ -50,7 +59,7 @@ fn parts(record: &str) -> (&str, [&str; 3]) {
         .min()
         .copied()
         .unwrap_or(record.len());
-    let mut out = [""; 3];
+    let mut out = [""; PARTS];
     for (slot, start) in out.iter_mut().zip(&starts) {
         if let Some(start) = *start {
             let end = starts

@@ -1,0 +1,89 @@
+//! The per-arc search's work units (issue 33): every step of an arc's solve is charged to the
+//! work meter ([`crate::work::Meter`]) before it runs, by the most that step can cost. A unit is
+//! at most [`MAX_INSTRUCTIONS_PER_UNIT`] Cortex-M7 instructions, the GEO tour's unit: each
+//! constant below is the measured M7 instruction count of its step on its dearest path
+//! (`kernels.rs` runs them), divided by 90 and rounded up, so a solve's units bound its
+//! instructions, `instructions <= units x MAX_INSTRUCTIONS_PER_UNIT`. The LEO image measures
+//! every kernel case on the M7 under QEMU in CI and fails above that bound
+//! (`tests/tests/qemu_firmware/kernels_leo_image.rs`; the figures and the argument:
+//! docs/leo-tour.md, "Work budget").
+//!
+//! What each charge covers:
+//! * a flight of the planning model: [`FLIGHT`] for its set-up and [`RK4_STEP`] per step;
+//! * a flight of the search model ([`MEAN_FLIGHT`]), a client's state from its mean orbit
+//!   ([`MEAN_STATE`]), a client's mean orbit ([`MEAN_ORBIT`]): each with its Kepler solves at
+//!   the Newton steps they took; the kernel image counts the solves and steps and its test
+//!   holds each case to every solve at [`mean_j2`](super::mean_j2)'s limit of
+//!   `impulsive::kepler::WORST_NEWTON_STEPS + 2` steps;
+//! * a Lambert solve: [`LAMBERT_SOLVE`] for its set-up and velocities, and each Householder or
+//!   Halley step as it starts ([`crate::lambert::step_units`]);
+//! * the two-body propagation of a client to the arrival (the grid's J2 offset):
+//!   [`two_body_propagation`], at its bound of [`TWO_BODY_MAX_ITER`] iterations;
+//! * an evaluation of the compass search (a plan's variables checked and flown to its last
+//!   leg, the loop's bookkeeping): [`EVALUATION`]; a last leg costed: [`LAST_LEG`];
+//! * an aim-point iteration of a shooting outside its Lambert solve and flight:
+//!   [`SHOOT_ITERATION`];
+//! * a grid epoch: [`GRID_POINT`], [`GRID_FAMILY`] per family it scans, [`GRID_INSERT`] per
+//!   candidate it ranks; a hop: [`HOP`]; the returned plan's burns: [`FINISH`]; a solve's fixed
+//!   part (the request checked, the answer written): [`SOLVE`].
+
+/// The most Cortex-M7 instructions one unit stands for: `work_budget x
+/// MAX_INSTRUCTIONS_PER_UNIT` bounds an arc's instructions.
+pub const MAX_INSTRUCTIONS_PER_UNIT: u64 = 100;
+
+/// The default work budget (and the service's built-in limit): 24 M units, so an arc takes at
+/// most 2.4 G M7 instructions (6 s at 400 MHz). It is not the 400 M of the other planners:
+/// the paper's single arc takes 7.0 M units (0.46 G instructions), the largest arc of the
+/// published tours' plans 10.1 M, and the multi-round correction's re-plan of Example I's
+/// third arc from 79 km off (the search in the search model finds no arriving plan and runs
+/// again in the planning model) 16-20 M; a budget that cut them would change their plans
+/// (`docs/leo-tour.md`, "Work budget"). The search must become cheaper first (issue 33).
+pub const DEFAULT_WORK_BUDGET: u64 = 24_000_000;
+
+/// One RK4 step of two-body + J2 (`j2::rk4_step`: four accelerations).
+pub(crate) const RK4_STEP: u64 = 7;
+/// A planning-model flight outside its steps: the step count, the loop's set-up.
+pub(crate) const FLIGHT: u64 = 4;
+/// A search-model flight (`mean_j2::fly`: to mean elements, the secular drift, back to an
+/// osculating state), its Kepler solves at the steps they took.
+pub(crate) const MEAN_FLIGHT: u64 = 123;
+/// A client's state from its mean orbit (`MeanOrbit::state_at`).
+pub(crate) const MEAN_STATE: u64 = 77;
+/// A client's mean orbit from its state (`MeanOrbit::of_state`), once per arc and client.
+pub(crate) const MEAN_ORBIT: u64 = 47;
+/// A Lambert solve outside its steps: the geometry, Izzo's guess, the velocities.
+pub(crate) const LAMBERT_SOLVE: u64 = 20;
+/// Iterations of the two-body propagation of the grid's offset (`lambert::propagate`).
+pub(crate) const TWO_BODY_MAX_ITER: u16 = 60;
+/// The two-body propagation's set-up and velocities.
+pub(crate) const TWO_BODY_SET_UP: u64 = 12;
+/// One of its universal-variable Newton iterations.
+pub(crate) const TWO_BODY_ITERATION: u64 = 5;
+/// A compass-search evaluation outside its flights and Lambert solves.
+pub(crate) const EVALUATION: u64 = 10;
+/// A last leg costed outside its Lambert solve (the burns summed).
+pub(crate) const LAST_LEG: u64 = 4;
+/// An aim-point iteration outside its Lambert solve and flight (the miss, the secant update).
+pub(crate) const SHOOT_ITERATION: u64 = 6;
+/// A grid epoch outside its client states, Lambert solves and ranking.
+pub(crate) const GRID_POINT: u64 = 20;
+/// A family scanned at a grid epoch (whether its revolutions are in the window).
+pub(crate) const GRID_FAMILY: u64 = 1;
+/// A grid candidate ranked among the kept ones (`arc_grid::insert`).
+pub(crate) const GRID_INSERT: u64 = 50;
+/// A hop built outside its flights and evaluation.
+pub(crate) const HOP: u64 = 10;
+/// The returned plan's burns written and checked (`Ctx::finish` outside its flights).
+pub(crate) const FINISH: u64 = 15;
+/// A solve's fixed part: the request checked, the context built, the answer written.
+pub(crate) const SOLVE: u64 = 30;
+
+/// A planning-model flight of `steps` RK4 steps.
+pub(crate) const fn flight(steps: u32) -> u64 {
+    FLIGHT.saturating_add(RK4_STEP.saturating_mul(steps as u64))
+}
+
+/// The two-body propagation at its bound.
+pub(crate) const fn two_body_propagation() -> u64 {
+    TWO_BODY_SET_UP.saturating_add(TWO_BODY_ITERATION.saturating_mul(TWO_BODY_MAX_ITER as u64))
+}
