@@ -123,4 +123,5 @@ pub mod alloc_count {
 }
 pub mod m7_record;
 pub mod numbers;
+pub mod qemu;
 pub mod readme_figures;

@@ -763,22 +763,9 @@ fn m7_c_image_is_bit_identical_to_the_rust_api_on_every_fixture() {
         "arm-none-eabi-ld (the M7 C image)",
     );
     // Semihosting's SYS_WRITE0 output arrives on QEMU's stderr.
-    let qemu_run = Command::new(qemu)
-        .args([
-            "-cpu",
-            "cortex-m7",
-            "-machine",
-            "mps2-an500",
-            "-nographic",
-            "-semihosting-config",
-            "enable=on,target=native",
-            "-kernel",
-        ])
-        .arg(&elf)
-        .stdin(std::process::Stdio::null())
-        .output()
-        .expect("qemu-system-arm starts");
-    let stdout = String::from_utf8_lossy(&qemu_run.stderr).into_owned();
+    let qemu_run = reconfig_tests::qemu::run_m7(Path::new(&qemu), &elf, &[])
+        .unwrap_or_else(|e| panic!("the M7 C image: {e}"));
+    let stdout = qemu_run.stderr;
     assert!(
         qemu_run.status.success(),
         "the M7 C image failed ({}):\n{stdout}",

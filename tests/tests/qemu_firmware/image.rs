@@ -5,7 +5,6 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
 
 use crate::prerequisites::{cargo, check_prerequisites, notice, root, skip, TARGET};
 
@@ -241,64 +240,24 @@ fn elf32_symbols(elf: &Path, names: &[&str]) -> Result<Vec<u32>, String> {
 
 /// Run an image in QEMU (the runner of .cargo/config.toml, plus the plugin when given).
 pub fn run_firmware(elf: &Path, plugin: Option<&Path>) -> Result<Run, String> {
-    let out_dir = elf.parent().ok_or("odd target path")?;
-    let stdout_path = out_dir.join("qemu-stdout.txt");
-    let stderr_path = out_dir.join("qemu-stderr.txt");
-    let mut command = Command::new("qemu-system-arm");
-    // The runner of .cargo/config.toml, plus the plugin.
-    command.args([
-        "-cpu",
-        "cortex-m7",
-        "-machine",
-        "mps2-an500",
-        "-nographic",
-        "-semihosting-config",
-        "enable=on,target=native",
-        "-icount",
-        "shift=0",
-        "-kernel",
-    ]);
-    command.arg(elf);
+    // The plugin counts the instructions between the marker functions.
+    let mut extra = Vec::new();
     if let Some(plugin) = plugin {
         let markers = elf32_symbols(elf, &["reconfig_measure_start", "reconfig_measure_stop"])?;
-        command.arg("-plugin").arg(format!(
+        extra.push("-plugin".to_owned());
+        extra.push(format!(
             "{},start={:#x},stop={:#x}",
             plugin.display(),
             markers[0],
             markers[1]
         ));
-        command.args(["-d", "plugin"]);
+        extra.extend(["-d".to_owned(), "plugin".to_owned()]);
     }
-    let file = |p: &Path| std::fs::File::create(p).map_err(|e| format!("{}: {e}", p.display()));
-    let mut child = command
-        .stdin(Stdio::null())
-        .stdout(file(&stdout_path)?)
-        .stderr(file(&stderr_path)?)
-        .spawn()
-        .map_err(|e| format!("cannot start qemu-system-arm: {e}"))?;
-    let limit = Duration::from_secs(
-        std::env::var("RECONFIG_QEMU_TIMEOUT_S")
-            .ok()
-            .and_then(|s| s.parse().ok())
-            .unwrap_or(600),
-    );
-    let started = Instant::now();
-    let status = loop {
-        if let Some(status) = child.try_wait().map_err(|e| e.to_string())? {
-            break status;
-        }
-        if started.elapsed() > limit {
-            let _ = child.kill();
-            let _ = child.wait();
-            return Err(format!(
-                "the firmware did not finish within {} s (RECONFIG_QEMU_TIMEOUT_S)",
-                limit.as_secs()
-            ));
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    };
-    let stdout = std::fs::read_to_string(&stdout_path).map_err(|e| e.to_string())?;
-    let stderr = std::fs::read_to_string(&stderr_path).map_err(|e| e.to_string())?;
+    let reconfig_tests::qemu::Output {
+        status,
+        stdout,
+        stderr,
+    } = reconfig_tests::qemu::run_m7(Path::new("qemu-system-arm"), elf, &extra)?;
     let tail = |s: &str| -> String {
         let lines: Vec<&str> = s.lines().collect();
         let from = lines.len().saturating_sub(20);

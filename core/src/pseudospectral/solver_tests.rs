@@ -1,0 +1,243 @@
+//! Unit tests of `solver.rs` (a child module of it, in its own file to keep that file to one
+//! job).
+
+use super::super::swerve::perpendicular_direction;
+use super::*;
+
+/// Rest-to-rest moves with d = 2 (the paper's settings).
+fn rest_to_rest(moves: &[([f64; 3], [f64; 3])], degree: u16, test_points: bool) -> Problem {
+    super::super::test_problems::rest_to_rest(moves, 2.0, degree, test_points)
+}
+
+fn paper_case(degree: u16, test_points: bool) -> Problem {
+    rest_to_rest(
+        &[
+            ([0.0, 0.0, 0.0], [12.0, 12.0, 12.0]),
+            ([8.0, 0.0, 0.0], [0.0, 12.0, 12.0]),
+            ([8.0, 0.0, 8.0], [0.0, 12.0, 0.0]),
+        ],
+        degree,
+        test_points,
+    )
+}
+
+fn run(problem: &Problem, settings: &Settings) -> Solution {
+    let mut ws = Workspace::new();
+    let mut out = Solution::new();
+    solve(problem, settings, &mut ws, None, [0.0; 3], &mut out).unwrap();
+    out
+}
+
+#[test]
+fn paper_case_reaches_the_independent_optimum_with_verified_separation() {
+    let out = run(&paper_case(10, true), &Settings::default());
+    let c = &out.certificate;
+    extern crate std;
+    std::println!(
+        "{:?} {} {} {} {} {} {}",
+        out.info.status,
+        c.stationarity,
+        c.complementarity,
+        c.min_reduced_eigenvalue,
+        c.max_violation,
+        c.multipliers.len(),
+        c.second_order_evaluated
+    );
+    std::println!("{:?}", c.multipliers);
+    assert_eq!(out.info.status, SolveStatus::Solved);
+    assert!((out.cost - 6.743183).abs() < 1e-5, "J = {}", out.cost);
+    assert!(out.min_separation_lu.unwrap() >= 2.0 - 1e-6);
+    assert!(out.max_dynamics_error < 1e-9);
+}
+
+#[test]
+fn one_spacecraft_has_no_separation_and_no_infinity() {
+    // Issue 29 (finite answers), found by tests/finite_answers.rs: with no pair the least
+    // separation was written as +inf; it is absent, and the rest of the answer is finite.
+    let out = run(
+        &rest_to_rest(&[([0.0, 0.0, 0.0], [12.0, 12.0, 12.0])], 10, false),
+        &Settings::default(),
+    );
+    assert!(out.info.status.is_usable(), "{:?}", out.info.status);
+    assert_eq!(out.min_separation_lu, None);
+    assert_eq!(
+        (out.min_separation_pair, out.min_separation_time_tu),
+        ((0, 0), 0.0)
+    );
+    assert!(out.certificate.max_violation.is_finite());
+    assert!(out.cost.is_finite() && out.max_dynamics_error.is_finite());
+}
+
+#[test]
+fn second_order_step_converges_in_few_subproblems() {
+    // With the identity metric alone (Anderson-accelerated) the paper's case took 15
+    // subproblems and ended at stationarity 4.6e-5; the Newton step on the active set
+    // converges superlinearly: 8 subproblems, stationarity below 1e-4, same optimum.
+    let out = run(&paper_case(10, true), &Settings::default());
+    assert_eq!(out.info.status, SolveStatus::Solved);
+    assert!(out.info.sqp_iterations <= 10, "{}", out.info.sqp_iterations);
+    assert!(
+        out.certificate.stationarity <= 1e-4,
+        "{}",
+        out.certificate.stationarity
+    );
+    assert!((out.cost - 6.743183).abs() < 1e-5, "J = {}", out.cost);
+    // Without acceleration memory the Newton step still serves (Anderson is its fallback).
+    let plain = run(
+        &paper_case(10, true),
+        &Settings {
+            acceleration_memory: 0,
+            ..Settings::default()
+        },
+    );
+    assert_eq!(plain.info.status, SolveStatus::Solved);
+    assert!(
+        plain.info.sqp_iterations <= 12,
+        "{}",
+        plain.info.sqp_iterations
+    );
+}
+
+#[test]
+fn nodes_only_lets_spacecraft_pass_through_each_other() {
+    let settings = Settings {
+        continuous_verification: false,
+        ..Settings::default()
+    };
+    let out = run(&paper_case(10, false), &settings);
+    assert!(
+        out.min_separation_lu.unwrap() < 1.0,
+        "{:?}",
+        out.min_separation_lu
+    );
+    // Every node check is still met: the violation is between nodes.
+    assert!(out.info.max_violation <= 1e-9, "{}", out.info.max_violation);
+}
+
+#[test]
+fn warm_start_from_the_solution_is_used_and_converges_at_once() {
+    let problem = paper_case(10, true);
+    let cold = run(&problem, &Settings::default());
+    let mut ws = Workspace::new();
+    let mut warm = Solution::new();
+    crate::pseudospectral::solve_warm(&problem, &Settings::default(), &mut ws, &cold, &mut warm)
+        .unwrap();
+    assert!(warm.info.warm_start_used);
+    assert!(
+        warm.info.sqp_iterations <= 4,
+        "warm: {} subproblems",
+        warm.info.sqp_iterations
+    );
+    assert_eq!(warm.info.status, SolveStatus::Solved);
+    assert!(
+        warm.info.sqp_iterations < cold.info.sqp_iterations,
+        "{} vs {}",
+        warm.info.sqp_iterations,
+        cold.info.sqp_iterations
+    );
+    // Nearby fixed points of the convex-concave map differ by parts per million.
+    assert!(
+        (warm.cost - cold.cost).abs() < 2e-5 * cold.cost,
+        "{} vs {}",
+        warm.cost,
+        cold.cost
+    );
+}
+
+#[test]
+fn square_swap_leaves_the_plane_by_the_saddle_escape() {
+    let corners = [(6.0, 6.0), (-6.0, 6.0), (-6.0, -6.0), (6.0, -6.0)];
+    let moves = corners.map(|(x, y)| ([x, y, 0.0], [-x, -y, 0.0]));
+    let p = rest_to_rest(&moves, 16, true);
+    let out = run(&p, &Settings::default());
+    // In the plane the iteration stops on a saddle (J = 7.6805, reduced-Hessian eigenvalue
+    // -0.29); one escape along the negative curvature leaves the plane.
+    assert_eq!(
+        out.info.status,
+        SolveStatus::Solved,
+        "{:?}",
+        out.certificate
+    );
+    assert_eq!(out.info.saddle_escapes, 1);
+    assert!(out.cost <= 7.50, "J = {}", out.cost);
+    assert!(out.certificate.min_reduced_eigenvalue > 0.1);
+    let out_of_plane = out.states[..4]
+        .iter()
+        .flat_map(|sc| sc[..17].iter())
+        .map(|s| s[2].abs())
+        .fold(0.0f64, f64::max);
+    assert!(out_of_plane > 0.1, "{out_of_plane}");
+}
+
+#[test]
+fn an_answer_at_the_iteration_limit_is_certified_on_its_own_measures() {
+    // The paper's case converges at the 8th subproblem. Stopped at the 6th (on an accepted
+    // QP answer), the answer already meets the certificate (stationarity 4.3e-4, J within
+    // 4e-8 of the optimum) and is Solved; stopped at the 5th it does not (stationarity
+    // 1.2e-2) and is Feasible. Before `SqpEnd::MaxIterations { at_answer }` both were
+    // Feasible.
+    let limited = |k: u16| {
+        run(
+            &paper_case(10, true),
+            &Settings {
+                sqp_max_iter: k,
+                verify_max_rounds: 0,
+                ..Settings::default()
+            },
+        )
+    };
+    let six = limited(6);
+    assert_eq!(six.info.sqp_iterations, 6);
+    assert_eq!(
+        six.info.status,
+        SolveStatus::Solved,
+        "{:?}",
+        six.certificate
+    );
+    assert!(six.certificate.stationarity <= certificate::STATIONARITY_TOL);
+    assert!((six.cost - 6.743183).abs() < 1e-5, "J = {}", six.cost);
+    let five = limited(5);
+    assert_eq!(five.info.status, SolveStatus::Feasible);
+    assert!(five.certificate.stationarity > certificate::STATIONARITY_TOL);
+}
+
+#[test]
+fn head_on_swap_is_certified_through_the_flat_direction_probe() {
+    // Two spacecraft swap through the centre: the passing side is a continuous symmetry,
+    // so the reduced Hessian is singular (eigenvalue ~1e-10) at every optimum. The probe
+    // steps along the flat direction both ways, finds the same cost, and certifies.
+    let p = rest_to_rest(
+        &[
+            ([6.0, 0.0, 0.0], [-6.0, 0.0, 0.0]),
+            ([-6.0, 0.0, 0.0], [6.0, 0.0, 0.0]),
+        ],
+        16,
+        true,
+    );
+    let out = run(&p, &Settings::default());
+    let c = &out.certificate;
+    assert_eq!(out.info.status, SolveStatus::Solved, "{c:?}");
+    assert!(c.flat_direction_probed);
+    assert!(
+        c.min_reduced_eigenvalue.abs() < certificate::CURVATURE_TOL,
+        "{}",
+        c.min_reduced_eigenvalue
+    );
+    assert!(
+        out.min_separation_lu.unwrap() >= 2.0 - 1e-7,
+        "{:?}",
+        out.min_separation_lu
+    );
+    // Without the probe the same point was Feasible: the flag is what certifies it.
+    let mut unprobed = c.clone();
+    unprobed.flat_direction_probed = false;
+    assert!(!unprobed.certifies_local_optimum());
+}
+
+#[test]
+fn perpendicular_direction_passes_to_the_right_when_head_on() {
+    let d = perpendicular_direction(&[0.0; 3], &[1.0, 0.0, 0.0], None);
+    assert!((d[0]).abs() < 1e-15 && (d[2] - 1.0).abs() < 1e-15, "{d:?}");
+    let miss = perpendicular_direction(&[0.5, 0.2, 0.0], &[1.0, 0.0, 0.0], None);
+    assert!((miss[1] - 1.0).abs() < 1e-12, "{miss:?}");
+}
