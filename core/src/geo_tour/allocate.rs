@@ -12,11 +12,10 @@
 //! re-priced first), each evaluated exactly. See docs/geo-tour.md for the proof of exactness on
 //! drift legs and the brute-force evidence for the rest.
 
-use super::geo::Geo;
-use super::lambert_phasing::well_minimum;
+use super::exchange::exchange;
 use super::root::illinois;
-use super::table::{bounds, direction_of, LegTable, Point, MAX_POINTS};
-use super::types::{PointKind, Settings, MAX_TARGETS};
+use super::table::{LegTable, Point};
+use super::types::{Settings, MAX_TARGETS};
 use super::work_units::{self, spend, Cut, Gauge};
 use crate::indexed::IndexedExt as _;
 use crate::work::Meter;
@@ -53,7 +52,12 @@ impl Pick {
 
 /// The leg's drift at `price`, its root's evaluations metered by `gauge` (its point is
 /// charged with the step that asks, `work_units::price_step`).
-fn drift_pick(t: &LegTable, price: f64, s: &Settings, gauge: &mut Gauge<'_>) -> Option<Pick> {
+pub(super) fn drift_pick(
+    t: &LegTable,
+    price: f64,
+    s: &Settings,
+    gauge: &mut Gauge<'_>,
+) -> Option<Pick> {
     let d = t.drift.as_ref()?;
     // Every table is finished (curve built) before the allocation runs.
     let x = d
@@ -69,7 +73,7 @@ fn drift_pick(t: &LegTable, price: f64, s: &Settings, gauge: &mut Gauge<'_>) -> 
     })
 }
 
-fn point_pick(i: usize, p: &Point) -> Pick {
+pub(super) fn point_pick(i: usize, p: &Point) -> Pick {
     Pick {
         choice: Choice::Point(u8::try_from(i).unwrap_or(u8::MAX)),
         duration_s: p.duration_s,
@@ -80,7 +84,7 @@ fn point_pick(i: usize, p: &Point) -> Pick {
 
 /// Whether the leg's drift option provably scores more than `score` at `price` (its root
 /// then need not be searched): the price curve's lower bound on its best score exceeds it.
-fn drift_beaten(t: &LegTable, price: f64, score: f64) -> bool {
+pub(super) fn drift_beaten(t: &LegTable, price: f64, score: f64) -> bool {
     t.drift
         .as_ref()
         .and_then(|d| d.curve.as_ref())
@@ -164,7 +168,7 @@ fn pick_all_metered(
     total
 }
 
-fn totals(picks: &[Pick]) -> (f64, f64) {
+pub(super) fn totals(picks: &[Pick]) -> (f64, f64) {
     picks
         .iter()
         .fold((0.0, 0.0), |(t, v), p| (t + p.duration_s, v + p.dv_mps))
@@ -200,7 +204,7 @@ pub(crate) enum NoAllocation {
 ///
 /// Every step (one drift root per drift leg) is charged first; [`Cut`] when the budget runs
 /// out (`picks` then holds a partial re-allocation: the caller discards it).
-fn drift_allocate(
+pub(super) fn drift_allocate(
     tables: &[LegTable],
     picks: &mut [Pick],
     budget_s: f64,
@@ -566,155 +570,4 @@ pub(crate) fn allocate(
         refined,
         cut: exchange_cut,
     })
-}
-
-/// A leg's alternatives in the exchange search (point index or drift, with time and cost).
-/// Lambert wells are first re-priced: moved to the minimum of `dv + price t` of their well
-/// (written into the table, so each well is searched again only when the price has moved by
-/// more than 1 %), each well charged first. [`Cut`] when the budget runs out.
-fn alternatives(
-    t: &mut LegTable,
-    cur: &Pick,
-    price: f64,
-    s: &Settings,
-    out: &mut heapless::Vec<Pick, { MAX_POINTS + 1 }>,
-    meter: &mut Meter,
-) -> Result<(), Cut> {
-    spend(meter, work_units::alternatives_leg())?;
-    out.clear();
-    let g = Geo::standard();
-    let dir = direction_of(t);
-    let (phase, cap) = (t.phase_rad, t.cap_mps);
-    for (i, p) in t.points.iter_mut().indexed() {
-        if let PointKind::Well(m) = p.kind {
-            let est = (p.dv_mps - cur.dv_mps) + price * (p.duration_s - cur.duration_s);
-            let stale = (p.price - price).abs() > 0.01 * price;
-            if est < s.exchange_margin_mps && stale {
-                spend(meter, work_units::WELL)?;
-                let mut gauge = Gauge::metered(meter);
-                let w = well_minimum(
-                    &g,
-                    dir,
-                    phase,
-                    m,
-                    price,
-                    cap,
-                    s.well_iterations,
-                    bounds(s),
-                    &mut gauge,
-                );
-                if gauge.stopped() {
-                    return Err(Cut);
-                }
-                if let Some(mv) = w {
-                    if mv.dv_mps + price * mv.transfer_s <= p.dv_mps + price * p.duration_s {
-                        p.duration_s = mv.transfer_s;
-                        p.dv_mps = mv.dv_mps;
-                    }
-                }
-                p.price = price;
-            }
-        }
-        let alt = point_pick(i, p);
-        let est = (alt.dv_mps - cur.dv_mps) + price * (alt.duration_s - cur.duration_s);
-        let moved = alt.choice == cur.choice
-            && (alt.duration_s - cur.duration_s).abs() > 1e-9 * cur.duration_s;
-        if (alt.choice != cur.choice || moved) && est < 0.0 {
-            let _ = out.push(alt);
-        }
-    }
-    let cur_score = cur.dv_mps + price * cur.duration_s;
-    if cur.choice != Choice::Drift && !drift_beaten(t, price, cur_score) {
-        let mut gauge = Gauge::metered(meter);
-        let picked = drift_pick(t, price, s, &mut gauge);
-        if gauge.stopped() {
-            return Err(Cut);
-        }
-        if let Some(d) = picked {
-            let est = (d.dv_mps - cur.dv_mps) + price * (d.duration_s - cur.duration_s);
-            if est < 0.0 {
-                let _ = out.push(d);
-            }
-        }
-    }
-    Ok(())
-}
-
-/// Exchange search after the price. The Lagrangian solution can miss the optimum where point
-/// options switch (a duality gap wider than the legs switching at the critical price), and a
-/// Lambert well's best time moves with the price. For the current assignment and its drift
-/// price `lambda`, every alternative of every leg whose first-order effect
-/// `d(dv) + lambda d(t)` is negative (Lambert wells: below `exchange_margin_mps`, refined at
-/// `lambda` first) is evaluated exactly (drift time re-allocated) and kept when the total
-/// falls. At most `exchange_rounds` rounds, each at most `MAX_POINTS + 1` alternatives per leg,
-/// every step charged to the meter first; when the budget runs out the search stops (`cut`
-/// set) with the best assignment so far in `picks`. Returns the new price and total when
-/// anything changed.
-fn exchange(
-    tables: &mut [LegTable],
-    (picks, trial): (&mut [Pick; MAX_TARGETS], &mut [Pick; MAX_TARGETS]),
-    budget_s: f64,
-    s: &Settings,
-    (mut price, mut best_dv): (f64, f64),
-    (iterations, exchanges, refined): (&mut u32, &mut u32, &mut u8),
-    (meter, cut): (&mut Meter, &mut bool),
-) -> Option<(f64, f64)> {
-    let n = tables.len();
-    let mut changed = false;
-    let mut alts = heapless::Vec::new();
-    'rounds: for _ in 0..s.exchange_rounds {
-        let mut improved = false;
-        for j in 0..n {
-            let (Some(cur), Some(t)) = (picks.get(j).copied(), tables.get_mut(j)) else {
-                continue;
-            };
-            if alternatives(t, &cur, price, s, &mut alts, meter).is_err() {
-                *cut = true;
-                break 'rounds;
-            }
-            for alt in alts.iter() {
-                if spend(meter, work_units::ASSIGNMENT).is_err() {
-                    *cut = true;
-                    break 'rounds;
-                }
-                *trial = *picks;
-                if let Some(slot) = trial.get_mut(j) {
-                    *slot = *alt;
-                }
-                *exchanges = exchanges.saturating_add(1);
-                let p = match drift_allocate(
-                    tables,
-                    trial.get_mut(..n)?,
-                    budget_s,
-                    s,
-                    iterations,
-                    Some(price),
-                    meter,
-                ) {
-                    Ok(Some(p)) => p,
-                    Ok(None) => continue,
-                    Err(Cut) => {
-                        *cut = true;
-                        break 'rounds;
-                    }
-                };
-                let (time_s, dv) = totals(trial.get(..n)?);
-                if time_s <= budget_s && dv < best_dv - 1e-12 {
-                    best_dv = dv;
-                    price = p;
-                    *picks = *trial;
-                    improved = true;
-                    changed = true;
-                    if alt.choice == cur.choice {
-                        *refined = refined.saturating_add(1);
-                    }
-                    break;
-                }
-            }
-        }
-        if !improved {
-            break;
-        }
-    }
-    changed.then_some((price, best_dv))
 }

@@ -24,6 +24,7 @@
 mod allocate;
 mod drift;
 mod error;
+mod exchange;
 mod geo;
 mod hohmann;
 #[doc(hidden)]
