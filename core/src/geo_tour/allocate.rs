@@ -168,10 +168,32 @@ fn pick_all_metered(
     total
 }
 
-pub(super) fn totals(picks: &[Pick]) -> (f64, f64) {
-    picks
-        .iter()
-        .fold((0.0, 0.0), |(t, v), p| (t + p.duration_s, v + p.dv_mps))
+/// The tour's time and Δv: each leg's pick summed, leg by leg (`picks` beyond the legs are
+/// not the tour's).
+pub(super) fn totals(tables: &[LegTable], picks: &[Pick]) -> (f64, f64) {
+    tables.iter().zip(picks).fold((0.0, 0.0), |(t, v), (_, p)| {
+        (t + p.duration_s, v + p.dv_mps)
+    })
+}
+
+/// The allocation cut short by the budget at `price`, with the feasible assignment `picks`.
+fn stopped(
+    tables: &[LegTable],
+    picks: &[Pick],
+    price: f64,
+    iterations: u32,
+    (assignments, refined): (u32, u8),
+) -> Allocation {
+    let (time_s, dv_mps) = totals(tables, picks);
+    Allocation {
+        price,
+        dv_mps,
+        time_s,
+        iterations,
+        gap_assignments: assignments,
+        refined,
+        cut: true,
+    }
 }
 
 /// Result of an allocation.
@@ -238,7 +260,10 @@ pub(super) fn drift_allocate(
     if fastest > budget {
         return Ok(None);
     }
-    let drift_legs = count_where(picks, |p| p.choice == Choice::Drift);
+    // The legs' drift picks (a pick beyond the legs is not the tour's).
+    let drift_legs = tables.iter().zip(picks.iter()).fold(0_usize, |n, (_, p)| {
+        n.saturating_add(usize::from(p.choice == Choice::Drift))
+    });
     let step_units = work_units::price_step(tables.len(), drift_legs);
     // Every evaluation of the drift legs' time is charged first, its roots' evaluations as
     // they run (`?`: the budget ran out).
@@ -401,7 +426,7 @@ pub(crate) fn allocate(
     if !any_drift {
         let tt = pick_all(tables, 0.0, s, picks, meter).map_err(cut)?;
         if tt <= budget_s {
-            let (time_s, dv_mps) = totals(picks.get(..n).ok_or(NoAllocation::Failed)?);
+            let (time_s, dv_mps) = totals(tables, picks);
             return Ok(Allocation {
                 price: 0.0,
                 dv_mps,
@@ -428,25 +453,13 @@ pub(crate) fn allocate(
     }
     // From here `picks` always holds a feasible assignment: a cut returns it.
     let mut price = 1.0 / (w_a * w_a);
-    let stopped = |picks: &[Pick], price: f64, iterations: u32, assignments: u32, refined: u8| {
-        let (time_s, dv_mps) = totals(picks.get(..n).unwrap_or(&[]));
-        Allocation {
-            price,
-            dv_mps,
-            time_s,
-            iterations,
-            gap_assignments: assignments,
-            refined,
-            cut: true,
-        }
-    };
     let mut w_b = w_a;
     let mut fb = fa;
     for _ in 0..64 {
         w_b *= 4.0;
         fb = match pick_all(tables, 1.0 / (w_b * w_b), s, lo_picks, meter) {
             Ok(t) => t - budget_s,
-            Err(Cut) => return Ok(stopped(picks, price, iterations, 0, 0)),
+            Err(Cut) => return Ok(stopped(tables, picks, price, iterations, (0, 0))),
         };
         if fb > 0.0 {
             break;
@@ -462,7 +475,7 @@ pub(crate) fn allocate(
         );
         iterations = iterations.saturating_add(u32::from(steps));
         if was_cut {
-            return Ok(stopped(picks, price, iterations, 0, 0));
+            return Ok(stopped(tables, picks, price, iterations, (0, 0)));
         }
         (a, b)
     } else {
@@ -471,12 +484,12 @@ pub(crate) fn allocate(
     };
     // Into `trial` first: a step cut short leaves its picks half written.
     if pick_all(tables, 1.0 / (wa * wa), s, trial, meter).is_err() {
-        return Ok(stopped(picks, price, iterations, 0, 0));
+        return Ok(stopped(tables, picks, price, iterations, (0, 0)));
     }
     *picks = *trial;
     price = 1.0 / (wa * wa);
     if pick_all(tables, 1.0 / (wb * wb), s, lo_picks, meter).is_err() {
-        return Ok(stopped(picks, price, iterations, 0, 0));
+        return Ok(stopped(tables, picks, price, iterations, (0, 0)));
     }
     // Duality gap: legs whose choice differs across the bracket, tried both ways.
     let mut switching = [0usize; MAX_TARGETS];
@@ -514,7 +527,7 @@ pub(crate) fn allocate(
             assignments = assignments.saturating_add(1);
             drift_allocate(
                 tables,
-                trial.get_mut(..n).unwrap_or(&mut []),
+                trial,
                 budget_s,
                 s,
                 &mut iterations,
@@ -532,10 +545,10 @@ pub(crate) fn allocate(
                 } else {
                     price
                 };
-                return Ok(stopped(picks, at, iterations, assignments, 0));
+                return Ok(stopped(tables, picks, at, iterations, (assignments, 0)));
             }
         };
-        let (time_s, dv) = totals(trial.get(..n).ok_or(NoAllocation::Failed)?);
+        let (time_s, dv) = totals(tables, trial);
         if time_s <= budget_s && dv < best_dv {
             best_dv = dv;
             best_price = p;
@@ -560,7 +573,7 @@ pub(crate) fn allocate(
     ) {
         price = p;
     }
-    let (time_s, dv_mps) = totals(picks.get(..n).ok_or(NoAllocation::Failed)?);
+    let (time_s, dv_mps) = totals(tables, picks);
     Ok(Allocation {
         price,
         dv_mps,

@@ -128,7 +128,7 @@ pub(super) fn exchange(
                 *exchanges = exchanges.saturating_add(1);
                 let p = match drift_allocate(
                     tables,
-                    trial.get_mut(..n)?,
+                    trial,
                     budget_s,
                     s,
                     iterations,
@@ -142,7 +142,7 @@ pub(super) fn exchange(
                         break 'rounds;
                     }
                 };
-                let (time_s, dv) = totals(trial.get(..n)?);
+                let (time_s, dv) = totals(tables, trial);
                 if time_s <= budget_s && dv < best_dv - 1e-12 {
                     best_dv = dv;
                     price = p;
