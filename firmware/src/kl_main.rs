@@ -11,16 +11,8 @@
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[cfg(target_os = "none")]
-#[path = "m7/measure.rs"]
-#[allow(dead_code)]
-mod measure;
-
-#[cfg(target_os = "none")]
 #[path = "m7/kernel_image.rs"]
 mod kernel_image;
-
-#[cfg(target_os = "none")]
-pub use kernel_image::{_stack_end, _stack_start, symbol};
 
 #[cfg(target_os = "none")]
 use reconfig_core::impulsive::{newton_counts, newton_counts_reset};

@@ -1,6 +1,7 @@
 //! What the kernel images share (`reconfig-firmware-ka`, `-kb`, `-kl`: planner A's, planner
-//! B's and the LEO arc's charged steps, one at a time; issue 33): the runtime's entry, panic
-//! and fault handlers, the output stream, and the loop that runs every case of a planner's
+//! B's and the LEO arc's charged steps, one at a time; issue 33): the measurement
+//! (`measure.rs`) and the stop handlers (`runtime.rs`, the default image's too), the output
+//! stream, and the loop that runs every case of a planner's
 //! `kernels` module, its set-up outside the instruction markers and its run between them. One
 //! line per case:
 //! `fixture index=.. name=.. planner=kernels-.. stack_bytes=.. systick_instructions=..
@@ -13,10 +14,16 @@
 
 use core::fmt::Write as _;
 
-use cortex_m_rt::{exception, ExceptionFrame};
 use cortex_m_semihosting::{debug, hio};
 
-use crate::measure::{measured, repaint_stack, systick};
+#[path = "measure.rs"]
+#[allow(dead_code)]
+mod measure;
+#[path = "runtime.rs"]
+mod runtime;
+
+use measure::{measured, repaint_stack, systick};
+use runtime::fail;
 
 extern "C" {
     /// Lowest address the stack may reach.
@@ -104,23 +111,4 @@ pub fn run_cases<S, P>(set: &KernelSet<S, P>, state: &mut S) -> ! {
     debug::exit(debug::EXIT_SUCCESS);
     #[allow(clippy::empty_loop)]
     loop {}
-}
-
-fn fail() -> ! {
-    debug::exit(debug::EXIT_FAILURE);
-    #[allow(clippy::empty_loop)]
-    loop {}
-}
-
-#[panic_handler]
-fn panic(info: &core::panic::PanicInfo) -> ! {
-    if let Ok(mut stream) = hio::hstdout() {
-        let _ = writeln!(stream, "\npanic: {info}");
-    }
-    fail()
-}
-
-#[exception]
-unsafe fn HardFault(_frame: &ExceptionFrame) -> ! {
-    fail()
 }

@@ -34,16 +34,17 @@
 use core::fmt::Write as _;
 use core::hint::black_box;
 
-use cortex_m_rt::{entry, exception, ExceptionFrame};
-use cortex_m_semihosting::{debug, hio};
+use cortex_m_rt::entry;
+use cortex_m_semihosting::debug;
 
 #[path = "../../image_limits.rs"]
 mod image_limits;
 mod measure;
 mod output;
+mod runtime;
 
 use measure::{measured, repaint_stack, systick};
-use output::{fail, print_result, report, Out};
+use output::{print_result, report, Out};
 #[cfg(feature = "geo_tour")]
 use reconfig_core::geo_tour;
 #[cfg(feature = "leo_tour")]
@@ -317,28 +318,4 @@ fn decode(fixture: &Fixture) -> Request {
         Ok(request) => request,
         Err(_) => panic!("request {} does not decode", fixture.name),
     }
-}
-
-#[panic_handler]
-fn panic(info: &core::panic::PanicInfo) -> ! {
-    if let Ok(mut stream) = hio::hstdout() {
-        let _ = writeln!(stream, "\npanic: {info}");
-    }
-    fail()
-}
-
-#[exception]
-unsafe fn HardFault(frame: &ExceptionFrame) -> ! {
-    if let Ok(mut stream) = hio::hstdout() {
-        let _ = writeln!(stream, "\nHardFault: {frame:?}");
-    }
-    fail()
-}
-
-#[exception]
-unsafe fn DefaultHandler(irqn: i16) {
-    if let Ok(mut stream) = hio::hstdout() {
-        let _ = writeln!(stream, "\nunexpected exception or interrupt {irqn}");
-    }
-    fail()
 }

@@ -3,9 +3,10 @@
 
 use core::fmt::Write as _;
 
-use cortex_m_semihosting::{debug, hio};
+use cortex_m_semihosting::hio;
 
 use super::measure::systick;
+use super::runtime::fail;
 use super::Fixture;
 
 /// Semihosting output; a failure to print is fatal (the tests read this output).
@@ -91,13 +92,6 @@ pub fn print_result<T: serde::Serialize>(out: &mut Out, index: usize, result: &T
         fail();
     }
     out.bytes(b"\n");
-}
-
-/// Exit QEMU with failure.
-pub fn fail() -> ! {
-    debug::exit(debug::EXIT_FAILURE);
-    #[allow(clippy::empty_loop)]
-    loop {}
 }
 
 /// A fixture's figures line: name, planner, outcome, stack high-water, SysTick instructions
