@@ -198,7 +198,7 @@ pub fn render_readme(record: &str, leo_record: &str) -> Result<String, String> {
     // Planners A and B: the default budget times the largest instructions per unit over their
     // charged kernel cases (each case measured alone on its dearest path; planner B's with
     // every Kepler solve at its Newton-step limit).
-    // The LEO arc's likewise (its default budget is above 400 M: the line says so).
+    // The LEO arc's likewise.
     for (planner, docs, link) in [
         ("planner A", &crate::m7_record::KERNELS_A_DOCS, firmware),
         ("planner B", &crate::m7_record::KERNELS_B_DOCS, firmware),

@@ -248,7 +248,9 @@ fn the_kernel_images_solve_the_worst_case_requests() {
     assert_eq!(case_b, impulsive_fixture("worst-case/wang2018-search-6imp"));
     assert_eq!(ka::case_problem(0), None);
     // The LEO arc's: the single-arc fixture's request, searched in the planning model (the
-    // dearest search) at the default budget, which it spends whole.
+    // dearest search) at the default budget, which it spends: the search all but the final
+    // check's reserve (eight aim-point iterations of the arc's length, 6 %), the check some
+    // of that.
     use reconfig_core::leo_tour::kernels as kl;
     let index_l = kl::CASES
         .iter()
@@ -287,7 +289,7 @@ fn the_kernel_images_solve_the_worst_case_requests() {
     reconfig_core::leo_tour::solve_arc(&case_l, &settings, &mut ws, &mut out).expect("planned");
     let budget = settings.work_budget;
     assert!(
-        out.info.work_units * 100 >= budget * 99 && out.info.work_units <= budget,
+        out.info.work_units * 100 >= budget * 90 && out.info.work_units <= budget,
         "the case spends the default budget: {} of {budget} units",
         out.info.work_units
     );

@@ -56,8 +56,40 @@ pub(crate) struct Ctx<'a> {
     /// Client A's last state asked for (model, epoch bits): the compass search asks for the
     /// same first epoch in most of its evaluations. The flights' constants never change
     /// within an arc (the J2 continuation flies a scaled copy), so model and epoch decide.
-    pub start_cache: Option<((Model, u64), State)>,
+    pub start_cache: StartCache,
+    /// Each coast of the last plan flown to its last leg ([`Ctx::fly_to_last_leg`]): the
+    /// compass search moves one variable at a time, so a move of a later epoch or burn flies
+    /// the same earlier coasts again (bit for bit the same inputs, so the same state).
+    pub coasts: [Option<Coast>; MAX_IMPULSES],
+    /// The search's plans are polished in the planning model after it (a solve, not an
+    /// estimate): its compass search in the search model stops at
+    /// [`SEARCH_MODEL_MIN_STEP_FACTOR`] `x search_min_step_s`.
+    pub polish_follows: bool,
 }
+
+/// Client A's last state asked for: ((model, epoch bits), state).
+pub(crate) type StartCache = Option<((Model, u64), State)>;
+
+/// One coast flown: its inputs (model, state after the burn, duration) and where it ended.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Coast {
+    model: Model,
+    start_bits: [u64; 6],
+    dt_bits: u64,
+    end: State,
+}
+
+/// In a solve, the compass search in the search model stops at this multiple of
+/// `search_min_step_s` (8 s at the defaults), the planning model's at `search_min_step_s`: the
+/// search model is a few m/s from the planning model, whose polish starts from a sixteenth of
+/// the first steps (37.5 s), so the search model's finer levels decide nothing the polish
+/// keeps. An estimate (no polish after) searches to `search_min_step_s`. Chosen on the
+/// tuning seeds of `host/examples/leo_arc_campaign.rs` (8 and 16 against 1; docs/leo-tour.md,
+/// "Work budget").
+const SEARCH_MODEL_MIN_STEP_FACTOR: f64 = 16.0;
+
+/// Doublings of the step after a compass move that pays (docs/leo-tour.md, "Work budget").
+const EXPANSIONS: u8 = 4;
 
 /// One of the arc's two clients.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -213,12 +245,36 @@ impl Ctx<'_> {
         let mut pre = [([0.0; 6], [0.0; 3]); MAX_IMPULSES];
         let free_vectors = self.impulses.saturating_sub(2);
         let dvs = x.get(self.impulses.saturating_sub(1)..)?.chunks_exact(3);
-        for ((slot, dv), w) in pre.iter_mut().zip(dvs).zip(t.windows(2)).take(free_vectors) {
+        let legs = pre
+            .iter_mut()
+            .zip(dvs)
+            .zip(t.windows(2))
+            .zip(self.coasts.iter_mut());
+        for (((slot, dv), w), coast) in legs.take(free_vectors) {
             let dv: Vec3 = [*dv.first()?, *dv.get(1)?, *dv.get(2)?];
             *slot = (s, dv);
             let after = join(&pos(&s), &add(&vel(&s), &dv));
             let dt = *w.get(1)? - *w.first()?;
-            s = self.flight.fly(&after, dt, &mut self.meter)?;
+            if !self.meter.spend(work_units::COAST_LOOKUP) {
+                return None;
+            }
+            let start_bits = after.map(f64::to_bits);
+            let (model, dt_bits) = (self.flight.model, dt.to_bits());
+            s = match coast {
+                Some(c) if (c.model, c.start_bits, c.dt_bits) == (model, start_bits, dt_bits) => {
+                    c.end
+                }
+                _ => {
+                    let end = self.flight.fly(&after, dt, &mut self.meter)?;
+                    *coast = Some(Coast {
+                        model,
+                        start_bits,
+                        dt_bits,
+                        end,
+                    });
+                    end
+                }
+            };
         }
         Some((pre, s, t))
     }
@@ -400,7 +456,13 @@ impl Ctx<'_> {
         let mut step_t = first_step_s;
         let mut step_v = first_step_km_s;
         let start_evals = self.evals;
-        'levels: while step_t >= self.settings.search_min_step_s {
+        let min_step_s = match (self.flight.model, self.polish_follows) {
+            (Model::MeanElements, true) => {
+                self.settings.search_min_step_s * SEARCH_MODEL_MIN_STEP_FACTOR
+            }
+            _ => self.settings.search_min_step_s,
+        };
+        'levels: while step_t >= min_step_s {
             let mut improved = true;
             while improved {
                 improved = false;
@@ -421,6 +483,29 @@ impl Ctx<'_> {
                                 best.x = y;
                                 best.cost = c;
                                 improved = true;
+                                // A move that pays is tried again at double the step, up to
+                                // `EXPANSIONS` times: the search strides down a long slope
+                                // instead of crawling it at the level's step.
+                                let mut stride = h;
+                                for _ in 0..EXPANSIONS {
+                                    if self.evals.saturating_sub(start_evals) >= budget
+                                        || self.meter.exhausted()
+                                    {
+                                        break;
+                                    }
+                                    stride *= 2.0;
+                                    let mut z = best.x;
+                                    if let Some(zi) = z.get_mut(i) {
+                                        *zi += sign * stride;
+                                    }
+                                    match self.cost(&z, best.fam, &best.off) {
+                                        Some(c) if c < best.cost => {
+                                            best.x = z;
+                                            best.cost = c;
+                                        }
+                                        _ => break,
+                                    }
+                                }
                             }
                         }
                     }

@@ -12,20 +12,20 @@
 //! take the most Newton steps); Lambert solves (direct and 14 revolutions, each branch, cold
 //! and warm, and with no tolerance); the grid's two-body propagation cut
 //! after 1, 2 and 60 iterations; compass-search evaluations in both models (and one refused
-//! at its epochs); the cheapest last-leg family over every family; a shooting cut after one
+//! at its epochs, and one repeated, its coast and client state looked up); the cheapest last-leg family over every family; a shooting cut after one
 //! aim-point iteration and one to convergence in the search model; a grid epoch (with the
 //! default families and with 200 revolutions allowed); a bounded refinement; a round of hops;
 //! the final check of a plan; whole solves and an estimate cut at several budgets. The image
 //! also counts each case's Kepler solves and Newton steps (feature `kernel-counters`), and its
 //! test holds each case to every solve at `mean_j2`'s limit of Newton steps.
 
-use super::arc::{Ctx, Point};
+use super::arc::{Coast, Ctx, Point, StartCache};
 use super::elements::{state_of, Classical};
 use super::flight::Model;
 use super::j2::{pos, propagate_steps, step_count, State};
 use super::mean_j2::MeanOrbit;
 use super::shoot::{metered_lambert, shoot, Family, Offset, Secant};
-use super::types::{ArcProblem, ArcSolution, Settings};
+use super::types::{ArcProblem, ArcSolution, Settings, MAX_IMPULSES};
 use super::work_units as wu;
 use super::workspace::Workspace;
 use super::{estimate_arc_mps, solve_arc};
@@ -71,6 +71,9 @@ enum Kind {
     Evaluation(Model),
     /// An evaluation whose epochs are out of order (refused before any flight).
     EvaluationRefused,
+    /// The same evaluation again: its coast and client state found among the last
+    /// evaluation's (looked up, not flown).
+    EvaluationAgain,
     /// The cheapest last-leg family of the grid's best candidate over every family.
     BestFamily,
     /// A shooting of the paper's arc's last leg in this model, at most this many iterations.
@@ -140,6 +143,7 @@ pub const CASES: &[Case] = &[
     case("evaluation-search", Kind::Evaluation(Model::MeanElements)),
     case("evaluation-planning", Kind::Evaluation(Model::Planning)),
     case("evaluation-refused", Kind::EvaluationRefused),
+    case("evaluation-again", Kind::EvaluationAgain),
     case("best-family", Kind::BestFamily),
     case("shoot-1-iteration", Kind::Shoot(Model::Planning, 1)),
     case("shoot-search-model", Kind::Shoot(Model::MeanElements, 30)),
@@ -150,7 +154,7 @@ pub const CASES: &[Case] = &[
     case("finish", Kind::Finish),
     case("solve-budget-1", Kind::Solve(1)),
     case("solve-budget-2m", Kind::Solve(2_000_000)),
-    case("solve-budget-8m", Kind::Solve(8_000_000)),
+    case("solve-default", Kind::Solve(wu::DEFAULT_WORK_BUDGET)),
     case("estimate-budget-2m", Kind::Estimate(2_000_000)),
     case("solve-planning-model-default", Kind::SolvePlanningModel),
 ];
@@ -230,6 +234,8 @@ pub struct Prepared {
     guess: Option<f64>,
     /// The orbit of a search-model case: its state and mean orbit.
     orbit: Option<(State, MeanOrbit)>,
+    /// The caches of a search-model evaluation of `point` (the repeated evaluation's start).
+    caches: ([Option<Coast>; MAX_IMPULSES], StartCache),
 }
 
 /// The context of the paper's arc from `prepared` (no work: the tracks, mean orbits and
@@ -256,6 +262,8 @@ fn ctx<'a>(
         secant: Secant::default(),
         lambert_guess: None,
         start_cache: None,
+        coasts: [None; MAX_IMPULSES],
+        polish_follows: true,
     }
 }
 
@@ -288,6 +296,7 @@ pub fn prepare(index: usize, ws: &mut Workspace) -> Option<Prepared> {
         point: None,
         guess: None,
         orbit: None,
+        caches: ([None; MAX_IMPULSES], None),
     };
     if let Kind::MeanFlight(orbit) | Kind::MeanState(orbit) | Kind::MeanOrbit(orbit) = kind {
         let s = orbit_state(orbit)?;
@@ -297,6 +306,7 @@ pub fn prepare(index: usize, ws: &mut Workspace) -> Option<Prepared> {
         kind,
         Kind::Evaluation(_)
             | Kind::EvaluationRefused
+            | Kind::EvaluationAgain
             | Kind::BestFamily
             | Kind::Refine(_)
             | Kind::Hops
@@ -313,6 +323,10 @@ pub fn prepare(index: usize, ws: &mut Workspace) -> Option<Prepared> {
         let mut c = ctx(&defaults, (a, b), Model::MeanElements, u64::MAX);
         c.grid(candidates);
         prepared.point = candidates.first().copied().flatten();
+        if let (Kind::EvaluationAgain, Some(q)) = (kind, prepared.point) {
+            c.cost(&q.x, q.fam, &q.off)?;
+            prepared.caches = (c.coasts, c.start_cache);
+        }
     }
     if let Kind::Lambert(revs, branch, true) = kind {
         let normal = crate::vec3::cross(&pos(&problem.from), &super::j2::vel(&problem.from));
@@ -402,6 +416,10 @@ pub fn run(index: usize, ws: &mut Workspace, prepared: &Prepared) -> u64 {
                 .saturating_add(wu::TWO_BODY_ITERATION.saturating_mul(u64::from(iterations)))
         }
         Kind::Evaluation(model) => with_point(p, ws, model, |c, q| {
+            black_box(c.cost(&q.x, q.fam, &q.off));
+        }),
+        Kind::EvaluationAgain => with_point(p, ws, Model::MeanElements, |c, q| {
+            (c.coasts, c.start_cache) = p.caches;
             black_box(c.cost(&q.x, q.fam, &q.off));
         }),
         Kind::EvaluationRefused => with_point(p, ws, Model::MeanElements, |c, q| {

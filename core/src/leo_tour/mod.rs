@@ -185,6 +185,8 @@ fn context<'a>(
         secant: shoot::Secant::default(),
         lambert_guess: None,
         start_cache: None,
+        coasts: [None; MAX_IMPULSES],
+        polish_follows: false,
     })
 }
 
@@ -266,7 +268,10 @@ fn solve_arc_from(
         hops,
     } = workspace;
     let mut ctx = match context(problem, settings, Some((a, b))) {
-        Ok(ctx) => ctx,
+        Ok(ctx) => Ctx {
+            polish_follows: settings.search_model == Model::MeanElements,
+            ..ctx
+        },
         Err(NoContext::Refused(e)) => return Err(e),
         Err(NoContext::Exhausted(used)) => {
             out.reset();
@@ -279,10 +284,24 @@ fn solve_arc_from(
         }
     };
     let mut best: Option<Flown> = None;
+    // The search stops at its share of the budget, the polish at its own, so that a budget
+    // that cuts the search still pays for the plan's polish and final check.
+    let check = check_units(settings, problem.duration_s);
+    let reserve = |share_percent: u64, at_least: u64| {
+        (settings.work_budget / 100)
+            .saturating_mul(100u64.saturating_sub(share_percent))
+            .max(at_least)
+    };
+    let polish_reserve = reserve(POLISH_SHARE_PERCENT, check);
+    ctx.meter.reserve(match settings.search_model {
+        Model::Planning => polish_reserve,
+        Model::MeanElements => reserve(SEARCH_SHARE_PERCENT, check.saturating_mul(2)),
+    });
     let kept = search(&mut ctx, warm, (candidates, hops));
     match settings.search_model {
         Model::Planning => {
             for q in kept.iter().flatten() {
+                ctx.meter.next_stage(0);
                 consider(&mut ctx, *q, &mut best);
             }
         }
@@ -291,7 +310,9 @@ fn solve_arc_from(
             // the planning model, which decides.
             ctx.flight.model = Model::Planning;
             for q in kept.iter().flatten() {
+                ctx.meter.next_stage(polish_reserve);
                 let polished = ctx.polish(*q);
+                ctx.meter.next_stage(0);
                 consider(&mut ctx, polished, &mut best);
             }
             // A warm plan is polished as it is too: the search model's optimum can lie a few
@@ -299,7 +320,9 @@ fn solve_arc_from(
             if let Some(plan) = warm {
                 ctx.warm_candidates(plan, candidates);
                 for p in candidates.iter().flatten() {
+                    ctx.meter.next_stage(polish_reserve);
                     let polished = ctx.polish(*p);
+                    ctx.meter.next_stage(0);
                     consider(&mut ctx, polished, &mut best);
                 }
             }
@@ -341,6 +364,37 @@ fn solve_arc_from(
         work_units: ctx.meter.used(),
     };
     Ok(())
+}
+
+/// The search's share of the work budget, percent: it stops there, leaving the rest for the
+/// planning model's polish and final check of its best plan (on the tuning seeds the polish
+/// and check took 10-30 % of an arc's units).
+const SEARCH_SHARE_PERCENT: u64 = 85;
+
+/// Where the polish stops, percent of the budget: the final check (an exact shooting of the
+/// last leg in the planning model) may spend the rest, and at least [`check_units`]; the
+/// search leaves at least twice that (the polish starts with a shooting too).
+const POLISH_SHARE_PERCENT: u64 = 95;
+
+/// Aim-point iterations kept for the final check: from the polish's quasi-Newton matrix the
+/// shooting converges in 2-4 (unit test
+/// `the_quasi_newton_shooting_converges_in_a_few_iterations`).
+const CHECK_ITERATIONS: u64 = 8;
+
+/// The units of [`CHECK_ITERATIONS`] aim-point iterations of a last leg as long as the arc
+/// (each a planning-model flight of the leg, a Lambert solve at its step limit, the
+/// iteration's own work): what the final check is sure to have.
+fn check_units(settings: &Settings, duration_s: f64) -> u64 {
+    // A leg that needs more than `max_steps` steps is refused: the check flies at most that.
+    let steps =
+        step_count(duration_s, settings.step_s, settings.max_steps).unwrap_or(settings.max_steps);
+    let lambert = work_units::LAMBERT_SOLVE.saturating_add(
+        u64::from(settings.lambert_max_iter).saturating_mul(crate::lambert::step_units(0)),
+    );
+    work_units::flight(steps)
+        .saturating_add(lambert)
+        .saturating_add(work_units::SHOOT_ITERATION)
+        .saturating_mul(CHECK_ITERATIONS)
 }
 
 /// Finish `q` in the planning model and keep it in `best` if it beats it (arriving first,

@@ -76,7 +76,8 @@ crate::settings_table! {
         /// First compass step of an impulse component, km/s.
         search_step_km_s, SearchStepKmS = 15: f64 = 0.02,
         unit "km/s", range Range::closed(0.0, 1.0), limit Free;
-        /// The refinement stops when the epoch step is below this, s.
+        /// The refinement stops when the epoch step is below this, s (in a solve, the search
+        /// model's at 16 times this: the planning model's polish takes the plan down to it).
         search_min_step_s, SearchMinStepS = 16: f64 = 0.5,
         unit "s", range Range::closed(1e-6, 1e5), limit AtLeast;
         /// Least time between two impulses (and before the arrival), s; at most an eighth of

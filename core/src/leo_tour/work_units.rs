@@ -31,14 +31,13 @@
 /// MAX_INSTRUCTIONS_PER_UNIT` bounds an arc's instructions.
 pub const MAX_INSTRUCTIONS_PER_UNIT: u64 = 100;
 
-/// The default work budget (and the service's built-in limit): 24 M units, so an arc takes at
-/// most 2.4 G M7 instructions (6 s at 400 MHz). It is not the 400 M of the other planners:
-/// the paper's single arc takes 7.0 M units (0.46 G instructions), the largest arc of the
-/// published tours' plans 10.1 M, and the multi-round correction's re-plan of Example I's
-/// third arc from 79 km off (the search in the search model finds no arriving plan and runs
-/// again in the planning model) 16-20 M; a budget that cut them would change their plans
-/// (`docs/leo-tour.md`, "Work budget"). The search must become cheaper first (issue 33).
-pub const DEFAULT_WORK_BUDGET: u64 = 24_000_000;
+/// The default work budget (and the service's built-in limit): 4 M units, so an arc takes at
+/// most `4 M x MAX_INSTRUCTIONS_PER_UNIT` = 400 M M7 instructions (1 s at 400 MHz), the
+/// on-board promise of every planner. The search stops at its share of it and the plan it
+/// has is polished and checked in the planning model with the rest (`SEARCH_SHARE_PERCENT`
+/// in `mod.rs`): a cut search is `BudgetExhausted { verified: true }` with a plan that
+/// arrives, not a lost plan. The figures on generated arcs: docs/leo-tour.md, "Work budget".
+pub const DEFAULT_WORK_BUDGET: u64 = 4_000_000;
 
 /// One RK4 step of two-body + J2 (`j2::rk4_step`: four accelerations).
 pub(crate) const RK4_STEP: u64 = 7;
@@ -61,6 +60,9 @@ pub(crate) const TWO_BODY_SET_UP: u64 = 12;
 pub(crate) const TWO_BODY_ITERATION: u64 = 5;
 /// A compass-search evaluation outside its flights and Lambert solves.
 pub(crate) const EVALUATION: u64 = 10;
+/// A coast of a compass evaluation looked up among the last evaluation's (its inputs compared,
+/// its end copied when they match: the flight is then not flown, nor charged).
+pub(crate) const COAST_LOOKUP: u64 = 1;
 /// A last leg costed outside its Lambert solve (the burns summed).
 pub(crate) const LAST_LEG: u64 = 4;
 /// An aim-point iteration outside its Lambert solve and flight (the miss, the secant update).

@@ -33,8 +33,17 @@ pub fn run(f: &LeoTourFixture, limits: &Limits, json_output: bool) -> Result<Exi
         Err(e) => return Ok(report_error(&f.name, &e, json_output)),
     };
     let total: f64 = arcs.iter().map(|a| a.solution.total_dv_mps).sum();
+    // The tour's status says no more than its arcs': `Solved` when every arc is, `Usable` when
+    // every arc has a plan that arrives but the work budget cut some arc's search.
     let usable = arcs.iter().all(|a| a.solution.info.status.is_usable());
-    let status = if usable { "Solved" } else { "NotSolved" };
+    let solved = arcs
+        .iter()
+        .all(|a| a.solution.info.status == reconfig_core::leo_tour::SolveStatus::Solved);
+    let status = match (solved, usable) {
+        (true, _) => "Solved",
+        (false, true) => "Usable",
+        (false, false) => "NotSolved",
+    };
     let mut rows = Vec::new();
     for a in &arcs {
         // An arc without a plan is not flown (its misses are absent: null in JSON).

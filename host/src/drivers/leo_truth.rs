@@ -30,7 +30,7 @@ use reconfig_core::leo_tour::flight::Model;
 use reconfig_core::leo_tour::j2::State;
 use reconfig_core::leo_tour::shoot::{corrected_lambert, shoot_continued, Family, Offset, Secant};
 use reconfig_core::leo_tour::{
-    propagate as core_propagate, solve_arc_warm, ArcProblem, ArcSolution, SolveStatus, Workspace,
+    propagate as core_propagate, solve_arc_warm, ArcProblem, ArcSolution, Workspace,
 };
 use reconfig_core::limits::Limits;
 use reconfig_core::wire::{OutcomeRef, Request};
@@ -436,9 +436,9 @@ pub fn multi_round(
     Ok(rounds)
 }
 
-/// Whether every round was planned `Solved`, re-planned, and arrives within `tol_m`.
+/// Whether every round was planned with a usable status (`Solved`, or `BudgetExhausted { verified: true }`), re-planned, and arrives within `tol_m`.
 pub fn all_within(rounds: &[Round], tol_m: f64) -> bool {
-    rounds.iter().all(|r| {
-        r.arc.solution.info.status == SolveStatus::Solved && r.corrected && r.miss_after_m <= tol_m
-    })
+    rounds
+        .iter()
+        .all(|r| r.arc.solution.info.status.is_usable() && r.corrected && r.miss_after_m <= tol_m)
 }
