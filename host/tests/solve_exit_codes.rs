@@ -88,6 +88,44 @@ fn rejected_inputs_exit_2_in_both_planners() {
 }
 
 #[test]
+fn a_leo_tour_the_truth_model_does_not_confirm_exits_1_naming_the_arc() {
+    // The published arc: every plan usable (the search cut by the budget, the plan checked)
+    // and confirmed by the truth model within 1 m after its re-plan.
+    let (code, out) = solve(&root().join("fixtures/leo-tour-example1-single-arc.toml"));
+    assert_eq!(code, 0, "{out}");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("one JSON object");
+    assert_eq!(v["status"], "Usable", "{out}");
+    assert!(v["truth_missed"].is_null(), "{out}");
+    // The same arc 180-220 km up: planned in the J2 model, but drag makes the truth-model
+    // re-plan of its 14-revolution last leg diverge (measured 1.2e6 m; before issue 31's check
+    // this was `Solved`, exit 0).
+    let low = variant(
+        "leo-tour-example1-single-arc",
+        &[
+            ("[6778.14, 0.0, 97.0344", "[6560.0, 0.0, 97.0344"),
+            ("[6878.14, 0.0, 97.4063", "[6600.0, 0.0, 97.4063"),
+        ],
+        "low",
+    );
+    let (code, out) = solve(&low);
+    assert_eq!(code, 1, "{out}");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("one JSON object");
+    assert_eq!(v["status"], "TruthMissed", "{out}");
+    assert_eq!(v["truth_missed"]["arc"], "1 -> 2", "{out}");
+    assert_eq!(v["truth_missed"]["check"], "re-plan", "{out}");
+    assert!(
+        v["truth_missed"]["miss_m"].as_f64().expect("a miss") > 1.0,
+        "{out}"
+    );
+    // The plan itself is still the core's usable answer: the status says what the truth
+    // model showed, not less about the plan.
+    assert_eq!(
+        v["arcs"][0]["status"], "BudgetExhausted { verified: true }",
+        "{out}"
+    );
+}
+
+#[test]
 fn leo_tour_fixtures_outside_the_service_limits_exit_2_unsolved() {
     // The sequencing's arc limit (400 by default), checked before anything is planned.
     let p = variant(

@@ -17,8 +17,11 @@ pub use crate::drivers::answer::{EXIT_NOT_USABLE, EXIT_REJECTED, EXIT_USABLE};
 /// Arguments of `reconfig solve`.
 #[derive(clap::Args, Debug)]
 #[command(
-    after_help = "Exit codes (every planner): 0 the plan is usable (status Solved); \
-1 the planner ran and the plan is not usable (any other status: it is still printed); \
+    after_help = "Exit codes (every planner): 0 the plan is usable (status Solved, or one \
+the planner's docs call usable such as BudgetExhausted { verified: true }; a LEO tour's arcs \
+also confirmed by the truth model within 1 m after their re-plan); 1 the planner ran and the \
+plan is not usable (any other status: it is still printed), or a LEO tour's truth-model check \
+failed (status TruthMissed, naming the arc and the miss); \
 2 the input was rejected (fixture unreadable or invalid, the planner's PlanError, or a setting \
 outside the limits, which is named)."
 )]

@@ -14,9 +14,74 @@ use reconfig_core::limits::Limits;
 use serde_json::json;
 use std::process::ExitCode;
 
-/// Answer and report a LEO tour fixture under `limits`: exit code 0 when every arc is
-/// `Solved`, 1 when one is not, 2 when a request was refused by the limits (reported as a
-/// refusal, nothing more planned) or rejected.
+/// The truth-model arrival every arc must reach after its last leg's re-plan (issue 13's
+/// figure), m: a re-plan or a multi-round correction that fails, or misses by more, makes the
+/// tour `TruthMissed` (exit code 1), naming the arc and the miss (issue 31).
+pub const TRUTH_ARRIVAL_TOL_M: f64 = 1.0;
+
+/// The first arc the truth model does not confirm: which check, the arc (1-based clients) and
+/// its miss after the re-plan, m (NaN when the re-plan or the correction failed outright).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TruthMiss {
+    /// `"re-plan"` (the per-arc re-plan from the planning states) or `"multi-round"` (the
+    /// chained correction).
+    pub check: &'static str,
+    /// The arc, `(from, to)`, 1-based; `None` when the multi-round correction failed before
+    /// any arc (a truth-model error).
+    pub arc: Option<(usize, usize)>,
+    /// The miss after the re-plan, m; NaN when there is none.
+    pub miss_m: f64,
+}
+
+impl TruthMiss {
+    /// `"arc 2 -> 6"`, or `"the tour"` when no arc is named.
+    pub fn arc_label(&self) -> String {
+        self.arc.map_or("the tour".into(), |(from, to)| {
+            format!("arc {from} -> {to}")
+        })
+    }
+}
+
+/// The first failure of the truth checks, or `None`: each per-arc re-plan (arc `(from, to)`,
+/// 0-based, its miss after, NaN when it failed) and each multi-round round (`corrected`, its
+/// miss after) must arrive within `tol_m`; a multi-round run that failed outright fails.
+pub fn truth_verdict(
+    replans: &[((usize, usize), f64)],
+    rounds: &Result<Vec<Round>>,
+    tol_m: f64,
+) -> Option<TruthMiss> {
+    // A NaN miss (no re-plan) fails too: only a miss known to be within the tolerance passes.
+    let within = |miss: f64| miss.partial_cmp(&tol_m).is_some_and(|o| o.is_le());
+    let replan = replans
+        .iter()
+        .find(|(_, miss)| !within(*miss))
+        .map(|&((from, to), miss_m)| TruthMiss {
+            check: "re-plan",
+            arc: Some((from + 1, to + 1)),
+            miss_m,
+        });
+    let round = match rounds {
+        Err(_) => Some(TruthMiss {
+            check: "multi-round",
+            arc: None,
+            miss_m: f64::NAN,
+        }),
+        Ok(rs) => rs
+            .iter()
+            .find(|r| !(r.corrected && within(r.miss_after_m)))
+            .map(|r| TruthMiss {
+                check: "multi-round",
+                arc: Some((r.arc.from + 1, r.arc.to + 1)),
+                miss_m: r.miss_after_m,
+            }),
+    };
+    replan.or(round)
+}
+
+/// Answer and report a LEO tour fixture under `limits`: exit code 0 when every arc's plan is
+/// usable and the truth model confirms each arrival within [`TRUTH_ARRIVAL_TOL_M`] after its
+/// re-plan (and in the multi-round correction), 1 when not, 2 when a request was refused by
+/// the limits (reported as a refusal, nothing more planned) or rejected.
 ///
 /// # Errors
 /// A truth-model propagation error.
@@ -39,11 +104,6 @@ pub fn run(f: &LeoTourFixture, limits: &Limits, json_output: bool) -> Result<Exi
     let solved = arcs
         .iter()
         .all(|a| a.solution.info.status == reconfig_core::leo_tour::SolveStatus::Solved);
-    let status = match (solved, usable) {
-        (true, _) => "Solved",
-        (false, true) => "Usable",
-        (false, false) => "NotSolved",
-    };
     let mut rows = Vec::new();
     for a in &arcs {
         // An arc without a plan is not flown (its misses are absent: null in JSON).
@@ -58,6 +118,29 @@ pub fn run(f: &LeoTourFixture, limits: &Limits, json_output: bool) -> Result<Exi
     }
     // The chained multi-round correction in the truth model; an error is reported, not fatal.
     let rounds = multi_round(f, &arcs, limits);
+    // Only planned arcs are re-planned: an arc without a plan is already not usable.
+    let replans: Vec<_> = rows
+        .iter()
+        .filter(|(a, ..)| a.solution.impulses > 0)
+        .map(|(a, _, _, after)| ((a.from, a.to), after.0))
+        .collect();
+    let truth = usable
+        .then(|| truth_verdict(&replans, &rounds, TRUTH_ARRIVAL_TOL_M))
+        .flatten();
+    let status = match (solved, usable, &truth) {
+        (_, false, _) => "NotSolved",
+        (_, true, Some(_)) => "TruthMissed",
+        (true, true, None) => "Solved",
+        (false, true, None) => "Usable",
+    };
+    let truth_json = truth.as_ref().map(|m| {
+        json!({
+            "check": m.check,
+            "arc": m.arc.map(|(from, to)| format!("{from} -> {to}")),
+            "miss_m": m.miss_m.is_finite().then_some(m.miss_m),
+            "tolerance_m": TRUTH_ARRIVAL_TOL_M,
+        })
+    });
     if json_output {
         let arcs_json: Vec<_> = rows
             .iter()
@@ -97,6 +180,7 @@ pub fn run(f: &LeoTourFixture, limits: &Limits, json_output: bool) -> Result<Exi
             json!({
                 "name": f.name,
                 "status": status,
+                "truth_missed": truth_json,
                 "order": f.order.iter().map(|k| k + 1).collect::<Vec<_>>(),
                 "total_dv_mps": total,
                 "sequence": seq_json,
@@ -112,6 +196,19 @@ pub fn run(f: &LeoTourFixture, limits: &Limits, json_output: bool) -> Result<Exi
     } else {
         let order: Vec<String> = f.order.iter().map(|k| (k + 1).to_string()).collect();
         println!("{}: {status}, order {}", f.name, order.join(" -> "));
+        if let Some(m) = &truth {
+            let miss = if m.miss_m.is_nan() {
+                "fails (no re-plan)".to_string()
+            } else {
+                format!("misses by {:.3e} m", m.miss_m)
+            };
+            println!(
+                "  truth model: the {} of {} {miss} (tolerance {} m)",
+                m.check,
+                m.arc_label(),
+                TRUTH_ARRIVAL_TOL_M
+            );
+        }
         if let Some(c) = &prepared.order {
             let q = &c.sequence;
             let i = &q.info;
@@ -191,7 +288,7 @@ pub fn run(f: &LeoTourFixture, limits: &Limits, json_output: bool) -> Result<Exi
         println!("  total {total:.3} m/s{published}");
         print_rounds(&rounds);
     }
-    Ok(exit_code(usable))
+    Ok(exit_code(usable && truth.is_none()))
 }
 
 pub fn sequence_json(c: &ChosenOrder) -> serde_json::Value {
@@ -272,5 +369,69 @@ pub fn print_rounds(rounds: &Result<Vec<Round>>) {
             let total: f64 = rs.iter().map(|r| r.dv_after_mps).sum();
             println!("    total flown {total:.3} m/s");
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+    use super::*;
+    use crate::drivers::leo_tour::PlannedArc;
+    use reconfig_core::leo_tour::{ArcProblem, ArcSolution};
+
+    fn round(from: usize, to: usize, corrected: bool, miss_after_m: f64) -> Round {
+        Round {
+            arc: PlannedArc {
+                from,
+                to,
+                start_s: 0.0,
+                end_s: 1.0,
+                solution: ArcSolution::new(),
+                problem: ArcProblem {
+                    from: [7000.0, 0.0, 0.0, 0.0, 7.5, 0.0],
+                    to: [7000.0, 0.0, 0.0, 0.0, 7.5, 0.0],
+                    duration_s: 1.0,
+                    impulses: 2,
+                },
+                solve_time_s: 0.0,
+            },
+            miss_before_m: 1e3,
+            miss_after_m,
+            dv_after_mps: 1.0,
+            corrected,
+            start_offset_m: 0.0,
+        }
+    }
+
+    #[test]
+    fn a_truth_miss_names_the_first_arc_and_check_that_fails() {
+        let good = Ok(vec![round(0, 1, true, 1e-4), round(1, 4, true, 0.5)]);
+        assert_eq!(
+            truth_verdict(&[((0, 1), 1e-4), ((1, 4), 0.9)], &good, 1.0),
+            None
+        );
+        // A re-plan that misses by more than the tolerance, or failed (NaN), fails first.
+        let m = truth_verdict(&[((0, 1), 1e-4), ((1, 4), 3.014e5)], &good, 1.0).unwrap();
+        assert_eq!(
+            (m.check, m.arc, m.miss_m),
+            ("re-plan", Some((2, 5)), 3.014e5)
+        );
+        let m = truth_verdict(&[((0, 1), f64::NAN)], &good, 1.0).unwrap();
+        assert_eq!((m.check, m.arc), ("re-plan", Some((1, 2))));
+        // A round that misses, or was not corrected even within the tolerance.
+        let missed = Ok(vec![round(0, 1, true, 1e-4), round(1, 4, true, 1973.0)]);
+        let m = truth_verdict(&[((0, 1), 1e-4)], &missed, 1.0).unwrap();
+        assert_eq!(
+            (m.check, m.arc, m.miss_m),
+            ("multi-round", Some((2, 5)), 1973.0)
+        );
+        let uncorrected = Ok(vec![round(2, 0, false, 0.1)]);
+        let m = truth_verdict(&[], &uncorrected, 1.0).unwrap();
+        assert_eq!((m.arc_label(), m.miss_m), ("arc 3 -> 1".to_string(), 0.1));
+        // A correction that failed outright names the tour.
+        let failed = Err(anyhow::anyhow!("truth model refused"));
+        let m = truth_verdict(&[], &failed, 1.0).unwrap();
+        assert_eq!(m.arc_label(), "the tour");
+        assert!(m.miss_m.is_nan());
     }
 }
