@@ -163,6 +163,31 @@ fn leo_tour_fixtures_outside_the_service_limits_exit_2_unsolved() {
     let (code, out) = solve(&p);
     assert_eq!(code, 2, "{out}");
     assert!(out.contains("schedule steps = 9 is outside 1..=8"), "{out}");
+    // A client inside the Earth (a = 6000 km): refused by the core, named, with its perigee
+    // altitude, whether an arc, the sequencing or the schedule meets it first (issue 31).
+    for (stem, expected) in [
+        (
+            "leo-tour-example1-single-arc",
+            "to (perigee altitude, km) = -378.13",
+        ),
+        (
+            "leo-tour-example1-sequence",
+            "client 1: perigee altitude -378.13",
+        ),
+        (
+            "leo-tour-example1-schedule",
+            "client 1: perigee altitude -378.13",
+        ),
+    ] {
+        let p = variant(
+            stem,
+            &[("[6878.14, 0.0, 97.4063", "[6000.0, 0.0, 97.4063")],
+            "inside",
+        );
+        let (code, out) = solve(&p);
+        assert_eq!(code, 2, "{stem}: {out}");
+        assert!(out.contains(expected), "{stem}: {out}");
+    }
 }
 
 #[test]

@@ -116,6 +116,49 @@ fn the_search_model_finds_the_planning_models_plan_for_a_tenth_of_the_work() {
 }
 
 #[test]
+fn a_client_orbit_below_the_least_perigee_is_refused_by_name() {
+    let re = Settings::default().re_km;
+    // Client B inside the Earth (a circular orbit of radius 6000 km): refused, named, with its
+    // perigee altitude.
+    let mut p = paper_arc();
+    p.to = client(6000.0, 97.4, 46.0, 13.0);
+    let e = solve(&p, &Settings::default()).unwrap_err();
+    let PlanError::OutOfRange {
+        field, value, min, ..
+    } = e
+    else {
+        panic!("{e:?}");
+    };
+    assert_eq!(field, Field::ToPerigeeAltitudeKm);
+    assert!((value - (6000.0 - re)).abs() < 1e-6, "{value}");
+    assert_eq!(min, validate::MIN_PERIGEE_ALTITUDE_KM);
+    assert!(std::format!("{e}").starts_with("to (perigee altitude, km) = "));
+    // Client A on an ellipse whose perigee is 90 km up (apogee 800 km): refused, named.
+    let mut p = paper_arc();
+    let (rp, ra) = (re + 90.0, re + 800.0);
+    p.from = elements::state_of(
+        MU,
+        &elements::Classical {
+            a_km: 0.5 * (rp + ra),
+            e: (ra - rp) / (ra + rp),
+            i_rad: 1.7,
+            raan_rad: 0.8,
+            argp_rad: 0.0,
+            nu_rad: 1.0,
+        },
+    )
+    .unwrap();
+    let e = solve(&p, &Settings::default()).unwrap_err();
+    assert!(
+        matches!(e, PlanError::OutOfRange { field: Field::FromPerigeeAltitudeKm, value, .. }
+            if (value - 90.0).abs() < 1e-6),
+        "{e:?}"
+    );
+    // The published clients (400 and 500 km up) pass.
+    assert!(validate::check(&paper_arc(), &Settings::default()).is_ok());
+}
+
+#[test]
 fn requests_outside_the_limits_are_refused_by_name() {
     let mut p = paper_arc();
     p.impulses = 5;

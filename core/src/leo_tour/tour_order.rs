@@ -145,6 +145,16 @@ pub fn solve_sequence(
     arc_settings
         .check_ranges()
         .map_err(SequenceError::InvalidArcSetting)?;
+    // Every arc estimate would refuse such a client (`validate::check`): refuse the request,
+    // naming it, rather than find no order.
+    let low = super::validate::first_low_client(clients.iter().enumerate(), g.mu_km3_s2, g.re_km);
+    if let Some((index, altitude_km)) = low {
+        return Err(SequenceError::ClientPerigee {
+            index,
+            altitude_km,
+            min_km: super::validate::MIN_PERIGEE_ALTITUDE_KM,
+        });
+    }
     let SequenceWorkspace { states, arcs, arc } = workspace;
     states.clear();
     arcs.clear();
@@ -237,7 +247,8 @@ fn solve_with(
 /// # Errors
 /// [`ScheduleError`]: an order of fewer than 2 or more than [`MAX_CLIENTS`] clients or naming
 /// a client not given (as `Arcs`), a first client without an elliptic plane (as
-/// `Revolutions`), or settings out of range.
+/// `Revolutions`), a client of the order below the least perigee altitude (`ClientPerigee`),
+/// or settings out of range.
 pub fn choose_schedule(
     clients: &[State],
     order: &[u8],
@@ -260,6 +271,21 @@ pub fn choose_schedule(
         .and_then(|&k| clients.get(usize::from(k)))
         .and_then(|s| plane_of(&g, s))
         .ok_or(bad_revolutions)?;
+    // Every arc estimate would refuse a client of the order below the least perigee: refuse
+    // the request, naming it, rather than find no schedule.
+    let in_order = order.iter().filter_map(|&k| {
+        let index = usize::from(k);
+        clients.get(index).map(|s| (index, s))
+    });
+    if let Some((index, altitude_km)) =
+        super::validate::first_low_client(in_order, g.mu_km3_s2, g.re_km)
+    {
+        return Err(ScheduleError::ClientPerigee {
+            index,
+            altitude_km,
+            min_km: super::validate::MIN_PERIGEE_ALTITUDE_KM,
+        });
+    }
     let dt_max_s = dt_max_s(&g, &first, settings.revolutions);
     // The states of the arc's two clients at each start on the grid, for the arc in hand.
     let mut rows = StateRows::new();
@@ -525,6 +551,24 @@ mod tests {
             panic!("{e:?}")
         };
         assert_eq!(refusal.setting, super::super::SettingId::StepS);
+        // A client inside the Earth (a circular orbit of radius 6000 km): named, with its
+        // perigee altitude, instead of an arc estimate refusing it in every order.
+        let inside = [6000.0, 0.0, 0.0, 0.0, 8.15, 0.0];
+        let e = choose_order(&tour(&[a, b, inside]), &s, &Settings::default()).unwrap_err();
+        let SequenceError::ClientPerigee {
+            index,
+            altitude_km,
+            min_km,
+        } = e
+        else {
+            panic!("{e:?}")
+        };
+        assert_eq!((index, min_km), (2, 100.0));
+        assert!(altitude_km < -378.0, "{altitude_km}");
+        assert!(
+            e.to_string().starts_with("client 2: perigee altitude -"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -270,6 +270,10 @@ pub enum Field {
     Duration = 2,
     /// `ArcProblem::impulses`.
     Impulses = 3,
+    /// The perigee altitude of `ArcProblem::from`'s osculating orbit, km.
+    FromPerigeeAltitudeKm = 4,
+    /// The perigee altitude of `ArcProblem::to`'s osculating orbit, km.
+    ToPerigeeAltitudeKm = 5,
 }
 
 impl Field {
@@ -280,6 +284,8 @@ impl Field {
             Self::To => "to",
             Self::Duration => "duration_s",
             Self::Impulses => "impulses",
+            Self::FromPerigeeAltitudeKm => "from (perigee altitude, km)",
+            Self::ToPerigeeAltitudeKm => "to (perigee altitude, km)",
         }
     }
 }

@@ -1,7 +1,9 @@
 //! Refuse a request before planning: each refusal names the field, the value and the limit.
 
+use super::j2::{pos, vel, State};
 use super::types::{ArcProblem, Field, PlanError, SettingId, Settings, MAX_IMPULSES};
 use crate::contract::{check_range, Range};
+use crate::vec3::{cross, dot, norm};
 
 fn range(field: Field, value: f64, min: f64, max: f64) -> Result<(), PlanError> {
     if value.is_finite() && (min..=max).contains(&value) {
@@ -16,11 +18,48 @@ fn range(field: Field, value: f64, min: f64, max: f64) -> Result<(), PlanError> 
     }
 }
 
+/// The least perigee altitude of a client's osculating orbit, km: below it the orbit meets
+/// the atmosphere's dense part within a revolution (the Kármán line), or the Earth.
+pub const MIN_PERIGEE_ALTITUDE_KM: f64 = 100.0;
+
+/// The perigee altitude (km) of the osculating orbit of `state` about a body of `mu_km3_s2`
+/// and radius `re_km`; NaN for a degenerate state (no angular momentum), which then fails
+/// the range check.
+fn perigee_altitude_km(state: &State, mu_km3_s2: f64, re_km: f64) -> f64 {
+    let (r, v) = (pos(state), vel(state));
+    let h = norm(&cross(&r, &v));
+    let energy = 0.5 * dot(&v, &v) - mu_km3_s2 / norm(&r);
+    // e from the energy and the angular momentum: e^2 = 1 + 2 E h^2 / mu^2 (clamped at 0
+    // against rounding for a circular orbit).
+    let e = libm::sqrt((1.0 + 2.0 * energy * h * h / (mu_km3_s2 * mu_km3_s2)).max(0.0));
+    let p = h * h / mu_km3_s2;
+    if h > 0.0 {
+        p / (1.0 + e) - re_km
+    } else {
+        f64::NAN
+    }
+}
+
+/// The first of `clients` (index, state) whose perigee altitude is below
+/// [`MIN_PERIGEE_ALTITUDE_KM`] (or NaN): its index and altitude, km. The sequencing and the
+/// schedule refuse such a request by name before any arc estimate would.
+pub(crate) fn first_low_client<'s>(
+    clients: impl Iterator<Item = (usize, &'s State)>,
+    mu_km3_s2: f64,
+    re_km: f64,
+) -> Option<(usize, f64)> {
+    clients
+        .map(|(index, s)| (index, perigee_altitude_km(s, mu_km3_s2, re_km)))
+        .find(|&(_, altitude_km)| altitude_km.is_nan() || altitude_km < MIN_PERIGEE_ALTITUDE_KM)
+}
+
 /// Check `problem` and `settings`.
 ///
 /// # Errors
 /// The first field outside its range: the problem's, then the settings' in declaration order,
-/// then the least gap between impulses against the arc (at most an eighth of it).
+/// then each client's perigee altitude (at least [`MIN_PERIGEE_ALTITUDE_KM`], with the
+/// settings' Earth), then the least gap between impulses against the arc (at most an eighth of
+/// it).
 pub fn check(problem: &ArcProblem, settings: &Settings) -> Result<(), PlanError> {
     for (field, s) in [(Field::From, &problem.from), (Field::To, &problem.to)] {
         for v in s {
@@ -35,6 +74,13 @@ pub fn check(problem: &ArcProblem, settings: &Settings) -> Result<(), PlanError>
         MAX_IMPULSES as f64,
     )?;
     settings.check_ranges().map_err(PlanError::InvalidSetting)?;
+    for (field, s) in [
+        (Field::FromPerigeeAltitudeKm, &problem.from),
+        (Field::ToPerigeeAltitudeKm, &problem.to),
+    ] {
+        let altitude_km = perigee_altitude_km(s, settings.mu_km3_s2, settings.re_km);
+        range(field, altitude_km, MIN_PERIGEE_ALTITUDE_KM, 1e6)?;
+    }
     check_range(
         SettingId::MinGapS,
         settings.min_gap_s,
