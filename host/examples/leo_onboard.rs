@@ -55,10 +55,11 @@ fn main() -> Result<()> {
         let dvs: Vec<String> = arcs
             .iter()
             .map(|a| {
-                let flag = if a.solution.info.status == SolveStatus::Solved {
-                    ""
+                let status = a.solution.info.status;
+                let flag = if status == SolveStatus::Solved {
+                    String::new()
                 } else {
-                    " (not Solved)"
+                    format!(" ({status:?})")
                 };
                 format!("{:.3}{flag}", a.solution.total_dv_mps)
             })

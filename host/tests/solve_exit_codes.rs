@@ -187,6 +187,18 @@ fn leo_tour_fixtures_outside_the_service_limits_exit_2_unsolved() {
         let (code, out) = solve(&p);
         assert_eq!(code, 2, "{stem}: {out}");
         assert!(out.contains(expected), "{stem}: {out}");
+        // The JSON carries the error's causes, never a backtrace, whatever the environment.
+        let out = Command::new(env!("CARGO_BIN_EXE_reconfig"))
+            .args(["solve", "--json"])
+            .arg(&p)
+            .env("RUST_BACKTRACE", "1")
+            .output()
+            .expect("run reconfig solve");
+        let text = String::from_utf8_lossy(&out.stdout);
+        let v: serde_json::Value = serde_json::from_str(&text).expect("one JSON object");
+        let error = v["error"].as_str().expect("an error");
+        assert!(error.contains(expected), "{stem}: {error}");
+        assert!(!error.contains("backtrace"), "{stem}: {error}");
     }
 }
 

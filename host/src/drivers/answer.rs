@@ -191,6 +191,23 @@ pub fn report_error(name: &str, error: &anyhow::Error, json_output: bool) -> Exi
             time_s,
             ..
         }) => report_refusal(name, v, *time_s, json_output),
-        _ => report_rejection(name, error, json_output),
+        _ => report_rejection(name, &Chain(error), json_output),
+    }
+}
+
+/// An `anyhow` error reported as a rejection: its Debug form (the JSON `error` field) is its
+/// chain of causes, not anyhow's Debug, which appends a stack backtrace when
+/// `RUST_BACKTRACE` is set.
+struct Chain<'e>(&'e anyhow::Error);
+
+impl core::fmt::Debug for Chain<'_> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(f, "{:#}", self.0)
+    }
+}
+
+impl core::fmt::Display for Chain<'_> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(f, "{}", self.0)
     }
 }
