@@ -110,14 +110,7 @@ pub enum ScheduleError {
     },
     /// A client of the order has its osculating perigee below the least altitude
     /// ([`crate::leo_tour::validate::MIN_PERIGEE_ALTITUDE_KM`]), or inside the Earth.
-    ClientPerigee {
-        /// Which client (0-based).
-        index: usize,
-        /// Its perigee altitude, km (NaN for a degenerate state).
-        altitude_km: f64,
-        /// The least accepted, km.
-        min_km: f64,
-    },
+    ClientPerigee(crate::leo_tour::validate::LowPerigee),
 }
 
 impl core::fmt::Display for ScheduleError {
@@ -137,14 +130,7 @@ impl core::fmt::Display for ScheduleError {
                 f,
                 "schedule horizon_s = {value_s} is not finite or below {min_s} s (every arc at min_steps)"
             ),
-            Self::ClientPerigee {
-                index,
-                altitude_km,
-                min_km,
-            } => write!(
-                f,
-                "client {index}: perigee altitude {altitude_km} km is below the least {min_km} km"
-            ),
+            Self::ClientPerigee(low) => write!(f, "{low}"),
         }
     }
 }

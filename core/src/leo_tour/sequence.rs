@@ -224,14 +224,7 @@ pub enum SequenceError {
     InvalidArcSetting(SettingError<crate::leo_tour::SettingId>),
     /// A client's osculating perigee is below the least altitude
     /// ([`crate::leo_tour::validate::MIN_PERIGEE_ALTITUDE_KM`]), or inside the Earth.
-    ClientPerigee {
-        /// Which client (0-based).
-        index: usize,
-        /// Its perigee altitude, km (NaN for a degenerate state).
-        altitude_km: f64,
-        /// The least accepted, km.
-        min_km: f64,
-    },
+    ClientPerigee(crate::leo_tour::validate::LowPerigee),
 }
 
 impl core::fmt::Display for SequenceError {
@@ -248,14 +241,7 @@ impl core::fmt::Display for SequenceError {
             ),
             Self::InvalidSetting(e) => write!(f, "{e}"),
             Self::InvalidArcSetting(e) => write!(f, "arc {e}"),
-            Self::ClientPerigee {
-                index,
-                altitude_km,
-                min_km,
-            } => write!(
-                f,
-                "client {index}: perigee altitude {altitude_km} km is below the least {min_km} km"
-            ),
+            Self::ClientPerigee(low) => write!(f, "{low}"),
         }
     }
 }

@@ -148,12 +148,8 @@ pub fn solve_sequence(
     // Every arc estimate would refuse such a client (`validate::check`): refuse the request,
     // naming it, rather than find no order.
     let low = super::validate::first_low_client(clients.iter().enumerate(), g.mu_km3_s2, g.re_km);
-    if let Some((index, altitude_km)) = low {
-        return Err(SequenceError::ClientPerigee {
-            index,
-            altitude_km,
-            min_km: super::validate::MIN_PERIGEE_ALTITUDE_KM,
-        });
+    if let Some(low) = low {
+        return Err(SequenceError::ClientPerigee(low));
     }
     let SequenceWorkspace { states, arcs, arc } = workspace;
     states.clear();
@@ -277,14 +273,8 @@ pub fn choose_schedule(
         let index = usize::from(k);
         clients.get(index).map(|s| (index, s))
     });
-    if let Some((index, altitude_km)) =
-        super::validate::first_low_client(in_order, g.mu_km3_s2, g.re_km)
-    {
-        return Err(ScheduleError::ClientPerigee {
-            index,
-            altitude_km,
-            min_km: super::validate::MIN_PERIGEE_ALTITUDE_KM,
-        });
+    if let Some(low) = super::validate::first_low_client(in_order, g.mu_km3_s2, g.re_km) {
+        return Err(ScheduleError::ClientPerigee(low));
     }
     let dt_max_s = dt_max_s(&g, &first, settings.revolutions);
     // The states of the arc's two clients at each start on the grid, for the arc in hand.
@@ -555,16 +545,11 @@ mod tests {
         // perigee altitude, instead of an arc estimate refusing it in every order.
         let inside = [6000.0, 0.0, 0.0, 0.0, 8.15, 0.0];
         let e = choose_order(&tour(&[a, b, inside]), &s, &Settings::default()).unwrap_err();
-        let SequenceError::ClientPerigee {
-            index,
-            altitude_km,
-            min_km,
-        } = e
-        else {
+        let SequenceError::ClientPerigee(low) = e else {
             panic!("{e:?}")
         };
-        assert_eq!((index, min_km), (2, 100.0));
-        assert!(altitude_km < -378.0, "{altitude_km}");
+        assert_eq!((low.index, low.min_km), (2, 100.0));
+        assert!(low.altitude_km < -378.0, "{}", low.altitude_km);
         assert!(
             e.to_string().starts_with("client 2: perigee altitude -"),
             "{e}"

@@ -40,17 +40,44 @@ fn perigee_altitude_km(state: &State, mu_km3_s2: f64, re_km: f64) -> f64 {
     }
 }
 
+/// A client whose osculating perigee is below [`MIN_PERIGEE_ALTITUDE_KM`], or inside the
+/// Earth: the refusal of the sequencing and of the schedule (one shape and one message for
+/// both).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct LowPerigee {
+    /// Which client (0-based).
+    pub index: usize,
+    /// Its perigee altitude, km (NaN for a degenerate state).
+    pub altitude_km: f64,
+    /// The least accepted, km.
+    pub min_km: f64,
+}
+
+impl core::fmt::Display for LowPerigee {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(
+            f,
+            "client {}: perigee altitude {} km is below the least {} km",
+            self.index, self.altitude_km, self.min_km
+        )
+    }
+}
+
 /// The first of `clients` (index, state) whose perigee altitude is below
-/// [`MIN_PERIGEE_ALTITUDE_KM`] (or NaN): its index and altitude, km. The sequencing and the
-/// schedule refuse such a request by name before any arc estimate would.
+/// [`MIN_PERIGEE_ALTITUDE_KM`] (or NaN). The sequencing and the schedule refuse such a
+/// request by name before any arc estimate would.
 pub(crate) fn first_low_client<'s>(
     clients: impl Iterator<Item = (usize, &'s State)>,
     mu_km3_s2: f64,
     re_km: f64,
-) -> Option<(usize, f64)> {
+) -> Option<LowPerigee> {
     clients
-        .map(|(index, s)| (index, perigee_altitude_km(s, mu_km3_s2, re_km)))
-        .find(|&(_, altitude_km)| altitude_km.is_nan() || altitude_km < MIN_PERIGEE_ALTITUDE_KM)
+        .map(|(index, s)| LowPerigee {
+            index,
+            altitude_km: perigee_altitude_km(s, mu_km3_s2, re_km),
+            min_km: MIN_PERIGEE_ALTITUDE_KM,
+        })
+        .find(|c| c.altitude_km.is_nan() || c.altitude_km < c.min_km)
 }
 
 /// Check `problem` and `settings`.
