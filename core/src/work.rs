@@ -92,6 +92,12 @@ impl Meter {
         self.used = self.used.saturating_add(units);
     }
 
+    /// Units the loops may still spend (their share minus what is charged): the budget to
+    /// give a nested solve whose units are charged here once it returns.
+    pub const fn remaining(&self) -> u64 {
+        self.limit.saturating_sub(self.used)
+    }
+
     /// Units charged so far.
     pub const fn used(&self) -> u64 {
         self.used

@@ -17,22 +17,24 @@ mod kernel_image;
 #[cfg(target_os = "none")]
 use reconfig_core::impulsive::{newton_counts, newton_counts_reset};
 #[cfg(target_os = "none")]
-use reconfig_core::leo_tour::{kernels, Workspace};
+use reconfig_core::leo_tour::kernels;
+#[cfg(target_os = "none")]
+use reconfig_core::leo_tour::tour_order::SequenceWorkspace;
 
 #[cfg(target_os = "none")]
 #[cortex_m_rt::entry]
 fn main() -> ! {
-    static mut WORKSPACE: Workspace = Workspace::new();
+    static mut WORKSPACE: SequenceWorkspace = SequenceWorkspace::new();
     let set = kernel_image::KernelSet {
         image: "reconfig-firmware-kl",
         planner: "kernels-leo",
         count: kernels::CASES.len(),
         name: |i| kernels::CASES.get(i).map_or("", |c| c.name),
-        prepare: |i, ws: &mut &mut Workspace| kernels::prepare(i, ws),
+        prepare: |i, ws: &mut &mut SequenceWorkspace| kernels::prepare(i, ws),
         run: |i, ws, prepared| prepared.as_ref().map_or(0, |p| kernels::run(i, ws, p)),
         kepler: Some((newton_counts_reset, newton_counts)),
     };
-    let mut state: &mut Workspace = WORKSPACE;
+    let mut state: &mut SequenceWorkspace = WORKSPACE;
     kernel_image::run_cases(&set, &mut state)
 }
 

@@ -136,6 +136,18 @@ fn leo_tour_fixtures_outside_the_service_limits_exit_2_unsolved() {
     let (code, out) = solve(&p);
     assert_eq!(code, 2, "{out}");
     assert!(out.contains("max_arcs"), "{out}");
+    // Its work budget (4 M units, 400 M Cortex-M7 instructions), likewise.
+    let p = variant(
+        "leo-tour-example1-sequence",
+        &[("max_arcs = 400", "max_arcs = 400\nwork_budget = 4000001")],
+        "big-budget",
+    );
+    let (code, out) = solve(&p);
+    assert_eq!(code, 2, "{out}");
+    assert!(
+        out.contains("work_budget = 4000001 is above the limit 4000000"),
+        "{out}"
+    );
     // An arc setting above its ceiling in a plain tour fixture.
     let p = variant(
         "leo-tour-example1-single-arc",

@@ -24,7 +24,9 @@ use super::elements::{state_of, Classical};
 use super::flight::Model;
 use super::j2::{pos, propagate_steps, step_count, State};
 use super::mean_j2::MeanOrbit;
+use super::sequence::{Intervals, Sequence, SequenceProblem, SequenceSettings, MAX_CLIENTS};
 use super::shoot::{metered_lambert, shoot, Family, Offset, Secant};
+use super::tour_order::{solve_sequence, SequenceWorkspace, ESTIMATE_SETTINGS};
 use super::types::{ArcProblem, ArcSolution, Settings, MAX_IMPULSES};
 use super::work_units as wu;
 use super::workspace::Workspace;
@@ -94,6 +96,22 @@ enum Kind {
     SolvePlanningModel,
     /// A whole estimate of the paper's arc with this budget.
     Estimate(u64),
+    /// A whole sequencing ([`solve_sequence`]).
+    Sequence(Tour),
+}
+
+/// The tour of a sequencing case.
+#[derive(Clone, Copy, Debug)]
+enum Tour {
+    /// Example I's five clients and printed intervals, the estimates' and the sequencing's
+    /// defaults (the on-board fixture `leo-tour-example1-sequence.toml`).
+    ExampleOne,
+    /// Eight clients, every estimate refused at its checks (one impulse per arc): the
+    /// enumeration's nodes and arcs alone, each arc charged a solve's fixed part.
+    EightRefused,
+    /// Eight clients, estimates of one grid epoch and ten evaluations, the default budget:
+    /// hundreds of arcs, the memos filled.
+    EightCoarse,
 }
 
 /// A kernel case: its name (the record's key) and what it runs.
@@ -157,7 +175,66 @@ pub const CASES: &[Case] = &[
     case("solve-default", Kind::Solve(wu::DEFAULT_WORK_BUDGET)),
     case("estimate-budget-2m", Kind::Estimate(2_000_000)),
     case("solve-planning-model-default", Kind::SolvePlanningModel),
+    case("sequence-example-1", Kind::Sequence(Tour::ExampleOne)),
+    case("sequence-8-refused", Kind::Sequence(Tour::EightRefused)),
+    case("sequence-8-coarse", Kind::Sequence(Tour::EightCoarse)),
 ];
+
+/// The request of a sequencing case: the tour and both settings.
+fn sequence_case(tour: Tour) -> Option<(SequenceProblem, SequenceSettings, Settings)> {
+    let mut clients = heapless::Vec::new();
+    let (count, intervals) = match tour {
+        Tour::ExampleOne => {
+            for (a, i, raan, u) in [
+                (6778.14, 97.0344, 49.0, 25.0),
+                (6878.14, 97.4063, 46.0, 13.0),
+                (6978.14, 97.7924, 50.5836, 5.0),
+                (7078.14, 98.1929, 51.0, 50.0),
+                (7178.14, 98.6078, 48.3129, 349.9999),
+            ] {
+                clients.push(client(a, i, raan, u)?).ok()?;
+            }
+            let dt_max = 166_608.838_7;
+            let mut list = [dt_max; MAX_CLIENTS - 1];
+            *list.first_mut()? = 83_304.419_4;
+            (5, list)
+        }
+        Tour::EightRefused | Tour::EightCoarse => {
+            for (k, spread) in (0..MAX_CLIENTS).zip([0.0, 3.0, 1.0, 4.0, 2.0, 0.0, 3.0, 1.0]) {
+                let x = k as f64;
+                let raan = 46.0 + 1.3 * spread;
+                clients
+                    .push(client(
+                        6778.14 + 60.0 * x,
+                        97.03 + 0.24 * x,
+                        raan,
+                        45.0 * x,
+                    )?)
+                    .ok()?;
+            }
+            (MAX_CLIENTS, [86_400.0; MAX_CLIENTS - 1])
+        }
+    };
+    let problem = SequenceProblem {
+        clients,
+        impulses: if matches!(tour, Tour::EightRefused) {
+            1
+        } else {
+            3
+        },
+        first: None,
+        intervals: Intervals::ByPosition(intervals),
+    };
+    let estimates = match tour {
+        Tour::EightCoarse => Settings {
+            grid_points: 1,
+            search_max_evals: 10,
+            ..ESTIMATE_SETTINGS
+        },
+        _ => ESTIMATE_SETTINGS,
+    };
+    (problem.clients.len() == count).then_some((problem, SequenceSettings::DEFAULT, estimates))
+}
 
 /// Table 1's client (circular) at `u_deg` of argument of latitude.
 fn client(a_km: f64, i_deg: f64, raan_deg: f64, u_deg: f64) -> Option<State> {
@@ -272,7 +349,8 @@ const LAST_LEG_REVS: u16 = 14;
 
 /// Set up case `index`: the paper's arc's tracks in `ws`, its mean orbits and arrival, the
 /// grid's best candidate. Outside the measured span.
-pub fn prepare(index: usize, ws: &mut Workspace) -> Option<Prepared> {
+pub fn prepare(index: usize, ws: &mut SequenceWorkspace) -> Option<Prepared> {
+    let ws = &mut ws.arc;
     let kind = CASES.get(index)?.kind;
     let settings = settings_of(kind);
     let problem = paper_arc()?;
@@ -346,10 +424,11 @@ pub fn prepare(index: usize, ws: &mut Workspace) -> Option<Prepared> {
 }
 
 /// Run case `index` on `prepared`: the units the solve charges for it (0 when it cannot run).
-pub fn run(index: usize, ws: &mut Workspace, prepared: &Prepared) -> u64 {
+pub fn run(index: usize, sequence_ws: &mut SequenceWorkspace, prepared: &Prepared) -> u64 {
     let Some(case) = CASES.get(index) else {
         return 0;
     };
+    let ws = &mut sequence_ws.arc;
     let p = prepared;
     let g = p.settings.gravity();
     let budget = u64::MAX;
@@ -519,6 +598,17 @@ pub fn run(index: usize, ws: &mut Workspace, prepared: &Prepared) -> u64 {
                 Err(_) => 0,
             }
         }
+        Kind::Sequence(tour) => {
+            let Some((problem, settings, estimates)) = sequence_case(tour) else {
+                return 0;
+            };
+            let mut out = Sequence::new();
+            let tour = black_box(&problem);
+            match solve_sequence(tour, &settings, &estimates, sequence_ws, &mut out) {
+                Ok(()) => black_box(out).info.work_units,
+                Err(_) => 0,
+            }
+        }
     }
 }
 
@@ -535,6 +625,17 @@ fn with_point(
     let mut c = ctx(p, (a, b), model, u64::MAX);
     f(&mut c, q);
     c.meter.used()
+}
+
+/// Whether case `index` is a whole request (a solve, an estimate or a sequencing: seconds in a
+/// debug build).
+pub fn is_whole_request(index: usize) -> bool {
+    CASES.get(index).is_some_and(|c| {
+        matches!(
+            c.kind,
+            Kind::Solve(_) | Kind::SolvePlanningModel | Kind::Estimate(_) | Kind::Sequence(_)
+        )
+    })
 }
 
 /// The problem a case solves (the firmware's host-side check of the whole solves).
@@ -555,11 +656,11 @@ mod tests {
 
     #[test]
     fn every_case_prepares_and_runs_and_charges() {
-        let mut ws = std::boxed::Box::new(Workspace::new());
+        let mut ws = std::boxed::Box::new(SequenceWorkspace::new());
         for (index, c) in CASES.iter().enumerate() {
             // The whole solves are the QEMU image's and `tests/tests/work_budget.rs`'s (seconds
             // in a debug build).
-            if case_problem(index).is_some() {
+            if is_whole_request(index) {
                 continue;
             }
             let prepared = prepare(index, &mut ws);
@@ -573,7 +674,7 @@ mod tests {
     fn a_lambert_solve_is_charged_by_its_steps() {
         // The same solve warm and cold: fewer steps, fewer units, by whole steps.
         let at = |name: &str| CASES.iter().position(|c| c.name == name).unwrap();
-        let mut ws = std::boxed::Box::new(Workspace::new());
+        let mut ws = std::boxed::Box::new(SequenceWorkspace::new());
         let mut units = |name: &str| {
             let i = at(name);
             let p = prepare(i, &mut ws).unwrap();

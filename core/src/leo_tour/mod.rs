@@ -190,6 +190,29 @@ fn context<'a>(
     })
 }
 
+/// The units an estimate of an arc of `duration_s` charges before its meter can refuse a step
+/// (its fixed part; in the planning model also the clients' checkpoints and the arrival, flown
+/// first): an estimate given at least this many units spends at most its budget. The
+/// sequencing starts no estimate with less left ([`tour_order`]).
+pub(crate) fn estimate_floor_units(duration_s: f64, settings: &Settings) -> u64 {
+    let fixed = work_units::SOLVE + 2 * work_units::MEAN_ORBIT;
+    match settings.search_model {
+        Model::MeanElements => fixed + work_units::MEAN_STATE,
+        Model::Planning => {
+            // The arrival's flight, and each track's checkpoints (each segment at most one
+            // step more than its share of the arrival's).
+            let max_steps = settings.max_steps.saturating_mul(64);
+            let n = step_count(duration_s, settings.step_s, max_steps).unwrap_or(max_steps);
+            let segments = types::CHECKPOINTS as u64;
+            let track = work_units::flight(n)
+                .saturating_add(segments.saturating_mul(work_units::flight(1)));
+            fixed
+                .saturating_add(work_units::flight(n))
+                .saturating_add(track.saturating_mul(2))
+        }
+    }
+}
+
 /// The arc's Δv estimate, m/s: the cost of the best plan the search finds in
 /// `settings.search_model`, shot in that model, without the planning model's polish and
 /// check (with `search_model = Planning`, the planned arc's Δv when it is usable), aimed at

@@ -15,13 +15,19 @@
 //! and the outcome then says [`SequenceStatus::BoundViolated`].
 //!
 //! Worst case: every order of the clients, `N!` leaves (`(N-1)!` with the first fixed) and
-//! at most `N! (1 + 1/1! + 1/2! + ...) < e N!` arcs planned; `max_arcs` stops it first.
+//! at most `N! (1 + 1/1! + 1/2! + ...) < e N!` arcs planned; `max_arcs` stops it first, and
+//! the work budget (`work_budget`) bounds its time: every node of the enumeration
+//! ([`work_units::SEQUENCE_NODE`]) and every planned arc ([`work_units::SEQUENCE_ARC`]) is
+//! charged before it runs, and the callback charges its own work (the clients' flights and the
+//! arc estimate, each given what is left of the budget) to the same meter.
 
 use super::bound::{self, BoundSettings, Plane};
 use super::j2::State;
 use crate::astro::Gravity;
 use crate::contract::{Range, SettingError};
 use crate::indexed::IndexedExt as _;
+use crate::leo_tour::work_units;
+use crate::work::Meter;
 use serde::{Deserialize, Serialize};
 
 /// Most clients of a tour.
@@ -60,8 +66,8 @@ pub struct SequenceProblem {
 }
 
 crate::settings_table! {
-    /// Settings of the sequencing: the bound's conservatism and the arc limit. The per-arc
-    /// estimates' settings travel beside them ([`super::Settings`]).
+    /// Settings of the sequencing: the bound's conservatism, the arc limit and the work budget.
+    /// The per-arc estimates' settings travel beside them ([`super::Settings`]).
     pub struct SequenceSettings;
     /// The sequencing's settings, by name (stable codes on the wire and in the C interface).
     pub enum SettingId for LeoSequence;
@@ -79,6 +85,12 @@ crate::settings_table! {
         /// The bound is multiplied by `1 - bound_margin`.
         bound_margin, BoundMargin = 3: f64 = 0.05,
         unit "", range Range::closed_open(0.0, 1.0), limit AtLeast;
+        /// Work budget of the whole sequencing (its enumeration, the clients' flights and every
+        /// arc estimate), in the arc's units of at most
+        /// `work_units::MAX_INSTRUCTIONS_PER_UNIT` (100) Cortex-M7 instructions each; each
+        /// estimate may spend at most its own `work_budget` and what is left of this one.
+        work_budget, WorkBudget = 4: u64 = work_units::DEFAULT_WORK_BUDGET,
+        unit "units", range Range::closed(1.0, 1e10), limit AtMost;
     }
 }
 
@@ -98,8 +110,7 @@ impl SequenceSettings {
 }
 
 crate::status_enum! {
-    /// What the returned order is (the contract's vocabulary, [`crate::contract::Status`]; the
-    /// sequencing has no work budget of its own: `max_arcs` bounds it).
+    /// What the returned order is (the contract's vocabulary, [`crate::contract::Status`]).
     #[derive(Eq)]
     pub enum SequenceStatus {
         /// Every order was either planned or pruned by the bound, and no planned arc was cheaper
@@ -118,9 +129,22 @@ crate::status_enum! {
             /// `max_arcs` stopped the enumeration.
             arc_limit: bool,
         } = 4,
+        /// The work budget (`work_budget`) stopped the enumeration. With `verified`, the
+        /// cheapest order planned so far (every arc of it estimated, the order complete; a
+        /// cheaper one may be among those not reached); without it, no complete order was
+        /// reached: no `order`, no `total_dv_mps`.
+        BudgetExhausted {
+            /// An order was reached before the budget ran out.
+            verified: bool,
+        } = 5,
     }
-    usable: [Self::Optimal | Self::BoundViolated | Self::ArcLimit];
-    budget: none;
+    usable: [
+        Self::Optimal
+            | Self::BoundViolated
+            | Self::ArcLimit
+            | Self::BudgetExhausted { verified: true }
+    ];
+    budget: BudgetExhausted;
 }
 
 /// How a sequencing ended and what it took.
@@ -139,6 +163,8 @@ pub struct SequenceInfo {
     pub orders_total: u32,
     /// Planned arcs cheaper than their bound.
     pub bound_violations: u32,
+    /// Work units used (`work_budget`).
+    pub work_units: u64,
 }
 
 /// The outcome of a sequencing. Every number is finite whatever the status; with no order
@@ -176,6 +202,7 @@ impl Sequence {
                 orders_completed: 0,
                 orders_total: 0,
                 bound_violations: 0,
+                work_units: 0,
             },
         }
     }
@@ -314,7 +341,18 @@ struct Search<'a, F> {
     arcs_planned: u32,
     orders_completed: u32,
     violations: u32,
-    stopped: bool,
+    /// Why the enumeration stopped short of its end, if it did.
+    stopped: Option<Stop>,
+    meter: Meter,
+}
+
+/// What stopped an enumeration short of its end.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Stop {
+    /// `max_arcs` arcs were planned.
+    ArcLimit,
+    /// The work budget ran out.
+    Budget,
 }
 
 fn factorial(n: u8) -> u32 {
@@ -327,7 +365,7 @@ fn tree_arcs(remaining: u8) -> u32 {
     (1..=u32::from(remaining)).fold(0_u32, |acc, k| acc.saturating_add(1).saturating_mul(k))
 }
 
-impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
+impl<F: FnMut(&mut Meter, usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
     fn duration(&self, position: usize, from: usize, to: usize, start_s: f64) -> Option<f64> {
         match *self.intervals {
             Intervals::ByPosition(list) => list.get(position).copied(),
@@ -387,6 +425,12 @@ impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
         let Some(position) = depth.checked_sub(1) else {
             return;
         };
+        // The node's children, their bounds and their pruning tests (a planned child's arc is
+        // charged on its own).
+        if !self.meter.spend(work_units::SEQUENCE_NODE) {
+            self.stopped = Some(Stop::Budget);
+            return;
+        }
         // Children with their arc bounds, cheapest first (ties by client number).
         let mut kids = [(f64::INFINITY, 0_u8, 0.0_f64); MAX_CLIENTS];
         let mut count = 0_usize;
@@ -411,7 +455,7 @@ impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
         kids.sort_unstable_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
         for &(lb, client, dt) in kids.iter() {
             let j = usize::from(client);
-            if self.stopped {
+            if self.stopped.is_some() {
                 return;
             }
             let next_visited = visited | (1_u16 << j);
@@ -419,11 +463,16 @@ impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
                 continue;
             }
             if self.arcs_planned >= self.max_arcs {
-                self.stopped = true;
+                self.stopped = Some(Stop::ArcLimit);
+                return;
+            }
+            if !self.meter.spend(work_units::SEQUENCE_ARC) {
+                self.stopped = Some(Stop::Budget);
                 return;
             }
             self.arcs_planned = self.arcs_planned.saturating_add(1);
-            let Some(dv) = (self.plan_arc)(current, j, time_s, dt) else {
+            // The callback charges its flights and estimate to the meter, within what is left.
+            let Some(dv) = (self.plan_arc)(&mut self.meter, current, j, time_s, dt) else {
                 continue;
             };
             if !dv.is_finite() {
@@ -458,12 +507,14 @@ impl<F: FnMut(usize, usize, f64, f64) -> Option<f64>> Search<'_, F> {
 }
 
 /// The cheapest visiting order of the clients (`planes`, from [`bound::plane_of`] of their
-/// states at the tour epoch), each arc planned by `plan_arc(from, to, start_s, duration_s)`
-/// (its Δv in m/s, or `None` when it cannot be planned), written into `out`.
+/// states at the tour epoch), each arc planned by `plan_arc(meter, from, to, start_s,
+/// duration_s)` (its Δv in m/s, or `None` when it cannot be planned; it charges its work to
+/// `meter`, which has already been charged `work_units::SEQUENCE_FIXED`, and may spend what
+/// [`Meter::remaining`] says), written into `out`.
 ///
 /// # Errors
 /// [`SequenceError`] for a request outside the limits; `out` is then untouched.
-pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
+pub fn best_order<F: FnMut(&mut Meter, usize, usize, f64, f64) -> Option<f64>>(
     g: &Gravity,
     planes: &[Plane],
     (first, intervals): (Option<u8>, &Intervals),
@@ -548,11 +599,26 @@ pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
         arcs_planned: 0,
         orders_completed: 0,
         violations: 0,
-        stopped: false,
+        stopped: None,
+        meter: Meter::new(settings.work_budget),
     };
-    let firsts = first.map_or(0..count, |f| f..f.saturating_add(1));
-    for start in firsts {
-        if search.stopped {
+    // The request's checks, the clients' planes and the matrix of entry bounds.
+    search.meter.charge(work_units::SEQUENCE_FIXED);
+    // First clients cheapest bound of the whole tour first (ties by number), as children are
+    // tried: a search the budget cuts short has then reached the likelier orders.
+    let mut firsts = [(0.0_f64, 0_u8); MAX_CLIENTS];
+    let mut first_count = 0_usize;
+    for start in first.map_or(0..count, |f| f..f.saturating_add(1)) {
+        let lb = search.rest_bound(usize::from(start), 1_u16 << start);
+        if let Some(slot) = firsts.get_mut(first_count) {
+            *slot = (lb, start);
+            first_count = first_count.saturating_add(1);
+        }
+    }
+    let firsts = firsts.get_mut(..first_count).unwrap_or_default();
+    firsts.sort_unstable_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+    for &(_, start) in firsts.iter() {
+        if search.stopped.is_some() {
             break;
         }
         if let Some(p) = search.path.first_mut() {
@@ -565,6 +631,9 @@ pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
     let orders_total = per_first.saturating_mul(first_choices);
     let arcs_in_tree = tree_arcs(count.saturating_sub(1)).saturating_mul(first_choices);
     out.reset();
+    // A refused step (a node or an arc the budget had no room for), or an estimate the
+    // callback reports cut by the sequencing's budget (it then exhausts the meter).
+    let budget_cut = search.meter.exhausted();
     let status = match search.best {
         Some(b) => {
             out.order = b.order;
@@ -572,7 +641,9 @@ pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
             out.total_dv_mps = Some(b.total_dv_mps);
             out.starts_s = b.starts_s;
             out.durations_s = b.durations_s;
-            if search.stopped {
+            if budget_cut {
+                SequenceStatus::BudgetExhausted { verified: true }
+            } else if search.stopped == Some(Stop::ArcLimit) {
                 SequenceStatus::ArcLimit
             } else if search.violations > 0 {
                 SequenceStatus::BoundViolated
@@ -580,8 +651,9 @@ pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
                 SequenceStatus::Optimal
             }
         }
+        None if budget_cut => SequenceStatus::BudgetExhausted { verified: false },
         None => SequenceStatus::NoOrder {
-            arc_limit: search.stopped,
+            arc_limit: search.stopped == Some(Stop::ArcLimit),
         },
     };
     out.info = SequenceInfo {
@@ -591,6 +663,7 @@ pub fn best_order<F: FnMut(usize, usize, f64, f64) -> Option<f64>>(
         orders_completed: search.orders_completed,
         orders_total,
         bound_violations: search.violations,
+        work_units: search.meter.used(),
     };
     Ok(())
 }

@@ -49,7 +49,7 @@ fn branch_and_bound_finds_the_brute_force_optimum() {
             &p,
             (None, &intervals),
             &settings,
-            |i, j, t, d| Some(cost(i, j, t, d)),
+            |_, i, j, t, d| Some(cost(i, j, t, d)),
             &mut s,
         )
         .unwrap();
@@ -106,7 +106,7 @@ fn a_cost_below_the_bound_is_reported_and_limits_stop_it() {
     let tour = (Some(0), &intervals);
     let run = |settings: &SequenceSettings, cost: Option<f64>| {
         let mut s = Sequence::new();
-        best_order(&G, &p, tour, settings, |_, _, _, _| cost, &mut s).map(|()| s)
+        best_order(&G, &p, tour, settings, |_, _, _, _, _| cost, &mut s).map(|()| s)
     };
     let s = run(&settings, Some(0.0)).unwrap();
     assert_eq!(s.info.status, SequenceStatus::BoundViolated);
@@ -140,7 +140,7 @@ fn a_cost_below_the_bound_is_reported_and_limits_stop_it() {
             &p[..1],
             tour,
             &settings,
-            |_, _, _, _| None,
+            |_, _, _, _, _| None,
             &mut untouched
         ),
         Err(SequenceError::Clients { count: 1 })
@@ -151,7 +151,7 @@ fn a_cost_below_the_bound_is_reported_and_limits_stop_it() {
             &p,
             (Some(9), &intervals),
             &settings,
-            |_, _, _, _| None,
+            |_, _, _, _, _| None,
             &mut untouched
         ),
         Err(SequenceError::First { index: 9 })
@@ -173,7 +173,7 @@ fn a_nan_or_infinity_in_an_unused_interval_is_refused_zero_is_not() {
             &p,
             (Some(0), &intervals),
             &settings,
-            |_, _, _, _| Some(1.0),
+            |_, _, _, _, _| Some(1.0),
             &mut s,
         )
         .map(|()| s)
@@ -199,4 +199,85 @@ fn a_nan_or_infinity_in_an_unused_interval_is_refused_zero_is_not() {
         run(list),
         Err(SequenceError::Interval { position: 1, .. })
     ));
+}
+
+#[test]
+fn the_work_budget_stops_the_enumeration_and_says_whether_an_order_was_reached() {
+    // Four clients, the first fixed; every arc costs 1e6 m/s (never pruned) and its estimate
+    // 1,000 units. The first complete order takes the fixed part, three nodes and three arcs.
+    let p = planes(4);
+    let intervals = Intervals::ByPosition([8e4; MAX_CLIENTS - 1]);
+    let first_order = work_units::SEQUENCE_FIXED
+        + 3 * work_units::SEQUENCE_NODE
+        + 3 * (work_units::SEQUENCE_ARC + 1_000);
+    let run = |work_budget: u64| {
+        let settings = SequenceSettings {
+            work_budget,
+            ..SequenceSettings::default()
+        };
+        let mut s = Sequence::new();
+        best_order(
+            &G,
+            &p,
+            (Some(0), &intervals),
+            &settings,
+            |meter: &mut Meter, _, _, _, _| meter.spend(1_000).then_some(1e6),
+            &mut s,
+        )
+        .map(|()| s)
+        .unwrap()
+    };
+    // Enough for the whole tree: 3! orders, 3 + 6 + 6 = 15 arcs, each node charged once.
+    let whole = run(10_000_000);
+    assert_eq!(whole.info.status, SequenceStatus::Optimal);
+    assert_eq!(whole.info.arcs_planned, 15);
+    let nodes = 1 + 3 + 6;
+    assert_eq!(
+        whole.info.work_units,
+        work_units::SEQUENCE_FIXED
+            + nodes * work_units::SEQUENCE_NODE
+            + 15 * (work_units::SEQUENCE_ARC + 1_000)
+    );
+    // Exactly the first order's units: that order, stopped at the next arc.
+    let s = run(first_order);
+    assert_eq!(
+        s.info.status,
+        SequenceStatus::BudgetExhausted { verified: true }
+    );
+    assert!(s.info.status.is_usable());
+    assert_eq!((s.len, s.total_dv_mps), (4, Some(3e6)));
+    assert_eq!((s.info.arcs_planned, s.info.work_units), (3, first_order));
+    // One unit less: the third estimate is refused, no order.
+    let s = run(first_order - 1);
+    assert_eq!(
+        s.info.status,
+        SequenceStatus::BudgetExhausted { verified: false }
+    );
+    assert!(!s.info.status.is_usable());
+    assert_eq!((s.len, s.total_dv_mps), (0, None));
+    assert!(s.info.work_units < first_order);
+    // An estimate that reports itself cut by the budget (it exhausts the meter) on the very
+    // last arc of the tree: the tree is finished but the outcome is not `Optimal`.
+    let mut calls = 0_u32;
+    let mut s = Sequence::new();
+    best_order(
+        &G,
+        &p,
+        (Some(0), &intervals),
+        &SequenceSettings::default(),
+        |meter: &mut Meter, _, _, _, _| {
+            calls += 1;
+            if calls == 15 {
+                let _ = meter.spend(u64::MAX);
+            }
+            Some(1e6)
+        },
+        &mut s,
+    )
+    .unwrap();
+    assert_eq!(s.info.arcs_planned, 15);
+    assert_eq!(
+        s.info.status,
+        SequenceStatus::BudgetExhausted { verified: true }
+    );
 }

@@ -1,17 +1,23 @@
 //! The tour's order from the clients' states, on board ([`solve_sequence`], the planners'
 //! contract as [`LeoSequence`]): [`super::sequence::best_order`] with each arc's cost the per-arc
 //! search's estimate ([`super::estimate_arc_mps`]), the clients flown to each arc start in the
-//! planning model ([`super::propagate`]).
+//! estimates' search model (`search_model`: the closed-form first-order J2 theory by
+//! default, whatever the span; RK4 steps in the planning model), all within the sequencing's
+//! work budget.
 //!
 //! The enumeration meets the same arc (same clients, start and duration) under different
 //! prefixes, and the same client state at an arc start many times: both are kept in
 //! fixed-size caches in the caller's [`SequenceWorkspace`], so each is computed once while
 //! the caches have room (and computed again, with the same result, once they are full).
 //!
-//! Worst case: `settings.max_arcs` arc costs, each at most two propagations of at most
-//! `arc_settings.max_steps` RK4 steps and one estimate within `arc_settings.work_budget`.
+//! Worst case: `settings.work_budget` units in all (each unit at most
+//! [`super::work_units::MAX_INSTRUCTIONS_PER_UNIT`] M7 instructions): the enumeration's nodes and
+//! arcs, the clients' flights and the estimates are charged to one meter, and each estimate
+//! may spend the least of its own `arc_settings.work_budget` and what is left. An estimate cut
+//! by what is left makes the outcome `BudgetExhausted` (the enumeration stops there).
 
 use super::bound::{plane_of, Plane};
+use super::flight::Flight;
 use super::j2::State;
 use super::schedule::{best_schedule, Schedule, ScheduleError, ScheduleSettings, MAX_STEPS};
 use super::sequence::{
@@ -19,8 +25,10 @@ use super::sequence::{
     SequenceStatus, MAX_CLIENTS,
 };
 use super::{
-    estimate_arc_mps, propagate, solve_arc, ArcProblem, ArcSolution, PlanError, Settings, Workspace,
+    estimate_arc_mps, propagate, solve_arc, ArcProblem, ArcSolution, PlanError, Settings,
+    SolveStatus, Workspace,
 };
+use crate::work::Meter;
 use serde::{Deserialize, Serialize};
 
 /// Client states at arc starts kept: every client at every start of a tour of
@@ -155,39 +163,73 @@ pub fn solve_sequence(
     states.clear();
     arcs.clear();
     let tour = (problem.first, &problem.intervals);
+    let flight = Flight {
+        g,
+        model: arc_settings.search_model,
+        step_s: arc_settings.step_s,
+        max_steps: arc_settings.max_steps,
+    };
     best_order(
         &g,
         planes,
         tour,
         settings,
-        |i, j, t0, dt| {
+        |meter, i, j, t0, dt| {
             let key = (i, j, t0.to_bits(), dt.to_bits());
             if let Some(cost) = arcs.get(&key) {
                 return cost;
             }
-            let mut at = |k: usize| -> Option<State> {
+            let mut at = |k: usize, meter: &mut Meter| -> Option<State> {
                 let key = (k, t0.to_bits());
                 if let Some(s) = states.get(&key) {
                     return s;
                 }
-                let s = propagate(arc_settings, clients.get(k)?, t0);
-                states.put(key, s);
+                let s = flight.fly(clients.get(k)?, t0, meter);
+                // A flight the meter refused is not kept: the enumeration stops there.
+                if !meter.exhausted() {
+                    states.put(key, s);
+                }
                 s
             };
-            let cost = match (at(i), at(j)) {
-                (Some(from), Some(to)) => estimate_arc_mps(
-                    &ArcProblem {
-                        from,
-                        to,
-                        duration_s: dt,
-                        impulses,
-                    },
-                    arc_settings,
-                    arc,
-                )
-                .ok()
-                .and_then(|e| e.dv_mps),
-                _ => None,
+            let (from, to) = (at(i, meter)?, at(j, meter)?);
+            // The estimate spends at most its own budget and what is left of the sequencing's;
+            // with less left than it charges before it can stop, it is not started.
+            let left = meter.remaining();
+            if left < super::estimate_floor_units(dt, arc_settings) {
+                let _ = meter.spend(u64::MAX);
+                return None;
+            }
+            let capped = Settings {
+                work_budget: arc_settings.work_budget.min(left),
+                ..*arc_settings
+            };
+            let estimate = estimate_arc_mps(
+                &ArcProblem {
+                    from,
+                    to,
+                    duration_s: dt,
+                    impulses,
+                },
+                &capped,
+                arc,
+            );
+            let cost = match estimate {
+                Ok(e) => {
+                    meter.charge(e.work_units);
+                    let cut = matches!(e.status, SolveStatus::BudgetExhausted { .. });
+                    if cut && capped.work_budget < arc_settings.work_budget {
+                        // Cut by the sequencing's budget, not its own: not the estimate the
+                        // arc's settings ask for, so the enumeration stops (and says so).
+                        let _ = meter.spend(u64::MAX);
+                        return e.dv_mps;
+                    }
+                    e.dv_mps
+                }
+                // Refused at its checks (charged as a solve's fixed part).
+                Err(_) => {
+                    meter.charge(super::work_units::SOLVE);
+                    None
+                }
             };
             arcs.put(key, cost);
             cost
@@ -196,14 +238,40 @@ pub fn solve_sequence(
     )
 }
 
+/// The arc estimates' default settings while sequencing: a coarse search (8 grid epochs, one
+/// candidate, 100 evaluations, the compass search stopped at 128 s, no hops) whose whole tree
+/// of five clients fits the sequencing's default budget. Chosen on generated tours (tuning
+/// seeds 0..20 of `host/examples/leo_sequence_campaign.rs`): a complete enumeration with
+/// coarse estimates chose better orders than a partial one with the published fixture's
+/// finer estimates (64 epochs, two candidates, 1,000 evaluations, 8 s), which the budget
+/// cuts after a dozen arcs. The figures on held-out tours: docs/leo-tour.md, "Sequencing".
+pub const ESTIMATE_SETTINGS: Settings = Settings {
+    grid_points: 8,
+    candidates: 1,
+    hop_rounds: 0,
+    search_max_evals: 100,
+    search_min_step_s: 128.0,
+    ..Settings::DEFAULT
+};
+
 /// The sequencing's settings in the planners' contract: its own and its arc estimates'
-/// (the wire's `Request::LeoSequence { settings, arc_settings }`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+/// (the wire's `Request::LeoSequence { settings, arc_settings }`). By default the estimates'
+/// are [`ESTIMATE_SETTINGS`].
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SequencePlanSettings {
     /// The sequencing's settings.
     pub order: SequenceSettings,
     /// The arc estimates' settings.
     pub arc: Settings,
+}
+
+impl Default for SequencePlanSettings {
+    fn default() -> Self {
+        Self {
+            order: SequenceSettings::DEFAULT,
+            arc: ESTIMATE_SETTINGS,
+        }
+    }
 }
 
 /// The sequencing in the planners' contract ([`crate::contract::Planner`]):
@@ -557,6 +625,64 @@ mod tests {
     }
 
     #[test]
+    fn the_sequencing_spends_at_most_its_work_budget_and_says_when_it_was_cut() {
+        // Three clients of Example I, the estimates' defaults: the whole tree takes some
+        // hundreds of thousands of units; below that the enumeration is cut, never past its
+        // budget (an estimate is not started with less left than it charges before it can
+        // stop), and an order reached before the cut is usable.
+        let clients: std::vec::Vec<State> = [
+            (6778.14, 97.0344, 49.0, 25.0),
+            (6878.14, 97.4063, 46.0, 13.0),
+            (6978.14, 97.7924, 50.5836, 5.0),
+        ]
+        .iter()
+        .map(|&(a_km, i_deg, raan_deg, u_deg)| {
+            super::super::elements::state_of(
+                crate::astro::EARTH_MU_KM3_S2,
+                &super::super::elements::Classical {
+                    a_km,
+                    e: 0.0,
+                    i_rad: f64::to_radians(i_deg),
+                    raan_rad: f64::to_radians(raan_deg),
+                    argp_rad: 0.0,
+                    nu_rad: f64::to_radians(u_deg),
+                },
+            )
+            .unwrap()
+        })
+        .collect();
+        let problem = tour(&clients);
+        let run = |work_budget: u64| {
+            let settings = SequenceSettings {
+                work_budget,
+                ..SequenceSettings::default()
+            };
+            choose_order(&problem, &settings, &ESTIMATE_SETTINGS).unwrap()
+        };
+        let whole = run(SequenceSettings::DEFAULT.work_budget);
+        assert_eq!(whole.info.status, SequenceStatus::Optimal);
+        let needed = whole.info.work_units;
+        assert!(needed > 50_000, "{needed}");
+        let mut usable_cut = 0;
+        for k in 1..300_u64 {
+            let budget = needed * k / 300;
+            let q = run(budget);
+            // The fixed part is charged whatever the budget (as an arc's).
+            let most = budget.max(super::super::work_units::SEQUENCE_FIXED);
+            assert!(q.info.work_units <= most, "{budget}: {}", q.info.work_units);
+            assert!(
+                matches!(q.info.status, SequenceStatus::BudgetExhausted { .. }),
+                "{budget}: {:?}",
+                q.info.status
+            );
+            assert_eq!(q.total_dv_mps.is_some(), q.info.status.is_usable());
+            usable_cut += usize::from(q.info.status.is_usable());
+        }
+        // Past the first complete order, a cut enumeration still returns one.
+        assert!(usable_cut > 0);
+    }
+
+    #[test]
     fn the_sequencing_is_a_planner_of_the_contract() {
         use crate::contract::{Planner, Status};
         assert_eq!(LeoSequence::KIND, crate::contract::PlannerKind::LeoSequence);
@@ -571,9 +697,16 @@ mod tests {
             (SequenceStatus::ArcLimit, true),
             (SequenceStatus::NoOrder { arc_limit: false }, false),
             (SequenceStatus::NoOrder { arc_limit: true }, false),
+            (SequenceStatus::BudgetExhausted { verified: true }, true),
+            (SequenceStatus::BudgetExhausted { verified: false }, false),
         ] {
             assert_eq!(Status::is_usable(&status), usable, "{status:?}");
-            assert_eq!(status.budget_exhausted(), None);
+            let budget = match status {
+                SequenceStatus::BudgetExhausted { verified } => Some(verified),
+                _ => None,
+            };
+            assert_eq!(status.budget_exhausted(), budget);
         }
+        assert_eq!(SequenceStatus::BudgetExhausted { verified: true }.code(), 5);
     }
 }

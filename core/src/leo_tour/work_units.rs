@@ -80,6 +80,20 @@ pub(crate) const FINISH: u64 = 15;
 /// A solve's fixed part: the request checked, the context built, the answer written.
 pub(crate) const SOLVE: u64 = 30;
 
+/// The sequencing's fixed part (`sequence::best_order` and `tour_order::solve_sequence`
+/// outside their nodes and arcs): the request checked, the clients' planes and perigees, the
+/// matrix of entry bounds of every pair of [`super::sequence::MAX_CLIENTS`] clients, the
+/// memos emptied, the answer written.
+pub(crate) const SEQUENCE_FIXED: u64 = 4_000;
+/// A node of the sequencing's enumeration outside its arcs: the duration and bound of each of
+/// its at most `MAX_CLIENTS - 1` children, their sort, and each child's pruning test (the
+/// bound of the clients still to visit).
+pub(crate) const SEQUENCE_NODE: u64 = 400;
+/// A planned arc of the sequencing outside its flights and estimate: its memo lookups (the
+/// arc's and its two clients' states', each memo searched to its capacity), its pruning test
+/// once costed, the complete order kept.
+pub(crate) const SEQUENCE_ARC: u64 = 100;
+
 /// A planning-model flight of `steps` RK4 steps.
 pub(crate) const fn flight(steps: u32) -> u64 {
     FLIGHT.saturating_add(RK4_STEP.saturating_mul(steps as u64))

@@ -200,10 +200,10 @@ impl OutcomeRef<'_> {
         }
     }
 
-    /// The work units the planner used, for a planner with a work meter that planned (the
-    /// LEO sequencing has none of its own: its arcs' estimates are bounded by `max_arcs`).
+    /// The work units the planner used, for a planner that planned.
     pub fn work_units(&self) -> Option<u64> {
         match self {
+            Self::LeoSequence(s) => Some(s.info.work_units),
             Self::Pseudospectral(s) => Some(s.info.work_units),
             Self::Impulsive(s) | Self::ImpulsiveForm { solution: s, .. } => Some(s.info.work_units),
             Self::LeoArc(s) => Some(s.info.work_units),

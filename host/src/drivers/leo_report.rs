@@ -213,7 +213,7 @@ pub fn run(f: &LeoTourFixture, limits: &Limits, json_output: bool) -> Result<Exi
             let q = &c.sequence;
             let i = &q.info;
             println!(
-                "  sequencing: {:?}, {} m/s with the sequencing search; planned {} of the tree's {} arcs ({:.1} %), {} of {} orders completed, {} bound violations, {:.2} s",
+                "  sequencing: {:?}, {} m/s with the sequencing search; planned {} of the tree's {} arcs ({:.1} %), {} of {} orders completed, {} bound violations, {} work units, {:.2} s",
                 i.status,
                 q.total_dv_mps.map_or("no order".into(), |t| format!("{t:.3}")),
                 i.arcs_planned,
@@ -222,6 +222,7 @@ pub fn run(f: &LeoTourFixture, limits: &Limits, json_output: bool) -> Result<Exi
                 i.orders_completed,
                 i.orders_total,
                 i.bound_violations,
+                i.work_units,
                 c.time_s
             );
         }
@@ -305,6 +306,7 @@ pub fn sequence_json(c: &ChosenOrder) -> serde_json::Value {
         "orders_completed": i.orders_completed,
         "orders_total": i.orders_total,
         "bound_violations": i.bound_violations,
+        "work_units": i.work_units,
         "time_s": c.time_s,
     })
 }

@@ -18,20 +18,21 @@ use crate::record::{
     tables_by, updating, BUDGET_STACK_BYTES,
 };
 use reconfig_core::contract::PlannerKind;
+use reconfig_core::leo_tour::work_units::MAX_INSTRUCTIONS_PER_UNIT;
 
 /// The LEO image's binary.
 const BIN: &str = "reconfig-firmware-leo";
 /// Its record.
 const LEO_FIGURES_FILE: &str = "fixtures/golden/m7-figures-leo.toml";
-/// Instructions per arc: a ceiling that catches growth, **not** the on-board target. Issue 13
-/// asks 200 ms for the sequence and four arcs (about 80 M instructions at 400 MHz); one arc
-/// takes about 0.46 G today with the search model (25.6 G when it searched in the planning
-/// model; docs/leo-tour.md).
-const CEILING_INSTRUCTIONS_LEO_ARC: u64 = 1_500_000_000;
-/// Instructions of the on-board part of a `[sequence]` fixture (the sequencing and every arc
-/// of its order, summed), and of each of its requests: a ceiling that catches growth, not the
-/// target.
-const CEILING_INSTRUCTIONS_LEO_ONBOARD: u64 = 8_000_000_000;
+/// Instructions of one request (an arc, or a sequencing): the on-board promise of issue 33,
+/// the default (and built-in limit of the) work budget times the most instructions a unit
+/// stands for, 4 M x 100 = 400 M (1 s at 400 MHz). Each request is also held to its own
+/// units times that bound.
+const CEILING_INSTRUCTIONS_LEO_REQUEST: u64 =
+    reconfig_core::leo_tour::work_units::DEFAULT_WORK_BUDGET * MAX_INSTRUCTIONS_PER_UNIT;
+/// Instructions of the on-board part of Example I's `[sequence]` fixture, summed: the
+/// sequencing and its four arcs, five requests of at most 400 M each.
+const CEILING_INSTRUCTIONS_LEO_ONBOARD: u64 = 5 * CEILING_INSTRUCTIONS_LEO_REQUEST;
 /// Stack of the on-board part: the sequencing's caches and the arc search's large buffers are
 /// in the caller's workspace (static), so it is held to the 64 KiB of each single solve (it
 /// needed 96 KiB while the caches, about 27 KB for 8 clients, sat on the stack below one arc
@@ -85,7 +86,7 @@ fn leo_figures_match_the_record() {
         "# LEO tour image (cargo firmware-leo: one arc, and the on-board part of a [sequence]\n\
          # fixture): written by leo_figures_match_the_record\n\
          # (RECONFIG_UPDATE_FIGURES=1 cargo test -p reconfig-tests --test qemu_firmware leo_).\n\
-         # instructions_budget is a ceiling that catches growth, not issue 13's on-board target.\n\n\
+         # instructions_budget of a request: 400 M, the work budget's bound (issue 33).\n\n\
          [leo_binary]\n",
     );
     let binary: Vec<(&str, u64, u64)> = BINARY_FIGURES
@@ -123,7 +124,8 @@ fn leo_figures_match_the_record() {
             .into_iter()
             .map(|f| (f.name, f.part_of))
             .collect();
-    // Per on-board part: instructions summed, the largest stack, the arcs' work units summed.
+    // Per on-board part: instructions summed, the largest stack, the requests' work units
+    // summed.
     let mut onboard: BTreeMap<String, (u64, u64, u64)> = BTreeMap::new();
     for (fixture, &count) in run.fixtures.iter().zip(instructions) {
         let recorded = recorded_fixtures.get(&fixture.name).copied();
@@ -137,13 +139,20 @@ fn leo_figures_match_the_record() {
                 sum.2 += units.unwrap_or(0);
                 let _ = writeln!(text, "part_of = {part:?}");
                 (
-                    CEILING_INSTRUCTIONS_LEO_ONBOARD,
+                    CEILING_INSTRUCTIONS_LEO_REQUEST,
                     BUDGET_STACK_BYTES_LEO_ONBOARD,
                 )
             }
-            None => (CEILING_INSTRUCTIONS_LEO_ARC, BUDGET_STACK_BYTES),
+            None => (CEILING_INSTRUCTIONS_LEO_REQUEST, BUDGET_STACK_BYTES),
         };
-        // The sequencing has no work meter of its own (its estimates are not metered in total).
+        // Every LEO request is metered (an arc, a sequencing): its units bound its instructions.
+        let bound = units.map(|u| u.saturating_mul(MAX_INSTRUCTIONS_PER_UNIT));
+        assert!(
+            bound.is_some_and(|b| count <= b),
+            "{}: {count} M7 instructions for {units:?} work units, above {MAX_INSTRUCTIONS_PER_UNIT} \
+             per unit",
+            fixture.name
+        );
         if let Some(units) = units {
             let _ = writeln!(
                 text,
@@ -167,7 +176,7 @@ fn leo_figures_match_the_record() {
         let _ = write!(
             text,
             "\n[[leo_fixture]]\nname = {name:?}\npart = \"on-board: the sequencing request and \
-             every arc request of its order, summed\"\narcs_work_units = {units}\n"
+             every arc request of its order, summed\"\nwork_units = {units}\n"
         );
         record_entries(
             &mut text,
