@@ -41,8 +41,30 @@ enum Command {
     Truth(reconfig_host::cli::truth::Args),
 }
 
+/// A report command whose reader stops early (`reconfig solve … | head`) ends quietly, as Unix
+/// tools do, instead of panicking on the broken pipe (exit 101): SIGPIPE gets its default
+/// action back (Rust's runtime ignores it). Not for the flight service, its feeders and the
+/// demo, which must outlive a peer that goes away.
+fn end_quietly_on_a_closed_pipe() {
+    // SAFETY: `signal` with a valid signal number and the default action, before any thread
+    // of ours starts; no handler runs Rust code.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    if matches!(
+        cli.command,
+        Command::Solve(_)
+            | Command::Montecarlo(_)
+            | Command::Plot(_)
+            | Command::Sweep(_)
+            | Command::Truth(_)
+    ) {
+        end_quietly_on_a_closed_pipe();
+    }
     // iceoryx2 logs warnings such as "no config file was loaded" (none is needed); keep the
     // output for errors unless RUST_LOG-style IOX2_LOG_LEVEL asks for more.
     iceoryx2::prelude::set_log_level_from_env_or(iceoryx2::prelude::LogLevel::Error);

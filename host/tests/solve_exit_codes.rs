@@ -268,3 +268,47 @@ fn help_states_the_exit_codes() {
         "{text}"
     );
 }
+
+#[test]
+fn a_reader_that_stops_early_ends_the_report_quietly() {
+    // `reconfig solve … | head -1`: the pipe closes before the report is written. Unix tools
+    // end on SIGPIPE; the report must not panic (it exited 101 with a backtrace).
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_reconfig"))
+        .arg("solve")
+        .arg(root().join("fixtures/leo-tour-example1-printed.toml"))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run reconfig solve");
+    drop(child.stdout.take());
+    let out = child.wait_with_output().expect("wait for reconfig solve");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_ne!(out.status.code(), Some(101), "{stderr}");
+    #[cfg(unix)]
+    {
+        use std::os::unix::process::ExitStatusExt as _;
+        assert_eq!(out.status.signal(), Some(libc::SIGPIPE), "{:?}", out.status);
+    }
+}
+
+#[test]
+fn mission_days_is_refused_for_a_fixture_without_a_mission_time() {
+    let out = Command::new(env!("CARGO_BIN_EXE_reconfig"))
+        .arg("solve")
+        .arg(root().join("fixtures/leo-tour-example1-single-arc.toml"))
+        .args(["--mission-days", "3"])
+        .output()
+        .expect("run reconfig solve");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains(
+            "--mission-days applies to geo-tour fixtures; leo-tour-example1-single-arc is a \
+             leo-tour fixture"
+        ),
+        "{stderr}"
+    );
+    assert!(out.stdout.is_empty());
+}

@@ -33,7 +33,7 @@ pub struct Args {
     pub json: bool,
     #[command(flatten)]
     pub limits: LimitsArg,
-    /// GEO tour: override the fixture's mission time, days.
+    /// GEO tour: override the fixture's mission time, days (refused for other planners).
     #[arg(long)]
     pub mission_days: Option<f64>,
 }
@@ -43,7 +43,16 @@ pub struct Args {
 pub fn run(args: &Args) -> Result<ExitCode> {
     let limits = args.limits.load()?;
     let mut fixture = fixture::load(&args.file)?;
-    if let (Fixture::GeoTour(f), Some(days)) = (&mut fixture, args.mission_days) {
+    if let Some(days) = args.mission_days {
+        // Only a GEO tour has a mission time; any other fixture refuses the flag rather than
+        // plan as if it had been applied.
+        let Fixture::GeoTour(f) = &mut fixture else {
+            bail!(
+                "--mission-days applies to geo-tour fixtures; {} is a {} fixture",
+                fixture.name(),
+                fixture.planner()
+            );
+        };
         f.problem.mission_time_s = days * fixture::geo_tour::DAY_S;
     }
     // A LEO tour stands for several requests, answered in turn by its driver.
