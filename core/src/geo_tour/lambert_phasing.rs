@@ -185,6 +185,10 @@ pub(crate) fn well_skipped(g: &Geo, dir: Direction, phase_rad: f64, m: u16, cap_
     tangential_mps.is_nan() || tangential_mps > 1.25 * cap_mps
 }
 
+/// The golden section's score of an arc whose burns break the cap, before its excess over the
+/// cap is added: above any admissible arc's `dv + price * tau` (m/s; a tour's legs cost tens).
+const INADMISSIBLE_SCORE: f64 = 1e9;
+
 /// Minimise `dv(tau) + price * tau` over well `m` (K = m - 1 revolutions,
 /// `tau in [tau_m - T0/4, tau_m - T0 * 1e-9]`) by golden section, `iterations` steps; burns
 /// within `cap_mps`. Returns the best manoeuvre found (cap-violating or failed points are
@@ -223,12 +227,24 @@ pub(crate) fn well_minimum(
     let mut c = hi - r * (hi - lo);
     let mut d = lo + r * (hi - lo);
     // Score, admissible manoeuvre, and Izzo's x of the arc (kept even when the arc breaks
-    // the cap: it still warm-starts the neighbouring solve).
+    // the cap: it still warm-starts the neighbouring solve). An arc that breaks the cap scores
+    // above every admissible one, by how far it breaks it: the section then closes on the
+    // cap-admissible part of the window (around the well's bottom, where the burns are
+    // smallest) wherever its first points fall; with every such arc scored alike (infinite)
+    // it closed on the window's near end, and a well whose bottom is admissible was lost.
     type Scored = (f64, Option<Maneuver>, Option<f64>);
     let score_arc = |t: f64, a: Option<(Maneuver, f64, f64)>| -> Scored {
         match a {
             Some((mv, dv, x)) if mv.max_burn_mps <= cap_mps => (dv + price * t, Some(mv), Some(x)),
-            Some((_, _, x)) => (f64::INFINITY, None, Some(x)),
+            Some((mv, _, x)) => {
+                let excess_mps = mv.max_burn_mps - cap_mps;
+                let score = if excess_mps.is_finite() {
+                    INADMISSIBLE_SCORE + excess_mps
+                } else {
+                    f64::INFINITY
+                };
+                (score, None, Some(x))
+            }
             None => (f64::INFINITY, None, None),
         }
     };

@@ -56,7 +56,7 @@ pub use types::{
 pub use validate::{MAX_BURN_CAP_MPS, MAX_MISSION_TIME_S};
 pub use workspace::Workspace;
 
-use crate::astro::wrap_two_pi;
+use crate::astro::{wrap_two_pi, TWO_PI};
 use crate::indexed::IndexedExt as _;
 use crate::work::Meter;
 use allocate::{allocate, Choice, NoAllocation};
@@ -347,7 +347,14 @@ pub(crate) fn build_tables(
         .zip(offsets.iter_mut())
         .indexed()
     {
-        *off = wrap_two_pi(sign * (wrap_two_pi(lon) - start));
+        // A client within the rounding of the start slot (a longitude given as its
+        // equivalent, -312 deg for 48 deg) is in it, not a full revolution away.
+        let wrapped = wrap_two_pi(sign * (wrap_two_pi(lon) - start));
+        *off = if wrapped <= table::PHASE_TOL_RAD || TWO_PI - wrapped <= table::PHASE_TOL_RAD {
+            0.0
+        } else {
+            wrapped
+        };
         if let Some(o) = order.get_mut(i) {
             *o = i;
         }
@@ -376,7 +383,13 @@ pub(crate) fn build_tables(
             .targets_lon_rad
             .get(i)
             .map_or(0.0, |&l| wrap_two_pi(l));
+        // Two clients within the rounding of each other are co-located (no leg to fly).
         let phase = (off - prev_off).max(0.0);
+        let phase = if phase <= table::PHASE_TOL_RAD {
+            0.0
+        } else {
+            phase
+        };
         let allowed = if phase > 0.0 {
             work_units::allowed_methods(problem.policy, table::rule_method(phase, s))
         } else {

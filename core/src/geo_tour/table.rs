@@ -98,16 +98,25 @@ pub(crate) fn direction_of(t: &LegTable) -> Direction {
 
 /// The method the paper's rule gives a phase offset.
 pub(crate) fn rule_method(phase_rad: f64, s: &Settings) -> Method {
-    if phase_rad > s.rule_drift_above_rad {
+    // A phase within `PHASE_TOL_RAD` of a threshold is at it: the same tour gets the same
+    // methods whatever its base longitude (the offsets' rounding differs from one to another).
+    let above = |threshold_rad: f64| phase_rad > threshold_rad + PHASE_TOL_RAD;
+    if above(s.rule_drift_above_rad) {
         Method::Drift
-    } else if phase_rad > s.rule_hohmann_above_rad {
+    } else if above(s.rule_hohmann_above_rad) {
         Method::Hohmann
-    } else if phase_rad > s.rule_radial_above_rad {
+    } else if above(s.rule_radial_above_rad) {
         Method::Radial
     } else {
         Method::Lambert
     }
 }
+
+/// Phase offsets closer than this, rad, are the rounding of the input longitudes (degrees
+/// converted, wrapped and subtracted), not a distance to fly: 4e-5 m along the GEO ring. A
+/// client that close to the slot before it is co-located with it, and a phase that close to a
+/// rule threshold is at the threshold.
+pub(crate) const PHASE_TOL_RAD: f64 = 1e-12;
 
 /// Rebuild the manoeuvre of a point option (deterministic: the same numbers as when the
 /// table was built). Not metered: the returned plan's legs are paid from the reserve, at

@@ -118,3 +118,94 @@ fn cheaper_is_the_better_of_both_sweeps_planned_alone() {
     }
     assert!(west_won, "no case where the west sweep wins");
 }
+
+#[test]
+fn a_lambert_well_whose_bottom_is_within_the_cap_is_kept() {
+    // Issue 31: one client 2 deg east in 3 days under a 2 m/s cap. The two-revolution Lambert
+    // well's first golden points break the cap, but its bottom does not (3.8023 m/s, largest
+    // burn 1.901 m/s, the same plan as under a 3 m/s cap); the section used to close on the
+    // window's near end and lose the well, planning a drift leg at 4.5366 m/s.
+    let mut targets = heapless::Vec::new();
+    targets.push(50.0 * DEG).unwrap();
+    let problem = |cap_mps: f64| Problem {
+        start_lon_rad: 48.0 * DEG,
+        targets_lon_rad: targets.clone(),
+        mission_time_s: 3.0 * DAY,
+        max_burn_mps: cap_mps,
+        sweep: SweepChoice::Cheaper,
+        policy: MethodPolicy::ByCost,
+    };
+    let (tight, loose) = (run(&problem(2.0)), run(&problem(3.0)));
+    for s in [&tight, &loose] {
+        assert_eq!(s.info.status, SolveStatus::Solved);
+        let leg = &s.legs[0];
+        assert_eq!(
+            (leg.method, leg.revolutions),
+            (Method::Lambert, 2),
+            "{leg:?}"
+        );
+        assert!((s.total_dv_mps - 3.8023).abs() < 1e-3, "{}", s.total_dv_mps);
+        assert!(
+            s.max_burn_mps <= 2.0 && s.max_burn_mps > 1.9,
+            "{}",
+            s.max_burn_mps
+        );
+    }
+}
+
+#[test]
+fn a_client_given_as_the_start_slots_equivalent_longitude_is_in_the_start_slot() {
+    // Issue 31: -312 deg is 48 deg; the wrapped offset's rounding made it a leg (a 9-hour
+    // Lambert of 0 m/s that took time from the next leg), or a revolution away.
+    let one = |lons: &[f64]| {
+        let mut targets = heapless::Vec::new();
+        for &l in lons {
+            targets.push(l * DEG).unwrap();
+        }
+        run(&Problem {
+            start_lon_rad: 48.0 * DEG,
+            targets_lon_rad: targets,
+            mission_time_s: 5.0 * DAY,
+            max_burn_mps: 5.0,
+            sweep: SweepChoice::Cheaper,
+            policy: MethodPolicy::ByCost,
+        })
+    };
+    let (equivalent, alone) = (one(&[-312.0, 50.0]), one(&[50.0]));
+    assert_eq!(equivalent.info.status, SolveStatus::Solved);
+    let first = &equivalent.legs[0];
+    assert_eq!(
+        (first.method, first.duration_s, first.dv_mps),
+        (Method::None, 0.0, 0.0),
+        "{first:?}"
+    );
+    // The whole mission is left to the one leg that flies: the plan of the client alone.
+    assert_eq!(
+        equivalent.total_dv_mps.to_bits(),
+        alone.total_dv_mps.to_bits()
+    );
+    assert!((equivalent.legs[1].duration_s - 5.0 * DAY).abs() < 1e-3);
+}
+
+#[test]
+fn the_paper_rule_gives_a_phase_at_its_threshold_the_same_method_at_any_base_longitude() {
+    // Issue 31: a client 0.25 deg east (the rule's Hohmann threshold) got `Radial` or
+    // `Hohmann` depending on how the base longitude rounded the offset; at the threshold the
+    // rule says radial ("Hohmann above 0.25 deg").
+    for base_deg in [0.1, 10.3, 48.0, 123.7, 200.9, 300.3, 359.6] {
+        let mut targets = heapless::Vec::new();
+        targets
+            .push(crate::astro::wrap_two_pi((base_deg + 0.25) * DEG))
+            .unwrap();
+        let s = run(&Problem {
+            start_lon_rad: base_deg * DEG,
+            targets_lon_rad: targets,
+            mission_time_s: 5.0 * DAY,
+            max_burn_mps: 5.0,
+            sweep: SweepChoice::East,
+            policy: MethodPolicy::PaperRule,
+        });
+        assert_eq!(s.info.status, SolveStatus::Solved, "{base_deg}");
+        assert_eq!(s.legs[0].method, Method::Radial, "{base_deg}");
+    }
+}
