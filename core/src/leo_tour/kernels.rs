@@ -15,7 +15,9 @@
 //! at its epochs, and one repeated, its coast and client state looked up); the cheapest last-leg family over every family; a shooting cut after one
 //! aim-point iteration and one to convergence in the search model; a grid epoch (with the
 //! default families and with 200 revolutions allowed); a bounded refinement; a round of hops;
-//! the final check of a plan; whole solves and an estimate cut at several budgets. The image
+//! the final check of a plan; whole solves and an estimate cut at several budgets; three whole
+//! sequencings (Example I at the defaults, eight clients whose estimates are all refused, eight
+//! clients with one-epoch estimates). The image
 //! also counts each case's Kepler solves and Newton steps (feature `kernel-counters`), and its
 //! test holds each case to every solve at `mean_j2`'s limit of Newton steps.
 
