@@ -51,15 +51,23 @@ fn main() {
     let (with_a, with_b) = (has("PSEUDOSPECTRAL"), has("IMPULSIVE"));
     let with_geo = has("GEO_TOUR");
     let with_leo = has("LEO_TOUR");
-    // The GEO image also runs the GEO worst-case requests (fixtures/worst-case/), unless another
-    // folder was asked for (docs/geo-tour.md, "Work budget").
-    if with_geo && std::env::var_os("RECONFIG_FIXTURES_DIR").is_none() {
+    // The GEO and LEO images also run their planners' worst-case requests
+    // (fixtures/worst-case/), unless another folder was asked for (docs/geo-tour.md and
+    // docs/leo-tour.md, "Work budget").
+    let mut worst_planners = Vec::new();
+    if with_geo {
+        worst_planners.push(PlannerKind::GeoTour);
+    }
+    if with_leo {
+        worst_planners.extend([PlannerKind::LeoArc, PlannerKind::LeoSequence]);
+    }
+    if !worst_planners.is_empty() && std::env::var_os("RECONFIG_FIXTURES_DIR").is_none() {
         let worst_case = root.join(fixture_set::WORST_CASE_DIR);
         println!("cargo:rerun-if-changed={}", worst_case.display());
-        let added = fixture_set::geo_worst_cases(&root, &image_limits::IMAGE_LIMITS)
+        let added = fixture_set::worst_cases(&root, &image_limits::IMAGE_LIMITS, &worst_planners)
             .and_then(|more| fixture_set::append_unique(&mut fixtures, more));
         if let Err(e) = added {
-            panic!("cannot bake the GEO worst cases into the firmware: {e}");
+            panic!("cannot bake the worst cases into the firmware: {e}");
         }
     }
     let mut code = String::from(

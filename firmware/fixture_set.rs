@@ -114,17 +114,21 @@ fn requests_of(
 /// found within the built-in limits (docs/harness.md).
 pub const WORST_CASE_DIR: &str = "fixtures/worst-case";
 
-/// The GEO tour's worst-case requests (the GEO requests of [`WORST_CASE_DIR`] under `root`),
-/// which the GEO image runs after the GEO fixtures of `fixtures/` (docs/geo-tour.md, "Work
-/// budget"). The other planners' worst cases stay out of the images: planner A's would not fit
-/// the default image's instruction run.
+/// The worst-case requests of `planners` (the requests of [`WORST_CASE_DIR`] under `root`),
+/// which the GEO and LEO images run after their planners' fixtures of `fixtures/`
+/// (docs/geo-tour.md and docs/leo-tour.md, "Work budget"). Planners A's and B's worst cases
+/// stay out of the images: planner A's would not fit the default image's instruction run.
 ///
 /// # Errors
 /// As [`encode_all`].
-pub fn geo_worst_cases(root: &Path, limits: &Limits) -> Result<Vec<EncodedRequest>, String> {
+pub fn worst_cases(
+    root: &Path,
+    limits: &Limits,
+    planners: &[PlannerKind],
+) -> Result<Vec<EncodedRequest>, String> {
     Ok(encode_all(&root.join(WORST_CASE_DIR), limits)?
         .into_iter()
-        .filter(|f| f.planner == PlannerKind::GeoTour)
+        .filter(|f| planners.contains(&f.planner))
         .collect())
 }
 

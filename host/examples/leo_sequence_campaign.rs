@@ -11,7 +11,8 @@
 //! (1000..1020), which add kinds the tuning set never has (`eccentric` clusters, six clients).
 //!
 //! `cargo run --release -p reconfig-host --example leo_sequence_campaign -- FIRST LAST
-//! [GRID_POINTS CANDIDATES SEARCH_MAX_EVALS SEARCH_MIN_STEP_S]`
+//! [GRID_POINTS CANDIDATES SEARCH_MAX_EVALS SEARCH_MIN_STEP_S]`; `... -- fixture SEED` prints
+//! the tour of SEED as a `[sequence]` fixture (how `fixtures/worst-case/` got its LEO tour).
 //!
 //! Kinds (five clients, six on some held-out seeds; near-circular LEO; arcs of half a `Δt_max`
 //! then `Δt_max`, `Δt_max` 30 revolutions of the first client, as the paper's Example I):
@@ -50,7 +51,15 @@ fn ground_estimates() -> Settings {
     }
 }
 
+/// A client's elements as a fixture row: a_km, e, i_deg, raan_deg, argp_deg, true_anomaly_deg.
+type Row = [f64; 6];
+
 fn tour(seed: u64) -> Result<(&'static str, SequenceProblem)> {
+    tour_rows(seed).map(|(kind, problem, _)| (kind, problem))
+}
+
+/// The tour of `seed` with its clients' elements (degrees).
+fn tour_rows(seed: u64) -> Result<(&'static str, SequenceProblem, Vec<Row>)> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let held_out = seed >= HELD_OUT_FROM;
     let kinds: &[&str] = if held_out {
@@ -68,20 +77,30 @@ fn tour(seed: u64) -> Result<(&'static str, SequenceProblem)> {
     let i0 = rng.random_range(50.0..70.0_f64);
     let mut a_km = 6678.0 + rng.random_range(0.0..150.0);
     let mut clients = heapless::Vec::<State, MAX_CLIENTS>::new();
+    let mut rows = Vec::new();
     for _ in 0..n {
         let (e, i_deg) = match kind {
             "inclined-cluster" => (0.0005, i0 + rng.random_range(-0.3..0.3)),
             "eccentric" => (rng.random_range(0.0..0.01), 97.0 + (a_km - 6678.0) * 0.004),
             _ => (0.0002, 97.0 + (a_km - 6678.0) * 0.004),
         };
-        let el = Classical {
+        let row: Row = [
             a_km,
             e,
-            i_rad: i_deg.to_radians(),
-            raan_rad: (raan0 + rng.random_range(-2.5..2.5)).to_radians(),
-            argp_rad: rng.random_range(0.0..360.0_f64).to_radians(),
-            nu_rad: rng.random_range(0.0..360.0_f64).to_radians(),
+            i_deg,
+            raan0 + rng.random_range(-2.5..2.5),
+            rng.random_range(0.0..360.0_f64),
+            rng.random_range(0.0..360.0_f64),
+        ];
+        let el = Classical {
+            a_km: row[0],
+            e: row[1],
+            i_rad: row[2].to_radians(),
+            raan_rad: row[3].to_radians(),
+            argp_rad: row[4].to_radians(),
+            nu_rad: row[5].to_radians(),
         };
+        rows.push(row);
         let s = state_of(EARTH_MU_KM3_S2, &el).ok_or_else(|| anyhow!("seed {seed}: client"))?;
         clients
             .push(s)
@@ -92,6 +111,7 @@ fn tour(seed: u64) -> Result<(&'static str, SequenceProblem)> {
     for k in (1..clients.len()).rev() {
         let j = rng.random_range(0..=k);
         clients.swap(k, j);
+        rows.swap(k, j);
     }
     let a0 = reconfig_core::leo_tour::bound::plane_of(
         &Settings::default().gravity(),
@@ -110,7 +130,44 @@ fn tour(seed: u64) -> Result<(&'static str, SequenceProblem)> {
             first: None,
             intervals: Intervals::ByPosition(list),
         },
+        rows,
     ))
+}
+
+/// The tour of `seed` as a `[sequence]` fixture (the on-board defaults), on standard output.
+fn print_fixture(seed: u64) -> Result<()> {
+    let (kind, p, rows) = tour_rows(seed)?;
+    let Intervals::ByPosition(list) = p.intervals else {
+        return Err(anyhow!("intervals by position expected"));
+    };
+    println!("name = \"leo-sequence-campaign-seed-{seed}\"");
+    println!(
+        "# Written by `cargo run --release -p reconfig-host --example leo_sequence_campaign --"
+    );
+    println!(
+        "# fixture {seed}`: a generated {kind} tour of {} clients.",
+        rows.len()
+    );
+    println!(
+        "planner = \"leo-tour\"\nepoch = \"2022-11-03T00:00:00Z\"\nimpulses = {}",
+        p.impulses
+    );
+    println!("# a_km, e, i_deg, raan_deg, argp_deg, true_anomaly_deg\nclients = [");
+    for r in &rows {
+        println!(
+            "    [{:?}, {:?}, {:?}, {:?}, {:?}, {:?}],",
+            r[0], r[1], r[2], r[3], r[4], r[5]
+        );
+    }
+    let arcs: Vec<String> = list[..rows.len() - 1]
+        .iter()
+        .map(|v| format!("{v:?}"))
+        .collect();
+    println!(
+        "]\nintervals_s = [{}]\n\n[sequence]\nintervals = \"by-position\"",
+        arcs.join(", ")
+    );
+    Ok(())
 }
 
 /// The order's cost in `estimates` (its arcs estimated at their starts, the clients flown in
@@ -149,6 +206,11 @@ fn cost_of(
 
 fn main() -> Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    if let [command, seed] = args.as_slice() {
+        if command == "fixture" {
+            return print_fixture(seed.parse().context("SEED")?);
+        }
+    }
     let [first, last, rest @ ..] = args.as_slice() else {
         return Err(anyhow!(
             "usage: leo_sequence_campaign FIRST LAST [GRID_POINTS CANDIDATES EVALS MIN_STEP_S]"

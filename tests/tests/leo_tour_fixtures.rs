@@ -350,3 +350,23 @@ fn the_on_board_part_in_the_core_is_the_hosts_sequencing_and_plans_bit_for_bit()
     let total: f64 = host.iter().map(|a| a.solution.total_dv_mps).sum();
     assert!((total - 1194.900).abs() < 0.01, "{total}");
 }
+
+#[test]
+fn the_leo_worst_case_sequencing_spends_its_whole_budget_and_stays_within_it() {
+    use reconfig_core::leo_tour::sequence::{SequenceSettings, SequenceStatus};
+    use reconfig_host::drivers::leo_tour::choose_order;
+    // fixtures/worst-case/: the held-out generated tour whose on-board sequencing spent the
+    // most (`leo_sequence_campaign -- fixture 1039`), which the LEO image runs on the M7.
+    let f =
+        load(&fixtures_dir().join("worst-case/leo-sequence-5-clients-full-budget.toml")).unwrap();
+    let (_, c) = choose_order(&f, &Limits::default()).unwrap().unwrap();
+    let i = c.sequence.info;
+    let budget = SequenceSettings::DEFAULT.work_budget;
+    assert_eq!(i.status, SequenceStatus::BudgetExhausted { verified: true });
+    assert!(
+        i.work_units <= budget && i.work_units > budget - 1_000,
+        "{}",
+        i.work_units
+    );
+    assert_eq!(c.sequence.len, 5);
+}

@@ -23,14 +23,25 @@ pub fn fixtures_of(planners: &[PlannerKind]) -> Vec<EncodedRequest> {
     .collect()
 }
 
-/// The GEO image's requests, as `firmware/build.rs` bakes them: the GEO fixtures, then the GEO
+/// An image's requests, as `firmware/build.rs` bakes them: its planners' fixtures, then their
 /// worst cases (`fixtures/worst-case/`).
-pub fn geo_image_fixtures() -> Vec<EncodedRequest> {
-    let mut set = fixtures_of(&[PlannerKind::GeoTour]);
-    let worst = crate::fixture_set::geo_worst_cases(&crate::prerequisites::root(), &IMAGE_LIMITS)
-        .expect("worst cases load");
+fn image_fixtures(planners: &[PlannerKind]) -> Vec<EncodedRequest> {
+    let mut set = fixtures_of(planners);
+    let root = crate::prerequisites::root();
+    let worst =
+        crate::fixture_set::worst_cases(&root, &IMAGE_LIMITS, planners).expect("worst cases load");
     crate::fixture_set::append_unique(&mut set, worst).expect("unique names");
     set
+}
+
+/// The GEO image's requests: the GEO fixtures and the GEO worst cases.
+pub fn geo_image_fixtures() -> Vec<EncodedRequest> {
+    image_fixtures(&[PlannerKind::GeoTour])
+}
+
+/// The LEO image's requests: the LEO fixtures and the LEO worst cases.
+pub fn leo_image_fixtures() -> Vec<EncodedRequest> {
+    image_fixtures(&[PlannerKind::LeoArc, PlannerKind::LeoSequence])
 }
 
 pub fn hex(bytes: &[u8]) -> String {

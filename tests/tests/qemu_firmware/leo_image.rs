@@ -1,23 +1,22 @@
 //! The LEO tour's image (`cargo firmware-leo`): its own build and QEMU run of the single-arc
 //! LEO fixtures' arc request and of the on-board part of the `[sequence]` fixtures (the
-//! sequencing request, then each arc's request of the order it answers), each answered through
-//! `wire::answer`. Its figures are their own record, `fixtures/golden/m7-figures-leo.toml`: one
-//! entry per request, and per on-board part the sum of its requests' instructions and the
-//! largest of their stacks.
+//! sequencing request, then each arc's request of the order it answers), and of the LEO worst
+//! cases of `fixtures/worst-case/` likewise, each answered through `wire::answer`. Its figures
+//! are their own record, `fixtures/golden/m7-figures-leo.toml`: one entry per request, and per
+//! on-board part the sum of its requests' instructions and the largest of their stacks.
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::sync::OnceLock;
 
 use crate::disassembly::assert_no_fused_multiply_add;
-use crate::host::{assert_bit_identical, fixtures_of};
+use crate::host::{assert_bit_identical, leo_image_fixtures};
 use crate::image::{build_and_run, instructions_or_skip, or_skip, Run};
 use crate::prerequisites::{notice, root};
 use crate::record::{
     assert_figures, assert_systick_agrees, read_record, record_entries, record_image_ram,
     tables_by, updating, BUDGET_STACK_BYTES,
 };
-use reconfig_core::contract::PlannerKind;
 use reconfig_core::leo_tour::work_units::MAX_INSTRUCTIONS_PER_UNIT;
 
 /// The LEO image's binary.
@@ -62,11 +61,7 @@ fn leo_results_are_bit_identical_to_the_host() {
     let Some(run) = or_skip(test, run()) else {
         return;
     };
-    assert_bit_identical(
-        run,
-        &fixtures_of(&[PlannerKind::LeoArc, PlannerKind::LeoSequence]),
-        "LEO",
-    );
+    assert_bit_identical(run, &leo_image_fixtures(), "LEO");
 }
 
 #[test]
@@ -119,11 +114,10 @@ fn leo_figures_match_the_record() {
         (run.largest_stack_bytes(), BUDGET_STACK_BYTES_LEO_ONBOARD),
     );
     let recorded_fixtures = tables_by(&file, "leo_fixture", "name");
-    let parts: BTreeMap<String, Option<String>> =
-        fixtures_of(&[PlannerKind::LeoArc, PlannerKind::LeoSequence])
-            .into_iter()
-            .map(|f| (f.name, f.part_of))
-            .collect();
+    let parts: BTreeMap<String, Option<String>> = leo_image_fixtures()
+        .into_iter()
+        .map(|f| (f.name, f.part_of))
+        .collect();
     // Per on-board part: instructions summed, the largest stack, the requests' work units
     // summed.
     let mut onboard: BTreeMap<String, (u64, u64, u64)> = BTreeMap::new();
