@@ -14,6 +14,7 @@
 //! `log2(search_step_s / search_min_step_s) + 1` of them) `shoot_max_iter` propagations; all of
 //! it charged to the work budget, which stops the search first when smaller.
 
+use super::altitude;
 use super::flight::{Flight, Model};
 use super::j2::{join, pos, vel, State};
 use super::mean_j2::MeanOrbit;
@@ -138,6 +139,17 @@ pub(crate) struct Flown {
     pub fam: Family,
     /// The miss is within `arrival_tol_km`.
     pub arrives: bool,
+    /// The transfer's lowest altitude, km (NaN when a coast's state is not finite).
+    pub lowest_altitude_km: f64,
+    /// The transfer stays at or above `min_transfer_altitude_km` (false for a NaN).
+    pub clear: bool,
+}
+
+impl Flown {
+    /// Usable: it arrives and stays above the least altitude.
+    pub fn admissible(&self) -> bool {
+        self.arrives && self.clear
+    }
 }
 
 pub(super) fn families(max_revs: u16) -> impl Iterator<Item = Family> {
@@ -566,6 +578,42 @@ impl Ctx<'_> {
         let miss_m = shot.miss_km * 1e3;
         // Finite below (or no plan): the old `miss > tol` test's complement.
         let arrives = miss_m <= self.settings.arrival_tol_km * 1e3;
+        // The transfer's coasts: after each burn before the last leg to the next burn, then the
+        // last leg from its departure to the arrival.
+        let mu = self.g.mu_km3_s2;
+        let coast_ends = pre
+            .iter()
+            .skip(1)
+            .take(last.saturating_sub(1))
+            .map(|(st, _)| *st);
+        let coasts = pre
+            .iter()
+            .take(last)
+            .zip(coast_ends.chain(core::iter::once(s)))
+            .zip(t.windows(2));
+        let mut lowest_km = f64::INFINITY;
+        for (((state, dv), end), w) in coasts {
+            let start = join(&pos(state), &add(&vel(state), dv));
+            let dt = match w {
+                [a, b] => *b - *a,
+                _ => f64::NAN,
+            };
+            let low = altitude::lowest_radius_km(mu, &start, &end, dt);
+            lowest_km = if low.is_nan() {
+                f64::NAN
+            } else {
+                lowest_km.min(low)
+            };
+        }
+        let departure = join(&pos(&s), &shot.v_dep_km_s);
+        let low = altitude::lowest_radius_km(mu, &departure, &shot.arrival, self.tf - t_last);
+        lowest_km = if low.is_nan() {
+            f64::NAN
+        } else {
+            lowest_km.min(low)
+        };
+        let lowest_altitude_km = lowest_km - self.g.re_km;
+        let clear = lowest_altitude_km >= self.settings.min_transfer_altitude_km;
         (total.is_finite() && miss_m.is_finite()).then_some(Flown {
             burns,
             impulses: u8::try_from(self.impulses).ok()?,
@@ -573,6 +621,8 @@ impl Ctx<'_> {
             miss_m,
             fam: p.fam,
             arrives,
+            lowest_altitude_km,
+            clear,
         })
     }
 }

@@ -28,6 +28,7 @@
 //!
 //! See `docs/leo-tour.md`.
 
+mod altitude;
 mod arc;
 mod arc_grid;
 mod arc_hops;
@@ -350,7 +351,7 @@ fn solve_arc_from(
                 }
             }
             // Where that gives no arriving plan, the search runs again in the planning model.
-            let failed = best.is_none_or(|b| !b.arrives);
+            let failed = best.is_none_or(|b| !b.admissible());
             if failed && !ctx.meter.exhausted() {
                 for q in search(&mut ctx, warm, (candidates, hops)).iter().flatten() {
                     consider(&mut ctx, *q, &mut best);
@@ -368,14 +369,20 @@ fn solve_arc_from(
             out.miss_m = Some(plan.miss_m);
             out.last_leg_revolutions = plan.fam.revs;
             out.last_leg_branch = plan.fam.branch;
+            out.lowest_altitude_km = plan
+                .lowest_altitude_km
+                .is_finite()
+                .then_some(plan.lowest_altitude_km);
             if exhausted {
                 SolveStatus::BudgetExhausted {
-                    verified: plan.arrives,
+                    verified: plan.admissible(),
                 }
-            } else if plan.arrives {
+            } else if plan.admissible() {
                 SolveStatus::Solved
-            } else {
+            } else if !plan.arrives {
                 SolveStatus::ArrivalMissed
+            } else {
+                SolveStatus::BelowMinAltitude
             }
         }
         None if exhausted => SolveStatus::BudgetExhausted { verified: false },
@@ -425,7 +432,7 @@ fn check_units(settings: &Settings, duration_s: f64) -> u64 {
 fn consider(ctx: &mut Ctx, q: Point, best: &mut Option<Flown>) {
     if let Some(plan) = ctx.finish(&q) {
         let better = best.as_ref().is_none_or(|b| {
-            let rank = |p: &Flown| u8::from(!p.arrives);
+            let rank = |p: &Flown| u8::from(!p.admissible());
             (rank(&plan), plan.total_dv_mps) < (rank(b), b.total_dv_mps)
         });
         if better {

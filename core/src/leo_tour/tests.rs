@@ -492,3 +492,28 @@ fn the_workspaces_hold_the_large_buffers_at_a_known_size() {
     assert!(arc <= 12 * 1024, "{arc}");
     assert!(sequence <= 40 * 1024, "{sequence}");
 }
+
+#[test]
+fn a_transfer_below_the_least_altitude_is_not_usable_and_says_how_low_it_went() {
+    // Issue 31: transfers kept above the atmosphere. The paper's arc joins clients 400 and
+    // 500 km up; its plan's lowest point is reported, above the default 100 km (usable), and a
+    // least altitude above the lower client's (1000 km) makes every plan of the arc too low:
+    // `BelowMinAltitude`, not usable, with the plan and its lowest altitude (a coarse search
+    // that ends within its budget, so that the status is the check's).
+    let budget = crate::leo_tour::tour_order::ESTIMATE_SETTINGS;
+    let usable = solve(&paper_arc(), &budget).unwrap();
+    let low = usable.lowest_altitude_km.unwrap();
+    assert!(usable.info.status.is_usable(), "{:?}", usable.info.status);
+    assert!(low > 100.0 && low < 401.0, "{low}");
+    let strict = Settings {
+        min_transfer_altitude_km: 1000.0,
+        ..budget
+    };
+    let too_low = solve(&paper_arc(), &strict).unwrap();
+    assert!(!too_low.info.status.is_usable());
+    assert_eq!(usable.info.status, SolveStatus::Solved);
+    assert_eq!(too_low.info.status, SolveStatus::BelowMinAltitude);
+    assert!(too_low.lowest_altitude_km.unwrap() < 1000.0);
+    assert!(too_low.miss_m.unwrap() <= 1e-3);
+    assert_eq!(SolveStatus::BelowMinAltitude.code(), 5);
+}

@@ -98,6 +98,12 @@ crate::settings_table! {
         /// a warm start's plan), with `search_model = MeanElements`.
         polish_max_evals, PolishMaxEvals = 20: u32 = 600,
         unit "", range Range::closed(0.0, 1e6), limit AtMost;
+        /// Lowest altitude a transfer may reach above the equatorial radius, km: each coast
+        /// between the first and the last burn at its osculating two-body perigee when it
+        /// passes one, else at its lower end (J2 moves a LEO perigee by a few kilometres: keep
+        /// a margin). A plan below it is not usable (`SolveStatus::BelowMinAltitude`).
+        min_transfer_altitude_km, MinTransferAltitudeKm = 21: f64 = 100.0,
+        unit "km", range Range::closed(0.0, 10_000.0), limit AtLeast;
     }
 }
 
@@ -154,21 +160,25 @@ crate::status_enum! {
     #[derive(Eq)]
     pub enum SolveStatus {
         /// The plan, flown from scratch in the planning model, arrives within `arrival_tol_km` of
-        /// the client with its velocity.
+        /// the client with its velocity, its transfer above `min_transfer_altitude_km`.
         Solved = 1,
         /// The best plan found misses by more than `arrival_tol_km` (its miss is returned). Not
         /// usable.
         ArrivalMissed = 2,
         /// The work budget (`work_budget`) stopped the search. With `verified` the returned plan
-        /// arrives as for `Solved` (usable; a longer search might find less Δv); without it, the
-        /// plan returned misses (its burns and miss are returned), or the budget was spent before
-        /// any plan (no burns: `impulses == 0`, `miss_m` absent).
+        /// arrives and stays above `min_transfer_altitude_km` as for `Solved` (usable; a longer
+        /// search might find less Δv); without it, the plan returned misses or dips below (its
+        /// burns, miss and lowest altitude are returned), or the budget was spent before any
+        /// plan (no burns: `impulses == 0`, `miss_m` absent).
         BudgetExhausted {
             /// The returned plan arrives within `arrival_tol_km`.
             verified: bool,
         } = 3,
         /// No transfer of the search reached the client (no Lambert leg converged): no burns.
         NoTransfer = 4,
+        /// The best plan found arrives but its transfer dips below `min_transfer_altitude_km`
+        /// (its lowest altitude is returned). Not usable.
+        BelowMinAltitude = 5,
     }
     usable: [Self::Solved | Self::BudgetExhausted { verified: true }];
     budget: BudgetExhausted;
@@ -204,6 +214,9 @@ pub struct ArcSolution {
     pub last_leg_revolutions: u16,
     /// Lambert branch of the last leg (for a re-plan of the same family).
     pub last_leg_branch: crate::lambert::Branch,
+    /// The transfer's lowest altitude above the equatorial radius, km
+    /// (`min_transfer_altitude_km`); absent when no plan was flown or it is not finite.
+    pub lowest_altitude_km: Option<f64>,
     /// The status and the counters.
     pub info: SolveInfo,
 }
@@ -224,6 +237,7 @@ impl ArcSolution {
             miss_m: None,
             last_leg_revolutions: 0,
             last_leg_branch: crate::lambert::Branch::Left,
+            lowest_altitude_km: None,
             info: SolveInfo {
                 status: SolveStatus::Unsolved,
                 evaluations: 0,

@@ -75,7 +75,8 @@ pub(crate) const GRID_FAMILY: u64 = 1;
 pub(crate) const GRID_INSERT: u64 = 50;
 /// A hop built outside its flights and evaluation.
 pub(crate) const HOP: u64 = 10;
-/// The returned plan's burns written and checked (`Ctx::finish` outside its flights).
+/// The returned plan's burns written and checked, its transfer's lowest altitude found (a
+/// conic per coast, `altitude.rs`) (`Ctx::finish` outside its flights).
 pub(crate) const FINISH: u64 = 15;
 /// A solve's fixed part: the request checked, the context built, the answer written.
 pub(crate) const SOLVE: u64 = 30;

@@ -167,6 +167,7 @@ pub fn run(f: &LeoTourFixture, limits: &Limits, json_output: bool) -> Result<Exi
                     "dv_mps": s.total_dv_mps,
                     "burns": burns,
                     "model_miss_m": s.miss_m,
+                    "lowest_altitude_km": s.lowest_altitude_km,
                     "truth_miss_m": { "j2_only": j2m, "full": fm, "after_replanning": after.0.is_finite().then_some(after.0) },
                     "dv_after_replanning_mps": after.1.is_finite().then_some(after.1),
                     "evaluations": s.info.evaluations,
