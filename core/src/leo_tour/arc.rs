@@ -591,6 +591,14 @@ impl Ctx<'_> {
             .take(last)
             .zip(coast_ends.chain(core::iter::once(s)))
             .zip(t.windows(2));
+        // A NaN anywhere makes the lowest NaN (`f64::min` alone would drop it).
+        let lower = |acc: f64, low: f64| {
+            if acc.is_nan() || low.is_nan() {
+                f64::NAN
+            } else {
+                acc.min(low)
+            }
+        };
         let mut lowest_km = f64::INFINITY;
         for (((state, dv), end), w) in coasts {
             let start = join(&pos(state), &add(&vel(state), dv));
@@ -598,20 +606,11 @@ impl Ctx<'_> {
                 [a, b] => *b - *a,
                 _ => f64::NAN,
             };
-            let low = altitude::lowest_radius_km(mu, &start, &end, dt);
-            lowest_km = if low.is_nan() {
-                f64::NAN
-            } else {
-                lowest_km.min(low)
-            };
+            lowest_km = lower(lowest_km, altitude::lowest_radius_km(mu, &start, &end, dt));
         }
         let departure = join(&pos(&s), &shot.v_dep_km_s);
-        let low = altitude::lowest_radius_km(mu, &departure, &shot.arrival, self.tf - t_last);
-        lowest_km = if low.is_nan() {
-            f64::NAN
-        } else {
-            lowest_km.min(low)
-        };
+        let last_low = altitude::lowest_radius_km(mu, &departure, &shot.arrival, self.tf - t_last);
+        lowest_km = lower(lowest_km, last_low);
         let lowest_altitude_km = lowest_km - self.g.re_km;
         let clear = lowest_altitude_km >= self.settings.min_transfer_altitude_km;
         (total.is_finite() && miss_m.is_finite()).then_some(Flown {
