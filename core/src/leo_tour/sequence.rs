@@ -615,9 +615,10 @@ pub fn best_order<F: FnMut(&mut Meter, usize, usize, f64, f64) -> Option<f64>>(
             first_count = first_count.saturating_add(1);
         }
     }
-    let firsts = firsts.get_mut(..first_count).unwrap_or_default();
-    firsts.sort_unstable_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
-    for &(_, start) in firsts.iter() {
+    if let Some(filled) = firsts.get_mut(..first_count) {
+        filled.sort_unstable_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+    }
+    for &(_, start) in firsts.iter().take(first_count) {
         if search.stopped.is_some() {
             break;
         }
