@@ -397,6 +397,10 @@
 // Policy code: the paper's threshold rule on each leg's phase offset.
 #define RECONFIG_GEO_POLICY_PAPER_RULE 1
 
+// Policy code: the paper's threshold rule, a Lambert leg's transfer time free (its wells, with
+// the time price) instead of the rule's fixed time.
+#define RECONFIG_GEO_POLICY_PAPER_RULE_FREE_LAMBERT 2
+
 // Leg method code: the client is in the same slot (no burn).
 #define RECONFIG_GEO_METHOD_NONE 0
 

@@ -59,7 +59,8 @@ pub fn problem_from_c(c: &ReconfigGeoProblem, out: &mut Problem) -> Result<(), R
     out.policy = match c.policy {
         RECONFIG_GEO_POLICY_BY_COST => MethodPolicy::ByCost,
         RECONFIG_GEO_POLICY_PAPER_RULE => MethodPolicy::PaperRule,
-        other => return Err(code_error(RECONFIG_FIELD_GEO_POLICY, other, 1)),
+        RECONFIG_GEO_POLICY_PAPER_RULE_FREE_LAMBERT => MethodPolicy::PaperRuleFreeLambert,
+        other => return Err(code_error(RECONFIG_FIELD_GEO_POLICY, other, 2)),
     };
     out.start_lon_rad = c.start_lon_rad;
     out.mission_time_s = c.mission_time_s;

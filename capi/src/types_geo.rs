@@ -25,6 +25,9 @@ pub const RECONFIG_GEO_SWEEP_WEST: u8 = 2;
 pub const RECONFIG_GEO_POLICY_BY_COST: u8 = 0;
 /// Policy code: the paper's threshold rule on each leg's phase offset.
 pub const RECONFIG_GEO_POLICY_PAPER_RULE: u8 = 1;
+/// Policy code: the paper's threshold rule, a Lambert leg's transfer time free (its wells, with
+/// the time price) instead of the rule's fixed time.
+pub const RECONFIG_GEO_POLICY_PAPER_RULE_FREE_LAMBERT: u8 = 2;
 
 /// Leg method code: the client is in the same slot (no burn).
 pub const RECONFIG_GEO_METHOD_NONE: u8 = 0;

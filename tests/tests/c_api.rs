@@ -252,6 +252,9 @@ fn g_case(name: &str, p: &geo_tour::Problem, st: &geo_tour::Settings) -> String 
     let policy = match p.policy {
         geo_tour::MethodPolicy::ByCost => "RECONFIG_GEO_POLICY_BY_COST",
         geo_tour::MethodPolicy::PaperRule => "RECONFIG_GEO_POLICY_PAPER_RULE",
+        geo_tour::MethodPolicy::PaperRuleFreeLambert => {
+            "RECONFIG_GEO_POLICY_PAPER_RULE_FREE_LAMBERT"
+        }
     };
     format!(
         "    {{\"{name}\", {{.start_lon_rad = {}, .mission_time_s = {}, .max_burn_mps = {}, \

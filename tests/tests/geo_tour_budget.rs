@@ -148,9 +148,10 @@ fn the_default_budget_cuts_no_fixture() {
         assert_eq!(f.settings.work_budget, DEFAULT_WORK_BUDGET, "{}", f.name);
         let out = run(&f.problem, &f.settings);
         assert_eq!(out.info.status, SolveStatus::Solved, "{}", f.name);
-        // Well within: the fixtures use under a tenth of the budget.
+        // Well within: the fixtures use under a quarter of the budget (the 16-client tour
+        // 475,329 units since its Lambert wells move with the time price, issue 31).
         assert!(
-            out.info.work_units < DEFAULT_WORK_BUDGET / 10,
+            out.info.work_units < DEFAULT_WORK_BUDGET / 4,
             "{}: {} units",
             f.name,
             out.info.work_units

@@ -16,6 +16,7 @@ use super::exchange::exchange;
 use super::root::illinois;
 use super::table::{LegTable, Point};
 use super::types::{Settings, MAX_TARGETS};
+use super::well_price::{dv_floor_mps, has_well_leg, wells_allocate};
 use super::work_units::{self, spend, Cut, Gauge};
 use crate::indexed::IndexedExt as _;
 use crate::work::Meter;
@@ -360,6 +361,7 @@ pub(super) fn drift_allocate(
         (w_a, fa),
         (w_b, fb),
         s,
+        s.time_tol_s,
     );
     if cut {
         return Err(Cut);
@@ -370,16 +372,72 @@ pub(super) fn drift_allocate(
     Ok(Some(price))
 }
 
+/// Re-allocate the time of the assignment `picks`: its drift legs' by their price
+/// ([`drift_allocate`]); when that cannot fit the mission time or does not beat `best_dv`,
+/// and the assignment has a leg on a Lambert well, its wells and drifts moved by one price
+/// ([`wells_allocate`]), unless it
+/// cannot beat `best_dv` however they move (`dv_floor_mps`) or `well_searches` (the caller's
+/// allowance of such searches, each dear: a golden section per well leg per step) is spent.
+/// The price, or `None` when the assignment cannot fit (or cannot beat `best_dv`); [`Cut`] as
+/// the two re-allocations.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn reallocate(
+    tables: &[LegTable],
+    picks: &mut [Pick],
+    budget_s: f64,
+    s: &Settings,
+    iterations: &mut u32,
+    hint: Option<f64>,
+    (best_dv, well_searches): (f64, &mut WellSearches),
+    meter: &mut Meter,
+) -> Result<Option<f64>, Cut> {
+    if let Some(price) = drift_allocate(tables, picks, budget_s, s, iterations, hint, meter)? {
+        // Kept when it beats `best_dv`; else its wells may still be where another price left
+        // them (a drift leg just added sets a price the wells were not searched at), and only
+        // moving them with the drifts shows whether the assignment pays.
+        if !well_searches.retry_fitting || totals(tables, picks).1 < best_dv {
+            return Ok(Some(price));
+        }
+    }
+    if well_searches.left == 0
+        || !has_well_leg(tables, picks)
+        || dv_floor_mps(tables, picks) >= best_dv
+    {
+        return Ok(None);
+    }
+    well_searches.left = well_searches.left.saturating_sub(1);
+    wells_allocate(
+        tables,
+        picks,
+        budget_s,
+        s,
+        iterations,
+        (hint, best_dv),
+        meter,
+    )
+}
+
+/// The searches moving the wells ([`wells_allocate`]) a caller of [`reallocate`] allows.
+pub(super) struct WellSearches {
+    /// How many may still start.
+    pub left: u8,
+    /// Whether an assignment that fits by its drifts alone but does not beat the best is
+    /// searched again with its wells moved (the exchange search, for a leg turned to a
+    /// drift).
+    pub retry_fitting: bool,
+}
+
 /// Illinois on the price weight `w` (the price is `1 / w^2`) for the tour time `time(price)`
 /// to meet `budget_s`, from the bracket `(w_a, f(w_a)) .. (w_b, f(w_b))` of `f = time -
 /// budget_s`: [`illinois`]'s final bracket and steps, and whether a step was refused (`Cut`
 /// reads NaN, which stops the search).
-fn weight_search(
+pub(super) fn weight_search(
     mut time: impl FnMut(f64) -> Result<f64, Cut>,
     budget_s: f64,
     (w_a, fa): (f64, f64),
     (w_b, fb): (f64, f64),
     s: &Settings,
+    time_tol_s: f64,
 ) -> ((f64, f64, f64, f64, u16), bool) {
     let mut cut = false;
     let bracket = illinois(
@@ -396,7 +454,7 @@ fn weight_search(
         fb,
         s.price_max_iter,
         1e-9,
-        s.time_tol_s,
+        time_tol_s,
     );
     (bracket, cut)
 }
@@ -472,6 +530,7 @@ pub(crate) fn allocate(
             (w_a, fa),
             (w_b, fb),
             s,
+            s.time_tol_s,
         );
         iterations = iterations.saturating_add(u32::from(steps));
         if was_cut {
@@ -514,6 +573,12 @@ pub(crate) fn allocate(
         combos = combos.saturating_mul(2);
     }
     let hi_copy = *picks;
+    // Every assignment of the gap (at most 2^6) may have its wells moved when its drifts alone
+    // cannot fit it.
+    let mut gap_well_searches = WellSearches {
+        left: u8::MAX,
+        retry_fitting: false,
+    };
     for mask in 0..combos {
         let tried = spend(meter, work_units::ASSIGNMENT).and_then(|()| {
             *trial = hi_copy;
@@ -525,13 +590,14 @@ pub(crate) fn allocate(
                 }
             }
             assignments = assignments.saturating_add(1);
-            drift_allocate(
+            reallocate(
                 tables,
                 trial,
                 budget_s,
                 s,
                 &mut iterations,
                 Some(price),
+                (best_dv, &mut gap_well_searches),
                 meter,
             )
         });

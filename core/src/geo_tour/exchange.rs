@@ -3,7 +3,9 @@
 //! (Lambert wells re-priced first) is evaluated exactly, the drift legs' time re-allocated,
 //! and kept when the total falls.
 
-use super::allocate::{drift_allocate, drift_beaten, drift_pick, point_pick, totals, Choice, Pick};
+use super::allocate::{
+    drift_beaten, drift_pick, point_pick, reallocate, totals, Choice, Pick, WellSearches,
+};
 use super::geo::Geo;
 use super::lambert_phasing::well_minimum;
 use super::table::{bounds, direction_of, LegTable, MAX_POINTS};
@@ -11,6 +13,17 @@ use super::types::{PointKind, Settings, MAX_TARGETS};
 use super::work_units::{self, spend, Cut, Gauge};
 use crate::indexed::IndexedExt as _;
 use crate::work::Meter;
+
+/// Searches moving the wells ([`super::well_price`]) one leg's alternatives may start per
+/// round: the first alternative (in the table's order: the shorter wells first) that fits only
+/// with the wells moved. Each search is a golden section per well leg per price step (about
+/// 30,000 units on a 12-leg tour of wells, 3 steps when its bound drops it, 10 when it fits),
+/// and a leg's longer wells, tried after a shorter one failed, were measured to rarely pay.
+const WELL_SEARCHES_PER_LEG: u8 = 1;
+/// Searches moving the wells the whole exchange search may start (over its rounds): a tour of
+/// 14 Lambert legs and no drift tried one per leg per round for 3.3 M units (held-out seed
+/// 2087 of `examples/geo_revolutions.rs`; 235,000 before the wells could move).
+const WELL_SEARCHES_PER_SOLVE: u8 = 16;
 
 /// A leg's alternatives in the exchange search (point index or drift, with time and cost).
 /// Lambert wells are first re-priced: moved to the minimum of `dv + price t` of their well
@@ -75,8 +88,12 @@ fn alternatives(
             return Err(Cut);
         }
         if let Some(d) = picked {
+            // At a zero price (no drift leg yet, time not binding) the drift's pick is the
+            // infinitely long one and the estimate is NaN (0 x inf): try it, its re-allocation
+            // gives it the time the other legs leave (a Lambert leg with a day to spare beside
+            // it was never offered the drift before).
             let est = (d.dv_mps - cur.dv_mps) + price * (d.duration_s - cur.duration_s);
-            if est < 0.0 {
+            if est.is_nan() || est < 0.0 {
                 let _ = out.push(d);
             }
         }
@@ -106,6 +123,7 @@ pub(super) fn exchange(
     let n = tables.len();
     let mut changed = false;
     let mut alts = heapless::Vec::new();
+    let mut searches_left = WELL_SEARCHES_PER_SOLVE;
     'rounds: for _ in 0..s.exchange_rounds {
         let mut improved = false;
         for j in 0..n {
@@ -116,7 +134,17 @@ pub(super) fn exchange(
                 *cut = true;
                 break 'rounds;
             }
+            let leg_searches = WELL_SEARCHES_PER_LEG.min(searches_left);
+            let mut well_searches = WellSearches {
+                left: leg_searches,
+                retry_fitting: false,
+            };
             for alt in alts.iter() {
+                // A leg turned to a drift sets a price the other legs' wells were not placed
+                // for (with no drift before, none did): such a trial that its drifts fit but
+                // do not make cheaper is tried with the wells moved too. Other trials keep
+                // the price, at which the wells are already placed (re-priced above).
+                well_searches.retry_fitting = alt.choice == Choice::Drift;
                 if spend(meter, work_units::ASSIGNMENT).is_err() {
                     *cut = true;
                     break 'rounds;
@@ -126,13 +154,14 @@ pub(super) fn exchange(
                     *slot = *alt;
                 }
                 *exchanges = exchanges.saturating_add(1);
-                let p = match drift_allocate(
+                let p = match reallocate(
                     tables,
                     trial,
                     budget_s,
                     s,
                     iterations,
                     Some(price),
+                    (best_dv, &mut well_searches),
                     meter,
                 ) {
                     Ok(Some(p)) => p,
@@ -155,6 +184,8 @@ pub(super) fn exchange(
                     break;
                 }
             }
+            searches_left =
+                searches_left.saturating_sub(leg_searches.saturating_sub(well_searches.left));
         }
         if !improved {
             break;

@@ -11,8 +11,9 @@
 //! lies just before it, on the (m-1)-revolution family whose transfer angle approaches 2 pi
 //! (e.g. 0.12 deg: 0.683 m/s 20 min before `tau_1`, 0.689 m/s 20 min after; a time price only
 //! moves the optimum earlier). Exactly at `tau_m` the geometry is degenerate and the solver's
-//! answer is not used. So well m is searched on `[tau_m - T0/2, tau_m)` with K = m - 1, both
-//! branches, by golden section (`well_iterations` steps, each 1 or 2 Lambert solves).
+//! answer is not used. So well m is searched before `tau_m` with K = m - 1, both branches, by
+//! golden section (`well_iterations` steps, each 1 or 2 Lambert solves), on the family's basin
+//! ([`well_window_s`]).
 
 use super::geo::{inertial_to_rtn, Geo};
 use super::maneuver::{Burn, Direction, Maneuver, Method};
@@ -153,11 +154,22 @@ pub(crate) fn coincidence_s(g: &Geo, dir: Direction, phase_rad: f64, m: u16) -> 
     (TWO_PI * f64::from(m) - dir.sign() * phase_rad) / g.n0
 }
 
-/// The window well `m` is searched on: `[tau_m - T0/4, tau_m - T0 * 1e-9]`, at least 1 s.
-fn well_window_s(g: &Geo, dir: Direction, phase_rad: f64, m: u16) -> (f64, f64) {
+/// The window well `m` is searched on: its family's basin before `tau_m`, where
+/// `dv + price tau` is unimodal for every price >= 0. Well 1 (the direct family) falls all the
+/// way from `tau` near 0 to its bottom: `[60 s, tau_1)`. Well m >= 2 (K = m - 1) rises from
+/// well m - 1's end at `tau_{m-1}` to a peak about 0.58 T0 before `tau_m` (0.05-10 deg, K =
+/// 1-2, sampled), then falls to its bottom: `[tau_m - T0/2, tau_m)`. A price moves the best
+/// time earlier, so the whole basin is searched, not only the bottom's neighbourhood (the
+/// T0/4 window before issue 31 kept two Lambert legs sharing 1.5 days at 0.7478 d, the
+/// window's start, for 1.2891 m/s where 1.2735 fits).
+pub(crate) fn well_window_s(g: &Geo, dir: Direction, phase_rad: f64, m: u16) -> (f64, f64) {
     let hi = coincidence_s(g, dir, phase_rad, m) - g.t0 * 1e-9;
-    ((hi - 0.25 * g.t0).max(1.0), hi)
+    let span = if m <= 1 { g.t0 } else { 0.5 * g.t0 };
+    ((hi - span).max(WELL_WINDOW_FIRST_S), hi)
 }
+
+/// The earliest transfer time a well is searched at, s (a direct arc that fast costs km/s).
+const WELL_WINDOW_FIRST_S: f64 = 60.0;
 
 /// The earliest duration any well of the leg up to well `max_well` is searched at, counting
 /// only the wells not skipped outright under `cap_mps` (the windows move one period later per
@@ -189,8 +201,8 @@ pub(crate) fn well_skipped(g: &Geo, dir: Direction, phase_rad: f64, m: u16, cap_
 /// cap is added: above any admissible arc's `dv + price * tau` (m/s; a tour's legs cost tens).
 const INADMISSIBLE_SCORE: f64 = 1e9;
 
-/// Minimise `dv(tau) + price * tau` over well `m` (K = m - 1 revolutions,
-/// `tau in [tau_m - T0/4, tau_m - T0 * 1e-9]`) by golden section, `iterations` steps; burns
+/// Minimise `dv(tau) + price * tau` over well `m` (K = m - 1 revolutions, `tau` in
+/// [`well_window_s`]) by golden section, `iterations` steps; burns
 /// within `cap_mps`. Returns the best manoeuvre found (cap-violating or failed points are
 /// skipped, so the result is always admissible).
 ///

@@ -38,6 +38,7 @@ mod solution;
 mod table;
 mod types;
 mod validate;
+mod well_price;
 mod work_units;
 mod workspace;
 
@@ -472,7 +473,7 @@ fn infeasible(
     } else if let Some(j) = tables
         .iter()
         .index_of(|t| t.fastest_s.is_infinite())
-        .filter(|_| problem.policy == MethodPolicy::PaperRule)
+        .filter(|_| problem.policy.follows_rule())
     {
         SolveStatus::RuleMethodInadmissible { leg: idx(j) }
     } else {

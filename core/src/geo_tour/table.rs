@@ -26,6 +26,9 @@ pub(crate) struct Point {
     pub dv_mps: f64,
     /// Lambert wells: the time price this point minimises `dv + price t` for (0: the bottom).
     pub price: f64,
+    /// The least Δv the point can take (a well's bottom, kept when the well is re-priced),
+    /// m/s: a lower bound on an assignment's cost however its wells move.
+    pub floor_dv_mps: f64,
 }
 
 /// The drift option of a leg: admissible depths `(0, x_max]`, fastest duration `t_min`.
@@ -167,6 +170,7 @@ fn push(t: &mut LegTable, kind: PointKind, m: Option<Maneuver>, cap: f64) {
                 duration_s: m.transfer_s,
                 dv_mps: m.dv_mps,
                 price: 0.0,
+                floor_dv_mps: m.dv_mps,
             });
         }
     }
@@ -201,7 +205,9 @@ pub(crate) fn build(
     }
     let allowed = |m: Method| match policy {
         MethodPolicy::ByCost => true,
-        MethodPolicy::PaperRule => rule_method(phase_rad, s) == m,
+        MethodPolicy::PaperRule | MethodPolicy::PaperRuleFreeLambert => {
+            rule_method(phase_rad, s) == m
+        }
     };
     if allowed(Method::Drift) {
         t.drift_allowed = true;
@@ -275,9 +281,16 @@ pub(crate) fn add_uncapped_drift(g: &Geo, t: &mut LegTable, s: &Settings) {
     }
 }
 
-/// Whether the leg of table `t` has Lambert wells under `policy` (by cost, a positive phase).
-fn has_wells(t: &LegTable, policy: MethodPolicy) -> bool {
-    policy == MethodPolicy::ByCost && t.phase_rad > 0.0
+/// Whether the leg of table `t` has Lambert wells under `policy`: a positive phase, by cost,
+/// or by the rule with free Lambert time where the rule says Lambert (the table's settings
+/// are those the rule was applied with).
+fn has_wells(t: &LegTable, policy: MethodPolicy, s: &Settings) -> bool {
+    t.phase_rad > 0.0
+        && match policy {
+            MethodPolicy::ByCost => true,
+            MethodPolicy::PaperRule => false,
+            MethodPolicy::PaperRuleFreeLambert => rule_method(t.phase_rad, s) == Method::Lambert,
+        }
 }
 
 /// Complete a table from [`build`] with its dear parts, once the sweep is known to be needed:
@@ -297,7 +310,7 @@ pub(crate) fn finish(
         spend(meter, PriceCurve::work_units())?;
         d.curve = Some(PriceCurve::new(&d.model, d.x_max_km));
     }
-    if !has_wells(t, policy) {
+    if !has_wells(t, policy, s) {
         return Ok(());
     }
     let (dir, phase_rad, cap_mps) = (direction_of(t), t.phase_rad, t.cap_mps);
@@ -335,7 +348,7 @@ pub(crate) fn fastest_lower_bound_s(
     policy: MethodPolicy,
     s: &Settings,
 ) -> f64 {
-    if has_wells(t, policy) {
+    if has_wells(t, policy, s) {
         let last_well = s.lambert_max_revolutions.saturating_add(1);
         t.fastest_s.min(wells_earliest_s(
             g,
@@ -363,7 +376,7 @@ pub(crate) fn dv_lower_bound_mps(
     avail_s: f64,
     gauge: &mut Gauge<'_>,
 ) -> f64 {
-    if has_wells(t, policy) {
+    if has_wells(t, policy, s) {
         let dir = direction_of(t);
         let any = (1..=s.lambert_max_revolutions.saturating_add(1))
             .any(|m| !well_skipped(g, dir, t.phase_rad, m, t.cap_mps));

@@ -184,7 +184,10 @@ fn a_client_given_as_the_start_slots_equivalent_longitude_is_in_the_start_slot()
         equivalent.total_dv_mps.to_bits(),
         alone.total_dv_mps.to_bits()
     );
-    assert!((equivalent.legs[1].duration_s - 5.0 * DAY).abs() < 1e-3);
+    assert_eq!(
+        equivalent.legs[1].duration_s.to_bits(),
+        alone.legs[0].duration_s.to_bits()
+    );
 }
 
 #[test]
@@ -207,5 +210,36 @@ fn the_paper_rule_gives_a_phase_at_its_threshold_the_same_method_at_any_base_lon
         });
         assert_eq!(s.info.status, SolveStatus::Solved, "{base_deg}");
         assert_eq!(s.legs[0].method, Method::Radial, "{base_deg}");
+    }
+}
+
+#[test]
+fn the_paper_rule_with_free_lambert_time_keeps_the_rules_methods_and_costs_no_more() {
+    // Issue 31: the rule's methods, its Lambert legs timed by the allocation (their wells)
+    // instead of the rule's 9 h: never dearer than the rule, never cheaper than by cost.
+    for days in [50.0, 60.0, 70.0, 80.0] {
+        let rule = run(&published(days, MethodPolicy::PaperRule));
+        let free = run(&published(days, MethodPolicy::PaperRuleFreeLambert));
+        let cost = run(&published(days, MethodPolicy::ByCost));
+        std::println!(
+            "{days} d: rule {:.4} free Lambert {:.4} by cost {:.4}",
+            rule.total_dv_mps,
+            free.total_dv_mps,
+            cost.total_dv_mps
+        );
+        assert_eq!(free.info.status, SolveStatus::Solved);
+        for (r, f) in rule.legs.iter().zip(free.legs.iter()) {
+            assert_eq!(r.method, f.method, "{days} d");
+        }
+        // Both Lambert legs (0.12 and 0.07 deg) leave the rule's 9 h for a well.
+        let lambert: std::vec::Vec<_> = free
+            .legs
+            .iter()
+            .filter(|l| l.method == Method::Lambert)
+            .collect();
+        assert_eq!(lambert.len(), 2);
+        assert!(lambert.iter().all(|l| l.transfer_s > 12.0 * 3600.0));
+        assert!(free.total_dv_mps < rule.total_dv_mps - 1.0, "{days} d");
+        assert!(free.total_dv_mps >= cost.total_dv_mps - 1e-9, "{days} d");
     }
 }

@@ -46,6 +46,18 @@ pub enum MethodPolicy {
     /// radial down to `rule_radial_above_rad`, Lambert in `rule_lambert_time_s` below. Only
     /// the drift legs' durations are then free.
     PaperRule = 1,
+    /// The paper's threshold rule, but a Lambert leg's transfer time is free (any time of its
+    /// Lambert wells, with the time price) instead of the rule's fixed `lambert_direct_time_s`:
+    /// the rule's choice of methods with the Lambert legs allocated as by cost, to compare the
+    /// paper's rule with the project's allocation (issue 31).
+    PaperRuleFreeLambert = 2,
+}
+
+impl MethodPolicy {
+    /// Whether the paper's threshold rule chooses each leg's method.
+    pub const fn follows_rule(self) -> bool {
+        matches!(self, Self::PaperRule | Self::PaperRuleFreeLambert)
+    }
 }
 
 /// A servicing tour: one servicer in a geostationary slot visits clients in other slots, in
@@ -79,7 +91,7 @@ crate::settings_table! {
     pub enum SettingId for GeoTour;
     {
         /// Most whole revolutions of a Lambert transfer (wells 1..=this+1), <= 8.
-        lambert_max_revolutions, LambertMaxRevolutions = 0: u16 = 3,
+        lambert_max_revolutions, LambertMaxRevolutions = 0: u16 = 8,
         unit "", range Range::closed(0.0, MAX_LAMBERT_REVOLUTIONS as f64), limit AtMost;
         /// Householder steps per Lambert solve.
         lambert_max_iter, LambertMaxIter = 1: u16 = 40,

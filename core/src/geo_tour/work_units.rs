@@ -233,7 +233,7 @@ pub(crate) fn allowed_methods(policy: MethodPolicy, rule: super::Method) -> [boo
     use super::Method;
     match policy {
         MethodPolicy::ByCost => [true; 4],
-        MethodPolicy::PaperRule => [
+        MethodPolicy::PaperRule | MethodPolicy::PaperRuleFreeLambert => [
             rule == Method::Drift,
             rule == Method::Hohmann,
             rule == Method::Radial,
