@@ -66,13 +66,14 @@ fn the_fixtures_epoch_drives_the_truth_model_and_the_same_epoch_gives_the_same_b
          client's {client_m:.3} m; arrival miss {miss_own_m:.3} vs {miss_later_m:.3} m; \
          J2 alone: chaser's end {j2_m:.3e} m apart"
     );
-    // Far above the integrator's tolerance (a micrometre a step): the date is in the forces.
+    // Kilometres (measured 11.6 km and 4.7 km; the miss 3851 vs 3048 m), where the
+    // integrator's tolerance is a micrometre a step: the date is in the forces.
     assert!(
-        chaser_m > 50.0 && client_m > 50.0,
+        chaser_m > 1e3 && client_m > 1e3,
         "{chaser_m} m, {client_m} m"
     );
     assert!(
-        (miss_own_m - miss_later_m).abs() > 10.0,
+        (miss_own_m - miss_later_m).abs() > 200.0,
         "{miss_own_m} vs {miss_later_m}"
     );
     assert!(j2_m < 1e-3, "{j2_m} m");

@@ -226,24 +226,28 @@ fn check_ranges(f: &Fields<'_>, scale: Scale) -> Result<(), EpochError> {
             range: format!("[{}, {}]", YEARS.0, YEARS.1),
         });
     }
-    if !(1..=12).contains(&f.month) {
-        return Err(out("month", f.month.to_string(), 1, 12));
+    // Each field's own range first, then the day against its month's length, so a time with
+    // several errors names the plainest one.
+    for (field, value, lo, hi) in [
+        ("month", f.month, 1, 12),
+        ("day", f.day, 1, 31),
+        ("hour", f.hour, 0, 23),
+        ("minute", f.minute, 0, 59),
+    ] {
+        if !(lo..=hi).contains(&value) {
+            return Err(out(field, value.to_string(), lo, hi));
+        }
     }
+    check_second(f, scale)?;
     let days = days_in_month(f.year, f.month);
-    if !(1..=days).contains(&f.day) {
+    if f.day > days {
         return Err(EpochError::OutOfRange {
             field: "day",
             value: f.day.to_string(),
             range: format!("[1, {days}] for {:04}-{:02}", f.year, f.month),
         });
     }
-    if f.hour > 23 {
-        return Err(out("hour", f.hour.to_string(), 0, 23));
-    }
-    if f.minute > 59 {
-        return Err(out("minute", f.minute.to_string(), 0, 59));
-    }
-    check_second(f, scale)
+    Ok(())
 }
 
 /// Seconds in `[0, 60)`; `[60, 61)` is a leap second, UTC's only, at 23:59 only.
@@ -364,10 +368,10 @@ mod tests {
                 "2022-11-31T00:00:00Z",
                 "has day 31 outside [1, 30] for 2022-11",
             ),
-            (
-                "2022-11-00T00:00:00Z",
-                "has day 0 outside [1, 30] for 2022-11",
-            ),
+            ("2022-11-00T00:00:00Z", "has day 0 outside [1, 31]"),
+            ("2022-11-32T00:00:00Z", "has day 32 outside [1, 31]"),
+            // The plainest error first: hour 25 before 30 February.
+            ("2025-02-30T25:00:00Z", "has hour 25 outside [0, 23]"),
             (
                 "2023-02-29T00:00:00Z",
                 "has day 29 outside [1, 28] for 2023-02",
