@@ -312,3 +312,42 @@ fn mission_days_is_refused_for_a_fixture_without_a_mission_time() {
     );
     assert!(out.stdout.is_empty());
 }
+
+#[test]
+fn a_leo_tour_with_a_bad_epoch_exits_2_naming_the_key_and_the_form() {
+    for (epoch, want) in [
+        (
+            "\"yesterday\"",
+            "epoch = \"yesterday\" is not an ISO 8601 UTC time (expected \
+             YYYY-MM-DDTHH:MM:SS[.fff]Z)",
+        ),
+        (
+            "\"2022-13-03T00:00:00Z\"",
+            "epoch = \"2022-13-03T00:00:00Z\" has month 13 outside [1, 12]",
+        ),
+        (
+            "\"2022-11-03T00:00:00\"",
+            "epoch = \"2022-11-03T00:00:00\" has no UTC marker",
+        ),
+    ] {
+        let p = variant(
+            "leo-tour-example1-single-arc",
+            &[(
+                "epoch = \"2022-11-03T00:00:00Z\"",
+                &format!("epoch = {epoch}"),
+            )],
+            "bad-epoch",
+        );
+        let out = Command::new(env!("CARGO_BIN_EXE_reconfig"))
+            .arg("solve")
+            .arg(&p)
+            .arg("--json")
+            .output()
+            .expect("run reconfig solve");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        // Refused at load, like any other invalid fixture value: nothing planned or printed.
+        assert_eq!(out.status.code(), Some(2), "{epoch}: {stderr}");
+        assert!(stderr.contains(want), "{epoch}: {stderr}");
+        assert!(out.stdout.is_empty(), "{epoch}");
+    }
+}

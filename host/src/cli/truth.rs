@@ -3,10 +3,10 @@
 //! J2 model, in the full model and with J2 alone, and the propagation time.
 
 use crate::fixture::{self, Fixture};
-use crate::truth::ephemeris::julian_date;
+use crate::truth::epoch::parse_tt_jd;
 use crate::truth::plan_check::{check, full_model, PlanCheck, TruthSettings};
 use crate::truth::record::to_record;
-use anyhow::{bail, Context, Result};
+use anyhow::{anyhow, bail, Context, Result};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -19,7 +19,7 @@ pub struct Args {
     /// Print one JSON object (the record) instead of the readable report.
     #[arg(long)]
     pub json: bool,
-    /// The plan's epoch (t = 0), TT: YYYY-MM-DDTHH:MM:SS.
+    /// The plan's epoch (t = 0), TT: YYYY-MM-DDTHH:MM:SS[.fff] (no zone).
     #[arg(long, default_value = "2025-01-01T00:00:00")]
     pub epoch: String,
     /// The chief's ballistic coefficient Cd A / m, m^2/kg.
@@ -33,47 +33,12 @@ pub struct Args {
     pub record: Option<PathBuf>,
 }
 
-/// Parse `YYYY-MM-DDTHH:MM:SS` into a Julian date.
+/// Parse `--epoch` (TT, `YYYY-MM-DDTHH:MM:SS[.fff]`, `truth::epoch`) into a Julian date.
 ///
 /// # Errors
-/// Another shape, or a field out of its range (named).
+/// Another form, or a field out of its range (named).
 pub fn parse_epoch(text: &str) -> Result<f64> {
-    let err = || format!("--epoch {text:?}: expected YYYY-MM-DDTHH:MM:SS");
-    let (date, time) = text.split_once('T').with_context(err)?;
-    let d: Vec<&str> = date.split('-').collect();
-    let t: Vec<&str> = time.split(':').collect();
-    let ([y, mo, da], [h, mi, s]) = (d.as_slice(), t.as_slice()) else {
-        bail!(err());
-    };
-    let year: i32 = y.parse().with_context(err)?;
-    let month: u32 = mo.parse().with_context(err)?;
-    let day: u32 = da.parse().with_context(err)?;
-    let hour: u32 = h.parse().with_context(err)?;
-    let minute: u32 = mi.parse().with_context(err)?;
-    let second: f64 = s.parse().with_context(err)?;
-    for (name, value, lo, hi) in [
-        ("year", f64::from(year), 1900.0, 2100.0),
-        ("month", f64::from(month), 1.0, 12.0),
-        ("day", f64::from(day), 1.0, 31.0),
-        ("hour", f64::from(hour), 0.0, 23.0),
-        ("minute", f64::from(minute), 0.0, 59.0),
-        ("second", second, 0.0, 60.0),
-    ] {
-        if !(lo..=hi).contains(&value) {
-            bail!("--epoch {text:?}: {name} {value} outside [{lo}, {hi}]");
-        }
-    }
-    let leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
-    let days_in_month = match month {
-        2 if leap => 29,
-        2 => 28,
-        4 | 6 | 9 | 11 => 30,
-        _ => 31,
-    };
-    if day > days_in_month {
-        bail!("--epoch {text:?}: day {day} outside [1, {days_in_month}] for month {month}");
-    }
-    Ok(julian_date(year, month, day, hour, minute, second))
+    parse_tt_jd(text).map_err(|e| anyhow!("--epoch {text:?} {e}"))
 }
 
 fn check_ballistic(name: &str, value: f64) -> Result<()> {

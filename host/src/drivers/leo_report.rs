@@ -180,6 +180,7 @@ pub fn run(f: &LeoTourFixture, limits: &Limits, json_output: bool) -> Result<Exi
             "{}",
             json!({
                 "name": f.name,
+                "epoch_jd_utc": f.epoch_jd,
                 "status": status,
                 "truth_missed": truth_json,
                 "order": f.order.iter().map(|k| k + 1).collect::<Vec<_>>(),
@@ -387,6 +388,7 @@ mod tests {
             arc: PlannedArc {
                 from,
                 to,
+                tour_epoch_jd: 2_459_886.5,
                 start_s: 0.0,
                 end_s: 1.0,
                 solution: ArcSolution::new(),

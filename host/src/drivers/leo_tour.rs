@@ -57,6 +57,9 @@ pub struct PlannedArc {
     pub from: usize,
     /// Client index (0-based) the arc reaches.
     pub to: usize,
+    /// The tour epoch (the fixture's `epoch`), Julian date, UTC: where the truth model's clock
+    /// starts when it flies the arc (`start_s` later).
+    pub tour_epoch_jd: f64,
     /// Arc start from the tour epoch, s.
     pub start_s: f64,
     /// Arc end from the tour epoch, s.
@@ -94,6 +97,7 @@ pub fn plan(f: &LeoTourFixture, limits: &Limits) -> Result<Vec<PlannedArc>> {
         arcs.push(PlannedArc {
             from,
             to,
+            tour_epoch_jd: f.epoch_jd,
             start_s,
             end_s: start_s + duration_s,
             solution: *solution,

@@ -20,7 +20,7 @@
 use super::answer::{answer, no_plan};
 use super::leo_tour::{LeoBuffers, PlannedArc};
 use crate::fixture::leo_tour::LeoTourFixture;
-use crate::truth::ephemeris::julian_date;
+use crate::truth::ephemeris::DAY_S;
 use crate::truth::forces::ForceModel;
 use crate::truth::integrator::Tolerance;
 use crate::truth::plan_check::{full_model, j2_model, TruthSettings};
@@ -64,6 +64,21 @@ fn truth_burns(burns: &[reconfig_core::leo_tour::Burn]) -> Vec<Burn> {
         .collect()
 }
 
+/// The truth model's settings `t_s` after the tour epoch `tour_epoch_jd` (the fixture's
+/// `epoch`, UTC): the one place a LEO tour's time becomes the truth model's clock, which places
+/// the Sun, the Moon and the Earth's rotation (GMST).
+///
+/// The model takes one time scale for all three, and gets UTC: for GMST it stands for UT1
+/// (|UT1 - UTC| < 0.9 s by definition), for the Sun and Moon series for TT (TT - UTC = 69.184 s
+/// since 2017, in which the Moon moves 0.01 deg and the Sun 0.0008 deg: a tenth of the series'
+/// own error, ~0.1 deg for the Moon; see `truth::ephemeris`).
+fn truth_settings_at(tour_epoch_jd: f64, t_s: f64) -> TruthSettings {
+    TruthSettings {
+        epoch_jd: tour_epoch_jd + t_s / DAY_S,
+        ..TruthSettings::default_settings()
+    }
+}
+
 /// Arrival miss (m) of `arc`'s plan flown in the truth model `model` (J2 alone or full), the
 /// chaser and the client both starting from their planning states at the arc start.
 pub fn truth_miss_m(arc: &PlannedArc, full: bool) -> Result<f64> {
@@ -80,10 +95,7 @@ pub fn truth_miss_m(arc: &PlannedArc, full: bool) -> Result<f64> {
 /// # Errors
 /// A truth-model propagation error.
 pub fn truth_flight(arc: &PlannedArc, full: bool) -> Result<(EciState, EciState)> {
-    let ts = TruthSettings {
-        epoch_jd: julian_date(2022, 11, 3, 0, 0, 0.0) + arc.start_s / 86_400.0,
-        ..TruthSettings::default_settings()
-    };
+    let ts = truth_settings_at(arc.tour_epoch_jd, arc.start_s);
     let model = if full {
         full_model(&ts, ts.deputy_ballistic_m2_kg)?
     } else {
@@ -140,10 +152,7 @@ pub fn replan_last_leg_states(
     };
     let t_last = s.burns[last].epoch_s;
     let dur = arc.problem.duration_s;
-    let at = |t: f64| TruthSettings {
-        epoch_jd: julian_date(2022, 11, 3, 0, 0, 0.0) + (arc.start_s + t) / 86_400.0,
-        ..TruthSettings::default_settings()
-    };
+    let at = |t: f64| truth_settings_at(arc.tour_epoch_jd, arc.start_s + t);
     let ts0 = at(0.0);
     let model0 = full_model(&ts0, ts0.deputy_ballistic_m2_kg)?;
     let burns = truth_burns(&s.burns[..last]);
@@ -336,10 +345,7 @@ pub fn multi_round(
     planned: &[PlannedArc],
     limits: &Limits,
 ) -> Result<Vec<Round>> {
-    let ts = TruthSettings {
-        epoch_jd: julian_date(2022, 11, 3, 0, 0, 0.0),
-        ..TruthSettings::default_settings()
-    };
+    let ts = truth_settings_at(f.epoch_jd, 0.0);
     let model = full_model(&ts, ts.deputy_ballistic_m2_kg)?;
     let first = *f.order.first().ok_or_else(|| anyhow!("empty order"))?;
     let mut chaser = EciState::from_array(&f.clients[first]);
@@ -404,6 +410,7 @@ pub fn multi_round(
         let arc = PlannedArc {
             from,
             to,
+            tour_epoch_jd: f.epoch_jd,
             start_s: t0,
             end_s: t0 + interval,
             solution,
@@ -442,3 +449,7 @@ pub fn all_within(rounds: &[Round], tol_m: f64) -> bool {
         .iter()
         .all(|r| r.arc.solution.info.status.is_usable() && r.corrected && r.miss_after_m <= tol_m)
 }
+
+#[cfg(test)]
+#[path = "leo_truth_tests.rs"]
+mod tests;

@@ -24,7 +24,8 @@ pub struct ForceModel {
     pub sun: bool,
     /// The Moon's third-body attraction.
     pub moon: bool,
-    /// Julian date (TT) of `t = 0`: places the Earth's rotation, the Sun and the Moon.
+    /// Julian date (TT) of `t = 0`: places the Earth's rotation, the Sun and the Moon. (A LEO
+    /// tour passes its UTC epoch here, `drivers::leo_truth`: within the series' accuracy.)
     pub epoch_jd: f64,
 }
 

@@ -16,6 +16,7 @@
 
 pub mod atmosphere;
 pub mod ephemeris;
+pub mod epoch;
 pub mod forces;
 pub mod gravity;
 pub mod gravity_model;
