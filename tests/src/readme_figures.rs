@@ -236,10 +236,15 @@ pub fn render_readme(record: &str, leo_record: &str) -> Result<String, String> {
         .and_then(toml::Value::as_table)
         .ok_or("no [geo_work_budget] in the record")?;
     let bound = int(budget, "worst_case_instructions")?;
-    let heaviest = int(
-        named(&geo, "geo-16-clients-0p7deg-200d-west")?,
-        "instructions",
-    )?;
+    // The heaviest of the GEO worst cases kept in fixtures/worst-case/ (the slowest found by
+    // M7 instructions, and one that runs to the whole budget).
+    let mut heaviest = 0;
+    for name in [
+        "geo-16-clients-0p7deg-200d-west",
+        "geo-16-clients-full-budget",
+    ] {
+        heaviest = heaviest.max(int(named(&geo, name)?, "instructions")?);
+    }
     line(
         &mut md,
         "M7: GEO tour, any request within the limits (budget × kernels' largest instructions per unit)",
