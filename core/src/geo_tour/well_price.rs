@@ -7,7 +7,7 @@
 //! their bottoms: the assignment was dropped, and the tour kept a dearer method where moving two
 //! Lambert legs earlier along their wells would have fitted (issue 31: start 75° E, clients at
 //! 75.05° and 75.12° E, 1.5 d, 5 m/s cap: a radial leg and a well bottom, 1.7400 m/s, where both
-//! wells moved to fit cost 1.2891 m/s).
+//! wells moved to fit cost 1.2735 m/s, the brute force's 1.273451).
 //!
 //! Here the wells set the price with the drifts: at a price λ every well leg of the assignment
 //! takes the minimum of Δv + λτ over its well (`well_minimum`, the same golden section that
@@ -28,8 +28,8 @@ use crate::work::Meter;
 /// The first price tried without a hint, m/s per s (about 0.01 m/s per day: below the prices
 /// at which a well leg moves noticeably, above rounding).
 const FIRST_PRICE: f64 = 1e-7;
-/// The bracketing's first step in w = 1/sqrt(price) (0.1 %: the local slope), and its
-/// largest (a factor 16 in the price).
+/// The bracketing's least step in w = 1/sqrt(price) (0.1 %), and its largest and first (a
+/// factor 16 in the price).
 const FIRST_W_STEP: f64 = 1.001;
 const MAX_W_STEP: f64 = 4.0;
 /// Most bracketing steps (4^24 = 2.8e14 in w, 7.9e28 in the price: every well at its
@@ -142,12 +142,12 @@ pub(super) fn wells_allocate(
     });
     let time_tol_s = s.time_tol_s + resolution_s;
     let step_units = work_units::price_step(tables.len(), moving);
+    // The price `picks` were last written at (the search's final point is often its last).
+    let last_price = core::cell::Cell::new(f64::NAN);
     // The tour's time at `price`, or `None` once the Lagrangian bound at `price` shows the
     // assignment cannot beat `best_dv`: for any price, sum_j min_t (dv_j + price t) - price
     // budget_s is below every allocation's Δv (weak duality; the golden sections' minima are
     // above the true ones by rounding only, hence the margin).
-    // The price `picks` were last written at (the search's final point is often its last).
-    let last_price = core::cell::Cell::new(f64::NAN);
     let mut tour_time = |price: f64, picks: &mut [Pick]| -> Result<Option<f64>, Cut> {
         spend(meter, step_units)?;
         last_price.set(price);
@@ -202,10 +202,11 @@ pub(super) fn wells_allocate(
         Ok((bound_mps < best_dv + BOUND_MARGIN_MPS).then_some(sum))
     };
     // Bracket the least fitting price in w = 1/sqrt(price) (time grows with w). From the
-    // caller's price (the assignment it came from), a first step of 0.1 % in w gives the
-    // slope, then secant steps aimed 20 % past the root (each at most a factor 4 in w, 16 in
-    // the price) cross it, usually in one or two more evaluations, and the search closes the
-    // bracket. Without a price (no drift leg), from `FIRST_PRICE` by factors of 4 in w.
+    // caller's price (the assignment it came from), a first step of a factor 4 in w (16 in
+    // the price), then secant steps aimed 20 % past the root, each at least the previous
+    // step's fourth power and at most the first, cross it; the Illinois search closes the
+    // bracket. Without a price (no drift leg), from `FIRST_PRICE`; the first step is always
+    // the widest (most trials that do not pay are dropped by the bound there).
     let hint = hint.filter(|h| h.is_finite() && *h > 0.0);
     let w0 = 1.0 / libm::sqrt(hint.unwrap_or(FIRST_PRICE));
     let Some(time) = tour_time(1.0 / (w0 * w0), picks)? else {
