@@ -230,7 +230,9 @@ pub(super) fn wells_allocate(
                 let target = w - 1.2 * f * (w - wp) / (f - fp);
                 let r = if up { target / w } else { w / target };
                 if r.is_finite() {
-                    r.clamp(least_ratio, MAX_W_STEP)
+                    // Not `clamp`: its bounds' check is a panic path the abort-proof C library
+                    // must not link.
+                    r.max(least_ratio).min(MAX_W_STEP)
                 } else {
                     MAX_W_STEP
                 }
