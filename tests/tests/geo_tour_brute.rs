@@ -15,6 +15,7 @@ use reconfig_core::geo_tour::{
     drift_for_duration, hohmann, lambert_phasing, radial, solve, Direction, Geo, MethodPolicy,
     Problem, Settings, Solution, SolveStatus, SweepChoice, Workspace,
 };
+use reconfig_tests::golden::golden;
 
 const DEG: f64 = std::f64::consts::PI / 180.0;
 const DAY_S: f64 = 86_400.0;
@@ -76,34 +77,6 @@ impl Leg {
             .filter(|(tau, _)| *tau <= t_s)
             .fold(f64::INFINITY, |b, (_, dv)| b.min(*dv));
         points.min(self.lambert(g, t_s)).min(self.drift(g, t_s))
-    }
-}
-
-fn golden(lo: f64, hi: f64, iters: usize, f: impl Fn(f64) -> f64) -> (f64, f64) {
-    let r = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut a, mut b) = (lo, hi);
-    let mut c = b - r * (b - a);
-    let mut d = a + r * (b - a);
-    let (mut fc, mut fd) = (f(c), f(d));
-    for _ in 0..iters {
-        if fc <= fd {
-            b = d;
-            d = c;
-            fd = fc;
-            c = b - r * (b - a);
-            fc = f(c);
-        } else {
-            a = c;
-            c = d;
-            fc = fd;
-            d = a + r * (b - a);
-            fd = f(d);
-        }
-    }
-    if fc <= fd {
-        (c, fc)
-    } else {
-        (d, fd)
     }
 }
 

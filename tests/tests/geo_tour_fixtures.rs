@@ -145,6 +145,7 @@ fn reproduction_leg_by_leg_at_the_published_durations() {
 /// search on the drift depth of every leg.
 mod brute {
     use super::*;
+    use reconfig_tests::golden::golden;
 
     pub const GRID_S: f64 = 1200.0;
     const SCAN_S: f64 = 300.0;
@@ -228,34 +229,6 @@ mod brute {
             1e-13,
         )
         .map_or(f64::INFINITY, |m| m.dv_mps)
-    }
-
-    fn golden(lo: f64, hi: f64, iters: usize, f: impl Fn(f64) -> f64) -> (f64, f64) {
-        let r = 0.5 * (5f64.sqrt() - 1.0);
-        let (mut a, mut b) = (lo, hi);
-        let mut c = b - r * (b - a);
-        let mut d = a + r * (b - a);
-        let (mut fc, mut fd) = (f(c), f(d));
-        for _ in 0..iters {
-            if fc <= fd {
-                b = d;
-                d = c;
-                fd = fc;
-                c = b - r * (b - a);
-                fc = f(c);
-            } else {
-                a = c;
-                c = d;
-                fc = fd;
-                d = a + r * (b - a);
-                fd = f(d);
-            }
-        }
-        if fc <= fd {
-            (c, fc)
-        } else {
-            (d, fd)
-        }
     }
 
     /// Drift leg at price lambda: golden section on the depth.
