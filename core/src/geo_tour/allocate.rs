@@ -373,11 +373,11 @@ pub(super) fn drift_allocate(
 }
 
 /// Re-allocate the time of the assignment `picks`: its drift legs' by their price
-/// ([`drift_allocate`]); when that cannot fit the mission time or does not beat `best_dv`,
-/// and the assignment has a leg on a Lambert well, its wells and drifts moved by one price
-/// ([`wells_allocate`]), unless it
-/// cannot beat `best_dv` however they move (`dv_floor_mps`) or `well_searches` (the caller's
-/// allowance of such searches, each dear: a golden section per well leg per step) is spent.
+/// ([`drift_allocate`]); when that cannot fit the mission time (or, with
+/// `well_searches.retry_fitting`, does not beat `best_dv`) and the assignment has a leg on a
+/// Lambert well, its wells and drifts moved by one price ([`wells_allocate`]), unless it cannot
+/// beat `best_dv` however they move (`dv_floor_mps`) or `well_searches` (the caller's allowance
+/// of such searches, each dear: a golden section per well leg per step) is spent.
 /// The price, or `None` when the assignment cannot fit (or cannot beat `best_dv`); [`Cut`] as
 /// the two re-allocations.
 #[allow(clippy::too_many_arguments)]
