@@ -3,11 +3,10 @@
 //! (Lambert wells re-priced first) is evaluated exactly, the drift legs' time re-allocated,
 //! and kept when the total falls.
 
-use super::allocate::{
-    drift_beaten, drift_pick, point_pick, reallocate, totals, Choice, Pick, WellSearches,
-};
 use super::geo::Geo;
 use super::lambert_phasing::well_minimum;
+use super::pick::{drift_beaten, drift_pick, point_pick, totals, Choice, Pick};
+use super::reallocate::{reallocate, WellSearches};
 use super::table::{bounds, direction_of, LegTable, MAX_POINTS};
 use super::types::{PointKind, Settings, MAX_TARGETS};
 use super::work_units::{self, spend, Cut, Gauge};

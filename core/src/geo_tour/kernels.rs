@@ -22,12 +22,13 @@
 //! The set-up a case needs (a warm start's guess, the tables of a 16-client tour) is made by
 //! [`prepare`], outside the measured span; [`run`] is the measured part.
 
-use super::allocate::{allocate, pick_all};
+use super::allocate::allocate;
 use super::drift::Drift;
 use super::geo::Geo;
 use super::hohmann::hohmann;
 use super::lambert_phasing::{arc, well_minimum, well_skipped, LambertBounds};
 use super::maneuver::Direction;
+use super::pick::pick_all;
 use super::price_curve::PriceCurve;
 use super::radial::{arc as radial_arc, radial_gauged};
 use super::table::{self, bounds};

@@ -23,6 +23,7 @@
 
 mod allocate;
 mod drift;
+mod drift_time;
 mod error;
 mod exchange;
 mod geo;
@@ -31,8 +32,10 @@ mod hohmann;
 pub mod kernels;
 mod lambert_phasing;
 mod maneuver;
+mod pick;
 mod price_curve;
 mod radial;
+mod reallocate;
 mod root;
 mod solution;
 mod table;
@@ -60,7 +63,8 @@ pub use workspace::Workspace;
 use crate::astro::{wrap_two_pi, TWO_PI};
 use crate::indexed::IndexedExt as _;
 use crate::work::Meter;
-use allocate::{allocate, Choice, NoAllocation};
+use allocate::{allocate, NoAllocation};
+use pick::Choice;
 use table::{build, point_maneuver};
 use work_units::{spend, Cut, Gauge};
 

@@ -3,7 +3,7 @@
 //! An assignment fits the mission time at a drift price when its points' stored times (each
 //! Lambert well at its bottom, or where the exchange search last re-priced it) leave the drift
 //! legs enough time. When they do not — no drift leg at all, or drift legs already at their
-//! fastest — [`super::allocate::drift_allocate`] has no price to offer, and the wells stayed at
+//! fastest — [`super::drift_time::drift_allocate`] has no price to offer, and the wells stayed at
 //! their bottoms: the assignment was dropped, and the tour kept a dearer method where moving two
 //! Lambert legs earlier along their wells would have fitted (issue 31: start 75° E, clients at
 //! 75.05° and 75.12° E, 1.5 d, 5 m/s cap: a radial leg and a well bottom, 1.7400 m/s, where both
@@ -17,9 +17,10 @@
 //! optimum (the drift argument of docs/geo-tour.md); a well's cost is smooth and unimodal on its
 //! window, which the brute force of the tests checks.
 
-use super::allocate::{drift_pick, weight_search, Choice, Pick};
+use super::drift_time::weight_search;
 use super::geo::Geo;
 use super::lambert_phasing::{well_minimum, well_window_s};
+use super::pick::{drift_pick, Choice, Pick};
 use super::table::{bounds, direction_of, LegTable, Point};
 use super::types::{PointKind, Settings};
 use super::work_units::{self, spend, Cut, Gauge};

@@ -1,6 +1,6 @@
 //! GEO-tour workspace: the leg tables and the allocation's working copies.
 
-use super::allocate::Pick;
+use super::pick::Pick;
 use super::solution::Solution;
 use super::table::LegTable;
 use super::types::MAX_TARGETS;
