@@ -65,7 +65,7 @@ pub enum PlanError {
         ecc: f64,
     } = 2,
     /// Semi-major axis not in `(min_km, max_km]`: `min_km` is Earth's radius plus
-    /// `Settings::min_perigee_altitude_km`, `max_km` is [`MAX_SMA_KM`].
+    /// `Settings::min_perigee_altitude_km`, `max_km` is [`super::MAX_SMA_KM`].
     SemiMajorAxisOutOfRange {
         /// Which orbit.
         orbit: Orbit,

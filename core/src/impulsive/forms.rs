@@ -144,7 +144,7 @@ pub fn classical_of(q: &EquinoctialElements) -> MeanElements {
 }
 
 /// Mean classical elements of an osculating ECI state, by first-order J2 averaging
-/// ([`super::osculating`]; the named theory: Kozai's first-order averaging, short-period terms).
+/// (`impulsive::osculating`; the named theory: Kozai's first-order averaging, short-period terms).
 ///
 /// # Errors
 /// [`FormError`] when the state is not finite or not an ellipse, or a step does not converge.

@@ -3,7 +3,7 @@
 
 use super::elements::{wrap_pi, TWO_PI};
 
-/// The most Newton steps [`eccentric_anomaly`] takes at any mean anomaly and any eccentricity
+/// The most Newton steps `eccentric_anomaly` takes at any mean anomaly and any eccentricity
 /// up to the largest the planner accepts, 0.936 (semi-major axis at `MAX_SMA_KM`, perigee on
 /// the Earth's surface; the limits demand 100 km above it): the test
 /// `newton_steps_are_bounded_on_accepted_orbits` scans them. The default and built-in limit of

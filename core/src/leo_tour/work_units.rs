@@ -16,7 +16,7 @@
 //!   holds each case to every solve at [`mean_j2`](super::mean_j2)'s limit of
 //!   `impulsive::kepler::WORST_NEWTON_STEPS + 2` steps;
 //! * a Lambert solve: [`LAMBERT_SOLVE`] for its set-up and velocities, and each Householder or
-//!   Halley step as it starts ([`crate::lambert::step_units`]);
+//!   Halley step as it starts (`crate::lambert::step_units`);
 //! * the two-body propagation of a client to the arrival (the grid's J2 offset):
 //!   [`two_body_propagation`], at its bound of [`TWO_BODY_MAX_ITER`] iterations;
 //! * an evaluation of the compass search (a plan's variables checked and flown to its last
@@ -40,67 +40,67 @@ pub const MAX_INSTRUCTIONS_PER_UNIT: u64 = 100;
 pub const DEFAULT_WORK_BUDGET: u64 = 4_000_000;
 
 /// One RK4 step of two-body + J2 (`j2::rk4_step`: four accelerations).
-pub(crate) const RK4_STEP: u64 = 7;
+pub const RK4_STEP: u64 = 7;
 /// A planning-model flight outside its steps: the step count, the loop's set-up.
-pub(crate) const FLIGHT: u64 = 4;
+pub const FLIGHT: u64 = 4;
 /// A search-model flight (`mean_j2::fly`: to mean elements, the secular drift, back to an
 /// osculating state), its Kepler solves at the steps they took.
-pub(crate) const MEAN_FLIGHT: u64 = 123;
+pub const MEAN_FLIGHT: u64 = 123;
 /// A client's state from its mean orbit (`MeanOrbit::state_at`).
-pub(crate) const MEAN_STATE: u64 = 77;
+pub const MEAN_STATE: u64 = 77;
 /// A client's mean orbit from its state (`MeanOrbit::of_state`), once per arc and client.
-pub(crate) const MEAN_ORBIT: u64 = 47;
+pub const MEAN_ORBIT: u64 = 47;
 /// A Lambert solve outside its steps: the geometry, Izzo's guess, the velocities.
-pub(crate) const LAMBERT_SOLVE: u64 = 20;
+pub const LAMBERT_SOLVE: u64 = 20;
 /// Iterations of the two-body propagation of the grid's offset (`lambert::propagate`).
-pub(crate) const TWO_BODY_MAX_ITER: u16 = 60;
+pub const TWO_BODY_MAX_ITER: u16 = 60;
 /// The two-body propagation's set-up and velocities.
-pub(crate) const TWO_BODY_SET_UP: u64 = 12;
+pub const TWO_BODY_SET_UP: u64 = 12;
 /// One of its universal-variable Newton iterations.
-pub(crate) const TWO_BODY_ITERATION: u64 = 5;
+pub const TWO_BODY_ITERATION: u64 = 5;
 /// A compass-search evaluation outside its flights and Lambert solves.
-pub(crate) const EVALUATION: u64 = 10;
+pub const EVALUATION: u64 = 10;
 /// A coast of a compass evaluation looked up among the last evaluation's (its inputs compared,
 /// its end copied when they match: the flight is then not flown, nor charged).
-pub(crate) const COAST_LOOKUP: u64 = 1;
+pub const COAST_LOOKUP: u64 = 1;
 /// A last leg costed outside its Lambert solve (the burns summed).
-pub(crate) const LAST_LEG: u64 = 4;
+pub const LAST_LEG: u64 = 4;
 /// An aim-point iteration outside its Lambert solve and flight (the miss, the secant update).
-pub(crate) const SHOOT_ITERATION: u64 = 6;
+pub const SHOOT_ITERATION: u64 = 6;
 /// A grid epoch outside its client states, Lambert solves and ranking.
-pub(crate) const GRID_POINT: u64 = 20;
+pub const GRID_POINT: u64 = 20;
 /// A family scanned at a grid epoch (whether its revolutions are in the window).
-pub(crate) const GRID_FAMILY: u64 = 1;
+pub const GRID_FAMILY: u64 = 1;
 /// A grid candidate ranked among the kept ones (`arc_grid::insert`).
-pub(crate) const GRID_INSERT: u64 = 50;
+pub const GRID_INSERT: u64 = 50;
 /// A hop built outside its flights and evaluation.
-pub(crate) const HOP: u64 = 10;
+pub const HOP: u64 = 10;
 /// The returned plan's burns written and checked, its transfer's lowest altitude found (a
 /// conic per coast, `altitude.rs`) (`Ctx::finish` outside its flights).
-pub(crate) const FINISH: u64 = 15;
+pub const FINISH: u64 = 15;
 /// A solve's fixed part: the request checked, the context built, the answer written.
-pub(crate) const SOLVE: u64 = 30;
+pub const SOLVE: u64 = 30;
 
 /// The sequencing's fixed part (`sequence::best_order` and `tour_order::solve_sequence`
 /// outside their nodes and arcs): the request checked, the clients' planes and perigees, the
 /// matrix of entry bounds of every pair of [`super::sequence::MAX_CLIENTS`] clients, the
 /// memos emptied, the answer written.
-pub(crate) const SEQUENCE_FIXED: u64 = 4_000;
+pub const SEQUENCE_FIXED: u64 = 4_000;
 /// A node of the sequencing's enumeration outside its arcs: the duration and bound of each of
 /// its at most `MAX_CLIENTS - 1` children, their sort, and each child's pruning test (the
 /// bound of the clients still to visit).
-pub(crate) const SEQUENCE_NODE: u64 = 400;
+pub const SEQUENCE_NODE: u64 = 400;
 /// A planned arc of the sequencing outside its flights and estimate: its memo lookups (the
 /// arc's and its two clients' states', each memo searched to its capacity), its pruning test
 /// once costed, the complete order kept.
-pub(crate) const SEQUENCE_ARC: u64 = 100;
+pub const SEQUENCE_ARC: u64 = 100;
 
 /// A planning-model flight of `steps` RK4 steps.
-pub(crate) const fn flight(steps: u32) -> u64 {
+pub const fn flight(steps: u32) -> u64 {
     FLIGHT.saturating_add(RK4_STEP.saturating_mul(steps as u64))
 }
 
 /// The two-body propagation at its bound.
-pub(crate) const fn two_body_propagation() -> u64 {
+pub const fn two_body_propagation() -> u64 {
     TWO_BODY_SET_UP.saturating_add(TWO_BODY_ITERATION.saturating_mul(TWO_BODY_MAX_ITER as u64))
 }

@@ -11,8 +11,8 @@
 //! compiled capacities: the default request of either planner passes, and nothing may ask for
 //! more iterations, looser tolerances or a safety check switched off.
 //!
-//! Planner settings gain fields over time: [`pseudospectral::Limits::check_settings`] and
-//! [`impulsive::Limits::check_settings`] destructure `Settings` without `..`, so a new field
+//! Planner settings gain fields over time: `pseudospectral::Limits::check_settings` and
+//! `impulsive::Limits::check_settings` destructure `Settings` without `..`, so a new field
 //! fails to compile until it has its one line (and its [`Setting`] name).
 
 /// Declare a planner's `Limits`: the struct (each field with the value of the built-in
