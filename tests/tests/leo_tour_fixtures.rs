@@ -208,6 +208,34 @@ fn example_one_order_is_chosen_by_branch_and_bound_deterministically() {
     assert!(arcs.iter().all(|a| a.solution.info.status.is_usable()));
     assert!((total - 1103.145).abs() < 0.01, "{total}");
     assert!(total <= ground_total + 1e-9, "{total}");
+    // Ranked by full plans (a ground design): refused on board by name even within the
+    // budget, and the cheapest full plan of the tree on the ground (its brute force:
+    // tests/tests/leo_tour_sequence_oracle.rs), below both orders above planned in full.
+    let full_path = fixtures_dir().join("over-limits/leo-tour-example1-sequence-full-plans.toml");
+    let within_budget = parse(
+        &std::fs::read_to_string(&full_path)
+            .unwrap()
+            .replace("work_budget = 400000000", "work_budget = 4000000"),
+    )
+    .unwrap();
+    let refused = choose_order(&within_budget, &Limits::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        refused.contains("full_plans = on: the limits require it off"),
+        "{refused}"
+    );
+    let full = load(&full_path).unwrap();
+    let (chosen, c) = choose_order(&full, &limits).unwrap().unwrap();
+    assert!(c.full_plans);
+    assert_eq!(c.sequence.info.status, SequenceStatus::Optimal);
+    let ranked = c.sequence.total_dv_mps.unwrap();
+    let arcs = plan(&chosen, &Limits::default()).unwrap();
+    let flown: f64 = arcs.iter().map(|a| a.solution.total_dv_mps).sum();
+    // The arcs planned again are the plans that ranked the order (same search, same bits
+    // up to the sum's order).
+    assert!((flown - ranked).abs() < 1e-9, "{flown} {ranked}");
+    assert!(flown < total - 5.0, "{flown}");
     // The bound is below every planned arc of both Example I tours.
     let g = f.settings.gravity();
     let printed = load(&fixtures_dir().join("leo-tour-example1-printed.toml")).unwrap();

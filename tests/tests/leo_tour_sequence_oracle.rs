@@ -9,20 +9,22 @@
 use reconfig_core::leo_tour::bound::{arc_bound_mps, plane_of, Plane};
 use reconfig_core::leo_tour::elements::{state_of, Classical};
 use reconfig_core::leo_tour::flight::Flight;
+use reconfig_core::leo_tour::flight::Model;
 use reconfig_core::leo_tour::j2::State;
 use reconfig_core::leo_tour::sequence::Sequence;
 use reconfig_core::leo_tour::sequence::SequenceSettings;
 use reconfig_core::leo_tour::sequence::{paper_rule_duration_s, Intervals, SequenceStatus};
 use reconfig_core::leo_tour::tour_order::{solve_sequence, SequenceWorkspace};
-use reconfig_core::leo_tour::{estimate_arc_mps, ArcProblem, Workspace};
+use reconfig_core::leo_tour::{estimate_arc_mps, planned_arc_mps, ArcProblem, Workspace};
 use reconfig_core::work::Meter;
 use reconfig_host::fixture::leo_tour::{load, LeoTourFixture};
 use reconfig_tests::fixtures_dir;
 use std::collections::HashMap;
 
 /// The cheapest order by planning every arc of every order (each arc once), as the
-/// sequencing's callback would: (total, order, the largest ratio of an arc's bound to its
-/// cost over every arc of the tree).
+/// sequencing's callback would (its estimates, or with `full_plans` each arc planned in full,
+/// the clients flown in the planning model): (total, order, the largest ratio of an arc's
+/// bound to its cost over every arc of the tree).
 fn brute_force(f: &LeoTourFixture) -> (f64, Vec<usize>, f64) {
     let spec = f.sequence.unwrap();
     let s = &spec.arc_settings;
@@ -36,16 +38,26 @@ fn brute_force(f: &LeoTourFixture) -> (f64, Vec<usize>, f64) {
             .entry((i, j, t0.to_bits(), dt.to_bits()))
             .or_insert_with(|| {
                 let b = arc_bound_mps(&g, &planes[i], &planes[j], t0, dt, &spec.settings.bound());
+                let full = spec.settings.full_plans;
                 let flight = Flight {
                     g,
-                    model: s.search_model,
+                    model: if full {
+                        Model::Planning
+                    } else {
+                        s.search_model
+                    },
                     step_s: s.step_s,
                     max_steps: s.max_steps,
                 };
                 let at = |k: usize| -> Option<State> {
                     flight.fly(&f.clients[k], t0, &mut Meter::new(u64::MAX))
                 };
-                estimate_arc_mps(
+                let cost = if full {
+                    planned_arc_mps
+                } else {
+                    estimate_arc_mps
+                };
+                cost(
                     &ArcProblem {
                         from: at(i)?,
                         to: at(j)?,
@@ -156,6 +168,26 @@ fn example_one_branch_and_bound_equals_the_brute_force_over_all_120_orders() {
     let (total, planned) = check(&rule);
     assert!((total - 1223.278).abs() < 0.01, "{total}");
     assert_eq!(planned, 122);
+}
+
+/// Issue 31: the order ranked by full plans (`[sequence] full_plans = true`, a ground design)
+/// is the cheapest order by the plans the tour flies: the brute force plans every arc of the
+/// tree in full (80 arcs with the intervals by position) and finds the same order, to the bit,
+/// and every full plan is above its bound. It beats the order the estimates choose, planned in
+/// full (1194.900 m/s on board, 1103.145 with the ground's finer estimates).
+#[test]
+fn example_one_ranked_by_full_plans_is_the_cheapest_full_plan_of_all_120_orders() {
+    let f = load(
+        &fixtures_dir()
+            .join("over-limits")
+            .join("leo-tour-example1-sequence-full-plans.toml"),
+    )
+    .unwrap();
+    assert!(f.sequence.unwrap().settings.full_plans);
+    let (total, planned) = check(&f);
+    assert!((total - 1094.502).abs() < 0.01, "{total}");
+    assert!(total < 1103.145 - 5.0, "{total}");
+    assert_eq!(planned, 97);
 }
 
 /// A seeded family of five near-circular clients near Example I's: semi-major axes 6750-7250

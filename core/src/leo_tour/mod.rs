@@ -214,6 +214,27 @@ pub(crate) fn estimate_floor_units(duration_s: f64, settings: &Settings) -> u64 
     }
 }
 
+/// The arc planned in full ([`solve_arc`]: the search, the planning model's polish and the
+/// final check), as an [`ArcEstimate`]: its Δv when the plan is usable. The sequencing's arc
+/// cost with `full_plans` (and an estimate's with `search_model = Planning`).
+///
+/// # Errors
+/// As [`solve_arc`].
+pub fn planned_arc_mps(
+    problem: &ArcProblem,
+    settings: &Settings,
+    workspace: &mut Workspace,
+) -> Result<ArcEstimate, PlanError> {
+    let mut planned = ArcSolution::new();
+    solve_arc(problem, settings, workspace, &mut planned)?;
+    let status = planned.info.status;
+    Ok(ArcEstimate {
+        dv_mps: status.is_usable().then_some(planned.total_dv_mps),
+        status,
+        work_units: planned.info.work_units,
+    })
+}
+
 /// The arc's Δv estimate, m/s: the cost of the best plan the search finds in
 /// `settings.search_model`, shot in that model, without the planning model's polish and
 /// check (with `search_model = Planning`, the planned arc's Δv when it is usable), aimed at
@@ -230,14 +251,7 @@ pub fn estimate_arc_mps(
     workspace: &mut Workspace,
 ) -> Result<ArcEstimate, PlanError> {
     if settings.search_model == Model::Planning {
-        let mut planned = ArcSolution::new();
-        solve_arc(problem, settings, workspace, &mut planned)?;
-        let status = planned.info.status;
-        return Ok(ArcEstimate {
-            dv_mps: status.is_usable().then_some(planned.total_dv_mps),
-            status,
-            work_units: planned.info.work_units,
-        });
+        return planned_arc_mps(problem, settings, workspace);
     }
     let Workspace {
         candidates, hops, ..

@@ -91,6 +91,13 @@ crate::settings_table! {
         /// estimate may spend at most its own `work_budget` and what is left of this one.
         work_budget, WorkBudget = 4: u64 = work_units::DEFAULT_WORK_BUDGET,
         unit "units", range Range::closed(1.0, 1e10), limit AtMost;
+        /// Each arc's cost is its full plan ([`super::planned_arc_mps`]: the per-arc search,
+        /// the planning model's polish and the final check, the clients flown in the planning
+        /// model), not the search's estimate: the order is then the cheapest by the plans the
+        /// tour would fly. A ground design: a full plan costs up to the arc's `work_budget`
+        /// (4 M units by default), so the built-in limits keep it off.
+        full_plans, FullPlans = 5: bool = false,
+        unit "", range Range::any(), limit MustBeOff;
     }
 }
 

@@ -17,7 +17,7 @@
 //! by what is left makes the outcome `BudgetExhausted` (the enumeration stops there).
 
 use super::bound::{plane_of, Plane};
-use super::flight::Flight;
+use super::flight::{Flight, Model};
 use super::j2::State;
 use super::schedule::{best_schedule, Schedule, ScheduleError, ScheduleSettings, MAX_STEPS};
 use super::sequence::{
@@ -25,11 +25,14 @@ use super::sequence::{
     SequenceStatus, MAX_CLIENTS,
 };
 use super::{
-    estimate_arc_mps, propagate, solve_arc, ArcProblem, ArcSolution, PlanError, Settings,
-    SolveStatus, Workspace,
+    estimate_arc_mps, planned_arc_mps, propagate, solve_arc, ArcEstimate, ArcProblem, ArcSolution,
+    PlanError, Settings, SolveStatus, Workspace,
 };
 use crate::work::Meter;
 use serde::{Deserialize, Serialize};
+
+/// An arc's cost for the sequencing: [`estimate_arc_mps`] or [`planned_arc_mps`].
+type ArcCost = fn(&ArcProblem, &Settings, &mut Workspace) -> Result<ArcEstimate, PlanError>;
 
 /// Client states at arc starts kept: every client at every start of a tour of
 /// [`MAX_CLIENTS`] with durations by position.
@@ -163,9 +166,20 @@ pub fn solve_sequence(
     states.clear();
     arcs.clear();
     let tour = (problem.first, &problem.intervals);
+    // Full plans fly their clients in the planning model (as the tour's arcs are planned);
+    // estimates in the estimates' search model.
+    let (model, arc_cost): (Model, ArcCost) = if settings.full_plans {
+        (Model::Planning, planned_arc_mps)
+    } else {
+        (arc_settings.search_model, estimate_arc_mps)
+    };
+    let floor_settings = Settings {
+        search_model: model,
+        ..*arc_settings
+    };
     let flight = Flight {
         g,
-        model: arc_settings.search_model,
+        model,
         step_s: arc_settings.step_s,
         max_steps: arc_settings.max_steps,
     };
@@ -195,7 +209,7 @@ pub fn solve_sequence(
             // The estimate spends at most its own budget and what is left of the sequencing's;
             // with less left than it charges before it can stop, it is not started.
             let left = meter.remaining();
-            if left < super::estimate_floor_units(dt, arc_settings) {
+            if left < super::estimate_floor_units(dt, &floor_settings) {
                 let _ = meter.spend(u64::MAX);
                 return None;
             }
@@ -203,7 +217,7 @@ pub fn solve_sequence(
                 work_budget: arc_settings.work_budget.min(left),
                 ..*arc_settings
             };
-            let estimate = estimate_arc_mps(
+            let estimate = arc_cost(
                 &ArcProblem {
                     from,
                     to,

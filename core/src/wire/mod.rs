@@ -59,7 +59,9 @@ pub use messages::{Expiry, Outcome, OutcomeRef, Rejection, Request};
 ///    no longer depend on the request path's `limits::Setting`; the LEO sequencing refuses an
 ///    arc setting as `SequenceError::InvalidArcSetting`; the planner kinds are
 ///    `contract::PlannerKind` (same codes).
-pub const PROTOCOL_VERSION: u16 = 8;
+/// 9: the LEO sequencing's settings gained `full_plans` (orders ranked by each arc's full plan,
+///    a ground design the built-in limits keep off; issue 31).
+pub const PROTOCOL_VERSION: u16 = 9;
 /// First two bytes of a request frame.
 pub const REQUEST_MAGIC: [u8; 2] = *b"RQ";
 /// First two bytes of a response frame.

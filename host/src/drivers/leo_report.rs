@@ -214,8 +214,14 @@ pub fn run(f: &LeoTourFixture, limits: &Limits, json_output: bool) -> Result<Exi
         if let Some(c) = &prepared.order {
             let q = &c.sequence;
             let i = &q.info;
+            // Which arc costs ranked the orders: said with the total they sum to.
+            let costs = if c.full_plans {
+                "ranked by full plans"
+            } else {
+                "with the sequencing's estimates"
+            };
             println!(
-                "  sequencing: {:?}, {} m/s with the sequencing search; planned {} of the tree's {} arcs ({:.1} %), {} of {} orders completed, {} bound violations, {} work units, {:.2} s",
+                "  sequencing: {:?}, {} m/s {costs}; planned {} of the tree's {} arcs ({:.1} %), {} of {} orders completed, {} bound violations, {} work units, {:.2} s",
                 i.status,
                 q.total_dv_mps.map_or("no order".into(), |t| format!("{t:.3}")),
                 i.arcs_planned,
@@ -309,6 +315,7 @@ pub fn sequence_json(c: &ChosenOrder) -> serde_json::Value {
         "orders_total": i.orders_total,
         "bound_violations": i.bound_violations,
         "work_units": i.work_units,
+        "ranked_by": if c.full_plans { "full plans" } else { "estimates" },
         "time_s": c.time_s,
     })
 }

@@ -115,12 +115,14 @@ pub struct ChosenOrder {
     pub sequence: Sequence,
     /// Wall time of the answer to the sequencing request (every arc it planned), s.
     pub time_s: f64,
+    /// The orders were ranked by full plans (`[sequence] full_plans`), not by estimates.
+    pub full_plans: bool,
 }
 
 /// Choose the order of `f`'s tour: its sequencing request ([`LeoTourFixture::requests`])
 /// answered through the request path under `limits` (`leo_tour::tour_order::choose_order`:
 /// branch-and-bound, each arc's cost the per-arc search's estimate with the `[sequence]`
-/// settings), and return the fixture with that order and its intervals; `None` for a fixture
+/// settings, or its full plan with `full_plans`), and return the fixture with that order and its intervals; `None` for a fixture
 /// without a `[sequence]` table.
 ///
 /// # Errors
@@ -145,6 +147,7 @@ pub fn choose_order(
     let chosen = ChosenOrder {
         sequence: *sequence,
         time_s: answered.time_s,
+        full_plans: f.sequence.is_some_and(|s| s.settings.full_plans),
     };
     Ok(Some((f.with_order(sequence), chosen)))
 }
