@@ -18,6 +18,9 @@
 // The GEO servicing tour (`reconfig_geo_tour_*`).
 #define RECONFIG_PLANNER_GEO_TOUR 2
 
+// One arc of the LEO tour (`reconfig_leo_arc_*`).
+#define RECONFIG_PLANNER_LEO_ARC 3
+
 // No solve has written this solution.
 #define RECONFIG_UNSOLVED 0
 
@@ -101,6 +104,29 @@
 // GEO tour: the work budget ran out; the returned plan is not verified (or there is none:
 // `leg_count` 0). Not usable.
 #define RECONFIG_GEO_BUDGET_EXHAUSTED_UNVERIFIED 207
+
+// LEO arc: the plan, flown from scratch in the planning model, arrives within
+// `arrival_tol_km` with the client's velocity, its transfer above `min_transfer_altitude_km`.
+// May be flown.
+#define RECONFIG_LEO_SOLVED 301
+
+// LEO arc: the best plan found misses by more than `arrival_tol_km` (`miss_m`). Not usable.
+#define RECONFIG_LEO_ARRIVAL_MISSED 302
+
+// LEO arc: the work budget ran out; the returned plan arrives and stays above
+// `min_transfer_altitude_km` as for SOLVED. May be flown.
+#define RECONFIG_LEO_BUDGET_EXHAUSTED_VERIFIED 303
+
+// LEO arc: no transfer of the search reached the client (no burns). Not usable.
+#define RECONFIG_LEO_NO_TRANSFER 304
+
+// LEO arc: the best plan found arrives but dips below `min_transfer_altitude_km`
+// (`lowest_altitude_km`). Not usable.
+#define RECONFIG_LEO_BELOW_MIN_ALTITUDE 305
+
+// LEO arc: the work budget ran out; the returned plan misses or dips below (its burns, miss
+// and lowest altitude are returned), or there is none (`impulses` 0). Not usable.
+#define RECONFIG_LEO_BUDGET_EXHAUSTED_UNVERIFIED 306
 
 // Refused: a pointer argument is null (`error.field` names it when the solution is usable).
 #define RECONFIG_ERR_NULL_POINTER -1
@@ -216,6 +242,16 @@
 // GEO tour refused: `target_count` above the capacity (`value`, `limit`).
 #define RECONFIG_GEO_ERR_CAPACITY_EXCEEDED -303
 
+// LEO arc refused: a value is not finite or outside its range (`field` a
+// `RECONFIG_FIELD_LEO_*`, `detail` 0 below the range, 1 above it, 2 not finite; `limit` the
+// end it broke, the upper end when not finite). A client's perigee altitude (computed with
+// the settings' `mu_km3_s2` and `re_km`) is named by its own field.
+#define RECONFIG_LEO_ERR_OUT_OF_RANGE -401
+
+// LEO arc refused: a client's trajectory over the arc needs more than `max_steps` RK4 steps
+// or leaves the finite numbers (`field` `RECONFIG_FIELD_LEO_FROM` or `_TO`).
+#define RECONFIG_LEO_ERR_PROPAGATION -402
+
 // No field (the refusal is about the request as a whole).
 #define RECONFIG_FIELD_NONE 0
 
@@ -297,6 +333,24 @@
 
 // GEO tour: `policy` (`RECONFIG_GEO_POLICY_*`).
 #define RECONFIG_FIELD_GEO_POLICY 71
+
+// LEO arc: `from_position_km` / `from_velocity_km_s` (a component).
+#define RECONFIG_FIELD_LEO_FROM 80
+
+// LEO arc: `to_position_km` / `to_velocity_km_s` (a component).
+#define RECONFIG_FIELD_LEO_TO 81
+
+// LEO arc: `duration_s`.
+#define RECONFIG_FIELD_LEO_DURATION 82
+
+// LEO arc: `impulses`.
+#define RECONFIG_FIELD_LEO_IMPULSES 83
+
+// LEO arc: the perigee altitude of the `from` state's osculating orbit, km.
+#define RECONFIG_FIELD_LEO_FROM_PERIGEE_ALTITUDE 84
+
+// LEO arc: the perigee altitude of the `to` state's osculating orbit, km.
+#define RECONFIG_FIELD_LEO_TO_PERIGEE_ALTITUDE 85
 
 // The `workspace` argument.
 #define RECONFIG_FIELD_WORKSPACE 40
@@ -424,6 +478,23 @@
 
 // Direction code: no sweep was returned.
 #define RECONFIG_GEO_DIRECTION_NONE 2
+
+// Most impulses of one arc (`leo_tour::MAX_IMPULSES`).
+#define RECONFIG_LEO_MAX_IMPULSES 4
+
+// Search-model code (`search_model`): everything in the planning model (two-body + J2 by
+// RK4), the slow reference.
+#define RECONFIG_LEO_MODEL_PLANNING 0
+
+// Search-model code (`search_model`): the first-order J2 theory in closed form, then a polish
+// in the planning model (the default).
+#define RECONFIG_LEO_MODEL_MEAN_ELEMENTS 1
+
+// Lambert branch code of the last leg: Izzo's "left" (low-path) solution.
+#define RECONFIG_LEO_BRANCH_LEFT 0
+
+// Lambert branch code of the last leg: Izzo's "right" solution.
+#define RECONFIG_LEO_BRANCH_RIGHT 1
 
 // Loop bounds, tolerances, the paper's rule and the work budget
 // (`reconfig_core::geo_tour::Settings`, same names).
@@ -897,6 +968,120 @@ typedef struct {
   ReconfigBEndState end;
 } ReconfigBFormSolution;
 
+// The arc search's settings (`reconfig_core::leo_tour::Settings`, same names).
+typedef struct {
+  // Gravitational parameter, km^3/s^2.
+  double mu_km3_s2;
+  // Equatorial radius, km.
+  double re_km;
+  // J2 (unnormalised).
+  double j2;
+  // Largest RK4 step, s.
+  double step_s;
+  // Lambert tolerance on Izzo's x.
+  double lambert_tol;
+  // Arrival miss accepted by the shooting and by the final check, km.
+  double arrival_tol_km;
+  // First compass step of an impulse epoch, s.
+  double search_step_s;
+  // First compass step of an impulse component, km/s.
+  double search_step_km_s;
+  // The refinement stops when the epoch step is below this, s.
+  double search_min_step_s;
+  // Least time between two impulses (and before the arrival), s; at most an eighth of the
+  // arc.
+  double min_gap_s;
+  // Lowest altitude a transfer may reach above the equatorial radius, km.
+  double min_transfer_altitude_km;
+  // Work units a solve may use; the best plan so far is returned, checked, when they run
+  // out (`RECONFIG_LEO_BUDGET_EXHAUSTED_*`).
+  uint64_t work_budget;
+  // Most RK4 steps of one propagation.
+  uint32_t max_steps;
+  // Cost evaluations of one local refinement.
+  uint32_t search_max_evals;
+  // Cost evaluations of the planning-model polish.
+  uint32_t polish_max_evals;
+  // Householder steps of one Lambert solve.
+  uint16_t lambert_max_iter;
+  // Most whole revolutions of a Lambert leg considered.
+  uint16_t max_revolutions;
+  // Aim-point iterations of one J2 shooting.
+  uint16_t shoot_max_iter;
+  // Points of the coarse grid of the first impulse epoch.
+  uint16_t grid_points;
+  // Grid candidates refined locally.
+  uint8_t candidates;
+  // Rounds of hops from the best refined plan.
+  uint8_t hop_rounds;
+  // `RECONFIG_LEO_MODEL_*`: the model of the grid, the local searches and the hops.
+  uint8_t search_model;
+} ReconfigLeoArcSettings;
+
+// One arc: the chaser starts on client A's state at the arc start (t = 0) and must be on
+// client B's position and velocity at `duration_s` (`leo_tour::ArcProblem`). States are
+// inertial (Earth-centred), at the arc start.
+typedef struct {
+  // Client A's (the chaser's) position at the arc start, km.
+  double from_position_km[3];
+  // Client A's velocity at the arc start, km/s.
+  double from_velocity_km_s[3];
+  // Client B's position at the arc start, km.
+  double to_position_km[3];
+  // Client B's velocity at the arc start, km/s.
+  double to_velocity_km_s[3];
+  // Arc duration, s: the last impulse is at this epoch.
+  double duration_s;
+  // Impulses, 2 to `RECONFIG_LEO_MAX_IMPULSES`.
+  uint8_t impulses;
+} ReconfigLeoArcProblem;
+
+// One impulse of an arc.
+typedef struct {
+  // Epoch from the arc start, s.
+  double epoch_s;
+  // Velocity change in the chaser's RTN frame just before the burn (radial, along-track,
+  // normal), m/s.
+  double dv_rtn_mps[3];
+  // Inertial velocity change, km/s.
+  double dv_km_s[3];
+} ReconfigLeoBurn;
+
+// A planned arc (`leo_tour::ArcSolution`), or with a status other than SOLVED what could be
+// shown. Every number is finite; an absent value is 0 with its `has_` flag 0.
+typedef struct {
+  // The status code the solve returned (`RECONFIG_LEO_*`, or a refusal).
+  int32_t status;
+  // Why the request was refused (all zero when it was not).
+  ReconfigError error;
+  // 1 when the plan may be flown (SOLVED, BUDGET_EXHAUSTED_VERIFIED).
+  uint8_t usable;
+  // Burns in `burns` (0 when no plan was found).
+  uint8_t impulses;
+  // 1 when `miss_m` holds a value (a plan was flown in the planning model).
+  uint8_t has_miss_m;
+  // 1 when `lowest_altitude_km` holds a value.
+  uint8_t has_lowest_altitude_km;
+  // `RECONFIG_LEO_BRANCH_*` of the last Lambert leg.
+  uint8_t last_leg_branch;
+  // Revolutions of the last Lambert leg.
+  uint16_t last_leg_revolutions;
+  // Cost evaluations made.
+  uint32_t evaluations;
+  // Sum of the burn sizes, m/s (0 with no burns).
+  double total_dv_mps;
+  // Position miss at arrival when the plan is flown in the planning model, m, when
+  // `has_miss_m`; else 0.
+  double miss_m;
+  // The transfer's lowest altitude above the equatorial radius, km, when
+  // `has_lowest_altitude_km`; else 0.
+  double lowest_altitude_km;
+  // Work units used (`work_budget`).
+  uint64_t work_units;
+  // The burns in time order; the first `impulses` are used (the rest zero).
+  ReconfigLeoBurn burns[RECONFIG_LEO_MAX_IMPULSES];
+} ReconfigLeoArcSolution;
+
 // Loop bounds and tolerances (`reconfig_core::pseudospectral::Settings`, same names). Flags
 // are 0 or 1.
 typedef struct {
@@ -1139,6 +1324,46 @@ int32_t reconfig_impulsive_solve_form(void *workspace,
                                       const ReconfigBFormProblem *problem,
                                       const ReconfigBSettings *settings,
                                       ReconfigBFormSolution *out);
+
+// Bytes of caller memory one LEO-arc workspace needs.
+size_t reconfig_leo_arc_workspace_size(void);
+
+// Alignment, in bytes, a LEO-arc workspace needs.
+size_t reconfig_leo_arc_workspace_align(void);
+
+// Initialise a LEO-arc workspace in `size` bytes of caller memory at `workspace`.
+//
+// Returns 0, or `RECONFIG_ERR_NULL_POINTER`, `RECONFIG_ERR_MISALIGNED` or
+// `RECONFIG_ERR_WORKSPACE_TOO_SMALL`.
+//
+// # Safety
+// `workspace` is null or points to `size` writable bytes used by nothing else while the
+// workspace is in use.
+int32_t reconfig_leo_arc_init(void *workspace, size_t size);
+
+// Write the default settings into `out`. Returns 0, or a null/misaligned refusal.
+//
+// # Safety
+// `out` is null or points to writable memory for one `ReconfigLeoArcSettings`.
+int32_t reconfig_leo_arc_default_settings(ReconfigLeoArcSettings *out);
+
+// Plan the arc `problem` with `settings` in the initialised `workspace`; write the result into
+// `out`. The request is answered by the core's request path with the built-in limits (the
+// flight service's): a setting outside them is refused `RECONFIG_ERR_LIMIT_EXCEEDED`, named.
+//
+// Returns the status code (also in `out->status`): `>= 0` a solve status (only
+// `RECONFIG_LEO_SOLVED` and `RECONFIG_LEO_BUDGET_EXHAUSTED_VERIFIED` may be flown: `usable`),
+// `< 0` a refusal whose field, index, value and limit are in `out->error` (when `out` is
+// usable).
+//
+// # Safety
+// Each pointer is null or valid for its type (`workspace`: a block of at least
+// `reconfig_leo_arc_workspace_size()` bytes); `workspace` and `out` are used by nothing else
+// during the call.
+int32_t reconfig_leo_arc_solve(void *workspace,
+                               const ReconfigLeoArcProblem *problem,
+                               const ReconfigLeoArcSettings *settings,
+                               ReconfigLeoArcSolution *out);
 
 // The name of the setting or problem quantity a refusal names: `planner` a
 // `RECONFIG_PLANNER_*` code, `code` the refusal's `error.index` (a setting's code in its

@@ -7,7 +7,7 @@
 use core::ffi::c_char;
 use reconfig_core::contract::PlannerKind;
 use reconfig_core::limits::ProblemLimit;
-use reconfig_core::{geo_tour, impulsive, pseudospectral};
+use reconfig_core::{geo_tour, impulsive, leo_tour, pseudospectral};
 
 /// Planner A (`reconfig_pseudospectral_*`).
 pub const RECONFIG_PLANNER_PSEUDOSPECTRAL: i32 = 0;
@@ -15,11 +15,14 @@ pub const RECONFIG_PLANNER_PSEUDOSPECTRAL: i32 = 0;
 pub const RECONFIG_PLANNER_IMPULSIVE: i32 = 1;
 /// The GEO servicing tour (`reconfig_geo_tour_*`).
 pub const RECONFIG_PLANNER_GEO_TOUR: i32 = 2;
+/// One arc of the LEO tour (`reconfig_leo_arc_*`).
+pub const RECONFIG_PLANNER_LEO_ARC: i32 = 3;
 
 // Literals so that the header can spell them; the wire's planner codes decide.
 const _: () = assert!(RECONFIG_PLANNER_PSEUDOSPECTRAL == PlannerKind::Pseudospectral as i32);
 const _: () = assert!(RECONFIG_PLANNER_IMPULSIVE == PlannerKind::Impulsive as i32);
 const _: () = assert!(RECONFIG_PLANNER_GEO_TOUR == PlannerKind::GeoTour as i32);
+const _: () = assert!(RECONFIG_PLANNER_LEO_ARC == PlannerKind::LeoArc as i32);
 
 /// Bytes of one name slot, the NUL included.
 const NAME_BYTES: usize = 40;
@@ -131,6 +134,8 @@ static A_NAMES: [Name; pseudospectral::SettingId::ALL.len()] =
 static B_NAMES: [Name; impulsive::SettingId::ALL.len()] = names_by_code!(impulsive::SettingId);
 #[allow(clippy::indexing_slicing, clippy::arithmetic_side_effects)]
 static GEO_NAMES: [Name; geo_tour::SettingId::ALL.len()] = names_by_code!(geo_tour::SettingId);
+#[allow(clippy::indexing_slicing, clippy::arithmetic_side_effects)]
+static LEO_ARC_NAMES: [Name; leo_tour::SettingId::ALL.len()] = names_by_code!(leo_tour::SettingId);
 static PROBLEM_NAMES: [Name; PROBLEM_LIMITS.len()] = problem_names();
 
 /// The NUL-terminated name of setting `code` of `planner`, if any.
@@ -149,6 +154,7 @@ fn name_slot(planner: i32, code: i32) -> Option<&'static Name> {
             RECONFIG_PLANNER_PSEUDOSPECTRAL => &A_NAMES,
             RECONFIG_PLANNER_IMPULSIVE => &B_NAMES,
             RECONFIG_PLANNER_GEO_TOUR => &GEO_NAMES,
+            RECONFIG_PLANNER_LEO_ARC => &LEO_ARC_NAMES,
             _ => return None,
         };
         table.get(usize::from(code))?

@@ -1,5 +1,6 @@
-//! The C settings structs (`ReconfigASettings`, `ReconfigBSettings`, `ReconfigGeoSettings`)
-//! mirror the core's settings tables field by field, under the same names. Each mirror is one
+//! The C settings structs (`ReconfigASettings`, `ReconfigBSettings`, `ReconfigGeoSettings`,
+//! `ReconfigLeoArcSettings`) mirror the core's settings tables field by field, under the same
+//! names. Each mirror is one
 //! [`mirror_settings!`](crate::mirror_settings) line listing the fields once: the conversion
 //! both ways and the by-name accessors the coverage test walks follow from it. The C structs
 //! themselves are written out in `types_*.rs` (cbindgen reads them there; it does not expand
@@ -10,6 +11,7 @@
 use crate::status::{ReconfigError, RECONFIG_ERR_SETTING_OUT_OF_RANGE, RECONFIG_FIELD_SETTINGS};
 use reconfig_core::contract::SettingValue;
 use reconfig_core::impulsive::ElementSet;
+use reconfig_core::leo_tour::flight::Model;
 use reconfig_core::limits::Setting;
 
 /// A C field's value as the core's field type, and back. The identity for numbers; a C `uint8_t`
@@ -52,6 +54,16 @@ impl CValue<ElementSet> for u8 {
         ElementSet::from_f64(f64::from(self))
     }
     fn from_core(value: ElementSet) -> Self {
+        value as u8
+    }
+}
+
+impl CValue<Model> for u8 {
+    const LARGEST: f64 = 1.0;
+    fn to_core(self) -> Option<Model> {
+        <Model as SettingValue>::from_f64(f64::from(self))
+    }
+    fn from_core(value: Model) -> Self {
         value as u8
     }
 }

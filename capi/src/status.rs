@@ -8,7 +8,9 @@
 //! (`contract::Status::code`), plus one for a budget stop whose plan is not verified (the core
 //! has one `BudgetExhausted { verified }` variant, C one code for each answer to "may it be
 //! flown?"); `Unsolved` is 0 for every planner ([`status_code`]; the unit test
-//! `c_codes_are_base_plus_the_core_code` checks every constant below against it).
+//! `c_codes_are_base_plus_the_core_code` checks every constant below against it). The LEO arc
+//! (base 300) is mapped by hand (`convert_leo::status_to_c`): its `BudgetExhausted` is not its
+//! last status, so its unverified budget stop takes the code after its last (306).
 
 /// No solve has written this solution.
 pub const RECONFIG_UNSOLVED: i32 = 0;
@@ -71,6 +73,24 @@ pub const RECONFIG_GEO_BUDGET_EXHAUSTED_VERIFIED: i32 = 206;
 /// GEO tour: the work budget ran out; the returned plan is not verified (or there is none:
 /// `leg_count` 0). Not usable.
 pub const RECONFIG_GEO_BUDGET_EXHAUSTED_UNVERIFIED: i32 = 207;
+
+/// LEO arc: the plan, flown from scratch in the planning model, arrives within
+/// `arrival_tol_km` with the client's velocity, its transfer above `min_transfer_altitude_km`.
+/// May be flown.
+pub const RECONFIG_LEO_SOLVED: i32 = 301;
+/// LEO arc: the best plan found misses by more than `arrival_tol_km` (`miss_m`). Not usable.
+pub const RECONFIG_LEO_ARRIVAL_MISSED: i32 = 302;
+/// LEO arc: the work budget ran out; the returned plan arrives and stays above
+/// `min_transfer_altitude_km` as for SOLVED. May be flown.
+pub const RECONFIG_LEO_BUDGET_EXHAUSTED_VERIFIED: i32 = 303;
+/// LEO arc: no transfer of the search reached the client (no burns). Not usable.
+pub const RECONFIG_LEO_NO_TRANSFER: i32 = 304;
+/// LEO arc: the best plan found arrives but dips below `min_transfer_altitude_km`
+/// (`lowest_altitude_km`). Not usable.
+pub const RECONFIG_LEO_BELOW_MIN_ALTITUDE: i32 = 305;
+/// LEO arc: the work budget ran out; the returned plan misses or dips below (its burns, miss
+/// and lowest altitude are returned), or there is none (`impulses` 0). Not usable.
+pub const RECONFIG_LEO_BUDGET_EXHAUSTED_UNVERIFIED: i32 = 306;
 
 /// Refused: a pointer argument is null (`error.field` names it when the solution is usable).
 pub const RECONFIG_ERR_NULL_POINTER: i32 = -1;
@@ -158,6 +178,15 @@ pub const RECONFIG_GEO_ERR_NO_TARGETS: i32 = -302;
 /// GEO tour refused: `target_count` above the capacity (`value`, `limit`).
 pub const RECONFIG_GEO_ERR_CAPACITY_EXCEEDED: i32 = -303;
 
+/// LEO arc refused: a value is not finite or outside its range (`field` a
+/// `RECONFIG_FIELD_LEO_*`, `detail` 0 below the range, 1 above it, 2 not finite; `limit` the
+/// end it broke, the upper end when not finite). A client's perigee altitude (computed with
+/// the settings' `mu_km3_s2` and `re_km`) is named by its own field.
+pub const RECONFIG_LEO_ERR_OUT_OF_RANGE: i32 = -401;
+/// LEO arc refused: a client's trajectory over the arc needs more than `max_steps` RK4 steps
+/// or leaves the finite numbers (`field` `RECONFIG_FIELD_LEO_FROM` or `_TO`).
+pub const RECONFIG_LEO_ERR_PROPAGATION: i32 = -402;
+
 /// No field (the refusal is about the request as a whole).
 pub const RECONFIG_FIELD_NONE: i32 = 0;
 /// Planner A: `horizon_tu`.
@@ -213,6 +242,18 @@ pub const RECONFIG_FIELD_GEO_TARGET_COUNT: i32 = 69;
 pub const RECONFIG_FIELD_GEO_SWEEP: i32 = 70;
 /// GEO tour: `policy` (`RECONFIG_GEO_POLICY_*`).
 pub const RECONFIG_FIELD_GEO_POLICY: i32 = 71;
+/// LEO arc: `from_position_km` / `from_velocity_km_s` (a component).
+pub const RECONFIG_FIELD_LEO_FROM: i32 = 80;
+/// LEO arc: `to_position_km` / `to_velocity_km_s` (a component).
+pub const RECONFIG_FIELD_LEO_TO: i32 = 81;
+/// LEO arc: `duration_s`.
+pub const RECONFIG_FIELD_LEO_DURATION: i32 = 82;
+/// LEO arc: `impulses`.
+pub const RECONFIG_FIELD_LEO_IMPULSES: i32 = 83;
+/// LEO arc: the perigee altitude of the `from` state's osculating orbit, km.
+pub const RECONFIG_FIELD_LEO_FROM_PERIGEE_ALTITUDE: i32 = 84;
+/// LEO arc: the perigee altitude of the `to` state's osculating orbit, km.
+pub const RECONFIG_FIELD_LEO_TO_PERIGEE_ALTITUDE: i32 = 85;
 /// The `workspace` argument.
 pub const RECONFIG_FIELD_WORKSPACE: i32 = 40;
 /// The `problem` argument.

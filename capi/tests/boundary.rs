@@ -581,3 +581,198 @@ fn an_infeasible_answer_names_the_pair_that_cannot_be_separated_through_c() {
         .iter()
         .all(|u| *u == ReconfigAUnmet::default()));
 }
+
+/// A circular orbit of radius `r_km`, inclination `inc_rad`, at argument of latitude `u_rad`
+/// on the node at RAAN 0: (position km, velocity km/s).
+fn circular(r_km: f64, inc_rad: f64, u_rad: f64) -> ([f64; 3], [f64; 3]) {
+    let v = (reconfig_core::astro::EARTH_MU_KM3_S2 / r_km).sqrt();
+    let (su, cu) = u_rad.sin_cos();
+    let (si, ci) = inc_rad.sin_cos();
+    (
+        [r_km * cu, r_km * su * ci, r_km * su * si],
+        [-v * su, v * cu * ci, v * cu * si],
+    )
+}
+
+#[test]
+fn leo_arc_refusals_name_field_value_and_limit_and_a_solve_matches_the_core() {
+    use reconfig_capi::leo_tour::*;
+    use reconfig_capi::names::RECONFIG_PLANNER_LEO_ARC;
+    use reconfig_capi::types_leo::*;
+    use reconfig_core::leo_tour;
+    let size = reconfig_leo_arc_workspace_size();
+    let mut mem = memory(size);
+    let ws = mem.as_mut_ptr().cast::<c_void>();
+    let mut settings = ReconfigLeoArcSettings::default();
+    let mut out = ReconfigLeoArcSolution::default();
+    let (from_position_km, from_velocity_km_s) = circular(6778.14, 1.6936, 0.4363);
+    let (to_position_km, to_velocity_km_s) = circular(6878.14, 1.7001, 0.2269);
+    let good = ReconfigLeoArcProblem {
+        from_position_km,
+        from_velocity_km_s,
+        to_position_km,
+        to_velocity_km_s,
+        duration_s: 20_000.0,
+        impulses: 3,
+    };
+    // SAFETY: valid pointers; `ws` has `size` bytes.
+    unsafe {
+        assert_eq!(reconfig_leo_arc_default_settings(&mut settings), 0);
+        assert_eq!(
+            reconfig_leo_arc_solve(ws, &good, &settings, &mut out),
+            RECONFIG_ERR_WORKSPACE_NOT_INITIALISED
+        );
+        assert_eq!(reconfig_leo_arc_init(ws, size), 0);
+        // A field out of range: named, value, the end broken.
+        let mut p = good;
+        p.duration_s = 100.0;
+        assert_eq!(
+            reconfig_leo_arc_solve(ws, &p, &settings, &mut out),
+            RECONFIG_LEO_ERR_OUT_OF_RANGE
+        );
+        let e = out.error;
+        assert_eq!(
+            (e.field, e.detail, e.value, e.limit, out.usable),
+            (RECONFIG_FIELD_LEO_DURATION, 0, 100.0, 600.0, 0)
+        );
+        let mut p = good;
+        p.impulses = 1;
+        assert_eq!(
+            reconfig_leo_arc_solve(ws, &p, &settings, &mut out),
+            RECONFIG_LEO_ERR_OUT_OF_RANGE
+        );
+        assert_eq!(
+            (out.error.field, out.error.value, out.error.limit),
+            (RECONFIG_FIELD_LEO_IMPULSES, 1.0, 2.0)
+        );
+        // Above the capacity: the built-in limits refuse it first, named as a problem quantity.
+        p.impulses = 5;
+        assert_eq!(
+            reconfig_leo_arc_solve(ws, &p, &settings, &mut out),
+            RECONFIG_ERR_LIMIT_EXCEEDED
+        );
+        assert_eq!((out.error.value, out.error.limit), (5.0, 4.0));
+        assert_eq!(
+            setting_name(RECONFIG_PLANNER_LEO_ARC, out.error.index).as_deref(),
+            Some("impulses")
+        );
+        // A client inside the atmosphere: its perigee altitude named.
+        let mut p = good;
+        let (low_p, low_v) = circular(6400.0, 1.7, 0.0);
+        (p.to_position_km, p.to_velocity_km_s) = (low_p, low_v);
+        assert_eq!(
+            reconfig_leo_arc_solve(ws, &p, &settings, &mut out),
+            RECONFIG_LEO_ERR_OUT_OF_RANGE
+        );
+        assert_eq!(
+            (out.error.field, out.error.detail, out.error.limit),
+            (RECONFIG_FIELD_LEO_TO_PERIGEE_ALTITUDE, 0, 100.0)
+        );
+        // A setting: NaN (not finite), a search-model code outside its set.
+        let mut bad = settings;
+        bad.arrival_tol_km = f64::NAN;
+        assert_eq!(
+            reconfig_leo_arc_solve(ws, &good, &bad, &mut out),
+            RECONFIG_ERR_SETTING_OUT_OF_RANGE
+        );
+        assert_eq!(
+            (out.error.field, out.error.index, out.error.detail),
+            (
+                RECONFIG_FIELD_SETTINGS,
+                leo_tour::SettingId::ArrivalTolKm as i32,
+                2
+            )
+        );
+        let mut bad = settings;
+        bad.search_model = 2;
+        assert_eq!(
+            reconfig_leo_arc_solve(ws, &good, &bad, &mut out),
+            RECONFIG_ERR_SETTING_OUT_OF_RANGE
+        );
+        assert_eq!(
+            setting_name(RECONFIG_PLANNER_LEO_ARC, out.error.index).as_deref(),
+            Some("search_model")
+        );
+        assert_eq!((out.error.value, out.error.limit), (2.0, 1.0));
+        // A small budget: a plan through the C structs, as through the core, bit for bit.
+        let mut small = settings;
+        small.work_budget = 300_000;
+        let status = reconfig_leo_arc_solve(ws, &good, &small, &mut out);
+        assert!(status > 0, "{status}");
+        let core_problem = leo_tour::ArcProblem {
+            from: [
+                from_position_km[0],
+                from_position_km[1],
+                from_position_km[2],
+                from_velocity_km_s[0],
+                from_velocity_km_s[1],
+                from_velocity_km_s[2],
+            ],
+            to: [
+                to_position_km[0],
+                to_position_km[1],
+                to_position_km[2],
+                to_velocity_km_s[0],
+                to_velocity_km_s[1],
+                to_velocity_km_s[2],
+            ],
+            duration_s: 20_000.0,
+            impulses: 3,
+        };
+        let core_settings = leo_tour::Settings {
+            work_budget: 300_000,
+            ..Default::default()
+        };
+        let mut workspace = Box::new(leo_tour::Workspace::new());
+        let mut solution = Box::new(leo_tour::ArcSolution::new());
+        leo_tour::solve_arc(&core_problem, &core_settings, &mut workspace, &mut solution).unwrap();
+        assert_eq!(
+            status,
+            reconfig_capi::convert_leo::status_to_c(solution.info.status)
+        );
+        assert_eq!(out.usable, u8::from(solution.info.status.is_usable()));
+        assert_eq!(out.impulses, solution.impulses);
+        assert_eq!(out.total_dv_mps.to_bits(), solution.total_dv_mps.to_bits());
+        assert_eq!(out.work_units, solution.info.work_units);
+        assert_eq!(out.has_miss_m, u8::from(solution.miss_m.is_some()));
+        assert_eq!(
+            out.miss_m.to_bits(),
+            solution.miss_m.unwrap_or(0.0).to_bits()
+        );
+        for (c, b) in out.burns.iter().zip(solution.burns.iter()) {
+            assert_eq!(c.epoch_s.to_bits(), b.epoch_s.to_bits());
+            for k in 0..3 {
+                assert_eq!(c.dv_rtn_mps[k].to_bits(), b.rtn_mps[k].to_bits());
+                assert_eq!(c.dv_km_s[k].to_bits(), b.dv_km_s[k].to_bits());
+            }
+        }
+    }
+}
+
+#[test]
+fn leo_arc_status_codes_are_distinct() {
+    use reconfig_capi::convert_leo::status_to_c;
+    use reconfig_core::leo_tour::SolveStatus as L;
+    let all = [
+        (L::Unsolved, RECONFIG_UNSOLVED),
+        (L::Solved, RECONFIG_LEO_SOLVED),
+        (L::ArrivalMissed, RECONFIG_LEO_ARRIVAL_MISSED),
+        (
+            L::BudgetExhausted { verified: true },
+            RECONFIG_LEO_BUDGET_EXHAUSTED_VERIFIED,
+        ),
+        (L::NoTransfer, RECONFIG_LEO_NO_TRANSFER),
+        (L::BelowMinAltitude, RECONFIG_LEO_BELOW_MIN_ALTITUDE),
+        (
+            L::BudgetExhausted { verified: false },
+            RECONFIG_LEO_BUDGET_EXHAUSTED_UNVERIFIED,
+        ),
+    ];
+    let mut codes: Vec<i32> = all.iter().map(|(s, _)| status_to_c(*s)).collect();
+    for (s, c) in all {
+        assert_eq!(status_to_c(s), c, "{s:?}");
+    }
+    codes.sort_unstable();
+    codes.dedup();
+    assert_eq!(codes.len(), all.len());
+}

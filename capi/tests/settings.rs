@@ -1,7 +1,7 @@
 //! Every setting of every planner through the C interface (issues 29 and 33):
 //!
-//! * the walk: for each `SettingId` of planner A, planner B (both entry points) and the GEO
-//!   tour, a value outside its built-in limit (by its `limit_rule`) set in the C settings
+//! * the walk: for each `SettingId` of planner A, planner B (both entry points), the GEO
+//!   tour and the LEO arc, a value outside its built-in limit (by its `limit_rule`) set in the C settings
 //!   struct is refused `RECONFIG_ERR_LIMIT_EXCEEDED` naming it (`error.index` its code,
 //!   `reconfig_setting_name` its name, the exact value and limit, the rule), and a value outside
 //!   its accepted range (NaN for floats, numbers past either end, a flag or code no core value
@@ -25,6 +25,7 @@
 use core::ffi::c_void;
 use reconfig_capi::geo_tour::*;
 use reconfig_capi::impulsive::*;
+use reconfig_capi::leo_tour::*;
 use reconfig_capi::names::*;
 use reconfig_capi::pseudospectral::*;
 use reconfig_capi::settings::SettingsMirror;
@@ -33,10 +34,11 @@ use reconfig_capi::types_a::*;
 use reconfig_capi::types_b::*;
 use reconfig_capi::types_b_form::*;
 use reconfig_capi::types_geo::*;
+use reconfig_capi::types_leo::*;
 use reconfig_core::contract::Rule;
 use reconfig_core::contract::{check_limit, Range};
 use reconfig_core::limits::Setting;
-use reconfig_core::{geo_tour, impulsive, pseudospectral};
+use reconfig_core::{geo_tour, impulsive, leo_tour, pseudospectral};
 
 /// Caller memory of `size` bytes aligned to 8.
 fn memory(size: usize) -> Vec<u64> {
@@ -193,6 +195,33 @@ fn geo_problem() -> ReconfigGeoProblem {
     p
 }
 
+/// A circular orbit of radius `r_km`, inclination `inc_rad`, at argument of latitude `u_rad`
+/// on the node at RAAN 0: (position km, velocity km/s).
+fn circular(r_km: f64, inc_rad: f64, u_rad: f64) -> ([f64; 3], [f64; 3]) {
+    let v = (reconfig_core::astro::EARTH_MU_KM3_S2 / r_km).sqrt();
+    let (su, cu) = u_rad.sin_cos();
+    let (si, ci) = inc_rad.sin_cos();
+    (
+        [r_km * cu, r_km * su * ci, r_km * su * si],
+        [-v * su, v * cu * ci, v * cu * si],
+    )
+}
+
+/// A plannable LEO arc (the paper's radii and inclinations, one day): refusals come before
+/// any planning, so the walk never plans it.
+fn leo_problem() -> ReconfigLeoArcProblem {
+    let (from_position_km, from_velocity_km_s) = circular(6778.14, 1.6936, 0.4363);
+    let (to_position_km, to_velocity_km_s) = circular(6878.14, 1.7001, 0.2269);
+    ReconfigLeoArcProblem {
+        from_position_km,
+        from_velocity_km_s,
+        to_position_km,
+        to_velocity_km_s,
+        duration_s: 86_400.0,
+        impulses: 3,
+    }
+}
+
 struct A;
 impl Table for A {
     table_ids!(pseudospectral::SettingId, pseudospectral::Settings);
@@ -289,6 +318,30 @@ impl Table for Geo {
         let mut out = ReconfigGeoSolution::default();
         let code = unsafe {
             reconfig_geo_tour_solve(ws.as_mut_ptr().cast(), &geo_problem(), settings, &mut out)
+        };
+        (code, out.error)
+    }
+}
+
+struct Leo;
+impl Table for Leo {
+    table_ids!(leo_tour::SettingId, leo_tour::Settings);
+    type C = ReconfigLeoArcSettings;
+    const PLANNER: i32 = RECONFIG_PLANNER_LEO_ARC;
+    const ENTRY: &'static str = "reconfig_leo_arc_solve";
+    fn workspace() -> Vec<u64> {
+        let size = reconfig_leo_arc_workspace_size();
+        let mut m = memory(size);
+        assert_eq!(
+            unsafe { reconfig_leo_arc_init(m.as_mut_ptr().cast(), size) },
+            0
+        );
+        m
+    }
+    fn solve(ws: &mut [u64], settings: &ReconfigLeoArcSettings) -> (i32, ReconfigError) {
+        let mut out = ReconfigLeoArcSolution::default();
+        let code = unsafe {
+            reconfig_leo_arc_solve(ws.as_mut_ptr().cast(), &leo_problem(), settings, &mut out)
         };
         (code, out.error)
     }
@@ -429,6 +482,7 @@ fn every_setting_of_every_planner_is_refused_by_name_value_and_limit() {
     assert_eq!(walk::<B>(), vec!["search_seed"]);
     assert_eq!(walk::<BForm>(), vec!["search_seed"]);
     assert_eq!(walk::<Geo>(), Vec::<&str>::new());
+    assert_eq!(walk::<Leo>(), Vec::<&str>::new());
 }
 
 #[test]
@@ -529,12 +583,14 @@ fn the_c_structs_and_the_fixture_keys_cover_every_setting() {
     mirror_covers::<A>();
     mirror_covers::<B>();
     mirror_covers::<Geo>();
+    mirror_covers::<Leo>();
     assert_eq!(
         fixture_keys::<pseudospectral::Settings>(),
         table_names::<A>()
     );
     assert_eq!(fixture_keys::<impulsive::Settings>(), table_names::<B>());
     assert_eq!(fixture_keys::<geo_tour::Settings>(), table_names::<Geo>());
+    assert_eq!(fixture_keys::<leo_tour::Settings>(), table_names::<Leo>());
 }
 
 fn names_match<T: Table>() {
@@ -562,11 +618,13 @@ fn setting_names_come_from_the_tables() {
     names_match::<A>();
     names_match::<B>();
     names_match::<Geo>();
+    names_match::<Leo>();
     // Problem quantities: 128 + their code, under their own planner only.
-    let (p, b, g) = (
+    let (p, b, g, l) = (
         RECONFIG_PLANNER_PSEUDOSPECTRAL,
         RECONFIG_PLANNER_IMPULSIVE,
         RECONFIG_PLANNER_GEO_TOUR,
+        RECONFIG_PLANNER_LEO_ARC,
     );
     assert_eq!(setting_name(p, 128).as_deref(), Some("spacecraft"));
     assert_eq!(setting_name(p, 129).as_deref(), Some("nodes"));
@@ -577,8 +635,10 @@ fn setting_names_come_from_the_tables() {
     assert_eq!(setting_name(g, 128 + 11).as_deref(), Some("targets"));
     assert_eq!(setting_name(p, 128 + 4), None);
     assert_eq!(setting_name(b, 128), None);
-    // The LEO tour is not in the C interface: its planner codes name nothing.
-    assert_eq!(setting_name(3, 0), None);
+    assert_eq!(setting_name(l, 128 + 12).as_deref(), Some("impulses"));
+    assert_eq!(setting_name(g, 128 + 12), None);
+    assert_eq!(setting_name(l, 0).as_deref(), Some("mu_km3_s2"));
+    // The LEO sequencing is not in the C interface: its planner code names nothing.
     assert_eq!(setting_name(4, 0), None);
     assert_eq!(setting_name(-1, 0), None);
 }

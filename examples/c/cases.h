@@ -28,4 +28,10 @@ typedef struct {
     ReconfigGeoSettings settings; /* the fixture's own settings */
 } GCase;
 
+typedef struct {
+    const char *name;
+    ReconfigLeoArcProblem problem;
+    ReconfigLeoArcSettings settings; /* the request's own settings */
+} LCase;
+
 #endif

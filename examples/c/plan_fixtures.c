@@ -1,6 +1,7 @@
 /*
  * Plans every planner-A, planner-B (mean elements, and the other input forms through
- * reconfig_impulsive_solve_form) and GEO-tour fixture through the C interface and prints,
+ * reconfig_impulsive_solve_form), GEO-tour and LEO-arc fixture through the C interface and
+ * prints,
  * per fixture, the status, the cost (planner A: J) or total delta-v (planner B), their raw bits,
  * and a checksum over the bits of the whole returned trajectory or plan.
  *
@@ -16,7 +17,8 @@
  *
  * A request outside the built-in limits (the flight service's) is refused, not solved: the
  * `+fixed-point` runs ask for nonlinear_correction = 0, and print the refusal with the name
- * reconfig_setting_name gives its error.index.
+ * reconfig_setting_name gives its error.index. The first LEO arc is also asked with
+ * min_gap_s = -1 (outside its range [0, duration / 8]): refused, named the same way.
  */
 #include <inttypes.h>
 #include <stdio.h>
@@ -37,6 +39,9 @@ static ReconfigBFormSolution f_solution;
 #define GEO_WORKSPACE_BYTES (64u * 1024u)
 static uint64_t geo_workspace[GEO_WORKSPACE_BYTES / 8];
 static ReconfigGeoSolution g_solution;
+#define LEO_WORKSPACE_BYTES (32u * 1024u)
+static uint64_t leo_workspace[LEO_WORKSPACE_BYTES / 8];
+static ReconfigLeoArcSolution l_solution;
 
 static uint64_t bits(double x) {
     uint64_t b;
@@ -94,6 +99,19 @@ static uint64_t geo_checksum(const ReconfigGeoSolution *g) {
         }
     }
     return mix(h, g->mission_time_s);
+}
+
+/* Checksum over a LEO arc's burns (epoch, RTN and inertial components), its miss and lowest
+ * altitude (0 when absent); the test computes the same over the Rust solution. */
+static uint64_t leo_checksum(const ReconfigLeoArcSolution *l) {
+    uint64_t h = UINT64_C(0xcbf29ce484222325);
+    for (int b = 0; b < l->impulses; b++) {
+        h = mix(h, l->burns[b].epoch_s);
+        for (int k = 0; k < 3; k++) h = mix(h, l->burns[b].dv_rtn_mps[k]);
+        for (int k = 0; k < 3; k++) h = mix(h, l->burns[b].dv_km_s[k]);
+    }
+    h = mix(h, l->miss_m);
+    return mix(h, l->lowest_altitude_km);
 }
 
 static int plan_a(void) {
@@ -212,20 +230,52 @@ static int plan_g(void) {
     return 0;
 }
 
+static void print_l(const char *name, int32_t status) {
+    if (status < 0) {
+        print_refusal('L', name, RECONFIG_PLANNER_LEO_ARC, status, &l_solution.error);
+        return;
+    }
+    printf("L %s status=%" PRId32 " usable=%u impulses=%u dv_mps=%.9f dv_bits=%016" PRIx64
+           " work_units=%" PRIu64 " checksum=%016" PRIx64 "\n",
+           name, status, (unsigned)l_solution.usable, (unsigned)l_solution.impulses,
+           l_solution.total_dv_mps, bits(l_solution.total_dv_mps), l_solution.work_units,
+           leo_checksum(&l_solution));
+}
+
+static int plan_l(void) {
+    size_t n = sizeof L_CASES / sizeof L_CASES[0];
+    for (size_t c = 0; c < n; c++) {
+        int32_t status = reconfig_leo_arc_solve(leo_workspace, &L_CASES[c].problem,
+                                                &L_CASES[c].settings, &l_solution);
+        print_l(L_CASES[c].name, status);
+    }
+    /* A setting outside its range: refused before planning, naming it. */
+    ReconfigLeoArcSettings bad;
+    if (reconfig_leo_arc_default_settings(&bad) != 0) return 1;
+    bad.min_gap_s = -1.0;
+    char name[128];
+    snprintf(name, sizeof name, "%s+bad-min-gap", L_CASES[0].name);
+    print_l(name, reconfig_leo_arc_solve(leo_workspace, &L_CASES[0].problem, &bad, &l_solution));
+    return 0;
+}
+
 int main(void) {
     if (reconfig_pseudospectral_workspace_size() > sizeof a_workspace ||
         reconfig_impulsive_workspace_size() > sizeof b_workspace ||
         reconfig_geo_tour_workspace_size() > sizeof geo_workspace ||
+        reconfig_leo_arc_workspace_size() > sizeof leo_workspace ||
         reconfig_pseudospectral_workspace_align() > 8 || reconfig_impulsive_workspace_align() > 8 ||
-        reconfig_geo_tour_workspace_align() > 8) {
-        fprintf(stderr, "workspace buffers too small: A needs %zu, B %zu, GEO %zu bytes\n",
+        reconfig_geo_tour_workspace_align() > 8 || reconfig_leo_arc_workspace_align() > 8) {
+        fprintf(stderr, "workspace buffers too small: A needs %zu, B %zu, GEO %zu, LEO %zu bytes\n",
                 reconfig_pseudospectral_workspace_size(), reconfig_impulsive_workspace_size(),
-                reconfig_geo_tour_workspace_size());
+                reconfig_geo_tour_workspace_size(), reconfig_leo_arc_workspace_size());
         return 2;
     }
     if (reconfig_pseudospectral_init(a_workspace, sizeof a_workspace) != 0) return 3;
     if (reconfig_impulsive_init(b_workspace, sizeof b_workspace) != 0) return 3;
     if (reconfig_geo_tour_init(geo_workspace, sizeof geo_workspace) != 0) return 3;
-    if (plan_a() != 0 || plan_b() != 0 || plan_f() != 0 || plan_g() != 0) return 4;
+    if (reconfig_leo_arc_init(leo_workspace, sizeof leo_workspace) != 0) return 3;
+    if (plan_a() != 0 || plan_b() != 0 || plan_f() != 0 || plan_g() != 0 || plan_l() != 0)
+        return 4;
     return 0;
 }

@@ -8,7 +8,10 @@
 //! `Settings::fixed_point_only()` (`+fixed-point` runs), and planner B's other input forms
 //! (ROE, osculating states, the deputy's orbits) through `reconfig_impulsive_solve_form`, whose
 //! end state in the request's form is compared too, and the GEO tour's fixtures with their own
-//! settings through `reconfig_geo_tour_solve`. The Rust side answers each through the one
+//! settings through `reconfig_geo_tour_solve`, and the LEO tour's arcs (the paper's single arc and
+//! the arcs of a sequencing fixture's on-board part) with their requests' settings through
+//! `reconfig_leo_arc_solve`, plus the first arc once more with `min_gap_s = -1`, refused before
+//! planning naming the setting, its value and the end of its range. The Rust side answers each through the one
 //! request path, `wire::answer` with the built-in limits, as the C interface does: the
 //! `+fixed-point` runs ask for `nonlinear_correction = 0`, which the limits refuse, and both
 //! sides print the refusal (code, field, the setting's code and name, the bits of the value and
@@ -22,7 +25,7 @@ mod image_limits;
 
 use reconfig_core::limits::{LimitViolation, Limits};
 use reconfig_core::wire::Request;
-use reconfig_core::{geo_tour, impulsive, pseudospectral, wire};
+use reconfig_core::{geo_tour, impulsive, leo_tour, pseudospectral, wire};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -288,6 +291,57 @@ fn g_case(name: &str, p: &geo_tour::Problem, st: &geo_tour::Settings) -> String 
     )
 }
 
+/// A `LCase` initializer: the arc's states split into positions and velocities, its settings
+/// field by field (every field of `ReconfigLeoArcSettings` named).
+fn l_case(name: &str, p: &leo_tour::ArcProblem, st: &leo_tour::Settings) -> String {
+    let model = match st.search_model {
+        leo_tour::flight::Model::Planning => "RECONFIG_LEO_MODEL_PLANNING",
+        leo_tour::flight::Model::MeanElements => "RECONFIG_LEO_MODEL_MEAN_ELEMENTS",
+    };
+    let [fp @ .., _, _, _] = p.from;
+    let [_, _, _, fv @ ..] = p.from;
+    let [tp @ .., _, _, _] = p.to;
+    let [_, _, _, tv @ ..] = p.to;
+    format!(
+        "    {{\"{name}\", {{.from_position_km = {}, .from_velocity_km_s = {}, \
+         .to_position_km = {}, .to_velocity_km_s = {}, .duration_s = {}, .impulses = {}}}, \
+         {{.mu_km3_s2 = {}, .re_km = {}, .j2 = {}, .step_s = {}, .lambert_tol = {}, \
+         .arrival_tol_km = {}, .search_step_s = {}, .search_step_km_s = {}, \
+         .search_min_step_s = {}, .min_gap_s = {}, .min_transfer_altitude_km = {}, \
+         .work_budget = {}ULL, .max_steps = {}u, .search_max_evals = {}u, \
+         .polish_max_evals = {}u, .lambert_max_iter = {}, .max_revolutions = {}, \
+         .shoot_max_iter = {}, .grid_points = {}, .candidates = {}, .hop_rounds = {}, \
+         .search_model = {model}}}}},\n",
+        doubles(&fp),
+        doubles(&fv),
+        doubles(&tp),
+        doubles(&tv),
+        hexf(p.duration_s),
+        p.impulses,
+        hexf(st.mu_km3_s2),
+        hexf(st.re_km),
+        hexf(st.j2),
+        hexf(st.step_s),
+        hexf(st.lambert_tol),
+        hexf(st.arrival_tol_km),
+        hexf(st.search_step_s),
+        hexf(st.search_step_km_s),
+        hexf(st.search_min_step_s),
+        hexf(st.min_gap_s),
+        hexf(st.min_transfer_altitude_km),
+        st.work_budget,
+        st.max_steps,
+        st.search_max_evals,
+        st.polish_max_evals,
+        st.lambert_max_iter,
+        st.max_revolutions,
+        st.shoot_max_iter,
+        st.grid_points,
+        st.candidates,
+        st.hop_rounds,
+    )
+}
+
 const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
 const FNV_PRIME: u64 = 0x0000_0100_0000_01b3;
 
@@ -483,6 +537,58 @@ fn g_expected(name: &str, p: &geo_tour::Problem, settings: &geo_tour::Settings) 
     })
 }
 
+/// The line the C example must print for a LEO arc, from the Rust API: the status, the burns'
+/// count, the total delta-v and its bits, the work units and a checksum over every burn's epoch
+/// and components (RTN m/s, inertial km/s), the miss and the lowest altitude (0 when absent, as
+/// C writes them). A refusal by the arc's own validation prints its code, field, index, the
+/// setting's name, the value's and the limit's bits, as C's `print_refusal`.
+fn l_expected(name: &str, p: &leo_tour::ArcProblem, settings: &leo_tour::Settings) -> String {
+    let request = wire::Request::LeoArc {
+        problem: *p,
+        settings: *settings,
+    };
+    answer_with(&request, |outcome| {
+        let s = match outcome {
+            wire::OutcomeRef::LeoArc(s) => s,
+            wire::OutcomeRef::LimitExceeded(v) => return refusal_line('L', name, &v),
+            wire::OutcomeRef::LeoArcRejected(leo_tour::PlanError::InvalidSetting(e)) => {
+                // The C refusal of a setting out of range: the end of the range it broke.
+                let r = e.range;
+                let limit = if e.value < r.min { r.min } else { r.max };
+                return format!(
+                    "L {name} status={} field={} index={} setting={} value_bits={:016x} \
+                     limit_bits={:016x}",
+                    reconfig_capi::status::RECONFIG_ERR_SETTING_OUT_OF_RANGE,
+                    reconfig_capi::status::RECONFIG_FIELD_SETTINGS,
+                    e.setting as u8,
+                    e.setting.name(),
+                    e.value.to_bits(),
+                    limit.to_bits()
+                );
+            }
+            other => panic!("{name}: every LEO arc fixture is planned ({other:?})"),
+        };
+        let mut h = FNV_OFFSET;
+        for b in s.burns.iter().take(usize::from(s.impulses)) {
+            h = mix(h, b.epoch_s);
+            h = b.rtn_mps.iter().fold(h, |h, v| mix(h, *v));
+            h = b.dv_km_s.iter().fold(h, |h, v| mix(h, *v));
+        }
+        h = mix(h, s.miss_m.unwrap_or(0.0));
+        h = mix(h, s.lowest_altitude_km.unwrap_or(0.0));
+        let status = reconfig_capi::convert_leo::status_to_c(s.info.status);
+        format!(
+            "L {name} status={status} usable={} impulses={} dv_mps={:.9} dv_bits={:016x} \
+             work_units={} checksum={h:016x}",
+            u8::from(s.info.status.is_usable()),
+            s.impulses,
+            s.total_dv_mps,
+            s.total_dv_mps.to_bits(),
+            s.info.work_units,
+        )
+    })
+}
+
 fn run(cmd: &mut Command, what: &str) -> String {
     let out = cmd
         .output()
@@ -513,6 +619,8 @@ fn prepared() -> &'static Prepared {
         let mut b_cases = String::new();
         let mut f_cases = String::new();
         let mut g_cases = String::new();
+        let mut l_cases = String::new();
+        let mut l_first = None;
         let mut expected = Vec::new();
         for f in &fixtures {
             let request: Request = postcard::from_bytes(&f.request).unwrap();
@@ -545,17 +653,38 @@ fn prepared() -> &'static Prepared {
                     g_cases.push_str(&g_case(&f.name, p, st));
                     expected.push(g_expected(&f.name, p, st));
                 }
-                // The LEO tour has no C interface yet.
-                Request::LeoArc { .. } | Request::LeoSequence { .. } => {}
+                Request::LeoArc {
+                    problem: p,
+                    settings: st,
+                } => {
+                    l_cases.push_str(&l_case(&f.name, p, st));
+                    expected.push(l_expected(&f.name, p, st));
+                    l_first.get_or_insert((f.name.clone(), *p));
+                }
+                // The LEO tour's order has no C interface.
+                Request::LeoSequence { .. } => {}
             }
         }
-        // Planner A lines first, then planner B, its other forms and the GEO tour, as the
-        // programs print them (the sort is stable: fixture order within each).
+        // The first arc once more with `min_gap_s = -1` (the C programs' last line): refused
+        // by the arc's own validation, named.
+        let (first_name, first_arc) = l_first.expect("the LEO arc fixtures are among the fixtures");
+        let bad = leo_tour::Settings {
+            min_gap_s: -1.0,
+            ..leo_tour::Settings::default()
+        };
+        expected.push(l_expected(
+            &format!("{first_name}+bad-min-gap"),
+            &first_arc,
+            &bad,
+        ));
+        // Planner A lines first, then planner B, its other forms, the GEO tour and the LEO arcs,
+        // as the programs print them (the sort is stable: fixture order within each).
         expected.sort_by_key(|line| match line.as_bytes().first() {
             Some(b'A') => 0,
             Some(b'B') => 1,
             Some(b'F') => 2,
-            _ => 3,
+            Some(b'G') => 3,
+            _ => 4,
         });
         assert!(
             expected.iter().any(|l| l.starts_with("F ")),
@@ -571,6 +700,25 @@ fn prepared() -> &'static Prepared {
                 .any(|l| l.contains("huang2012-three-sats-n10 "))
                 && expected.iter().any(|l| l.starts_with("B wang2018")),
             "the paper cases are among the fixtures"
+        );
+        // The paper's single arc is planned through C, usable (301, or 303: the default work
+        // budget stops the search with a verified plan); the bad-gap run is refused naming
+        // `min_gap_s`, its value -1 and the end 0 of its range.
+        assert!(
+            expected.iter().any(|l| {
+                l.starts_with("L leo-tour-example1-single-arc status=30")
+                    && l.contains(" usable=1 impulses=3 ")
+            }),
+            "the paper's single arc is among the fixtures, solved: {expected:#?}"
+        );
+        assert!(
+            expected.iter().any(|l| l.ends_with(&format!(
+                "+bad-min-gap status=-6 field=6 index=17 setting=min_gap_s value_bits={:016x} \
+                 limit_bits={:016x}",
+                (-1.0_f64).to_bits(),
+                0.0_f64.to_bits()
+            ))),
+            "the bad-gap run is refused by name, value and limit: {expected:#?}"
         );
         // The built-in limits require the nonlinear correction: the `+fixed-point` runs are
         // refused (in C as by the flight service), naming the setting, its value and limit.
@@ -595,7 +743,8 @@ fn prepared() -> &'static Prepared {
                  static const ACase A_CASES[] = {{\n{a_cases}}};\n\
                  static const BCase B_CASES[] = {{\n{b_cases}}};\n\
                  static const FCase F_CASES[] = {{\n{f_cases}}};\n\
-                 static const GCase G_CASES[] = {{\n{g_cases}}};\n"
+                 static const GCase G_CASES[] = {{\n{g_cases}}};\n\
+                 static const LCase L_CASES[] = {{\n{l_cases}}};\n"
             ),
         )
         .unwrap();
@@ -775,10 +924,11 @@ fn m7_c_image_is_bit_identical_to_the_rust_api_on_every_fixture() {
         qemu_run.status
     );
     let mut got = Vec::new();
-    for line in stdout
-        .lines()
-        .filter(|l| ["A ", "B ", "F ", "G "].iter().any(|p| l.starts_with(p)))
-    {
+    for line in stdout.lines().filter(|l| {
+        ["A ", "B ", "F ", "G ", "L "]
+            .iter()
+            .any(|p| l.starts_with(p))
+    }) {
         let (fields, stack) = line
             .rsplit_once(" stack_bytes=")
             .unwrap_or_else(|| panic!("no stack figure in {line:?}"));

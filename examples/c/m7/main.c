@@ -1,6 +1,7 @@
 /*
  * The C interface on the emulated Cortex-M7 (QEMU mps2-an500): a freestanding C program (no C
- * library) that plans every fixture of examples/c/fixture_data.h through libreconfig_capi.a
+ * library) that plans every fixture of examples/c/fixture_data.h (planners A and B, the GEO
+ * tour, the LEO arcs) through libreconfig_capi.a
  * built for thumbv7em-none-eabihf, and prints per fixture the status, the bits of J / total
  * delta-v, the work units, the checksum of examples/c/plan_fixtures.c, and the stack the solve
  * call used (a request the built-in limits refuse prints the refusal, named, as
@@ -100,6 +101,18 @@ static uint64_t geo_checksum(const ReconfigGeoSolution *g) {
     return mix(h, g->mission_time_s);
 }
 
+/* Checksum over a LEO arc's burns, miss and lowest altitude, as examples/c/plan_fixtures.c. */
+static uint64_t leo_checksum(const ReconfigLeoArcSolution *l) {
+    uint64_t h = UINT64_C(0xcbf29ce484222325);
+    for (int b = 0; b < l->impulses; b++) {
+        h = mix(h, l->burns[b].epoch_s);
+        for (int k = 0; k < 3; k++) h = mix(h, l->burns[b].dv_rtn_mps[k]);
+        for (int k = 0; k < 3; k++) h = mix(h, l->burns[b].dv_km_s[k]);
+    }
+    h = mix(h, l->miss_m);
+    return mix(h, l->lowest_altitude_km);
+}
+
 /* ---- stack high-water of one call ---- */
 extern uint32_t _stack_bottom;
 #define PAINT 0xCCCCCCCCu
@@ -142,6 +155,8 @@ static ReconfigBSolution b_solution;
 static ReconfigBFormSolution f_solution;
 static uint64_t geo_workspace[65536 / 8];
 static ReconfigGeoSolution g_solution;
+static uint64_t leo_workspace[32768 / 8];
+static ReconfigLeoArcSolution l_solution;
 
 static int plan_a(void) {
     ReconfigASettings settings;
@@ -279,10 +294,44 @@ static int plan_g(void) {
     return 1;
 }
 
+/* One LEO arc: `suffix` is appended to the case's name (the refusal run's). */
+static void solve_l(size_t c, const ReconfigLeoArcSettings *settings, const char *suffix) {
+    paint_stack();
+    uintptr_t sp = current_sp();
+    int32_t status = reconfig_leo_arc_solve(leo_workspace, &L_CASES[c].problem, settings,
+                                            &l_solution);
+    uintptr_t used = sp - (uintptr_t)lowest_touched();
+    at = 0;
+    add("L "); add(L_CASES[c].name); add(suffix);
+    if (status < 0) {
+        add_refusal(RECONFIG_PLANNER_LEO_ARC, status, &l_solution.error);
+    } else {
+        add(" status="); add_i(status);
+        add(" dv_bits="); add_hex(bits(l_solution.total_dv_mps));
+        add(" work_units="); add_u(l_solution.work_units);
+        add(" checksum="); add_hex(leo_checksum(&l_solution));
+    }
+    add(" stack_bytes="); add_u(used);
+    add("\n");
+    put(line);
+}
+
+static int plan_l(void) {
+    for (size_t c = 0; c < sizeof L_CASES / sizeof L_CASES[0]; c++)
+        solve_l(c, &L_CASES[c].settings, "");
+    /* A setting outside its range, as examples/c/plan_fixtures.c. */
+    ReconfigLeoArcSettings bad;
+    if (reconfig_leo_arc_default_settings(&bad) != 0) return 0;
+    bad.min_gap_s = -1.0;
+    solve_l(0, &bad, "+bad-min-gap");
+    return 1;
+}
+
 int main(void) {
     if (reconfig_pseudospectral_workspace_size() > sizeof a_workspace ||
         reconfig_impulsive_workspace_size() > sizeof b_workspace ||
-        reconfig_geo_tour_workspace_size() > sizeof geo_workspace) {
+        reconfig_geo_tour_workspace_size() > sizeof geo_workspace ||
+        reconfig_leo_arc_workspace_size() > sizeof leo_workspace) {
         at = 0;
         add("workspace buffers too small: A needs ");
         add_u(reconfig_pseudospectral_workspace_size());
@@ -290,6 +339,8 @@ int main(void) {
         add_u(reconfig_impulsive_workspace_size());
         add(", GEO needs ");
         add_u(reconfig_geo_tour_workspace_size());
+        add(", LEO needs ");
+        add_u(reconfig_leo_arc_workspace_size());
         add("\n");
         put(line);
         return 0;
@@ -297,13 +348,15 @@ int main(void) {
     if (reconfig_pseudospectral_init(a_workspace, sizeof a_workspace) != 0) return 0;
     if (reconfig_impulsive_init(b_workspace, sizeof b_workspace) != 0) return 0;
     if (reconfig_geo_tour_init(geo_workspace, sizeof geo_workspace) != 0) return 0;
+    if (reconfig_leo_arc_init(leo_workspace, sizeof leo_workspace) != 0) return 0;
     at = 0;
     add("workspace_bytes A="); add_u(reconfig_pseudospectral_workspace_size());
     add(" B="); add_u(reconfig_impulsive_workspace_size());
     add(" GEO="); add_u(reconfig_geo_tour_workspace_size());
+    add(" LEO="); add_u(reconfig_leo_arc_workspace_size());
     add("\n");
     put(line);
-    return plan_a() && plan_b() && plan_f() && plan_g();
+    return plan_a() && plan_b() && plan_f() && plan_g() && plan_l();
 }
 
 /* The abort-free proof (docs/c-api.md, "Abort-free"): the library's panic handler calls
