@@ -109,28 +109,18 @@ pub fn status_to_c(s: SolveStatus) -> i32 {
     }
 }
 
-/// `x`, or 0 when it is not finite (no NaN or infinity reaches a C output).
-fn finite_or_zero(x: f64) -> f64 {
-    if x.is_finite() {
-        x
-    } else {
-        0.0
-    }
-}
-
-/// A present, finite value: (1, value); else (0, 0).
+/// A present value: (1, value); absent: (0, 0). Every number of an answer is finite (the core
+/// writes no NaN or infinity; `tests/tests/finite_answers.rs` checks this C view too), so
+/// values are copied as they are: a non-finite one would be a core defect to show, not hide.
 fn present(x: Option<f64>) -> (u8, f64) {
-    match x {
-        Some(v) if v.is_finite() => (1, v),
-        _ => (0, 0.0),
-    }
+    x.map_or((0, 0.0), |v| (1, v))
 }
 
 fn burn_to_c(b: &Burn) -> ReconfigLeoBurn {
     ReconfigLeoBurn {
-        epoch_s: finite_or_zero(b.epoch_s),
-        dv_rtn_mps: b.rtn_mps.map(finite_or_zero),
-        dv_km_s: b.dv_km_s.map(finite_or_zero),
+        epoch_s: b.epoch_s,
+        dv_rtn_mps: b.rtn_mps,
+        dv_km_s: b.dv_km_s,
     }
 }
 
@@ -167,7 +157,7 @@ pub fn solution_to_c(s: &ArcSolution, out: &mut ReconfigLeoArcSolution) {
     };
     *last_leg_revolutions = s.last_leg_revolutions;
     *evaluations = s.info.evaluations;
-    *total_dv_mps = finite_or_zero(s.total_dv_mps);
+    *total_dv_mps = s.total_dv_mps;
     *work_units = s.info.work_units;
     *burns = [ReconfigLeoBurn::default(); RECONFIG_LEO_MAX_IMPULSES];
     for (slot, b) in burns.iter_mut().zip(s.burns.iter()).take(used) {

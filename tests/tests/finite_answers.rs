@@ -18,7 +18,7 @@
 use proptest::prelude::*;
 use proptest::sample::Index;
 use proptest::test_runner::{Config, RngSeed, TestCaseError, TestRunner};
-use reconfig_capi::{convert_a, convert_b, convert_b_form, convert_geo};
+use reconfig_capi::{convert_a, convert_b, convert_b_form, convert_geo, convert_leo};
 use reconfig_core::limits::Limits;
 use reconfig_core::wire::{
     answer, encode_outcome, AllPlanners, Outcome, OutcomeRef, Request, RESPONSE_BODY_MAX_BYTES,
@@ -445,6 +445,11 @@ fn c_view(o: &OutcomeRef<'_>) -> Option<String> {
         OutcomeRef::GeoTour(s) => {
             let mut c = Box::<reconfig_capi::types_geo::ReconfigGeoSolution>::default();
             convert_geo::solution_to_c(s, &mut c);
+            Some(format!("{c:?}"))
+        }
+        OutcomeRef::LeoArc(s) => {
+            let mut c = Box::<reconfig_capi::types_leo::ReconfigLeoArcSolution>::default();
+            convert_leo::solution_to_c(s, &mut c);
             Some(format!("{c:?}"))
         }
         _ => None,
