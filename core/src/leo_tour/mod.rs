@@ -191,13 +191,13 @@ fn context<'a>(
     })
 }
 
-/// The units an estimate of an arc of `duration_s` charges before its meter can refuse a step
-/// (its fixed part; in the planning model also the clients' checkpoints and the arrival, flown
-/// first): an estimate given at least this many units spends at most its budget. The
+/// The units an estimate of an arc of `duration_s` searched in `model` charges before its meter
+/// can refuse a step (its fixed part; in the planning model also the clients' checkpoints and
+/// the arrival, flown first): an estimate given at least this many units spends at most its budget. The
 /// sequencing starts no estimate with less left ([`tour_order`]).
-pub(crate) fn estimate_floor_units(duration_s: f64, settings: &Settings) -> u64 {
+pub(crate) fn estimate_floor_units(duration_s: f64, settings: &Settings, model: Model) -> u64 {
     let fixed = work_units::SOLVE + 2 * work_units::MEAN_ORBIT;
-    match settings.search_model {
+    match model {
         Model::MeanElements => fixed + work_units::MEAN_STATE,
         Model::Planning => {
             // The arrival's flight, and each track's checkpoints (each segment at most one

@@ -173,10 +173,6 @@ pub fn solve_sequence(
     } else {
         (arc_settings.search_model, estimate_arc_mps)
     };
-    let floor_settings = Settings {
-        search_model: model,
-        ..*arc_settings
-    };
     let flight = Flight {
         g,
         model,
@@ -209,7 +205,7 @@ pub fn solve_sequence(
             // The estimate spends at most its own budget and what is left of the sequencing's;
             // with less left than it charges before it can stop, it is not started.
             let left = meter.remaining();
-            if left < super::estimate_floor_units(dt, &floor_settings) {
+            if left < super::estimate_floor_units(dt, arc_settings, model) {
                 let _ = meter.spend(u64::MAX);
                 return None;
             }
