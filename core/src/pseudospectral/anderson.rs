@@ -87,10 +87,12 @@ impl Anderson {
                 *slot = gv - xv;
             }
         }
-        if memory == 0 {
+        // Zero memory is plain iteration; otherwise the ring's length, non-zero by type (the
+        // slot's wrap below cannot divide by zero).
+        let Some(ring) = core::num::NonZeroUsize::new(memory) else {
             *point = *g;
             return;
-        }
+        };
         if self.has_last {
             let slot = self.next;
             if let (Some(df), Some(dg)) = (self.delta_f.get_mut(slot), self.delta_g.get_mut(slot)) {
@@ -109,7 +111,7 @@ impl Anderson {
                     }
                 }
             }
-            self.next = slot.saturating_add(1).checked_rem(memory).unwrap_or(0);
+            self.next = slot.saturating_add(1) % ring;
             self.count = self.count.saturating_add(1).min(memory);
         }
         self.last_f = f;
