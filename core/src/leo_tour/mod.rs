@@ -191,10 +191,11 @@ fn context<'a>(
     })
 }
 
-/// The units an estimate of an arc of `duration_s` searched in `model` charges before its meter
-/// can refuse a step (its fixed part; in the planning model also the clients' checkpoints and
-/// the arrival, flown first): an estimate given at least this many units spends at most its budget. The
-/// sequencing starts no estimate with less left ([`tour_order`]).
+/// The units an estimate of an arc of `duration_s` searched in `model` charges before its
+/// meter can refuse a step (its fixed part; in the planning model also the clients'
+/// checkpoints and the arrival, flown first): an estimate given at least this many units
+/// spends at most its budget. The sequencing starts no estimate with less left
+/// ([`tour_order`]).
 pub(crate) fn estimate_floor_units(duration_s: f64, settings: &Settings, model: Model) -> u64 {
     let fixed = work_units::SOLVE + 2 * work_units::MEAN_ORBIT;
     match model {

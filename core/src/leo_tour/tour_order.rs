@@ -3,7 +3,8 @@
 //! search's estimate ([`super::estimate_arc_mps`]), the clients flown to each arc start in the
 //! estimates' search model (`search_model`: the closed-form first-order J2 theory by
 //! default, whatever the span; RK4 steps in the planning model), all within the sequencing's
-//! work budget.
+//! work budget. With `full_plans` (a ground design) each arc's cost is its full plan
+//! ([`super::planned_arc_mps`]), the clients flown in the planning model.
 //!
 //! The enumeration meets the same arc (same clients, start and duration) under different
 //! prefixes, and the same client state at an arc start many times: both are kept in
@@ -117,7 +118,8 @@ impl Default for SequenceWorkspace {
 /// The cheapest visiting order of the clients (`problem.clients`: inertial states at the tour
 /// epoch, km and km/s, at most [`MAX_CLIENTS`]), with `problem.impulses` per arc, each arc's
 /// cost the estimate of the per-arc search with `arc_settings` (which also give the planning
-/// model the clients are flown in), written into `out`. An arc whose estimate has no Δv (no
+/// model the clients are flown in), or with `settings.full_plans` its full plan, written into
+/// `out`. An arc whose estimate has no Δv (no
 /// transfer, the budget spent, a refusal of that arc) is not taken.
 ///
 /// Worst case: see the module docs.
