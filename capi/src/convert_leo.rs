@@ -70,13 +70,7 @@ pub fn error_to_c(e: &PlanError) -> ReconfigError {
             min,
             max,
         } => {
-            let (detail, limit) = if !value.is_finite() {
-                (2, max)
-            } else if value < min {
-                (0, min)
-            } else {
-                (1, max)
-            };
+            let (detail, limit) = range_break(value, min, max, false);
             ReconfigError::new(
                 RECONFIG_LEO_ERR_OUT_OF_RANGE,
                 field_to_c(field),

@@ -312,18 +312,25 @@ impl ReconfigError {
     }
 }
 
+/// Which end of the range `[min, max]` (`(min, max]` with `min_open`) a refused `value` broke
+/// and that end, as a refusal's `(detail, limit)`: 0 below (`min`), 1 above (`max`), 2 not
+/// finite (`max`). Every planner's out-of-range refusal and every setting's say it this way.
+pub fn range_break(value: f64, min: f64, max: f64, min_open: bool) -> (i32, f64) {
+    if !value.is_finite() {
+        (2, max)
+    } else if value < min || (min_open && value <= min) {
+        (0, min)
+    } else {
+        (1, max)
+    }
+}
+
 /// The C refusal of a setting outside its range.
 pub fn setting_error_to_c<S: reconfig_core::contract::SettingId>(
     e: &reconfig_core::contract::SettingError<S>,
 ) -> ReconfigError {
     let r = e.range;
-    let (detail, limit) = if !e.value.is_finite() {
-        (2, r.max)
-    } else if e.value < r.min || (r.min_open && e.value <= r.min) {
-        (0, r.min)
-    } else {
-        (1, r.max)
-    };
+    let (detail, limit) = range_break(e.value, r.min, r.max, r.min_open);
     ReconfigError::new(
         RECONFIG_ERR_SETTING_OUT_OF_RANGE,
         RECONFIG_FIELD_SETTINGS,
