@@ -26,6 +26,7 @@
 
 #include "reconfig.h"
 #include "cases.h"
+#include "checksum.h"
 #include "fixture_data.h"
 
 /* Caller-owned workspaces. 8-byte alignment is checked against reconfig_*_workspace_align(). */
@@ -43,17 +44,6 @@ static ReconfigGeoSolution g_solution;
 static uint64_t leo_workspace[LEO_WORKSPACE_BYTES / 8];
 static ReconfigLeoArcSolution l_solution;
 
-static uint64_t bits(double x) {
-    uint64_t b;
-    memcpy(&b, &x, sizeof b);
-    return b;
-}
-
-/* FNV-style mix of 64-bit words; the test computes the same over the Rust solution. */
-static uint64_t mix(uint64_t h, double x) {
-    return (h ^ bits(x)) * UINT64_C(0x100000001b3);
-}
-
 /* A refusal: its code, field and index, the setting's name when the refusal names a setting
  * (reconfig_setting_name), and the bits of the value and the limit. */
 static void print_refusal(char kind, const char *name, int32_t planner, int32_t status,
@@ -65,53 +55,6 @@ static void print_refusal(char kind, const char *name, int32_t planner, int32_t 
            PRIx64 " limit_bits=%016" PRIx64 "\n",
            kind, name, status, e->field, e->index, setting ? setting : "-", bits(e->value),
            bits(e->limit));
-}
-
-/* Checksum over the numbers of the end state's member its form names (the test computes the
- * same over the Rust API's EndState). */
-static uint64_t end_checksum(uint64_t h, const ReconfigBEndState *e) {
-    const double *v = 0;
-    int n = 6;
-    switch (e->form) {
-    case RECONFIG_B_END_ELEMENTS: v = &e->elements.dsma_km; break;
-    case RECONFIG_B_END_ROE: v = &e->roe.da_m; break;
-    case RECONFIG_B_END_DEPUTY_CLASSICAL: v = &e->classical.sma_km; break;
-    case RECONFIG_B_END_DEPUTY_EQUINOCTIAL: v = &e->equinoctial.sma_km; break;
-    case RECONFIG_B_END_DEPUTY_STATE: v = &e->state.pos_km[0]; break;
-    default: n = 0; break;
-    }
-    for (int k = 0; k < n; k++) h = mix(h, v[k]);
-    return h;
-}
-
-/* Checksum over a GEO tour's legs (start, duration, delta-v, every burn's offset and
- * components) and its mission time; the test computes the same over the Rust solution. */
-static uint64_t geo_checksum(const ReconfigGeoSolution *g) {
-    uint64_t h = UINT64_C(0xcbf29ce484222325);
-    for (int l = 0; l < g->leg_count; l++) {
-        const ReconfigGeoLeg *leg = &g->legs[l];
-        h = mix(h, leg->start_s);
-        h = mix(h, leg->duration_s);
-        h = mix(h, leg->dv_mps);
-        for (int b = 0; b < leg->burn_count; b++) {
-            h = mix(h, leg->burns[b].offset_s);
-            for (int k = 0; k < 3; k++) h = mix(h, leg->burns[b].dv_rtn_mps[k]);
-        }
-    }
-    return mix(h, g->mission_time_s);
-}
-
-/* Checksum over a LEO arc's burns (epoch, RTN and inertial components), its miss and lowest
- * altitude (0 when absent); the test computes the same over the Rust solution. */
-static uint64_t leo_checksum(const ReconfigLeoArcSolution *l) {
-    uint64_t h = UINT64_C(0xcbf29ce484222325);
-    for (int b = 0; b < l->impulses; b++) {
-        h = mix(h, l->burns[b].epoch_s);
-        for (int k = 0; k < 3; k++) h = mix(h, l->burns[b].dv_rtn_mps[k]);
-        for (int k = 0; k < 3; k++) h = mix(h, l->burns[b].dv_km_s[k]);
-    }
-    h = mix(h, l->miss_m);
-    return mix(h, l->lowest_altitude_km);
 }
 
 static int plan_a(void) {
