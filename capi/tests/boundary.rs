@@ -8,6 +8,8 @@
     clippy::undocumented_unsafe_blocks
 )]
 
+mod common;
+use common::circular;
 use core::ffi::c_void;
 use reconfig_capi::impulsive::*;
 use reconfig_capi::pseudospectral::*;
@@ -580,18 +582,6 @@ fn an_infeasible_answer_names_the_pair_that_cannot_be_separated_through_c() {
     assert!(out.unmet[usize::from(out.unmet_count)..]
         .iter()
         .all(|u| *u == ReconfigAUnmet::default()));
-}
-
-/// A circular orbit of radius `r_km`, inclination `inc_rad`, at argument of latitude `u_rad`
-/// on the node at RAAN 0: (position km, velocity km/s).
-fn circular(r_km: f64, inc_rad: f64, u_rad: f64) -> ([f64; 3], [f64; 3]) {
-    let v = (reconfig_core::astro::EARTH_MU_KM3_S2 / r_km).sqrt();
-    let (su, cu) = u_rad.sin_cos();
-    let (si, ci) = inc_rad.sin_cos();
-    (
-        [r_km * cu, r_km * su * ci, r_km * su * si],
-        [-v * su, v * cu * ci, v * cu * si],
-    )
 }
 
 #[test]

@@ -22,6 +22,8 @@
     clippy::undocumented_unsafe_blocks
 )]
 
+mod common;
+use common::circular;
 use core::ffi::c_void;
 use reconfig_capi::geo_tour::*;
 use reconfig_capi::impulsive::*;
@@ -193,18 +195,6 @@ fn geo_problem() -> ReconfigGeoProblem {
     p.targets_lon_rad[0] = 0.5;
     p.targets_lon_rad[1] = 0.7;
     p
-}
-
-/// A circular orbit of radius `r_km`, inclination `inc_rad`, at argument of latitude `u_rad`
-/// on the node at RAAN 0: (position km, velocity km/s).
-fn circular(r_km: f64, inc_rad: f64, u_rad: f64) -> ([f64; 3], [f64; 3]) {
-    let v = (reconfig_core::astro::EARTH_MU_KM3_S2 / r_km).sqrt();
-    let (su, cu) = u_rad.sin_cos();
-    let (si, ci) = inc_rad.sin_cos();
-    (
-        [r_km * cu, r_km * su * ci, r_km * su * si],
-        [-v * su, v * cu * ci, v * cu * si],
-    )
 }
 
 /// A plannable LEO arc (the paper's radii and inclinations, one day): refusals come before
