@@ -246,27 +246,8 @@ pub(crate) fn evaluate(
         return 0;
     }
     let blocks = tr.blocks();
-    // Envelope corrections of the active moving checks (at most one per pair), and a shift
-    // `sigma` that keeps `P (S + sigma I) P` positive semidefinite for the power method.
     let mut corrections: heapless::Vec<Envelope, MAX_ENVELOPES> = heapless::Vec::new();
-    let mut sigma = 0.0;
-    qp.for_each_multiplier(tr, |id, value| {
-        let RowId::KeepOut { pair, check } = id else {
-            return;
-        };
-        let p = usize::from(pair);
-        let (Some(c), Some(pair)) = (tr.check(p, usize::from(check)), tr.pair(p)) else {
-            return;
-        };
-        if value <= 0.0 {
-            return;
-        }
-        if let Some(envelope) = Envelope::new(tr, y, &pair, c.tau, value) {
-            sigma += envelope.power_shift(&pair);
-            // Past the capacity a correction is left out: that only lowers the estimate.
-            let _ = corrections.push(envelope);
-        }
-    });
+    let mut sigma = envelope_corrections(tr, qp, y, &mut corrections);
     // Factor mode (checked above): the multipliers are the active rows' own.
     let mut lengths = [0.0; MAX_ACTIVE];
     if !check_lengths(tr, qp, y, &mut lengths) {
@@ -289,15 +270,23 @@ pub(crate) fn evaluate(
         return 0;
     }
     let lanczos = lanczos::largest(&op, direction, w, size);
-    if let Some((largest, _)) = lanczos {
-        if 1.0 - largest >= CURVATURE_TOL {
+    if let Some(estimate) = lanczos {
+        if 1.0 - estimate.largest >= CURVATURE_TOL {
             *direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
-            out.min_reduced_eigenvalue = 1.0 - largest;
+            out.min_reduced_eigenvalue = 1.0 - estimate.largest;
             out.second_order_evaluated = true;
             return 0;
         }
+        // Where Lanczos spanned the start's whole Krylov space its smallest Ritz value is the
+        // least eigenvalue any power iterate from that start meets: shifting by it instead of
+        // the envelopes' bound keeps the iteration positive and converging at the spectrum's
+        // own rate (issue 28: an envelope bound of 197 against a top eigenvalue of 3 left the
+        // power method at 4e-4 after its settle test, and the saddle was reported certified).
+        if let Some(smallest) = estimate.smallest_exhausted {
+            sigma = -smallest;
+        }
     }
-    let extra = lanczos.map_or(LANCZOS_STEPS, |(_, steps)| steps);
+    let extra = lanczos.map_or(LANCZOS_STEPS, |estimate| estimate.steps);
     if !start_vector(tr, qp, direction) {
         *direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
         return extra;
@@ -336,9 +325,48 @@ pub(crate) fn evaluate(
     if norm > 0.0 {
         scale(direction, 1.0 / norm, size);
     }
+    // Both methods estimate the largest eigenvalue from below (a Ritz value, a Rayleigh
+    // quotient): the larger is the closer, and the certificate reports that one. The power
+    // method's vector stays the direction the escape and the probe step along.
+    if let Some(estimate) = lanczos {
+        largest = largest.max(estimate.largest);
+    }
     out.min_reduced_eigenvalue = 1.0 - largest;
     out.second_order_evaluated = true;
     extra
+}
+
+/// Envelope corrections of the active keep-out checks with a positive multiplier, into
+/// `corrections` (at most `MAX_ENVELOPES`; past it a correction is left out, which only lowers
+/// the estimate); returns the shift `sigma` that keeps `P (S + sigma I) P` positive
+/// semidefinite for the power method where Lanczos cannot give a tighter one. Filled in place
+/// and inlined: the list is 6.4 KB at capacity and must not be copied on the M7's stack.
+#[inline(always)]
+pub(super) fn envelope_corrections(
+    tr: &Transcription,
+    qp: &QpState,
+    y: &Coefficients,
+    corrections: &mut heapless::Vec<Envelope, MAX_ENVELOPES>,
+) -> f64 {
+    corrections.clear();
+    let mut sigma = 0.0;
+    qp.for_each_multiplier(tr, |id, value| {
+        let RowId::KeepOut { pair, check } = id else {
+            return;
+        };
+        let p = usize::from(pair);
+        let (Some(c), Some(pair)) = (tr.check(p, usize::from(check)), tr.pair(p)) else {
+            return;
+        };
+        if value <= 0.0 {
+            return;
+        }
+        if let Some(envelope) = Envelope::new(tr, y, &pair, c.tau, value) {
+            sigma += envelope.power_shift(&pair);
+            let _ = corrections.push(envelope);
+        }
+    });
+    sigma
 }
 
 /// The fixed start of both eigenvalue methods, projected on the null space: every sign

@@ -319,6 +319,26 @@ pub(super) struct Curvature<'a> {
 }
 
 impl Curvature<'_> {
+    /// The dimension of any Krylov space of `P S P`, at most: `S` has rank at most two per
+    /// active keep-out check (`J^T (I - n n^T) J`) plus one per envelope correction, so a
+    /// Krylov space spans at most that rank plus its start. Past it a Lanczos step meets only
+    /// rounding (`lanczos`).
+    pub(super) fn krylov_dimension(&self) -> usize {
+        let checks = self
+            .qp
+            .active
+            .iter()
+            .take(self.qp.count)
+            .filter(|&&id| keep_out_term(self.tr, id).is_some())
+            // Not `count()`: its sum keeps an overflow check (a panic path) the abort-proof
+            // C library must not link.
+            .fold(0usize, |n, _| n.saturating_add(1));
+        checks
+            .saturating_mul(2)
+            .saturating_add(self.corrections.len())
+            .saturating_add(1)
+    }
+
     /// `out += S v - sum_e w_e (f_e . v) f_e`: every active keep-out check's curvature in the
     /// QP's row order, then the envelope corrections (the order the power method always used).
     pub(super) fn accumulate(&self, v: &Coefficients, out: &mut Coefficients) {

@@ -6,14 +6,19 @@
 //! that rank plus one, and Lanczos is exact (in exact arithmetic) once it has spanned it: about
 //! ten products on the paper's case, where the power method took up to `POWER_ITERATIONS` (120).
 //! After `k` steps its largest Ritz value is at least the Rayleigh quotient of the power method's
-//! `k`-th iterate from the same start (that iterate lies in the same Krylov space), and like it
-//! never exceeds the true largest eigenvalue (up to rounding: without reorthogonalisation the
-//! lost orthogonality only repeats converged Ritz values, it adds none outside the spectrum). So
-//! the certificate's promise is unchanged: the reported eigenvalue is an estimate from above,
-//! at least as close as the power method's after as many steps.
-//!
-//! Deterministic: a fixed start, a fixed step bound (`LANCZOS_STEPS`), a fixed Laguerre bound
-//! (`LAGUERRE_STEPS`).
+//! `k`-th iterate from the same start (that iterate lies in the same Krylov space), and in exact
+//! arithmetic never exceeds the true largest eigenvalue. In floating point that holds while the
+//! Lanczos vectors stay near orthogonal: the run stops at the Krylov dimension
+//! (`Curvature::krylov_dimension`), because a step past it normalises rounding into a vector
+//! that is not orthogonal to the earlier ones, and then a Ritz value can leave the spectrum
+//! (measured, issue 28: 48 steps on a three-spacecraft swap put one 1.25e-6 above a flat
+//! direction's 1.0, a dense eigen-decomposition of `P S P` gives 1.0 to 4e-16; stopped at the
+//! dimension, 10 steps, 1.0 to 2e-15). At the dimension the space is exhausted and the smallest
+//! Ritz value bounds every power iterate from the same start (`Estimate::smallest_exhausted`).
+//! The certificate reports the larger of this and the power method's value (both from below).
+
+//! Deterministic: a fixed start, a fixed step bound (the Krylov dimension, at most
+//! `LANCZOS_STEPS`), a fixed Laguerre bound (`LAGUERRE_STEPS`).
 
 use super::curvature::{project, Curvature};
 use super::kernel::{dot, scale, Coefficients};
@@ -42,33 +47,57 @@ const STEP_REL: f64 = 1e-14;
 /// Sturm sweep; the reach grows 16-fold per try, so 8 tries span 2e9 times the first).
 const START_TRIES: usize = 8;
 
+/// What the Lanczos run found.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Estimate {
+    /// The largest Ritz value: not above the largest eigenvalue of `P S P` (up to rounding).
+    pub largest: f64,
+    /// The smallest Ritz value, from below, when the Krylov space of the start was exhausted:
+    /// then the Ritz values are the eigenvalues of `P S P` on that space, the space every power
+    /// iterate from the same start stays in, so the power method may be shifted by it exactly
+    /// (`certificate`). `None` when the run stopped before exhausting the space.
+    pub smallest_exhausted: Option<f64>,
+    /// Products with `P S P` taken.
+    pub steps: usize,
+}
+
 /// The largest eigenvalue of `P S P` on the null space, from `start` (projected, not
 /// normalised; overwritten) with `other` as the second Lanczos vector's buffer. Returns the
-/// estimate (not above the true value, up to rounding) and the steps taken, or `None` when a
-/// value is not finite.
+/// estimate (`Estimate`), or `None` when a value is not finite.
 pub(super) fn largest(
     op: &Curvature<'_>,
     start: &mut Coefficients,
     other: &mut Coefficients,
     size: (usize, usize),
-) -> Option<(f64, usize)> {
+) -> Option<Estimate> {
     let norm = libm::sqrt(dot(start, start, size));
     if norm <= 1e-12 {
         // The null space holds no curvature direction from this start: as the power method.
-        return Some((0.0, 0));
+        return Some(Estimate {
+            largest: 0.0,
+            smallest_exhausted: None,
+            steps: 0,
+        });
     }
     scale(start, 1.0 / norm, size);
     *other = [[0.0; crate::capacity::MAX_FREE_PER_AXIS]; super::kernel::MAX_BLOCKS];
     let (mut v, mut u) = (start, other);
+    // In exact arithmetic the space is exhausted after `krylov_dimension` steps; a step past
+    // it divides rounding by rounding, and the vectors that follow are no longer orthogonal to
+    // the earlier ones, which can put a Ritz value above the spectrum (issue 28: 1.25e-6 above
+    // a flat direction's 1.0 after 48 steps, which made a certified flat point a saddle).
+    let dimension = op.krylov_dimension();
+    let bound = dimension.min(LANCZOS_STEPS);
     let mut alpha = [0.0; LANCZOS_STEPS];
     let mut beta = [0.0; LANCZOS_STEPS];
     let mut steps = 0usize;
     let mut previous_beta = 0.0;
     let mut operator_scale = 0.0f64;
     let mut settled_value = f64::NAN;
+    let mut exhausted = false;
     // How far the value rose over the last check: where the next one starts looking.
     let mut rise = f64::NAN;
-    for k in 0..LANCZOS_STEPS {
+    for k in 0..bound {
         // u <- P S v - beta_{k-1} q_{k-1} (u held q_{k-1}, which lies in the null space).
         scale(u, -previous_beta, size);
         op.accumulate(v, u);
@@ -91,7 +120,8 @@ pub(super) fn largest(
         }
         steps = k.saturating_add(1);
         operator_scale = operator_scale.max(libm::fabs(a) + b + previous_beta);
-        if b <= EXHAUSTED_REL * operator_scale {
+        if b <= EXHAUSTED_REL * operator_scale || steps == dimension {
+            exhausted = true;
             break;
         }
         if steps % CHECK_EVERY == 0 {
@@ -107,7 +137,26 @@ pub(super) fn largest(
         previous_beta = b;
     }
     let value = tridiagonal_largest(&alpha, &beta, steps, settled_value, rise);
-    value.is_finite().then_some((value, steps))
+    if !value.is_finite() {
+        return None;
+    }
+    // The smallest eigenvalue of T is minus the largest of -T (same off-diagonal magnitudes);
+    // found from above for -T, so from below for T: the side a power-method shift needs.
+    // `alpha` is negated in place: it is not needed again.
+    let smallest_exhausted = if exhausted {
+        for a in alpha.iter_mut().take(steps) {
+            *a = -*a;
+        }
+        let top = tridiagonal_largest(&alpha, &beta, steps, f64::NAN, f64::NAN);
+        top.is_finite().then_some(-top)
+    } else {
+        None
+    };
+    Some(Estimate {
+        largest: value,
+        smallest_exhausted,
+        steps,
+    })
 }
 
 /// The largest eigenvalue of the symmetric tridiagonal matrix with diagonal `alpha[..m]` and
