@@ -1,40 +1,80 @@
-//! `reconfig sweep`: planner A over seeded generated problem families, one table per family.
+//! `reconfig sweep`: planner A over seeded generated problems, one table row per family or kind.
 //!
-//! Six families (issue 9, `families::six`), on which planner A's settings were tuned: `random`
-//! (2-8 spacecraft, random ends in a 20 LU box), `symmetric` (2-8 spacecraft on a circle, each
-//! to the antipode, so all meet at the centre), `tight` (random, with Umax 1.15 times the least
-//! that reaches every axis rest to rest), `fly-through` (two files of spacecraft passing through
-//! each other with initial velocity), `dense` (8 spacecraft on a 2.4 LU lattice, permuted),
-//! `mixed` (random with masses 0.5-2, degrees 8-24), `--per-family` each. The generator is
-//! seeded (ChaCha8), so the same arguments give the same problems; `--write` stores them as
-//! JSON (one problem per line) for other tools.
+//! `--set families` (the default): the six families of issue 9 (`families::six`), on which
+//! planner A's settings were tuned: `random` (2-8 spacecraft, random ends in a 20 LU box),
+//! `symmetric` (2-8 spacecraft on a circle, each to the antipode, so all meet at the centre),
+//! `tight` (random, with Umax 1.15 times the least that reaches every axis rest to rest),
+//! `fly-through` (two files of spacecraft passing through each other with initial velocity),
+//! `dense` (8 spacecraft on a 2.4 LU lattice, permuted), `mixed` (random with masses 0.5-2,
+//! degrees 8-24), `--per-family` each.
 //!
-//! Per family the table gives the statuses, the largest QP working set, the saddle escapes and
-//! the solve time (median, worst; `drivers::sweep_report`). When the oracle's golden file is
-//! found (`--golden`, default `fixtures/golden/planner-a-oracle.jsonl`) and the generated
-//! problems are the checked-in ones (`fixtures/generated/planner-a-families.jsonl`, compared
-//! problem by problem), a second table gives per family the cost gap to the oracle's best, the
-//! Solved / usable rates of the problems the oracle solves and the time against IPOPT's
-//! (`sweep_oracle.rs`).
+//! `--set tuning` and `--set held-out` (issue 28): `--count` problems (default 2000) of the 22
+//! kinds of `families::kinds`, every kind in both sets, the sets disjoint (`families::sets`):
+//! the held-out set measures planner A on problems its settings were never tuned on.
+//!
+//! The generators are seeded (ChaCha8; `--seed`), so the same arguments give the same
+//! problems; `--write` stores them as JSON (one `{family, problem}` per line, `family` the
+//! family's or the kind's name) for other tools such as the oracle, and `--write-answers` our
+//! answers.
+//!
+//! Per family or kind the table gives the statuses, the largest QP working set, the saddle
+//! escapes and the solve time (median, worst; `drivers::sweep_report`). For the families, when
+//! the oracle's golden file is found (`--golden`, default
+//! `fixtures/golden/planner-a-oracle.jsonl`) and the generated problems are the checked-in ones
+//! (`fixtures/generated/planner-a-families.jsonl`, compared problem by problem), a second table
+//! gives per family the cost gap to the oracle's best, the Solved / usable rates of the problems
+//! the oracle solves and the time against IPOPT's (`sweep_oracle.rs`).
 
 use crate::drivers::pseudospectral::solve_timed_with_starts;
 use crate::drivers::sweep_oracle::{self, relative_gap, OracleAnswer, GAP_REPORT_REL};
 use crate::drivers::sweep_report::{answer_json, rejection_json, table_header, Tally};
-use crate::families::six;
-use anyhow::{Context, Result};
+use crate::families::sets::{self, Set};
+use crate::families::{kinds, six, Named};
+use anyhow::{bail, Context, Result};
 use reconfig_core::pseudospectral::{AlternativeStarts, Problem, Settings, SolveStatus};
 use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+/// Which generated problems `reconfig sweep` runs.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SweepSet {
+    /// The six families of issue 9 (`--per-family` each), planner A's tuning families.
+    Families,
+    /// The tuning set of the 22 kinds (`--count` problems).
+    Tuning,
+    /// The held-out set of the 22 kinds (`--count` problems), disjoint from the tuning set.
+    HeldOut,
+}
+
+impl SweepSet {
+    /// The seeded set of kinds, `None` for the families.
+    fn kinds(self) -> Option<Set> {
+        match self {
+            SweepSet::Families => None,
+            SweepSet::Tuning => Some(Set::Tuning),
+            SweepSet::HeldOut => Some(Set::HeldOut),
+        }
+    }
+}
+
+/// Problems in a tuning or held-out set when `--count` is not given.
+pub const DEFAULT_COUNT: usize = 2000;
+
 /// Arguments of `reconfig sweep`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// Problems per family.
+    /// Which problems: the six families, or the tuning or held-out set of the kinds.
+    #[arg(long, value_enum, default_value_t = SweepSet::Families)]
+    pub set: SweepSet,
+    /// Problems per family (`--set families`).
     #[arg(long, default_value_t = 42)]
     pub per_family: usize,
-    /// Random seed.
+    /// Problems in the set (`--set tuning` or `held-out`; default 2000).
+    #[arg(long)]
+    pub count: Option<usize>,
+    /// Random seed (for the kinds' sets it shifts the set's base seed).
     #[arg(long, default_value_t = 9)]
     pub seed: u64,
     /// Also write the generated problems here (JSON, one `{family, problem}` per line).
@@ -169,6 +209,24 @@ fn print_oracle_table(outcomes: &[Outcome]) {
     }
 }
 
+/// The problems of `args`' set, each named by its family or kind, and the table's rows.
+///
+/// # Errors
+/// `--count` with the families.
+fn problems_of(args: &Args) -> Result<(Vec<&'static str>, Vec<Named>)> {
+    let Some(set) = args.set.kinds() else {
+        if args.count.is_some() {
+            bail!("--count is for --set tuning or held-out; the families take --per-family");
+        }
+        return Ok((
+            six::FAMILIES.to_vec(),
+            six::generate_all(args.per_family, args.seed),
+        ));
+    };
+    let count = args.count.unwrap_or(DEFAULT_COUNT);
+    Ok((kinds::names(), sets::generate_set(set, args.seed, count)))
+}
+
 fn create(path: Option<&PathBuf>) -> Result<Option<std::fs::File>> {
     path.map(|path| {
         std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))
@@ -179,12 +237,13 @@ fn create(path: Option<&PathBuf>) -> Result<Option<std::fs::File>> {
 /// Run the sweep and print the tables.
 ///
 /// # Errors
-/// Writing the problem or answer file.
+/// `--count` with the families; writing the problem or answer file.
 pub fn run(args: &Args) -> Result<ExitCode> {
-    let problems = six::generate_all(args.per_family, args.seed);
+    let (rows, problems) = problems_of(args)?;
+    let families = args.set == SweepSet::Families;
     let mut file = create(args.write.as_ref())?;
     let mut answers = create(args.write_answers.as_ref())?;
-    let oracle = load_oracle(args);
+    let oracle = if families { load_oracle(args) } else { None };
     let mut outcomes: Vec<Outcome> = Vec::new();
     let mut settings = Settings::default();
     if let Some(budget) = args.work_budget {
@@ -195,14 +254,21 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         1 => Some(AlternativeStarts::One),
         _ => Some(AlternativeStarts::Two),
     };
+    if let Some(set) = args.set.kinds() {
+        let count = problems.len();
+        println!("set: {}, {count} problems, seed {}", set.name(), args.seed);
+    }
     println!(
         "work budget: {} units; alternative starts: {}",
         settings.work_budget, args.alternative_starts
     );
-    println!("{}", table_header("family"));
+    println!("{}", table_header(if families { "family" } else { "kind" }));
     let mut tallies: BTreeMap<&str, Tally> = BTreeMap::new();
     for (this, (family, p)) in problems.iter().enumerate() {
         let family: &'static str = family;
+        if !families && this % 200 == 0 && this > 0 {
+            eprintln!("sweep: {this} of {} problems", problems.len());
+        }
         let tally = tallies.entry(family).or_default();
         // The oracle's answer counts only for the very problem it solved.
         let stored = oracle.as_ref().and_then(|(golden, stored)| {
@@ -252,12 +318,12 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         outcomes.push(outcome);
     }
     let none = Tally::default();
-    for row in six::FAMILIES {
+    for row in &rows {
         println!("{}", tallies.get(row).unwrap_or(&none).row(row));
     }
     if oracle.is_some() {
         print_oracle_table(&outcomes);
-    } else {
+    } else if families {
         eprintln!(
             "no oracle comparison: {} or {} not found",
             args.golden.display(),
