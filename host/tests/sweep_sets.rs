@@ -41,7 +41,11 @@ fn a_held_out_sweep_writes_every_kind_in_the_families_formats() {
         String::from_utf8_lossy(&out.stderr)
     );
     let table = String::from_utf8_lossy(&out.stdout);
-    assert!(table.contains("| kind | problems |"), "{table}");
+    assert!(
+        table.contains("| kind | problems | Solved | Feasible | usable (`is_usable()`) |"),
+        "{table}"
+    );
+    assert!(table.contains(&format!("\n| all | {count} |")), "{table}");
     for kind in kinds::names() {
         assert!(
             table.contains(&format!("\n| {kind} | 1 |")),

@@ -18,7 +18,8 @@
 //! answers.
 //!
 //! Per family or kind the table gives the statuses, the largest QP working set, the saddle
-//! escapes and the solve time (median, worst; `drivers::sweep_report`). For the families, when
+//! escapes and the solve time (median, worst; `drivers::sweep_report`); for the kinds' sets
+//! also the usable answers (`is_usable()`), and a row of all. For the families, when
 //! the oracle's golden file is found (`--golden`, default
 //! `fixtures/golden/planner-a-oracle.jsonl`) and the generated problems are the checked-in ones
 //! (`fixtures/generated/planner-a-families.jsonl`, compared problem by problem), a second table
@@ -262,8 +263,14 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         "work budget: {} units; alternative starts: {}",
         settings.work_budget, args.alternative_starts
     );
-    println!("{}", table_header(if families { "family" } else { "kind" }));
+    // The kinds' sets add the usable answers and a row of all; the families' table is as it was.
+    let per_kind = !families;
+    println!(
+        "{}",
+        table_header(if families { "family" } else { "kind" }, per_kind)
+    );
     let mut tallies: BTreeMap<&str, Tally> = BTreeMap::new();
+    let mut all = Tally::default();
     for (this, (family, p)) in problems.iter().enumerate() {
         let family: &'static str = family;
         if !families && this % 200 == 0 && this > 0 {
@@ -303,6 +310,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
                     writeln!(f, "{}", answer_json(this, family, p, s, timed.solve_time_s))?;
                 }
                 tally.answered(s, timed.solve_time_s, kept > 0);
+                all.answered(s, timed.solve_time_s, kept > 0);
                 outcome.status = Some(s.info.status);
                 outcome.cost = s.cost;
                 outcome.time_ms = timed.solve_time_s * 1e3;
@@ -313,13 +321,17 @@ pub fn run(args: &Args) -> Result<ExitCode> {
                     writeln!(f, "{}", rejection_json(this, family, &message))?;
                 }
                 tally.rejected(&message);
+                all.rejected(&message);
             }
         }
         outcomes.push(outcome);
     }
     let none = Tally::default();
     for row in &rows {
-        println!("{}", tallies.get(row).unwrap_or(&none).row(row));
+        println!("{}", tallies.get(row).unwrap_or(&none).row(row, per_kind));
+    }
+    if per_kind {
+        println!("{}", all.row("all", true));
     }
     if oracle.is_some() {
         print_oracle_table(&outcomes);

@@ -1,5 +1,5 @@
 //! The planner-A sweep's reports (`reconfig sweep`): one table row per family or kind (the
-//! statuses, the refusals by class, the largest QP working set, the saddle escapes, the answers
+//! statuses, the usable answers for the kinds' sets, the refusals by class, the largest QP working set, the saddle escapes, the answers
 //! from an alternative start, the cost and the solve time, median and worst), and one JSON
 //! line per answer for `--write-answers` (the oracle restarts from its node positions).
 
@@ -7,11 +7,18 @@ use super::sweep_oracle::percentile;
 use reconfig_core::pseudospectral::{Problem, Solution, SolveStatus};
 use std::collections::BTreeMap;
 
-/// The table's two header lines; `first` names the row's column (`family` or `kind`).
-pub fn table_header(first: &str) -> String {
+/// The table's two header lines; `first` names the row's column (`family` or `kind`), and
+/// `usable` adds the column of usable answers (`SolveStatus::is_usable()`, the kinds' sets: the
+/// families' table stays as it was).
+pub fn table_header(first: &str, usable: bool) -> String {
+    let (usable, rule) = if usable {
+        (" usable (`is_usable()`) |", " --- |")
+    } else {
+        ("", "")
+    };
     format!(
-        "| {first} | problems | Solved | Feasible | other (status: count) | rejected | largest working set | saddle escapes (helped) | answers from an alternative start | J median / worst | ms median / worst |\n\
-         | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
+        "| {first} | problems | Solved | Feasible |{usable} other (status: count) | rejected | largest working set | saddle escapes (helped) | answers from an alternative start | J median / worst | ms median / worst |\n\
+         | --- | --- | --- | --- |{rule} --- | --- | --- | --- | --- | --- | --- |"
     )
 }
 
@@ -21,6 +28,7 @@ pub struct Tally {
     problems: usize,
     solved: usize,
     feasible: usize,
+    usable: usize,
     rejected: usize,
     reasons: BTreeMap<String, usize>,
     other: BTreeMap<String, usize>,
@@ -55,6 +63,9 @@ impl Tally {
             self.from_alternative += 1;
         }
         self.times_ms.push(time_s * 1e3);
+        if s.info.status.is_usable() {
+            self.usable += 1;
+        }
         self.working = self.working.max(s.info.max_active);
         if s.info.saddle_escapes > 0 {
             self.escapes += 1;
@@ -75,8 +86,9 @@ impl Tally {
         }
     }
 
-    /// The table row of `name`.
-    pub fn row(&self, name: &str) -> String {
+    /// The table row of `name`, with the column of usable answers when `usable` (as
+    /// [`table_header`]).
+    pub fn row(&self, name: &str, usable: bool) -> String {
         let mut times = self.times_ms.clone();
         let mut costs = self.costs.clone();
         times.sort_by(f64::total_cmp);
@@ -85,8 +97,13 @@ impl Tally {
             map.iter().map(|(k, v)| format!("{k}: {v}")).collect()
         };
         let (others, reasons) = (listed(&self.other), listed(&self.reasons));
+        let usable = if usable {
+            format!(" {} |", self.usable)
+        } else {
+            String::new()
+        };
         format!(
-            "| {name} | {} | {} | {} | {} | {}{} | {} | {} ({}) | {} | {:.4} / {:.4} | {:.2} / {:.2} |",
+            "| {name} | {} | {} | {} |{usable} {} | {}{} | {} | {} ({}) | {} | {:.4} / {:.4} | {:.2} / {:.2} |",
             self.problems,
             self.solved,
             self.feasible,
