@@ -7,7 +7,9 @@
 //! minimum-energy cubic that meets both ends, `m max(|a(0)|, |a(T)|)` with
 //! `a(0) = 6 dp / T^2 - 2 dv / T`, `a(T) = -6 dp / T^2 + 4 dv / T`, `dp = D - v0 T`,
 //! `dv = v1 - v0` (that cubic stays within the bound, so the ends are reachable). A problem's
-//! need is the largest over its spacecraft and axes; its bound is `max(factor * need, 0.05)`.
+//! need is the largest over its spacecraft and axes; its bound is `max(factor * need, floor,
+//! 0.05)`, where a kind whose spacecraft must swerve to get by each other at all may set a
+//! floor that pays for the swerve (`overtaking`; 0 otherwise).
 
 use super::geometry::Vec3;
 use rand::Rng;
@@ -52,6 +54,9 @@ pub struct Common {
     pub spacing_lu: f64,
     /// A tight kind: rest to rest at both ends, factor from [`TIGHT_FACTOR`].
     pub tight: bool,
+    /// The least control bound the kind's manoeuvre asks beyond its ends' need (a swerve), FU;
+    /// 0 unless the kind sets it.
+    pub floor_fu: f64,
 }
 
 impl Common {
@@ -67,6 +72,7 @@ impl Common {
             factor,
             spacing_lu,
             tight,
+            floor_fu: 0.0,
         }
     }
 }
@@ -97,6 +103,17 @@ pub fn axis_need(p0: f64, v0: f64, p1: f64, v1: f64, horizon_tu: f64) -> f64 {
     let start = 6.0 * dp / (t * t) - 2.0 * dv / t;
     let end = -6.0 * dp / (t * t) + 4.0 * dv / t;
     start.abs().max(end.abs())
+}
+
+/// The position at `t` of the minimum-energy cubic of one axis from `(p0, v0)` to `(p1, v1)`
+/// in `horizon_tu` (its acceleration runs linearly from `a(0)` to `a(T)`, as [`axis_need`]).
+pub fn cubic_position(p0: f64, v0: f64, p1: f64, v1: f64, horizon_tu: f64, t: f64) -> f64 {
+    let h = horizon_tu;
+    let dp = p1 - p0 - v0 * h;
+    let dv = v1 - v0;
+    let c0 = 6.0 * dp / (h * h) - 2.0 * dv / h;
+    let c1 = (6.0 * dv * h - 12.0 * dp) / (h * h * h);
+    p0 + v0 * t + c0 * t * t / 2.0 + c1 * t * t * t / 6.0
 }
 
 /// The least force one spacecraft needs on its worst axis, FU.
@@ -131,7 +148,7 @@ pub fn ends_apart(p: &Problem) -> bool {
 }
 
 /// The problem of `crafts` (at most 8 kept) with the common draws, its control bound
-/// `max(factor * need, MIN_CONTROL_FU)`. A tight kind's horizon is shortened first where the
+/// `max(factor * need, floor_fu, MIN_CONTROL_FU)`. A tight kind's horizon is shortened first where the
 /// floor would otherwise set the bound (its spacecraft are at rest at both ends, so the need
 /// grows as `1 / T^2`), keeping the bound `factor` times the need.
 pub fn finish(common: &Common, crafts: Vec<Spacecraft>) -> Problem {
@@ -152,6 +169,8 @@ pub fn finish(common: &Common, crafts: Vec<Spacecraft>) -> Problem {
         p.horizon_tu *= (common.factor * need / MIN_CONTROL_FU).sqrt();
         need = self::need(&p);
     }
-    p.max_control_fu = (common.factor * need).max(MIN_CONTROL_FU);
+    p.max_control_fu = (common.factor * need)
+        .max(common.floor_fu)
+        .max(MIN_CONTROL_FU);
     p
 }

@@ -2,7 +2,7 @@
 //! which are tight, and one problem of a kind from a seeded stream.
 
 use super::bound::{ends_apart, finish, Common};
-use super::{motion, placements, swaps};
+use super::{motion, overtaking, placements, swaps};
 use rand_chacha::ChaCha8Rng;
 use reconfig_core::pseudospectral::{Problem, Spacecraft};
 
@@ -66,7 +66,7 @@ pub const KINDS: [Kind; 22] = [
     tight("random-tight", placements::random_tight),
     kind("fly-through-stream", motion::fly_through_stream),
     kind("convergence", motion::convergence),
-    kind("overtaking", motion::overtaking),
+    kind("overtaking", overtaking::overtaking),
     kind("repack-ball", placements::repack_ball),
     kind("repack-grid", placements::repack_grid),
     kind("repack-hexagonal", placements::repack_hexagonal),

@@ -5,8 +5,8 @@
 //! * [`sets`]: the seeded `tuning` and `held-out` sets of issue 28, disjoint, each problem of
 //!   one of the [`kinds`] (every kind in both), so that figures are measured on problems the
 //!   settings were never tuned on;
-//! * [`kinds`]: the kinds' names and one problem of a kind; [`swaps`], [`motion`] and
-//!   [`placements`] build their spacecraft;
+//! * [`kinds`]: the kinds' names and one problem of a kind; [`swaps`], [`motion`],
+//!   [`overtaking`] and [`placements`] build their spacecraft;
 //! * [`bound`]: what the kinds share (keep-out, clearance of the ends, the common draws) and the
 //!   control bound from the least force the ends need;
 //! * [`geometry`]: vectors, rotations, shapes, lattices and seeded sampling.
@@ -15,6 +15,7 @@ pub mod bound;
 pub mod geometry;
 pub mod kinds;
 pub mod motion;
+pub mod overtaking;
 pub mod placements;
 pub mod sets;
 pub mod six;

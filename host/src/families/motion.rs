@@ -1,6 +1,6 @@
 //! The kinds of shared motion: a ring that rotates (and climbs), a line that reverses, head-on
-//! pairs under a tight bound, two streams flying through each other, a convergence from afar
-//! to a tight cluster, and an overtaking in one lane. Each scene is built in its own frame
+//! pairs under a tight bound, two streams flying through each other, and a convergence from
+//! afar to a tight cluster (the overtaking in one lane is `overtaking.rs`). Each scene is built in its own frame
 //! (the motion along x, the ring in the xy-plane), then rotated and moved at random.
 
 use super::bound::{craft, rest_to_rest, Common, KEEP_OUT_LU};
@@ -159,60 +159,4 @@ pub fn convergence(rng: &mut ChaCha8Rng, c: &mut Common) -> Vec<Spacecraft> {
             craft(1.0, (a, v), (b, [0.0; 3]))
         })
         .collect()
-}
-
-/// `overtaking`: a file of 1-7 spacecraft at 0.2-1 LU/TU along x (gaps 1-1.5 times the
-/// spacing, coasting, the whole file ending up to 1 LU off its coast), and 1 (2 from 4
-/// spacecraft on) faster ones 0-1.5 LU to the side that start 1-2 spacings behind the file and
-/// end 1-2 spacings ahead of it, at 0.8-1.2 times the speed that distance asks.
-pub fn overtaking(rng: &mut ChaCha8Rng, c: &mut Common) -> Vec<Spacecraft> {
-    let m = rng.random_range(2..=8usize);
-    let fast = if m >= 4 {
-        rng.random_range(1..=2usize)
-    } else {
-        1
-    };
-    let slow = m - fast;
-    let t = c.horizon_tu;
-    let speed = rng.random_range(0.2..1.0);
-    let drift = rng.random_range(-1.0..1.0);
-    let mut xs = vec![0.0];
-    for k in 1..slow {
-        let gap = c.spacing_lu * rng.random_range(1.0..1.5);
-        xs.push(xs[k - 1] - gap);
-    }
-    let side = rng.random_range(0.0..1.5);
-    let behind = c.spacing_lu * rng.random_range(1.0..2.0);
-    let ahead = c.spacing_lu * rng.random_range(1.0..2.0);
-    let place = Placement::random(rng, OFFSET_REACH_LU);
-    let along = |v: f64| place.rotation.apply([v, 0.0, 0.0]);
-    let mut out: Vec<Spacecraft> = xs
-        .iter()
-        .map(|&x| {
-            let (a, b) = ([x, 0.0, 0.0], [x + speed * t + drift, 0.0, 0.0]);
-            craft(
-                1.0,
-                (place.apply(a), along(speed)),
-                (place.apply(b), along(speed)),
-            )
-        })
-        .collect();
-    let last = xs[slow - 1];
-    let lead_end = speed * t + drift;
-    for j in 0..fast {
-        let a = [last - behind - c.spacing_lu * j as f64, side, 0.0];
-        // The first behind ends first ahead: the fast ones keep their order.
-        let b = [
-            lead_end + ahead + c.spacing_lu * (fast - 1 - j) as f64,
-            side,
-            0.0,
-        ];
-        let v = (b[0] - a[0]) / t * rng.random_range(0.8..1.2);
-        out.push(craft(
-            1.0,
-            (place.apply(a), along(v)),
-            (place.apply(b), along(v)),
-        ));
-    }
-    out
 }

@@ -1,7 +1,9 @@
 //! The generated sets: deterministic, disjoint, every kind in each, sizes and degrees covered,
 //! every problem accepted by planner A, the control bounds as the kinds promise.
 
-use super::bound::{axis_need, need, END_CLEARANCE_LU, KEEP_OUT_LU, MIN_CONTROL_FU};
+use super::bound::{
+    axis_need, cubic_position, need, END_CLEARANCE_LU, KEEP_OUT_LU, MIN_CONTROL_FU,
+};
 use super::kinds::{self, KINDS};
 use super::sets::{generate_set, problem_seed, Set};
 use reconfig_core::pseudospectral::{self, Problem, Settings, Solution, Workspace};
@@ -161,4 +163,18 @@ fn the_need_is_the_bang_bang_bound_at_rest_and_the_cubic_peak_otherwise() {
     let a0: f64 = 6.0 * 0.0 / (t * t) - 2.0 * v1 / t;
     let a1: f64 = 4.0 * v1 / t;
     assert!((axis_need(0.0, 0.0, 0.0, v1, t) - a0.abs().max(a1)).abs() < 1e-15);
+}
+
+#[test]
+fn the_cubic_meets_both_ends() {
+    let (p0, v0, p1, v1, t) = (1.0, -0.5, 7.0, 2.0, 9.0);
+    assert!((cubic_position(p0, v0, p1, v1, t, 0.0) - p0).abs() < 1e-12);
+    assert!((cubic_position(p0, v0, p1, v1, t, t) - p1).abs() < 1e-12);
+    let h = 1e-5;
+    let slope = |s: f64| {
+        (cubic_position(p0, v0, p1, v1, t, s + h) - cubic_position(p0, v0, p1, v1, t, s - h))
+            / (2.0 * h)
+    };
+    assert!((slope(h) - v0).abs() < 1e-4);
+    assert!((slope(t - h) - v1).abs() < 1e-4);
 }
