@@ -1,10 +1,11 @@
 //! reconfig-host: the std side of reconfig. Fixture files and the requests they stand for
 //! (`fixture`), the planners' drivers and reports (`drivers`), the iceoryx2 flight service and
-//! feeder (`harness`), the subcommands of `reconfig` (`cli`), plots, generated scenarios and
-//! the truth model.
+//! feeder (`harness`), the subcommands of `reconfig` (`cli`), planner A's generated problems (`families`),
+//! plots, generated scenarios and the truth model.
 
 pub mod cli;
 pub mod drivers;
+pub mod families;
 pub mod fixture;
 pub mod harness;
 pub mod limits;

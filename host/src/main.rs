@@ -35,7 +35,8 @@ enum Command {
     Plot(reconfig_host::cli::plot::Args),
     /// Two feeders at once (expensive + cheap, then two alike) against one flight service.
     Fairness(reconfig_host::cli::fairness::Args),
-    /// Planner A over seeded generated problem families: a table per family.
+    /// Planner A over seeded generated problems: the six families (default) or the tuning or
+    /// held-out set of the kinds, a table row per family or kind.
     Sweep(reconfig_host::cli::sweep::Args),
     /// Planner-B fixtures: fly the plan in the high-fidelity truth model and report the miss.
     Truth(reconfig_host::cli::truth::Args),

@@ -10,7 +10,8 @@
 //! * [`leo_tour`]: the LEO tour's requests answered in turn (the order, the schedule, the arcs);
 //! * [`leo_truth`]: the LEO tour's plans flown in the truth model and re-planned there;
 //! * [`leo_report`]: `reconfig solve`'s report of a LEO tour;
-//! * [`sweep_oracle`]: the golden answers of the planner-A sweep's oracle.
+//! * [`sweep_oracle`]: the golden answers of the planner-A sweep's oracle;
+//! * [`sweep_report`]: the planner-A sweep's table rows and answer lines.
 
 pub mod answer;
 pub mod geo_tour;
@@ -20,3 +21,4 @@ pub mod leo_tour;
 pub mod leo_truth;
 pub mod pseudospectral;
 pub mod sweep_oracle;
+pub mod sweep_report;
