@@ -496,7 +496,8 @@ def main():
                 ours[a["index"]] = a
     # --only also sets the order (so an interrupted run has done a balanced subset).
     order = [int(v) for v in args.only.split(",")] if args.only else list(range(len(problems)))
-    starts = args.starts.split(",")
+    # `--starts ""` with `--answers`: the restart from ours alone (issue 28 item 4).
+    starts = [s for s in args.starts.split(",") if s]
     ipopt_version = ipopt_banner_version()
     header = {
         "header": {

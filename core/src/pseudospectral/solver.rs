@@ -277,7 +277,7 @@ impl Answer {
     fn is_saddle(&self, out: &Solution) -> bool {
         let c = &out.certificate;
         self.status == SolveStatus::Feasible
-            && self.end == SqpEnd::Converged
+            && self.measured_at_answer()
             && c.second_order_evaluated
             && c.stationarity <= certificate::STATIONARITY_TOL
             && c.min_reduced_eigenvalue < -certificate::CURVATURE_TOL
@@ -286,8 +286,19 @@ impl Answer {
     /// A feasible, converged point whose reduced Hessian is singular within the tolerance.
     fn is_flat(&self, out: &Solution) -> bool {
         self.status == SolveStatus::Feasible
-            && self.end == SqpEnd::Converged
+            && self.measured_at_answer()
             && out.certificate.is_flat()
+    }
+
+    /// The certificate was measured with the point's own QP state: at a fixed point, or at the
+    /// iteration limit on an accepted QP answer (as `finish` certifies). Issue 28: a head-on
+    /// pair's flat direction (the side it passes on) lets the iteration slide along it until
+    /// `sqp_max_iter`; such a point was neither probed nor escaped from, and ended `Feasible`.
+    fn measured_at_answer(&self) -> bool {
+        matches!(
+            self.end,
+            SqpEnd::Converged | SqpEnd::MaxIterations { at_answer: true }
+        )
     }
 }
 

@@ -438,3 +438,33 @@ fn the_certificate_eigenvalue_matches_a_dense_decomposition() {
         );
     }
 }
+
+#[test]
+fn a_flat_point_at_the_iteration_limit_is_probed_and_certified() {
+    // Issue 28 held-out problem 1310 (head-on-tight): two head-on pairs, each free to pass on
+    // any side. The iteration slides along that flat direction until `sqp_max_iter` (60) on an
+    // accepted answer. The power method's under-converged value (0.0053) used to certify it
+    // `Solved`; the true eigenvalue is 0 (flat), and a point measured at the iteration limit was
+    // neither probed nor escaped from, so it ended `Feasible`. It is probed now, and certified.
+    let moves = [
+        (
+            [1.3226357821829087, 5.909671778478893, -3.823149110564141],
+            [-10.00861767662363, 9.232314651490396, -4.009108645750919],
+        ),
+        (
+            [0.17619901628422197, 3.368296158262831, -0.8979053331163547],
+            [-8.983854364683623, 6.054281975570932, -1.0482328564749455],
+        ),
+    ]
+    .into_iter()
+    .flat_map(|(a, b)| [(a, b), (b, a)])
+    .collect::<heapless::Vec<_, 4>>();
+    let mut p = rest_to_rest(&moves, 17, true);
+    p.horizon_tu = 8.473604455614087;
+    p.max_control_fu = 0.9013501703242023;
+    let out = run(&p, &Settings::default());
+    assert_eq!(out.info.status, SolveStatus::Solved);
+    assert!(out.certificate.flat_direction_probed);
+    assert!(out.certificate.min_reduced_eigenvalue.abs() <= 1e-6);
+    assert!((out.cost - 5.180380).abs() < 1e-5, "J = {}", out.cost);
+}
