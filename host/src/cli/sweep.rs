@@ -27,6 +27,7 @@
 //! the oracle solves and the time against IPOPT's (`sweep_oracle.rs`).
 
 use crate::drivers::pseudospectral::solve_timed_with_starts;
+use crate::drivers::set_record::SetRecord;
 use crate::drivers::sweep_oracle::{self, relative_gap, OracleAnswer, GAP_REPORT_REL};
 use crate::drivers::sweep_report::{answer_json, rejection_json, table_header, Tally};
 use crate::families::sets::{self, Set};
@@ -93,6 +94,11 @@ pub struct Args {
     /// problem is compared with the oracle only when it equals the stored one.
     #[arg(long, default_value = sweep_oracle::PROBLEMS_DEFAULT)]
     pub problems: PathBuf,
+    /// For the kinds' sets: also write the record of the statuses per kind here (TOML,
+    /// deterministic; `drivers::set_record`, the file `fixtures/golden/` keeps and a test holds
+    /// the code to).
+    #[arg(long)]
+    pub record: Option<PathBuf>,
     /// Planner A's work budget in work units (`Settings::work_budget`); default: the core's
     /// default, which bounds a solve to 400 M Cortex-M7 instructions. A larger budget measures
     /// the planner's answers without the on-board time bound.
@@ -269,6 +275,15 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         "{}",
         table_header(if families { "family" } else { "kind" }, per_kind)
     );
+    let mut record = args
+        .set
+        .kinds()
+        .map(|set| SetRecord::new(set, args.seed, problems.len(), settings.work_budget));
+    if args.record.is_some() && (record.is_none() || args.alternative_starts > 0) {
+        anyhow::bail!(
+            "--record is for the kinds' sets (--set tuning|held-out) solved from the guess alone              (no --alternative-starts)"
+        );
+    }
     let mut tallies: BTreeMap<&str, Tally> = BTreeMap::new();
     let mut all = Tally::default();
     for (this, (family, p)) in problems.iter().enumerate() {
@@ -310,6 +325,9 @@ pub fn run(args: &Args) -> Result<ExitCode> {
                     writeln!(f, "{}", answer_json(this, family, p, s, timed.solve_time_s))?;
                 }
                 tally.answered(s, timed.solve_time_s, kept > 0);
+                if let Some(r) = record.as_mut() {
+                    r.add(family, Some(s.info.status));
+                }
                 all.answered(s, timed.solve_time_s, kept > 0);
                 outcome.status = Some(s.info.status);
                 outcome.cost = s.cost;
@@ -321,6 +339,9 @@ pub fn run(args: &Args) -> Result<ExitCode> {
                     writeln!(f, "{}", rejection_json(this, family, &message))?;
                 }
                 tally.rejected(&message);
+                if let Some(r) = record.as_mut() {
+                    r.add(family, None);
+                }
                 all.rejected(&message);
             }
         }
@@ -332,6 +353,11 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     }
     if per_kind {
         println!("{}", all.row("all", true));
+    }
+    if let (Some(path), Some(r)) = (args.record.as_ref(), record.as_ref()) {
+        std::fs::write(path, r.to_toml()?)
+            .with_context(|| format!("writing {}", path.display()))?;
+        println!("{}", r.summary());
     }
     if oracle.is_some() {
         print_oracle_table(&outcomes);

@@ -20,5 +20,6 @@ pub mod leo_report;
 pub mod leo_tour;
 pub mod leo_truth;
 pub mod pseudospectral;
+pub mod set_record;
 pub mod sweep_oracle;
 pub mod sweep_report;
