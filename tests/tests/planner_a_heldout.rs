@@ -58,6 +58,30 @@ fn held_out_statuses_with_the_budget_lifted_match_the_record() {
     check("planner-a-heldout-lifted.toml", 1_000_000_000);
 }
 
+/// `n` of `of` as a percentage with one decimal, as the docs write it.
+fn percent(n: usize, of: usize) -> String {
+    format!("{:.1} %", 100.0 * n as f64 / of.max(1) as f64)
+}
+
+#[test]
+fn the_readme_line_quotes_the_records() {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let (on_board, lifted) = (
+        stored("planner-a-heldout.toml").all,
+        stored("planner-a-heldout-lifted.toml").all,
+    );
+    let cell = format!(
+        "| {} `Solved`, {} usable / {} `Solved` (",
+        percent(on_board.solved, on_board.problems),
+        percent(on_board.usable, on_board.problems),
+        percent(lifted.solved, lifted.problems),
+    );
+    assert!(
+        readme.contains(&cell),
+        "README.md's held-out line does not quote the records: expected the cell\n{cell}"
+    );
+}
+
 #[test]
 fn the_docs_quote_the_records() {
     let docs = std::fs::read_to_string(root().join("docs/planner-a.md")).unwrap();
