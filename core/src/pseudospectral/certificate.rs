@@ -282,8 +282,10 @@ pub(crate) fn evaluate(
         // the envelopes' bound keeps the iteration positive and converging at the spectrum's
         // own rate (issue 28: an envelope bound of 197 against a top eigenvalue of 3 left the
         // power method at 4e-4 after its settle test, and the saddle was reported certified).
+        // Never below zero: rounding leaves components outside that space, whose eigenvalues
+        // include PSP's zeros; a negative shift would let them outgrow the top one.
         if let Some(smallest) = estimate.smallest_exhausted {
-            sigma = -smallest;
+            sigma = (-smallest).max(0.0);
         }
     }
     let extra = lanczos.map_or(LANCZOS_STEPS, |estimate| estimate.steps);
