@@ -1,7 +1,10 @@
 //! `reconfig sweep --set held-out`: one table row per kind, the problem and answer files in the
 //! families' line formats (the oracle reads the problems), the same problems from the same
-//! arguments; `--count` is refused with the families.
+//! arguments, a `--record` equal to `SetRecord::measure`'s; `--count` is refused with the
+//! families.
 
+use reconfig_core::pseudospectral::Settings;
+use reconfig_host::drivers::set_record::SetRecord;
 use reconfig_host::drivers::sweep_oracle;
 use reconfig_host::families::{kinds, sets};
 use std::path::PathBuf;
@@ -68,8 +71,9 @@ fn a_held_out_sweep_writes_every_kind_in_the_families_formats() {
         assert!(v["status"].is_string());
     }
     assert_eq!(lines.lines().count(), count);
-    // Same arguments, same problems, bit for bit.
-    let again = scratch("again.jsonl");
+    // Same arguments, same problems, bit for bit; the record the sweep builds from its tallies
+    // is the one `SetRecord::measure` (the golden records' test) counts.
+    let (again, record) = (scratch("again.jsonl"), scratch("record.toml"));
     let out = sweep(&[
         "--set",
         "held-out",
@@ -77,12 +81,24 @@ fn a_held_out_sweep_writes_every_kind_in_the_families_formats() {
         &count.to_string(),
         "--write",
         again.to_str().expect("path"),
+        "--record",
+        record.to_str().expect("path"),
     ]);
     assert!(out.status.success());
     assert_eq!(
         std::fs::read(&problems).expect("test io"),
         std::fs::read(&again).expect("test io")
     );
+    let written: SetRecord =
+        toml::from_str(&std::fs::read_to_string(&record).expect("test io")).expect("record");
+    let measured = SetRecord::measure(
+        sets::Set::HeldOut,
+        9,
+        count,
+        Settings::default().work_budget,
+    );
+    assert_eq!(written, measured);
+    assert_eq!(written.all.problems, count);
     let _ = std::fs::remove_dir_all(problems.parent().expect("dir"));
 }
 

@@ -275,13 +275,11 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         "{}",
         table_header(if families { "family" } else { "kind" }, per_kind)
     );
-    let mut record = args
-        .set
-        .kinds()
-        .map(|set| SetRecord::new(set, args.seed, problems.len(), settings.work_budget));
-    if args.record.is_some() && (record.is_none() || args.alternative_starts > 0) {
+    let set = args.set.kinds();
+    if args.record.is_some() && (set.is_none() || args.alternative_starts > 0) {
         anyhow::bail!(
-            "--record is for the kinds' sets (--set tuning|held-out) solved from the guess alone              (no --alternative-starts)"
+            "--record is for the kinds' sets (--set tuning|held-out) solved from the guess alone \
+             (no --alternative-starts)"
         );
     }
     let mut tallies: BTreeMap<&str, Tally> = BTreeMap::new();
@@ -325,9 +323,6 @@ pub fn run(args: &Args) -> Result<ExitCode> {
                     writeln!(f, "{}", answer_json(this, family, p, s, timed.solve_time_s))?;
                 }
                 tally.answered(s, timed.solve_time_s, kept > 0);
-                if let Some(r) = record.as_mut() {
-                    r.add(family, Some(s.info.status));
-                }
                 all.answered(s, timed.solve_time_s, kept > 0);
                 outcome.status = Some(s.info.status);
                 outcome.cost = s.cost;
@@ -339,9 +334,6 @@ pub fn run(args: &Args) -> Result<ExitCode> {
                     writeln!(f, "{}", rejection_json(this, family, &message))?;
                 }
                 tally.rejected(&message);
-                if let Some(r) = record.as_mut() {
-                    r.add(family, None);
-                }
                 all.rejected(&message);
             }
         }
@@ -354,10 +346,18 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     if per_kind {
         println!("{}", all.row("all", true));
     }
-    if let (Some(path), Some(r)) = (args.record.as_ref(), record.as_ref()) {
-        std::fs::write(path, r.to_toml()?)
+    if let (Some(path), Some(set)) = (args.record.as_ref(), set) {
+        // The record is the tallies' statuses (every kind listed, as `SetRecord::measure` has).
+        let mut record = SetRecord::new(set, args.seed, problems.len(), settings.work_budget);
+        record.all = all.counts().clone();
+        for (kind, tally) in &tallies {
+            record
+                .kinds
+                .insert((*kind).to_string(), tally.counts().clone());
+        }
+        std::fs::write(path, record.to_toml()?)
             .with_context(|| format!("writing {}", path.display()))?;
-        println!("{}", r.summary());
+        println!("{}", record.summary());
     }
     if oracle.is_some() {
         print_oracle_table(&outcomes);

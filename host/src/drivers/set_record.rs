@@ -23,7 +23,8 @@ pub struct Counts {
 }
 
 impl Counts {
-    fn add(&mut self, status: Option<SolveStatus>) {
+    /// Count one problem: its status, or `None` when the planner rejected it.
+    pub fn add(&mut self, status: Option<SolveStatus>) {
         self.problems += 1;
         match status {
             None => self.rejected += 1,
@@ -69,12 +70,6 @@ impl SetRecord {
         }
     }
 
-    /// Count one problem of `kind`: its status, or `None` when the planner rejected it.
-    pub fn add(&mut self, kind: &str, status: Option<SolveStatus>) {
-        self.all.add(status);
-        self.kinds.entry(kind.to_string()).or_default().add(status);
-    }
-
     /// Solve every problem of the set with planner A's default settings at `work_budget`.
     pub fn measure(set: Set, seed: u64, count: usize, work_budget: u64) -> Self {
         let mut record = Self::new(set, seed, count, work_budget);
@@ -89,7 +84,12 @@ impl SetRecord {
             let status = pseudospectral::solve(&problem, &settings, &mut workspace, &mut solution)
                 .ok()
                 .map(|()| solution.info.status);
-            record.add(kind, status);
+            record.all.add(status);
+            record
+                .kinds
+                .entry(kind.to_string())
+                .or_default()
+                .add(status);
         }
         record
     }

@@ -3,6 +3,7 @@
 //! from an alternative start, the cost and the solve time, median and worst), and one JSON
 //! line per answer for `--write-answers` (the oracle restarts from its node positions).
 
+use super::set_record::Counts;
 use super::sweep_oracle::percentile;
 use reconfig_core::pseudospectral::{Problem, Solution, SolveStatus};
 use std::collections::BTreeMap;
@@ -25,13 +26,9 @@ pub fn table_header(first: &str, usable: bool) -> String {
 /// One row's tally: what became of each problem of a family or kind.
 #[derive(Debug, Default)]
 pub struct Tally {
-    problems: usize,
-    solved: usize,
-    feasible: usize,
-    usable: usize,
-    rejected: usize,
+    /// The statuses (the part a set's record keeps: `set_record`).
+    counts: Counts,
     reasons: BTreeMap<String, usize>,
-    other: BTreeMap<String, usize>,
     times_ms: Vec<f64>,
     costs: Vec<f64>,
     working: u16,
@@ -43,8 +40,7 @@ pub struct Tally {
 impl Tally {
     /// A problem the planner rejected, with the core's message (its class is named from it).
     pub fn rejected(&mut self, message: &str) {
-        self.problems += 1;
-        self.rejected += 1;
+        self.counts.add(None);
         let class = if message.contains("cannot meet its boundary conditions") {
             "ManoeuvreInfeasible"
         } else if message.contains("closer than") {
@@ -58,14 +54,11 @@ impl Tally {
     /// An answered problem: its solution, the solve time and whether the answer came from an
     /// alternative start.
     pub fn answered(&mut self, s: &Solution, time_s: f64, from_alternative: bool) {
-        self.problems += 1;
+        self.counts.add(Some(s.info.status));
         if from_alternative {
             self.from_alternative += 1;
         }
         self.times_ms.push(time_s * 1e3);
-        if s.info.status.is_usable() {
-            self.usable += 1;
-        }
         self.working = self.working.max(s.info.max_active);
         if s.info.saddle_escapes > 0 {
             self.escapes += 1;
@@ -73,17 +66,14 @@ impl Tally {
                 self.helped += 1;
             }
         }
-        match s.info.status {
-            SolveStatus::Solved => {
-                self.solved += 1;
-                self.costs.push(s.cost);
-            }
-            SolveStatus::Feasible => {
-                self.feasible += 1;
-                self.costs.push(s.cost);
-            }
-            status => *self.other.entry(format!("{status:?}")).or_default() += 1,
+        if matches!(s.info.status, SolveStatus::Solved | SolveStatus::Feasible) {
+            self.costs.push(s.cost);
         }
+    }
+
+    /// The statuses counted so far.
+    pub fn counts(&self) -> &Counts {
+        &self.counts
     }
 
     /// The table row of `name`, with the column of usable answers when `usable` (as
@@ -96,19 +86,19 @@ impl Tally {
         let listed = |map: &BTreeMap<String, usize>| -> Vec<String> {
             map.iter().map(|(k, v)| format!("{k}: {v}")).collect()
         };
-        let (others, reasons) = (listed(&self.other), listed(&self.reasons));
+        let (others, reasons) = (listed(&self.counts.other), listed(&self.reasons));
         let usable = if usable {
-            format!(" {} |", self.usable)
+            format!(" {} |", self.counts.usable)
         } else {
             String::new()
         };
         format!(
             "| {name} | {} | {} | {} |{usable} {} | {}{} | {} | {} ({}) | {} | {:.4} / {:.4} | {:.2} / {:.2} |",
-            self.problems,
-            self.solved,
-            self.feasible,
+            self.counts.problems,
+            self.counts.solved,
+            self.counts.feasible,
             if others.is_empty() { "-".to_string() } else { others.join(", ") },
-            self.rejected,
+            self.counts.rejected,
             if reasons.is_empty() { String::new() } else { format!(" ({})", reasons.join(", ")) },
             self.working,
             self.escapes,
