@@ -13,6 +13,7 @@
 //! backtrack per rejected step, each one QP of the `sqp_max_iter` budget.
 
 use super::certificate;
+use super::kept;
 use super::kernel::{dot, u8_of, Coefficients, Live};
 use super::linearise::{self, follow_minima, refine_moving_checks};
 use super::newton;
@@ -299,6 +300,7 @@ impl Sqp {
         }
         ws.iterates.accepted = ws.iterates.trial;
         self.at_answer = true;
+        kept::offer(ws, settings, cost);
         Step::CheckConvergence(Answer {
             cost,
             exact,

@@ -416,11 +416,34 @@ pub(super) fn pair_minimum(
     pair: usize,
     settings: &Settings,
 ) -> Option<Minimum> {
+    pair_minimum_of(ws, Iterate::Current, pair, settings)
+}
+
+/// Which of the iteration's coefficient vectors a separation search reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Iterate {
+    /// `ws.iterates.iterate`: the linearisation point (and the answer being written).
+    Current,
+    /// `ws.iterates.accepted`: the last accepted QP answer.
+    Accepted,
+}
+
+/// [`pair_minimum`] for the coefficients `which` names.
+pub(super) fn pair_minimum_of(
+    ws: &mut Workspace,
+    which: Iterate,
+    pair: usize,
+    settings: &Settings,
+) -> Option<Minimum> {
     let tr = &ws.setup.transcription;
+    let y = match which {
+        Iterate::Current => &ws.iterates.iterate,
+        Iterate::Accepted => &ws.iterates.accepted,
+    };
     let geometry = tr.pair(pair)?;
     let mut axes = [[0.0; MAX_NODES]; 3];
     for (axis, coeffs) in axes.iter_mut().indexed() {
-        let relative = relative_nodes(tr, &ws.iterates.iterate, &geometry, axis)?;
+        let relative = relative_nodes(tr, y, &geometry, axis)?;
         ws.setup.bernstein.coefficients(&relative, coeffs);
     }
     let mut product = [0.0; MAX_PRODUCT];

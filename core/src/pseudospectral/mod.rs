@@ -81,6 +81,7 @@ mod convex_minimum;
 mod curvature;
 mod guess;
 mod iteration;
+mod kept;
 mod kernel;
 #[doc(hidden)]
 pub mod kernels;

@@ -5,6 +5,7 @@ use super::certificate;
 use super::error::{PlanError, Quantity};
 use super::guess::{self, AxisBoundary, AxisLaw, GuessError};
 use super::iteration::{sqp, SqpEnd};
+use super::kept::Kept;
 use super::kernel::{per_axis, u8_of};
 use super::linearise::{pair_bit, pair_minimum, unit_normals};
 use super::output::{
@@ -122,7 +123,9 @@ fn run(
     ws.work
         .reserve(work_units::reserve(&ws.setup.transcription, 0));
     initial_iterate(ws, warm, lift, out);
-    let mut answer = iterate_and_check(ws, settings, out);
+    ws.iterates.kept = Kept::START;
+    let first = iterate_and_check(ws, settings, out);
+    let mut answer = answer_or_kept(ws, settings, out, first);
     // Bounded: the saddle escapes by `MAX_SADDLE_ESCAPES` (`escapes` rises at each), the flat
     // probes by their two sides; every other step leads on, never back.
     let mut step = Step::LookForSaddle { escapes: 0 };
@@ -306,6 +309,26 @@ impl Answer {
 /// checks (`finish`).
 fn iterate_and_check(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -> Answer {
     let end = iterate_and_verify(ws, settings, out);
+    let status = finish(ws, settings, out, end);
+    Answer { end, status }
+}
+
+/// The first run's answer, or where it is not usable the best verified answer the run passed
+/// (`kept.rs`), checked again by `finish` on its own trajectory. Its QP state is not the last
+/// QP's, so it is not certified (`MaxIterations { at_answer: false }`): at best `Feasible`, and
+/// no saddle escape or flat probe starts from it. Ends the keeping (`saved` is the escape's).
+fn answer_or_kept(
+    ws: &mut Workspace,
+    settings: &Settings,
+    out: &mut Solution,
+    first: Answer,
+) -> Answer {
+    let kept = core::mem::replace(&mut ws.iterates.kept, Kept::OFF);
+    if first.status.is_usable() || kept.cost().is_none() {
+        return first;
+    }
+    ws.iterates.iterate = ws.iterates.saved;
+    let end = SqpEnd::MaxIterations { at_answer: false };
     let status = finish(ws, settings, out, end);
     Answer { end, status }
 }

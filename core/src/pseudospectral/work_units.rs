@@ -194,11 +194,16 @@ fn pair_minimum(s: &Size) -> u64 {
 /// 3,600` M7 instructions a pair (fitted to `verify-cap-w3`, `verify-n10-w3` and
 /// `verify-small-w1`).
 pub(super) fn verify_round(tr: &Transcription) -> u64 {
+    units(&[size(tr).pairs]).saturating_mul(verify_pair(tr))
+}
+
+/// One pair's part of a verification round (also the kept answer's search, `kept.rs`, which
+/// pays pair by pair and stops at the first pair that dips).
+pub(super) fn verify_pair(tr: &Transcription) -> u64 {
     let s = size(tr);
-    let pair = units(&[7, s.nodes, s.nodes])
+    units(&[7, s.nodes, s.nodes])
         .saturating_add(units(&[56, s.nodes]))
-        .saturating_add(400);
-    units(&[s.pairs]).saturating_mul(pair)
+        .saturating_add(400)
 }
 
 /// The final checks of a returned iterate (`solver::finish`): the continuous verification of

@@ -4,6 +4,7 @@
 
 use super::anderson::Anderson;
 use super::guess::{AxisBoundary, AxisLaw};
+use super::kept::Kept;
 use super::kernel::{Coefficients, MAX_BLOCKS};
 use super::qp_state::QpState;
 use super::transcription::Transcription;
@@ -66,8 +67,11 @@ pub(crate) struct Iterates {
     pub(crate) trial: Coefficients,
     /// The last QP solution (the feasible iterate).
     pub(crate) accepted: Coefficients,
-    /// The saddle's iterate while an escape from it is tried.
+    /// The best verified answer of a solve's first run (`kept.rs`), then the saddle's or the
+    /// flat point's iterate while an escape or a probe from it is tried.
     pub(crate) saved: Coefficients,
+    /// What `saved` holds during the first run (`kept.rs`).
+    pub(crate) kept: Kept,
     pub(crate) anderson: Anderson,
     pub(crate) qp: QpState,
     /// Direction used for a pair's linearisation where the spacecraft coincide.
@@ -101,6 +105,7 @@ impl Workspace {
                 trial: ZERO,
                 accepted: ZERO,
                 saved: ZERO,
+                kept: Kept::OFF,
                 anderson: Anderson::new(),
                 qp: QpState::new(),
                 fallback_normal: [[0.0; 3]; MAX_PAIRS],
