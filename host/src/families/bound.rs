@@ -41,6 +41,9 @@ pub const LOOSE_FACTOR: std::ops::Range<f64> = 1.5..4.0;
 /// The least control bound set, FU.
 pub const MIN_CONTROL_FU: f64 = 0.05;
 
+/// Offsets of a shape's or a scene's centre are drawn in a cube of this half-width, LU.
+pub const OFFSET_REACH_LU: f64 = 10.0;
+
 /// The draws every kind makes first, in this order.
 #[derive(Clone, Copy, Debug)]
 pub struct Common {

@@ -3,7 +3,7 @@
 //! afar to a tight cluster (the overtaking in one lane is `overtaking.rs`). Each scene is built in its own frame
 //! (the motion along x, the ring in the xy-plane), then rotated and moved at random.
 
-use super::bound::{craft, rest_to_rest, Common, KEEP_OUT_LU};
+use super::bound::{craft, rest_to_rest, Common, KEEP_OUT_LU, OFFSET_REACH_LU};
 use super::geometry::{
     add, circle, circle_radius_for_gap, fibonacci_sphere, permutation, random_in_box, scale,
     spread_in_ball, Placement, Vec3,
@@ -12,9 +12,6 @@ use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use reconfig_core::pseudospectral::Spacecraft;
 use std::f64::consts::TAU;
-
-/// Offsets of a scene's centre are drawn in a cube of this half-width, LU.
-const OFFSET_REACH_LU: f64 = 10.0;
 
 /// A ring of 2-12 slots (radius 3-10 LU, or more for the spacing), 2-8 spacecraft in random
 /// slots, each moving on by the same 1 to slots - 1 slots and climbing `climb` LU along the

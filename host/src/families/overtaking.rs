@@ -7,14 +7,11 @@
 //! (scene frame), so `factor * (peak along + peak across)` bounds every world-frame component
 //! whatever the scene's rotation.
 
-use super::bound::{axis_need, craft, cubic_position, Common, KEEP_OUT_LU};
+use super::bound::{axis_need, craft, cubic_position, Common, KEEP_OUT_LU, OFFSET_REACH_LU};
 use super::geometry::Placement;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use reconfig_core::pseudospectral::Spacecraft;
-
-/// Offsets of a scene's centre are drawn in a cube of this half-width, LU.
-const OFFSET_REACH_LU: f64 = 10.0;
 
 /// Samples of the horizon when finding where the fast ones are within reach of the file.
 const SAMPLES: usize = 2000;

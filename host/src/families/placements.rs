@@ -2,7 +2,7 @@
 //! or under a tight bound) and dense repackings, where the ends are the same points (a ball of
 //! points just above d apart) or the cells of one lattice (square, hexagonal, cubic), permuted.
 
-use super::bound::{craft, rest_to_rest, Common, KEEP_OUT_LU};
+use super::bound::{craft, rest_to_rest, Common, KEEP_OUT_LU, OFFSET_REACH_LU};
 use super::geometry::{
     add, cubic_lattice, hexagonal_patch, moving_permutation, permutation, random_in_box,
     spread_in_ball, spread_in_box, square_grid, Placement, Vec3,
@@ -10,9 +10,6 @@ use super::geometry::{
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use reconfig_core::pseudospectral::Spacecraft;
-
-/// Offsets of a scene's centre are drawn in a cube of this half-width, LU.
-const OFFSET_REACH_LU: f64 = 10.0;
 
 /// 2-8 starts and ends spread (pairwise the spacing apart) in a box of half-width drawn from
 /// `half`, moved by one random offset.

@@ -6,7 +6,7 @@
 //! Each shape is drawn at unit size, scaled so that its least gap is at least the common
 //! spacing (and at least a drawn size), then rotated and moved to a random offset.
 
-use super::bound::{rest_to_rest, Common};
+use super::bound::{rest_to_rest, Common, OFFSET_REACH_LU};
 use super::geometry::{
     circle, circle_radius_for_gap, cube_corners, fibonacci_sphere, min_gap, permutation, scale,
     tetrahedron, Placement, Rotation, Vec3,
@@ -15,9 +15,6 @@ use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use reconfig_core::pseudospectral::Spacecraft;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
-
-/// Offsets of a shape's centre are drawn in a cube of this half-width, LU.
-const OFFSET_REACH_LU: f64 = 10.0;
 
 /// Every point of the unit shape `unit` to its antipode, the shape scaled to `size` (or up to
 /// the common spacing where that is larger) and placed.
