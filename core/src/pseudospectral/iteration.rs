@@ -44,6 +44,18 @@ pub(super) enum SqpEnd {
     Failed(SolveStatus),
 }
 
+impl SqpEnd {
+    /// The QP state (active rows, multipliers) is the returned iterate's own: at a fixed point,
+    /// or at the iteration limit on an accepted QP answer. Only then may the certificate, which
+    /// measures the conditions with that state, certify the iterate or direct an escape.
+    pub(super) fn at_own_qp_state(self) -> bool {
+        matches!(
+            self,
+            Self::Converged | Self::MaxIterations { at_answer: true }
+        )
+    }
+}
+
 /// A converged iterate lies within this fraction of d of its linearisation point (so the QP's
 /// rows are the constraint gradients there to about this relative accuracy).
 pub(super) const FIXED_POINT_TOL_REL: f64 = 1e-4;

@@ -16,7 +16,7 @@
 //! dimension, 10 steps, 1.0 to 2e-15). At the dimension the space is exhausted and the smallest
 //! Ritz value bounds every power iterate from the same start (`Estimate::smallest_exhausted`).
 //! The certificate reports the larger of this and the power method's value (both from below).
-
+//!
 //! Deterministic: a fixed start, a fixed step bound (the Krylov dimension, at most
 //! `LANCZOS_STEPS`), a fixed Laguerre bound (`LAGUERRE_STEPS`).
 

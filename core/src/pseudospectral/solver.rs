@@ -298,10 +298,7 @@ impl Answer {
     /// pair's flat direction (the side it passes on) lets the iteration slide along it until
     /// `sqp_max_iter`; such a point was neither probed nor escaped from, and ended `Feasible`.
     fn measured_at_answer(&self) -> bool {
-        matches!(
-            self.end,
-            SqpEnd::Converged | SqpEnd::MaxIterations { at_answer: true }
-        )
+        self.end.at_own_qp_state()
     }
 }
 
@@ -508,11 +505,7 @@ pub(super) fn finish(
     // answer. Measured on the dense lattice (issue 9): 10 of its Feasible answers met every
     // tolerance of the certificate but had used their `sqp_max_iter` sliding along the
     // keep-out by parts per million of J per step.
-    let own_qp = matches!(
-        end,
-        SqpEnd::Converged | SqpEnd::MaxIterations { at_answer: true }
-    );
-    let certified = own_qp && out.certificate.certifies_local_optimum();
+    let certified = end.at_own_qp_state() && out.certificate.certifies_local_optimum();
     match end {
         _ if feasible && certified => SolveStatus::Solved,
         _ if feasible => SolveStatus::Feasible,
