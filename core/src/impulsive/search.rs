@@ -35,6 +35,7 @@ use super::types::ImpulsePoint;
 use super::work_units;
 use crate::capacity::MAX_IMPULSES;
 use crate::indexed::IndexedExt as _;
+use core::num::NonZeroU32;
 
 /// Phases of one candidate, rad; the first `n` are used.
 pub(super) type Phases = [f64; MAX_IMPULSES];
@@ -393,19 +394,20 @@ pub(crate) fn search(
     let tol = settings.search_tol_mps;
     let mut best_phi = scratch.starts[0];
     let mut best_cost = f64::INFINITY;
-    for j in 0..starts {
+    // Start j shares what is left of the budget with the starts after it: `left` counts them
+    // with itself, so it is at least 1 and the division is by a NonZeroU32.
+    for (j, left) in (0..starts).zip((1..=starts).rev()) {
         let (Some(&start), Some(&start_cost)) = (scratch.starts.get(j), scratch.costs.get(j))
         else {
+            break;
+        };
+        let Some(left) = u32::try_from(left).ok().and_then(NonZeroU32::new) else {
             break;
         };
         if !start_cost.is_finite() {
             continue;
         }
-        let remaining_starts = u32::try_from(starts.saturating_sub(j)).unwrap_or(1).max(1);
-        let allowance = budget
-            .saturating_sub(evaluations)
-            .checked_div(remaining_starts)
-            .unwrap_or(0);
+        let allowance = budget.saturating_sub(evaluations) / left;
         if allowance == 0 {
             break;
         }
