@@ -6,6 +6,7 @@
 pub mod cli;
 pub mod drivers;
 pub mod families;
+pub mod figure_record;
 pub mod fixture;
 pub mod harness;
 pub mod limits;

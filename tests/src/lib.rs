@@ -121,6 +121,7 @@ pub mod alloc_count {
         (result, allocations().saturating_sub(before))
     }
 }
+pub mod doc_blocks;
 pub mod golden;
 pub mod m7_record;
 pub mod numbers;

@@ -158,3 +158,103 @@ fn square_swap_leaves_the_plane_and_is_certified() {
     assert!(c.max_violation <= 1e-7, "{c:?}");
     assert!(s.min_separation_lu.unwrap() >= 2.0 - 1e-7);
 }
+
+/// The published and held planner-A cases of `docs/planner-a.md`'s *Figures* table, with the
+/// label the table gives each.
+const TABLE_CASES: [(&str, &str); 6] = [
+    ("huang2012-three-sats-n9", ""),
+    ("huang2012-three-sats-n10", ""),
+    ("huang2012-three-sats-n20", ""),
+    ("huang2012-three-sats-n10-no-test-points", ""),
+    ("crossing-8-sats-n16", " (generated, M = 8)"),
+    ("square-swap-4-sats-n16", " (issue 9's saddle case)"),
+];
+
+/// The *Figures* table of `docs/planner-a.md` and planner A's README lines, measured here.
+#[test]
+fn the_docs_table_and_the_readme_figures_are_measured() {
+    use reconfig_host::figure_record::{hold, Figure};
+    use reconfig_tests::doc_blocks;
+    let mut table = String::from(
+        "| fixture | status | J | continuous min separation (pair, t) | dynamics error | subproblems | QP steps | peak active | stationarity | reduced-Hessian min eigenvalue |\n\
+         | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n",
+    );
+    let mut worst_dynamics: f64 = 0.0;
+    let mut answers = Vec::new();
+    for (stem, label) in TABLE_CASES {
+        let s = solve_pseudospectral(&pseudospectral_fixture(stem), &Settings::default())
+            .expect("accepted");
+        let sep = s.min_separation_lu.expect("more than one spacecraft");
+        worst_dynamics = worst_dynamics.max(s.max_dynamics_error);
+        table.push_str(&format!(
+            "| {stem}{label} | {:?} | {:.6} | {sep:.9} ({}-{}, {:.4}) | {:.1e} | {} | {} | {} | {:.1e} | {:.3} |\n",
+            s.info.status,
+            s.cost,
+            s.min_separation_pair.0 + 1,
+            s.min_separation_pair.1 + 1,
+            s.min_separation_time_tu,
+            s.max_dynamics_error,
+            s.info.sqp_iterations,
+            s.info.qp_iterations,
+            s.info.max_active,
+            s.certificate.stationarity,
+            s.certificate.min_reduced_eigenvalue,
+        ));
+        answers.push((stem, s));
+    }
+    doc_blocks::hold(
+        "docs/planner-a.md",
+        "planner-a-fixtures",
+        "pseudospectral_fixtures",
+        &table,
+    )
+    .unwrap();
+
+    let command = "cargo test -p reconfig-tests --test pseudospectral_fixtures";
+    let answer = |stem: &str| &answers.iter().find(|(s, _)| *s == stem).unwrap().1;
+    let paper = answer("huang2012-three-sats-n10");
+    let paper_sep = paper.min_separation_lu.unwrap();
+    let published = 6.74318;
+    hold(
+        "a-paper-case-cost",
+        &Figure {
+            what: "A: paper case N = 10, cost J".into(),
+            target: format!("within 0.05 % of {published}"),
+            measured: format!(
+                "{:.6}, continuous separation {paper_sep:.9} (d = 2)",
+                paper.cost
+            ),
+            met: paper.info.status == SolveStatus::Solved
+                && (paper.cost - published).abs() <= 5e-4 * published
+                && paper_sep >= 2.0 - 1e-6,
+            doc: "planner-a".into(),
+            command: command.into(),
+        },
+    )
+    .unwrap();
+    hold(
+        "a-dynamics-error",
+        &Figure {
+            what: "A: dynamics error (eq. 29), the six cases above".into(),
+            target: "≤ 1e-9".into(),
+            measured: format!("≤ {worst_dynamics:.1e}"),
+            met: worst_dynamics <= 1e-9,
+            doc: "planner-a".into(),
+            command: command.into(),
+        },
+    )
+    .unwrap();
+    let swap = answer("square-swap-4-sats-n16");
+    hold(
+        "a-square-swap",
+        &Figure {
+            what: "A: square-swap saddle (issue 9)".into(),
+            target: "`Solved`, J ≤ 7.50".into(),
+            measured: format!("`{:?}`, {:.6}", swap.info.status, swap.cost),
+            met: swap.info.status == SolveStatus::Solved && swap.cost <= 7.50,
+            doc: "planner-a".into(),
+            command: command.into(),
+        },
+    )
+    .unwrap();
+}

@@ -26,15 +26,14 @@
 //! gives per family the cost gap to the oracle's best, the Solved / usable rates of the problems
 //! the oracle solves and the time against IPOPT's (`sweep_oracle.rs`).
 
-use crate::drivers::pseudospectral::solve_timed_with_starts;
 use crate::drivers::set_record::SetRecord;
-use crate::drivers::sweep_oracle::{self, relative_gap, OracleAnswer, GAP_REPORT_REL};
+use crate::drivers::sweep_oracle;
 use crate::drivers::sweep_report::{answer_json, rejection_json, table_header, Tally};
+use crate::drivers::sweep_run::{oracle_table, sweep, OracleData};
 use crate::families::sets::{self, Set};
 use crate::families::{kinds, six, Named};
 use anyhow::{bail, Context, Result};
-use reconfig_core::pseudospectral::{AlternativeStarts, Problem, Settings, SolveStatus};
-use std::collections::BTreeMap;
+use reconfig_core::pseudospectral::{AlternativeStarts, Settings};
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -111,24 +110,6 @@ pub struct Args {
     pub alternative_starts: u8,
 }
 
-/// One generated problem's outcome, for the oracle table.
-struct Outcome {
-    family: &'static str,
-    /// Oracle's best cost when the problem is the stored one and the oracle solved it.
-    oracle: Option<f64>,
-    /// IPOPT's time for one solve, ms.
-    ipopt_ms: Option<f64>,
-    /// `Some(status)` when the planner accepted the problem.
-    status: Option<SolveStatus>,
-    cost: f64,
-    time_ms: f64,
-}
-
-use sweep_oracle::percentile;
-
-/// The oracle's answers by problem index, and the stored problems they belong to.
-type OracleData = (BTreeMap<usize, OracleAnswer>, Vec<(String, Problem)>);
-
 /// The golden answers and stored problems, when both are there.
 fn load_oracle(args: &Args) -> Option<OracleData> {
     if !args.golden.exists() || !args.problems.exists() {
@@ -143,76 +124,6 @@ fn load_oracle(args: &Args) -> Option<OracleData> {
             eprintln!("oracle comparison skipped: {e:#}");
             None
         }
-    }
-}
-
-fn pct(part: usize, whole: usize) -> String {
-    if whole == 0 {
-        "-".to_string()
-    } else {
-        format!("{:.1} %", 100.0 * part as f64 / whole as f64)
-    }
-}
-
-/// The oracle table: per family and in all, over the problems the oracle solves.
-fn print_oracle_table(outcomes: &[Outcome]) {
-    println!();
-    println!(
-        "| family | oracle solves | Solved | usable (`is_usable()`) | gap median | gap p95 | gap worst | Solved > 0.5 % above | ours ms median / worst | IPOPT ms median | IPOPT / ours (medians) |"
-    );
-    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
-    let mut rows: Vec<&str> = six::FAMILIES.to_vec();
-    rows.push("all");
-    for family in rows {
-        let set: Vec<&Outcome> = outcomes
-            .iter()
-            .filter(|o| o.oracle.is_some() && (family == "all" || o.family == family))
-            .collect();
-        let solved = set
-            .iter()
-            .filter(|o| o.status == Some(SolveStatus::Solved))
-            .count();
-        let usable = set
-            .iter()
-            .filter(|o| o.status.is_some_and(|s| s.is_usable()))
-            .count();
-        let mut gaps: Vec<f64> = set
-            .iter()
-            .filter(|o| o.status.is_some_and(|s| s.is_usable()))
-            .filter_map(|o| o.oracle.map(|j| relative_gap(o.cost, j)))
-            .collect();
-        gaps.sort_by(f64::total_cmp);
-        let above = set
-            .iter()
-            .filter(|o| o.status == Some(SolveStatus::Solved))
-            .filter(|o| {
-                o.oracle
-                    .is_some_and(|j| relative_gap(o.cost, j) > GAP_REPORT_REL)
-            })
-            .count();
-        let mut ours: Vec<f64> = set
-            .iter()
-            .filter(|o| o.status.is_some())
-            .map(|o| o.time_ms)
-            .collect();
-        ours.sort_by(f64::total_cmp);
-        let mut ipopt: Vec<f64> = set.iter().filter_map(|o| o.ipopt_ms).collect();
-        ipopt.sort_by(f64::total_cmp);
-        let ours_median = percentile(&ours, 0.5);
-        let ipopt_median = percentile(&ipopt, 0.5);
-        println!(
-            "| {family} | {} | {solved} ({}) | {usable} ({}) | {:.4} % | {:.4} % | {:.4} % | {above} of {solved} | {:.2} / {:.2} | {:.0} | {:.0}x |",
-            set.len(),
-            pct(solved, set.len()),
-            pct(usable, set.len()),
-            100.0 * percentile(&gaps, 0.5),
-            100.0 * percentile(&gaps, 0.95),
-            100.0 * gaps.last().copied().unwrap_or(f64::NAN),
-            ours_median,
-            ours.last().copied().unwrap_or(f64::NAN),
-            ipopt_median,
-            ipopt_median / ours_median,
-        );
     }
 }
 
@@ -251,7 +162,6 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     let mut file = create(args.write.as_ref())?;
     let mut answers = create(args.write_answers.as_ref())?;
     let oracle = if families { load_oracle(args) } else { None };
-    let mut outcomes: Vec<Outcome> = Vec::new();
     let mut settings = Settings::default();
     if let Some(budget) = args.work_budget {
         settings.work_budget = budget;
@@ -273,7 +183,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     let per_kind = !families;
     println!(
         "{}",
-        table_header(if families { "family" } else { "kind" }, per_kind)
+        table_header(if families { "family" } else { "kind" }, per_kind, true)
     );
     let set = args.set.kinds();
     if args.record.is_some() && (set.is_none() || args.alternative_starts > 0) {
@@ -282,75 +192,50 @@ pub fn run(args: &Args) -> Result<ExitCode> {
              (no --alternative-starts)"
         );
     }
-    let mut tallies: BTreeMap<&str, Tally> = BTreeMap::new();
-    let mut all = Tally::default();
-    for (this, (family, p)) in problems.iter().enumerate() {
-        let family: &'static str = family;
-        if !families && this % 200 == 0 && this > 0 {
-            eprintln!("sweep: {this} of {} problems", problems.len());
-        }
-        let tally = tallies.entry(family).or_default();
-        // The oracle's answer counts only for the very problem it solved.
-        let stored = oracle.as_ref().and_then(|(golden, stored)| {
-            let same = stored
-                .get(this)
-                .is_some_and(|(f, q)| f == family && sweep_oracle::same_problem(q, p));
-            if same {
-                golden.get(&this)
-            } else {
-                None
+    let swept = sweep(
+        &problems,
+        oracle.as_ref(),
+        &settings,
+        starts,
+        |this, family, p, answer| {
+            if !families && this % 200 == 0 && this > 0 {
+                eprintln!("sweep: {this} of {} problems", problems.len());
             }
-        });
-        let mut outcome = Outcome {
-            family,
-            oracle: stored.and_then(|a| a.cost),
-            ipopt_ms: stored.and_then(|a| a.ipopt_time_ms),
-            status: None,
-            cost: f64::NAN,
-            time_ms: f64::NAN,
-        };
-        if let Some(f) = file.as_mut() {
-            writeln!(
-                f,
-                "{}",
-                serde_json::json!({ "family": family, "problem": p })
-            )?;
-        }
-        match solve_timed_with_starts(p, &settings, starts) {
-            Ok((timed, kept)) => {
-                let s = &timed.solution;
-                if let Some(f) = answers.as_mut() {
-                    writeln!(f, "{}", answer_json(this, family, p, s, timed.solve_time_s))?;
-                }
-                tally.answered(s, timed.solve_time_s, kept > 0);
-                all.answered(s, timed.solve_time_s, kept > 0);
-                outcome.status = Some(s.info.status);
-                outcome.cost = s.cost;
-                outcome.time_ms = timed.solve_time_s * 1e3;
+            if let Some(f) = file.as_mut() {
+                writeln!(
+                    f,
+                    "{}",
+                    serde_json::json!({ "family": family, "problem": p })
+                )?;
             }
-            Err(e) => {
-                let message = e.to_string();
-                if let Some(f) = answers.as_mut() {
-                    writeln!(f, "{}", rejection_json(this, family, &message))?;
-                }
-                tally.rejected(&message);
-                all.rejected(&message);
+            if let Some(f) = answers.as_mut() {
+                let line = match answer {
+                    Ok((timed, _)) => {
+                        answer_json(this, family, p, &timed.solution, timed.solve_time_s)
+                    }
+                    Err(e) => rejection_json(this, family, &e.to_string()),
+                };
+                writeln!(f, "{line}")?;
             }
-        }
-        outcomes.push(outcome);
-    }
+            Ok(())
+        },
+    )?;
+    let (tallies, all) = (&swept.tallies, &swept.all);
     let none = Tally::default();
     for row in &rows {
-        println!("{}", tallies.get(row).unwrap_or(&none).row(row, per_kind));
+        println!(
+            "{}",
+            tallies.get(row).unwrap_or(&none).row(row, per_kind, true)
+        );
     }
     if per_kind {
-        println!("{}", all.row("all", true));
+        println!("{}", all.row("all", true, true));
     }
     if let (Some(path), Some(set)) = (args.record.as_ref(), set) {
         // The record is the tallies' statuses (every kind listed, as `SetRecord::measure` has).
         let mut record = SetRecord::new(set, args.seed, problems.len(), settings.work_budget);
         record.all = all.counts().clone();
-        for (kind, tally) in &tallies {
+        for (kind, tally) in tallies {
             record
                 .kinds
                 .insert((*kind).to_string(), tally.counts().clone());
@@ -360,7 +245,8 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         println!("{}", record.summary());
     }
     if oracle.is_some() {
-        print_oracle_table(&outcomes);
+        println!();
+        print!("{}", oracle_table(&swept.outcomes, &six::FAMILIES, true));
     } else if families {
         eprintln!(
             "no oracle comparison: {} or {} not found",

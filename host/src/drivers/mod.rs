@@ -23,3 +23,4 @@ pub mod pseudospectral;
 pub mod set_record;
 pub mod sweep_oracle;
 pub mod sweep_report;
+pub mod sweep_run;
