@@ -309,3 +309,59 @@ pub fn update_readme() -> Result<bool, String> {
         .map_err(|e| format!("{README_FILE}: {e}"))?;
     Ok(true)
 }
+
+/// Start marker of the README's lines generated from `fixtures/golden/figures/`.
+pub const FIGURES_BEGIN: &str =
+    "<!-- readme-figures:begin (generated from fixtures/golden/figures/*.toml; do not edit) -->";
+/// End marker of those lines.
+pub const FIGURES_END: &str = "<!-- readme-figures:end -->";
+
+/// The README's order of the figure records (`fixtures/golden/figures/NAME.toml`); every
+/// record is listed once, and every listed name has a record.
+pub const FIGURE_ORDER: [&str; 26] = [
+    "a-paper-case-cost",
+    "a-dynamics-error",
+    "a-square-swap",
+    "a-wall-time",
+    "a-oracle-families",
+    "a-held-out",
+    "b-min-norm",
+    "b-least-fuel-search",
+    "b-exact-vs-clarabel",
+    "b-timing",
+    "geo-60-day-allocation",
+    "geo-brute-published",
+    "geo-brute-small-tours",
+    "geo-timing",
+    "leo-example-one",
+    "leo-sequencing-on-board",
+    "leo-full-plans",
+    "leo-held-out-tours",
+    "leo-on-board-host",
+    "truth-vs-scipy",
+    "c-interface",
+    "harness-demo",
+    "harness-flood-abandon",
+    "harness-flood-read",
+    "harness-flood-ignore",
+    "heap-allocations",
+];
+
+/// The README's lines of every figure record, in [`FIGURE_ORDER`]; an error names a record
+/// that is missing or not listed.
+pub fn figure_lines() -> Result<String, String> {
+    use reconfig_host::figure_record::{load, names};
+    let stored = names()?;
+    for name in &stored {
+        if !FIGURE_ORDER.contains(&name.as_str()) {
+            return Err(format!(
+                "figure record {name} is not in readme_figures::FIGURE_ORDER"
+            ));
+        }
+    }
+    let mut md = String::new();
+    for name in FIGURE_ORDER {
+        let _ = writeln!(md, "{}", load(name)?.readme_line());
+    }
+    Ok(md)
+}

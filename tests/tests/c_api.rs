@@ -798,6 +798,18 @@ fn c_example_is_bit_identical_to_the_rust_api_on_every_fixture() {
     for (g, e) in got.iter().zip(expected.iter()) {
         assert_eq!(*g, e.as_str(), "C and Rust differ");
     }
+    reconfig_host::figure_record::hold(
+        "c-interface",
+        &reconfig_host::figure_record::Figure {
+            what: "C interface vs Rust, host (the M7 C image under QEMU: the same lines)".into(),
+            target: "bit-identical".into(),
+            measured: format!("{} of {} runs", got.len(), expected.len()),
+            met: true,
+            doc: "c-api".into(),
+            command: "cargo test -p reconfig-tests --test c_api".into(),
+        },
+    )
+    .unwrap();
 }
 
 /// The first tool of `candidates` that runs, if any.

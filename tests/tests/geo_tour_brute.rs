@@ -376,3 +376,60 @@ fn known_gaps_of_the_one_leg_exchange_stay_within_one_percent() {
         );
     }
 }
+
+/// Every small tour of this file, for the README's line: (start, clients, days, cap).
+const SMALL_TOURS: [(f64, &[f64], f64, f64); 9] = [
+    (75.0, &[75.05, 75.12], 1.5, 5.0),
+    (48.0, &[50.0], 3.0, 2.0),
+    (10.0, &[10.1, 10.3, 10.45], 2.5, 5.0),
+    (48.0, &[51.0, 51.08], 4.0, 5.0),
+    (100.0, &[100.6, 101.4], 6.0, 1.0),
+    (285.704321, &[285.761091, 285.771403], 3.578214, 5.0),
+    (
+        333.085385,
+        &[333.229426, 333.259799, 333.364232],
+        5.668568,
+        2.760213,
+    ),
+    (20.0, &[20.04, 20.1, 20.13], 1.2, 5.0),
+    (52.239754, &[52.360497, 52.451771], 7.660245, 5.0),
+];
+
+/// The README's line: how many of the small tours the planner plans within 1e-3 m/s of the
+/// brute force, and by how much it stays above on the others.
+#[test]
+fn the_readme_figure_counts_the_small_tours() {
+    let mut within = 0;
+    let mut gaps = Vec::new();
+    for (start, targets, days, cap) in SMALL_TOURS {
+        let (planner, brute) = compare(start, targets, days, cap);
+        if planner <= brute + 1e-3 {
+            within += 1;
+        } else {
+            gaps.push(format!("+{:.2} %", 100.0 * (planner / brute - 1.0)));
+        }
+    }
+    let n = SMALL_TOURS.len();
+    let measured = if gaps.is_empty() {
+        format!("{within} of {n} tours")
+    } else {
+        format!(
+            "{within} of {n} tours; {} need two legs to change method at once: {}",
+            gaps.len(),
+            gaps.join(", ")
+        )
+    };
+    reconfig_host::figure_record::hold(
+        "geo-brute-small-tours",
+        &reconfig_host::figure_record::Figure {
+            what: "GEO: by cost vs a brute force over every Lambert time, small tours (issue 31)"
+                .into(),
+            target: "within 1e-3 m/s".into(),
+            measured,
+            met: within == n,
+            doc: "geo-tour".into(),
+            command: "cargo test -p reconfig-tests --test geo_tour_brute".into(),
+        },
+    )
+    .unwrap();
+}

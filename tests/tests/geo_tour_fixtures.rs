@@ -135,6 +135,18 @@ fn reproduction_leg_by_leg_at_the_published_durations() {
         out.total_dv_mps
     );
     assert!((out.mission_time_s - p.mission_time_s).abs() < 1.0);
+    reconfig_host::figure_record::hold(
+        "geo-60-day-allocation",
+        &reconfig_host::figure_record::Figure {
+            what: "GEO: optimal 60-day allocation".into(),
+            target: "46.795 ± 0.01 m/s".into(),
+            measured: format!("{:.4} m/s", out.total_dv_mps),
+            met: (out.total_dv_mps - 46.795).abs() < 0.01,
+            doc: "geo-tour".into(),
+            command: "cargo test -p reconfig-tests --test geo_tour_fixtures".into(),
+        },
+    )
+    .unwrap();
 }
 
 /// Brute force over durations and methods, independent of the price allocation: every
@@ -373,6 +385,7 @@ fn free_method_totals_match_brute_force_and_beat_the_rule() {
     let g = Geo::standard();
     let s = f.settings;
     let phases = published_phases(&f);
+    let (mut totals, mut worst) = (Vec::new(), 0.0f64);
     for days in [50.0, 60.0, 70.0, 80.0] {
         let mut p = f.problem.clone();
         p.mission_time_s = days * DAY_S;
@@ -407,10 +420,27 @@ fn free_method_totals_match_brute_force_and_beat_the_rule() {
             "{days}: {} vs {brute}",
             free.total_dv_mps
         );
+        totals.push(format!("{:.4}", free.total_dv_mps));
+        worst = worst.max((free.total_dv_mps - brute).abs());
         assert!(free.total_dv_mps <= rule.total_dv_mps, "{days}");
         assert!(free.mission_time_s <= p.mission_time_s);
         assert!(free.max_burn_mps <= p.max_burn_mps);
     }
+    reconfig_host::figure_record::hold(
+        "geo-brute-published",
+        &reconfig_host::figure_record::Figure {
+            what: format!(
+                "GEO: by cost vs brute force, published case 50-80 d ({} revolutions)",
+                s.lambert_max_revolutions
+            ),
+            target: "within 1e-3 m/s".into(),
+            measured: format!("≤ {worst:.1e} m/s: {}", totals.join(" / ")),
+            met: worst <= 1e-3,
+            doc: "geo-tour".into(),
+            command: "cargo test -p reconfig-tests --test geo_tour_fixtures".into(),
+        },
+    )
+    .unwrap();
 }
 
 /// Propagate every leg through its burns by two-body (universal variables) from the slot it

@@ -71,4 +71,16 @@ fn the_worker_loop_allocates_nothing_after_start_up() {
     let count = allocations();
     println!("allocations on the request path over {answered} requests: {count}");
     assert_eq!(count, 0, "the request path allocated {count} times");
+    reconfig_host::figure_record::hold(
+        "heap-allocations",
+        &reconfig_host::figure_record::Figure {
+            what: "heap allocations on the request path after start-up (every planner, every fault class)".into(),
+            target: "0".into(),
+            measured: format!("{count} over {answered} requests"),
+            met: count == 0,
+            doc: "harness".into(),
+            command: "cargo test -p reconfig-tests --test harness_alloc".into(),
+        },
+    )
+    .unwrap();
 }

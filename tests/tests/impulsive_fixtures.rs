@@ -47,8 +47,10 @@ const PAPER_MISS_M: [f64; 3] = [152.5, 56.9, 117.0];
 #[test]
 fn minimum_norm_matches_the_oracle_and_the_issue() {
     let g = golden();
+    let mut totals = Vec::new();
     for ((name, issue_total), miss) in PAPER_POINTS.into_iter().zip(PAPER_MISS_M) {
         let s = run(&problem(name), &min_norm_only());
+        totals.push((issue_total, s.total_dv_mps));
         // The linear model's fixed point is not a flyable plan: `Linearised` with its miss.
         match s.info.status {
             SolveStatus::Linearised { miss_m } => {
@@ -101,6 +103,31 @@ fn minimum_norm_matches_the_oracle_and_the_issue() {
             }
         }
     }
+    reconfig_host::figure_record::hold(
+        "b-min-norm",
+        &reconfig_host::figure_record::Figure {
+            what: "B: minimum-norm totals, paper's points".into(),
+            target: format!(
+                "{} ± 0.001 m/s",
+                totals
+                    .iter()
+                    .map(|(issue, _)| format!("{issue:.4}"))
+                    .collect::<Vec<_>>()
+                    .join(" / ")
+            ),
+            measured: totals
+                .iter()
+                .map(|(_, ours)| format!("{ours:.5}"))
+                .collect::<Vec<_>>()
+                .join(" / "),
+            met: totals
+                .iter()
+                .all(|(issue, ours)| (ours - issue).abs() < 1e-3),
+            doc: "planner-b".into(),
+            command: "cargo test -p reconfig-tests --test impulsive_fixtures".into(),
+        },
+    )
+    .unwrap();
 }
 
 #[test]
@@ -233,6 +260,7 @@ fn search_reaches_the_paper_bests_deterministically() {
     // The best known least-fuel plans (issue 10): the search must come within 0.1 %.
     let least_fuel = [(2, 8.23660), (3, 8.16873), (4, 8.14159)];
     let settings = Settings::default();
+    let mut excess = Vec::new();
     for (n, best) in bests {
         let p = problem(&format!("wang2018-gco-to-pco-search-{n}imp"));
         let a = run(&p, &settings);
@@ -261,6 +289,7 @@ fn search_reaches_the_paper_bests_deterministically() {
         );
         assert!(a.info.evaluations <= settings.search_max_evaluations + 1);
         let known = least_fuel.iter().find(|(m, _)| *m == n).unwrap().1;
+        excess.push(100.0 * (a.total_dv_mps / known - 1.0));
         assert!(
             a.total_dv_mps <= known * 1.001,
             "{n} impulses: {} more than 0.1 % above {known}",
@@ -275,6 +304,22 @@ fn search_reaches_the_paper_bests_deterministically() {
             postcard::to_allocvec(&b).unwrap()
         );
     }
+    let list = |v: Vec<String>| v.join(" / ");
+    reconfig_host::figure_record::hold(
+        "b-least-fuel-search",
+        &reconfig_host::figure_record::Figure {
+            what: "B: least-fuel search at the on-board budget, 2 / 3 / 4 impulses".into(),
+            target: format!(
+                "within 0.1 % of {}",
+                list(least_fuel.iter().map(|(_, k)| format!("{k:.5}")).collect())
+            ),
+            measured: list(excess.iter().map(|e| format!("{e:+.3} %")).collect()),
+            met: excess.iter().all(|e| *e <= 0.1),
+            doc: "planner-b".into(),
+            command: "cargo test -p reconfig-tests --test impulsive_fixtures".into(),
+        },
+    )
+    .unwrap();
 }
 
 #[test]

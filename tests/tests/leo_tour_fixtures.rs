@@ -107,6 +107,25 @@ fn example_one_printed_order_is_solved_and_below_the_published_total() {
     // at least 3.8 % on the table).
     assert!(total <= 1245.0, "{total}");
     assert!((total - 1237.641).abs() < 0.01, "{total}");
+    let cut = arcs
+        .iter()
+        .filter(|a| a.solution.info.status == SolveStatus::BudgetExhausted { verified: true })
+        .count();
+    reconfig_host::figure_record::hold(
+        "leo-example-one",
+        &reconfig_host::figure_record::Figure {
+            what: "LEO tour, Example I printed order".into(),
+            target: "total ≤ 1245 m/s".into(),
+            measured: format!(
+                "{total:.3} m/s, every arc's plan checked ({cut} of {} searches cut by the on-board budget: `BudgetExhausted {{ verified: true }}`)",
+                arcs.len()
+            ),
+            met: total <= 1245.0 && arcs.iter().all(|a| a.solution.info.status.is_usable()),
+            doc: "leo-tour".into(),
+            command: "cargo test -p reconfig-tests --test leo_tour_fixtures".into(),
+        },
+    )
+    .unwrap();
     // The oracle flies every client from the epoch with its own integrator: the misses include
     // the planning model's RK4 error in the clients' states at each arc start (measured 0.11 /
     // 19.5 / 32.3 / 43.7 m), which is what re-planning against the truth is for.
@@ -175,6 +194,12 @@ fn example_one_order_is_chosen_by_branch_and_bound_deterministically() {
     assert!(arcs.iter().all(|a| a.solution.info.status.is_usable()));
     assert!((total - 1194.900).abs() < 0.01, "{total}");
     assert!(total <= 1224.122, "{total}");
+    let on_board = (
+        order_text(&chosen.order),
+        i.work_units,
+        total,
+        arcs.iter().all(|a| a.solution.info.status.is_usable()),
+    );
 
     // On the ground: the finer estimates need the whole tree's 22.7 M units, above the
     // built-in limit (refused, naming the setting), within the ground limits.
@@ -208,6 +233,25 @@ fn example_one_order_is_chosen_by_branch_and_bound_deterministically() {
     assert!(arcs.iter().all(|a| a.solution.info.status.is_usable()));
     assert!((total - 1103.145).abs() < 0.01, "{total}");
     assert!(total <= ground_total + 1e-9, "{total}");
+    reconfig_host::figure_record::hold(
+        "leo-sequencing-on-board",
+        &reconfig_host::figure_record::Figure {
+            what: "LEO tour sequencing, all 120 orders, one on-board request (4 M units)".into(),
+            target: "best order for its estimates, deterministic".into(),
+            measured: format!(
+                "{} `Optimal` in {:.2} M units, {:.3} m/s planned (ground, {:.1} M units: {}, {total:.3})",
+                on_board.0,
+                on_board.1 as f64 / 1e6,
+                on_board.2,
+                i.work_units as f64 / 1e6,
+                order_text(&chosen.order),
+            ),
+            met: on_board.3,
+            doc: "leo-tour".into(),
+            command: "cargo test -p reconfig-tests --test leo_tour_fixtures".into(),
+        },
+    )
+    .unwrap();
     // Ranked by full plans (a ground design): refused on board by name even within the
     // budget, and the cheapest full plan of the tree on the ground (its brute force:
     // tests/tests/leo_tour_sequence_oracle.rs), below both orders above planned in full.
@@ -397,4 +441,13 @@ fn the_leo_worst_case_sequencing_spends_its_whole_budget_and_stays_within_it() {
         i.work_units
     );
     assert_eq!(c.sequence.len, 5);
+}
+
+/// An order of clients (indices from 0) as the docs write it, numbered from 1.
+fn order_text(order: &[usize]) -> String {
+    order
+        .iter()
+        .map(|c| (c + 1).to_string())
+        .collect::<Vec<_>>()
+        .join(" → ")
 }

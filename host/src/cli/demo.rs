@@ -45,6 +45,10 @@ pub struct Args {
     /// Rows of the results table to print.
     #[arg(long, default_value_t = 30)]
     pub rows: usize,
+    /// Write the README's demo figures (`fixtures/golden/figures/harness-demo.toml`,
+    /// `leo-on-board-host.toml`) from this run.
+    #[arg(long)]
+    pub record_figures: bool,
 }
 
 /// Run `reconfig demo`.
@@ -161,9 +165,66 @@ pub fn run(args: &Args) -> Result<ExitCode> {
             "NOT every answer correct"
         }
     );
+    if args.record_figures {
+        record_figures(
+            ok,
+            started.elapsed().as_secs_f64(),
+            items.len(),
+            onboard.as_ref().and_then(|r| r.as_ref().ok()),
+            workers,
+        )?;
+    }
     Ok(if ok {
         ExitCode::SUCCESS
     } else {
         ExitCode::FAILURE
     })
+}
+
+/// The README's demo figures, from this run (timings: written by the run, never by a test).
+fn record_figures(
+    ok: bool,
+    elapsed_s: f64,
+    requests: usize,
+    onboard: Option<&leo_onboard::OnboardRun>,
+    workers: usize,
+) -> Result<()> {
+    use crate::figure_record::{write, Figure};
+    let command = "cargo run --release -p reconfig-host --bin reconfig -- demo --record-figures";
+    write(
+        "harness-demo",
+        &Figure {
+            what: "harness demo (`reconfig demo`)".into(),
+            target: "every answer correct, < 1 min".into(),
+            measured: format!(
+                "{elapsed_s:.1} s, {requests} requests x 2 runs, {}",
+                if ok {
+                    "every answer correct"
+                } else {
+                    "NOT every answer correct"
+                }
+            ),
+            met: ok && elapsed_s < 60.0,
+            doc: "harness".into(),
+            command: command.into(),
+        },
+    )
+    .map_err(|e| anyhow!(e))?;
+    if let Some(r) = onboard {
+        write(
+            "leo-on-board-host",
+            &Figure {
+                what: format!(
+                    "LEO tour on board (Example I: order + arcs), host, {workers} workers"
+                ),
+                target: format!("≤ {} ms", leo_onboard::BUDGET_MS),
+                measured: format!("{:.0} ms", r.total_ms()),
+                met: r.correct && r.total_ms() <= leo_onboard::BUDGET_MS,
+                doc: "leo-tour".into(),
+                command: command.into(),
+            },
+        )
+        .map_err(|e| anyhow!(e))?;
+    }
+    Ok(())
 }
