@@ -5,6 +5,11 @@
 
 use crate::m7_record::splice_between;
 use std::path::PathBuf;
+use std::sync::Mutex;
+
+/// One document rewrite at a time: the tests of one binary run on parallel threads, and two
+/// blocks of one document rewritten at once would each write back the other's old block.
+static REWRITE: Mutex<()> = Mutex::new(());
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..")
@@ -22,6 +27,9 @@ pub fn end(name: &str) -> String {
 
 /// Hold block `name` of `doc` (relative to the workspace) to `generated`.
 pub fn hold(doc: &str, name: &str, test: &str, generated: &str) -> Result<(), String> {
+    let _one_at_a_time = REWRITE
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
     let path = root().join(doc);
     let text = std::fs::read_to_string(&path).map_err(|e| format!("{doc}: {e}"))?;
     let expected = splice_between(&text, &begin(name, test), &end(name), generated)?;

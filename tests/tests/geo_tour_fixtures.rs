@@ -386,6 +386,10 @@ fn free_method_totals_match_brute_force_and_beat_the_rule() {
     let s = f.settings;
     let phases = published_phases(&f);
     let (mut totals, mut worst) = (Vec::new(), 0.0f64);
+    let mut table = String::from(
+        "| mission (d) | by cost (m/s) | brute force | paper's rule, exact allocation | rule, free Lambert time | published (GA) | cap binds on |\n\
+         | --- | --- | --- | --- | --- | --- | --- |\n",
+    );
     for days in [50.0, 60.0, 70.0, 80.0] {
         let mut p = f.problem.clone();
         p.mission_time_s = days * DAY_S;
@@ -423,9 +427,51 @@ fn free_method_totals_match_brute_force_and_beat_the_rule() {
         totals.push(format!("{:.4}", free.total_dv_mps));
         worst = worst.max((free.total_dv_mps - brute).abs());
         assert!(free.total_dv_mps <= rule.total_dv_mps, "{days}");
+        let mut free_lambert_p = p.clone();
+        free_lambert_p.policy = MethodPolicy::PaperRuleFreeLambert;
+        let free_lambert = run(&free_lambert_p, &s);
+        assert_eq!(free_lambert.info.status, SolveStatus::Solved, "{days}");
+        let published = f
+            .published
+            .sweep_days
+            .iter()
+            .position(|&d| (d - days).abs() < 1e-9)
+            .map_or("—".to_owned(), |i| {
+                format!("{:.3}", f.published.sweep_total_dv_mps[i])
+            });
+        let binds: Vec<String> = binding
+            .iter()
+            .map(|&k| {
+                let leg = &free.legs[k - 1];
+                format!(
+                    "leg {k} ({:.1}° {}, {:.3} m/s)",
+                    leg.phase_rad.to_degrees(),
+                    format!("{:?}", leg.method).to_lowercase(),
+                    leg.max_burn_mps
+                )
+            })
+            .collect();
+        table.push_str(&format!(
+            "| {days:.0} | {:.4} | {brute:.4} | {:.4} | {:.4} | {published} | {} |\n",
+            free.total_dv_mps,
+            rule.total_dv_mps,
+            free_lambert.total_dv_mps,
+            if binds.is_empty() {
+                "—".to_owned()
+            } else {
+                binds.join(", ")
+            }
+        ));
         assert!(free.mission_time_s <= p.mission_time_s);
         assert!(free.max_burn_mps <= p.max_burn_mps);
     }
+    reconfig_tests::doc_blocks::hold(
+        "docs/geo-tour.md",
+        "geo-published-missions",
+        "geo_tour_fixtures",
+        &table,
+    )
+    .unwrap();
     reconfig_host::figure_record::hold(
         "geo-brute-published",
         &reconfig_host::figure_record::Figure {

@@ -2,7 +2,9 @@
 //! oracle (fixtures/golden/wang2018-min-norm.json) and the issue's figures, min-fuel and
 //! nonlinear correction, the search against the paper's Table 3 bests, determinism.
 
-use reconfig_core::impulsive::{solve, Problem, Settings, Solution, SolveStatus, Workspace};
+use reconfig_core::impulsive::{
+    solve, ElementSet, Problem, Settings, Solution, SolveStatus, Workspace,
+};
 use reconfig_host::fixture::{impulsive::ImpulsiveFixture, load_as};
 use reconfig_tests::fixtures_dir;
 
@@ -41,6 +43,13 @@ const PAPER_POINTS: [(&str, f64); 3] = [
     ("wang2018-gco-to-pco-4imp", 8.2174),
 ];
 
+/// The paper's tables of the three points and their printed totals, m/s.
+const PAPER_TABLES: [(&str, f64); 3] = [
+    ("Table 2, 3 imp", 8.220),
+    ("Table 4, 2 imp", 8.240),
+    ("Table 5, 4 imp", 8.219),
+];
+
 /// The linear plan's miss when flown with exact impulses (docs/planner-b.md), m.
 const PAPER_MISS_M: [f64; 3] = [152.5, 56.9, 117.0];
 
@@ -48,9 +57,27 @@ const PAPER_MISS_M: [f64; 3] = [152.5, 56.9, 117.0];
 fn minimum_norm_matches_the_oracle_and_the_issue() {
     let g = golden();
     let mut totals = Vec::new();
-    for ((name, issue_total), miss) in PAPER_POINTS.into_iter().zip(PAPER_MISS_M) {
-        let s = run(&problem(name), &min_norm_only());
+    let mut table = String::from(
+        "| case | minimum norm (ours) | oracle | issue | paper | min fuel (linear) | corrected, returned | linear-model miss |\n\
+         | --- | --- | --- | --- | --- | --- | --- | --- |\n",
+    );
+    for (((name, issue_total), miss), (label, paper)) in
+        PAPER_POINTS.into_iter().zip(PAPER_MISS_M).zip(PAPER_TABLES)
+    {
+        let p = problem(name);
+        let s = run(&p, &min_norm_only());
         totals.push((issue_total, s.total_dv_mps));
+        // The paper's own pipeline in full (classical elements, least fuel, correction).
+        let full = run(&p, &Settings::paper_classical());
+        let linear = full.linear_total_dv_mps.expect("finite");
+        table.push_str(&format!(
+            "| {label} | {:.5} | {:.7} | {issue_total:.4} | {paper:.3} | {linear:.5}{} | {:.5} | {:.0} m |\n",
+            s.total_dv_mps,
+            g[name]["min_norm_total_dv_mps"].as_f64().unwrap(),
+            if s.impulses.len() * 3 == 6 { " (square)" } else { "" },
+            full.total_dv_mps,
+            s.terminal_error.expect("nonlinear check flown").position_m,
+        ));
         // The linear model's fixed point is not a flyable plan: `Linearised` with its miss.
         match s.info.status {
             SolveStatus::Linearised { miss_m } => {
@@ -103,6 +130,13 @@ fn minimum_norm_matches_the_oracle_and_the_issue() {
             }
         }
     }
+    reconfig_tests::doc_blocks::hold(
+        "docs/planner-b.md",
+        "planner-b-min-norm",
+        "impulsive_fixtures",
+        &table,
+    )
+    .unwrap();
     reconfig_host::figure_record::hold(
         "b-min-norm",
         &reconfig_host::figure_record::Figure {
@@ -261,6 +295,10 @@ fn search_reaches_the_paper_bests_deterministically() {
     let least_fuel = [(2, 8.23660), (3, 8.16873), (4, 8.14159)];
     let settings = Settings::default();
     let mut excess = Vec::new();
+    let mut table = String::from(
+        "| impulses | status | returned total | linear least fuel | best known least fuel (issue 10) | above it | linear min-norm at those points | evaluations |\n\
+         | --- | --- | --- | --- | --- | --- | --- | --- |\n",
+    );
     for (n, best) in bests {
         let p = problem(&format!("wang2018-gco-to-pco-search-{n}imp"));
         let a = run(&p, &settings);
@@ -290,6 +328,15 @@ fn search_reaches_the_paper_bests_deterministically() {
         assert!(a.info.evaluations <= settings.search_max_evaluations + 1);
         let known = least_fuel.iter().find(|(m, _)| *m == n).unwrap().1;
         excess.push(100.0 * (a.total_dv_mps / known - 1.0));
+        table.push_str(&format!(
+            "| {n} | `{:?}` | {:.5} | {:.5} | {known:.5} | {:+.3} % | {:.5} | {} |\n",
+            a.info.status,
+            a.total_dv_mps,
+            a.linear_total_dv_mps.expect("finite"),
+            100.0 * (a.total_dv_mps / known - 1.0),
+            a.min_norm_total_dv_mps.expect("finite"),
+            a.info.evaluations,
+        ));
         assert!(
             a.total_dv_mps <= known * 1.001,
             "{n} impulses: {} more than 0.1 % above {known}",
@@ -304,6 +351,13 @@ fn search_reaches_the_paper_bests_deterministically() {
             postcard::to_allocvec(&b).unwrap()
         );
     }
+    reconfig_tests::doc_blocks::hold(
+        "docs/planner-b.md",
+        "planner-b-search",
+        "impulsive_fixtures",
+        &table,
+    )
+    .unwrap();
     let list = |v: Vec<String>| v.join(" / ");
     reconfig_host::figure_record::hold(
         "b-least-fuel-search",
@@ -447,8 +501,9 @@ fn check_against_oracle(
     oracle: &serde_json::Value,
     tol: f64,
     check_times: bool,
+    settings: &Settings,
 ) -> Solution {
-    let s = run(&problem(name), &Settings::default());
+    let s = run(&problem(name), settings);
     assert_eq!(s.info.status, SolveStatus::Solved, "{name}");
     assert!(
         s.terminal_error.expect("nonlinear check flown").position_m <= 1e-3,
@@ -477,6 +532,23 @@ fn check_against_oracle(
     s
 }
 
+/// One row of the oracle tables of `docs/planner-b.md`: the fixture and its label, our total,
+/// the oracle's, the Broyden steps, the nonlinear miss and the status.
+fn oracle_row(label: &str, s: &Solution, oracle: &serde_json::Value, status: bool) -> String {
+    let miss = s.terminal_error.expect("nonlinear check flown").position_m;
+    let mut row = format!(
+        "| {label} | {:.10} | {:.10} | {} | {miss:.1e} m |",
+        s.total_dv_mps,
+        oracle["total_dv_mps"].as_f64().unwrap(),
+        s.info.correction_iterations
+    );
+    if status {
+        row.push_str(&format!(" {:?} |", s.info.status));
+    }
+    row.push('\n');
+    row
+}
+
 #[test]
 fn corrected_two_impulse_plans_match_the_exact_model_oracle() {
     // Two impulses: the corrected plan is the unique root of the exact end condition, computed
@@ -485,8 +557,34 @@ fn corrected_two_impulse_plans_match_the_exact_model_oracle() {
         std::fs::read_to_string(fixtures_dir().join("golden/planner-b-corrected.json")).unwrap();
     let g: serde_json::Value = serde_json::from_str(&text).unwrap();
     for name in ["sso-leo-pair-e1e-3-2imp", "wang2018-gco-to-pco-2imp"] {
-        check_against_oracle(name, &g[name], 1e-8, true);
+        check_against_oracle(name, &g[name], 1e-8, true, &Settings::default());
     }
+    // The docs' table: the classical set, as the oracle writes its plans.
+    let classical = Settings {
+        element_set: ElementSet::Classical,
+        ..Settings::default()
+    };
+    let mut table = String::from(
+        "| fixture | ours (default settings, classical elements) | oracle | Broyden steps | nonlinear miss |\n\
+         | --- | --- | --- | --- | --- |\n",
+    );
+    for (name, label) in [
+        (
+            "sso-leo-pair-e1e-3-2imp",
+            "`sso-leo-pair-e1e-3-2imp` (a = 7078.137 km, e = 1e-3, i = 98.2°)",
+        ),
+        ("wang2018-gco-to-pco-2imp", "`wang2018-gco-to-pco-2imp`"),
+    ] {
+        let s = check_against_oracle(name, &g[name], 1e-8, true, &classical);
+        table.push_str(&oracle_row(label, &s, &g[name], false));
+    }
+    reconfig_tests::doc_blocks::hold(
+        "docs/planner-b.md",
+        "planner-b-corrected-oracle",
+        "impulsive_fixtures",
+        &table,
+    )
+    .unwrap();
 }
 
 #[test]
@@ -499,13 +597,30 @@ fn circular_and_equatorial_fixtures_match_the_equinoctial_oracle() {
     let text =
         std::fs::read_to_string(fixtures_dir().join("golden/planner-b-nonsingular.json")).unwrap();
     let g: serde_json::Value = serde_json::from_str(&text).unwrap();
-    for name in [
-        "sso-leo-pair-e0-2imp",
-        "geo-colocation-e0-i0-2imp",
-        "sso-leo-pair-e1e-3-2imp",
-        "wang2018-gco-to-pco-2imp",
+    let mut table = String::from(
+        "| fixture | ours (default settings) | oracle | Broyden steps | nonlinear miss | status |\n\
+         | --- | --- | --- | --- | --- | --- |\n",
+    );
+    for (name, label) in [
+        (
+            "sso-leo-pair-e0-2imp",
+            "`sso-leo-pair-e0-2imp` (a = 7078.137 km, e = 0, i = 98.2°)",
+        ),
+        (
+            "geo-colocation-e0-i0-2imp",
+            "`geo-colocation-e0-i0-2imp` (a = 42164.17 km, e = 0, i = 0; e/i vectors turned 90°)",
+        ),
+        (
+            "sso-leo-pair-e1e-3-2imp",
+            "`sso-leo-pair-e1e-3-2imp` (equinoctial default)",
+        ),
+        (
+            "wang2018-gco-to-pco-2imp",
+            "`wang2018-gco-to-pco-2imp` (equinoctial default)",
+        ),
     ] {
-        let s = check_against_oracle(name, &g[name], 1e-8, true);
+        let s = check_against_oracle(name, &g[name], 1e-8, true, &Settings::default());
+        table.push_str(&oracle_row(label, &s, &g[name], true));
         let total = g[name]["total_dv_mps"].as_f64().unwrap();
         println!(
             "{name}: {:.10} m/s (oracle {total:.10}), miss {:.2e} m, {} correction steps",
@@ -514,6 +629,13 @@ fn circular_and_equatorial_fixtures_match_the_equinoctial_oracle() {
             s.info.correction_iterations
         );
     }
+    reconfig_tests::doc_blocks::hold(
+        "docs/planner-b.md",
+        "planner-b-nonsingular-oracle",
+        "impulsive_fixtures",
+        &table,
+    )
+    .unwrap();
 }
 
 #[test]
@@ -534,7 +656,7 @@ fn input_forms_give_the_plans_of_their_classical_twins() {
         ),
         ("sso-leo-pair-e0-2imp-state", "sso-leo-pair-e0-2imp", 1e-8),
     ] {
-        let s = check_against_oracle(name, &g[twin], tol, false);
+        let s = check_against_oracle(name, &g[twin], tol, false, &Settings::default());
         let total = g[twin]["total_dv_mps"].as_f64().unwrap();
         println!(
             "{name}: {:.10} m/s (oracle {total:.10}), miss {:.2e} m",
