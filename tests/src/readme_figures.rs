@@ -318,13 +318,14 @@ pub const FIGURES_END: &str = "<!-- readme-figures:end -->";
 
 /// The README's order of the figure records (`fixtures/golden/figures/NAME.toml`); every
 /// record is listed once, and every listed name has a record.
-pub const FIGURE_ORDER: [&str; 26] = [
+pub const FIGURE_ORDER: [&str; 27] = [
     "a-paper-case-cost",
     "a-dynamics-error",
     "a-square-swap",
     "a-wall-time",
     "a-oracle-families",
     "a-held-out",
+    "a-held-out-oracle",
     "b-min-norm",
     "b-least-fuel-search",
     "b-exact-vs-clarabel",
@@ -363,5 +364,73 @@ pub fn figure_lines() -> Result<String, String> {
     for name in FIGURE_ORDER {
         let _ = writeln!(md, "{}", load(name)?.readme_line());
     }
+    Ok(md)
+}
+
+/// `docs/firmware.md`'s table of the LEO image's requests, from the LEO record: the paper's
+/// single arc, Example I's on-board part summed, its sequencing request and its four arcs.
+pub fn leo_image_table(leo_record: &str) -> Result<String, String> {
+    let leo = parse(leo_record, LEO_RECORD_FILE)?;
+    let fixtures = entries(&leo, "leo_fixture");
+    let at_400_mhz = |instructions: u64| format!("about {:.2} s", instructions as f64 / 400e6);
+    let kb = |bytes: u64| format!("{:.1} KB", bytes as f64 / 1e3);
+    let g3 = |v: u64| format!("{:.3} G", v as f64 / 1e9);
+    let per_unit = |e: &Entry| -> Result<String, String> {
+        let (n, units) = (int(e, "instructions")?, int(e, "work_units")?);
+        Ok(format!(
+            "{} ({} work units, {:.1} instructions per unit)",
+            g3(n),
+            grouped(units),
+            n as f64 / units.max(1) as f64
+        ))
+    };
+    let single = named(&fixtures, "leo-tour-example1-single-arc")?;
+    let summed = named(&fixtures, "leo-tour-example1-sequence")?;
+    let order = named(&fixtures, "leo-tour-example1-sequence/order")?;
+    let mut arcs = Vec::new();
+    for k in 1..=4 {
+        arcs.push(named(
+            &fixtures,
+            &format!("leo-tour-example1-sequence/arc-{k}"),
+        )?);
+    }
+    let mut md =
+        String::from("| | instructions | at 400 MHz | stack |\n| --- | --- | --- | --- |\n");
+    let _ = writeln!(
+        md,
+        "| the paper's single arc (one request) | **{}** | {} | {} |",
+        per_unit(single)?,
+        at_400_mhz(int(single, "instructions")?),
+        kb(int(single, "stack_bytes")?)
+    );
+    let _ = writeln!(
+        md,
+        "| Example I's on-board part, summed: | **{}** | {} | {} (the largest request's) |",
+        giga(int(summed, "instructions")?),
+        at_400_mhz(int(summed, "instructions")?),
+        kb(int(summed, "stack_bytes")?)
+    );
+    let _ = writeln!(
+        md,
+        "| · the sequencing request | {} | {} | {} |",
+        per_unit(order)?,
+        at_400_mhz(int(order, "instructions")?),
+        kb(int(order, "stack_bytes")?)
+    );
+    let mut arc_instructions = Vec::new();
+    let (mut arcs_sum, mut arc_stack) = (0u64, 0u64);
+    for a in &arcs {
+        let n = int(a, "instructions")?;
+        arc_instructions.push(format!("{:.3}", n as f64 / 1e9));
+        arcs_sum += n;
+        arc_stack = arc_stack.max(int(a, "stack_bytes")?);
+    }
+    let _ = writeln!(
+        md,
+        "| · the four arc requests of its order | {} G | {} | {} each at most |",
+        arc_instructions.join(" / "),
+        at_400_mhz(arcs_sum),
+        kb(arc_stack)
+    );
     Ok(md)
 }

@@ -128,3 +128,13 @@ fn the_planner_b_kernel_table_is_the_record() {
 fn the_leo_arc_kernel_table_is_the_record() {
     kernel_table_is_the_record(&m7_record::KERNELS_LEO_DOCS);
 }
+
+#[test]
+fn the_leo_image_table_is_the_record() {
+    let record = std::fs::read_to_string(
+        m7_record::root().join(reconfig_tests::readme_figures::LEO_RECORD_FILE),
+    )
+    .expect("LEO record");
+    let table = reconfig_tests::readme_figures::leo_image_table(&record).expect("render");
+    reconfig_tests::doc_blocks::hold(DOCS_FILE, "m7-leo-image", "m7_docs", &table).unwrap();
+}
