@@ -1,8 +1,6 @@
 //! Planner A against the oracle on problems it was never tuned on (issue 28 items 1 and 4):
-//! the first problems of the held-out set (seed 9; the first 66, three of each of the 22 kinds,
-//! stored in `fixtures/generated/planner-a-heldout-66.jsonl`), and the oracle's answers for
-//! those it was run on (the first 44: two of each kind; IPOPT takes 5 s to 10 min a problem
-//! here) in
+//! the first 66 problems of the held-out set (three of each of the 22 kinds, seed 9), stored in
+//! `fixtures/generated/planner-a-heldout-66.jsonl`, and the oracle's answers in
 //! `fixtures/golden/planner-a-heldout-oracle.jsonl` (IPOPT from the line and analytic starts,
 //! and restarted from our on-board answers' nodes, with the continuous keep-out exchanged in:
 //! `tests/oracle/planner_a_ipopt.py`, the command in the file's header).
