@@ -43,6 +43,42 @@ pub fn solve_pseudospectral(
     Ok(solution)
 }
 
+/// How far below the oracle's cost (relative) our usable answer may be without being wrong: the
+/// oracle keeps each pair up to `oracle_margin_rel d` above d, which costs it up to the sum of
+/// our keep-out multipliers (dJ/dd per check) times that, plus `below_tolerance_rel`.
+pub fn below_oracle_allowance_rel(
+    ours: &Solution,
+    keep_out_lu: f64,
+    oracle_cost: f64,
+    below_tolerance_rel: f64,
+    oracle_margin_rel: f64,
+) -> f64 {
+    let keep_out_multipliers: f64 = ours
+        .certificate
+        .multipliers
+        .iter()
+        .filter(|m| {
+            matches!(
+                m.constraint,
+                pseudospectral::ActiveConstraint::KeepOut { .. }
+            )
+        })
+        .map(|m| m.value.max(0.0))
+        .sum();
+    below_tolerance_rel
+        + keep_out_multipliers * oracle_margin_rel * keep_out_lu
+            / oracle_cost.abs().max(f64::MIN_POSITIVE)
+}
+
+/// An order of clients (indices from 0) as the docs write it, numbered from 1: `3 → 4 → 5`.
+pub fn order_text(order: &[usize]) -> String {
+    order
+        .iter()
+        .map(|c| (c + 1).to_string())
+        .collect::<Vec<_>>()
+        .join(" → ")
+}
+
 /// The golden value `key` of `name` in `fixtures/golden/FILE`.
 pub fn golden(file: &str, name: &str, key: &str) -> f64 {
     let text = std::fs::read_to_string(fixtures_dir().join("golden").join(file)).expect("golden");

@@ -19,11 +19,10 @@
 //! against the `[all]` bars.
 
 use reconfig_core::pseudospectral::{
-    solve_with_alternative_starts, ActiveConstraint, AlternativeStarts, Settings, Solution,
-    SolveStatus, Workspace,
+    solve_with_alternative_starts, AlternativeStarts, Settings, Solution, SolveStatus, Workspace,
 };
 use reconfig_host::drivers::sweep_oracle::{self, relative_gap, GAP_REPORT_REL};
-use reconfig_tests::{fixtures_dir, solve_pseudospectral};
+use reconfig_tests::{below_oracle_allowance_rel, fixtures_dir, solve_pseudospectral};
 use std::collections::BTreeMap;
 
 struct Bars {
@@ -227,19 +226,14 @@ fn compare(
         if status.is_usable() {
             usable += 1;
             let gap = relative_gap(ours.cost, oracle_cost);
-            // The oracle keeps each pair up to `oracle_margin_rel d` above d, which costs it
-            // up to the sum of our keep-out multipliers (dJ/dd per check) times that.
-            let keep_out_multipliers: f64 = ours
-                .certificate
-                .multipliers
-                .iter()
-                .filter(|m| matches!(m.constraint, ActiveConstraint::KeepOut { .. }))
-                .map(|m| m.value.max(0.0))
-                .sum();
-            let margin_cost_rel =
-                keep_out_multipliers * cfg.oracle_margin_rel * problem.keep_out_lu
-                    / oracle_cost.abs().max(f64::MIN_POSITIVE);
-            if gap < -(cfg.below_tolerance_rel + margin_cost_rel) {
+            let allowance = below_oracle_allowance_rel(
+                &ours,
+                problem.keep_out_lu,
+                oracle_cost,
+                cfg.below_tolerance_rel,
+                cfg.oracle_margin_rel,
+            );
+            if gap < -allowance {
                 failures.push(format!(
                     "problem {index} ({family}): our J = {} is below the oracle's best {oracle_cost} by {:.3e} (relative): an infeasible answer, or a better optimum than any the oracle found (then re-run the oracle restarted from our answers and say so in the golden file's commit)",
                     ours.cost, -gap

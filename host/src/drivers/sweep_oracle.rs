@@ -32,6 +32,10 @@ pub struct OracleAnswer {
     pub cost_from_ours: Option<f64>,
     /// IPOPT's wall time for one solve (all keep-out rounds) from the analytic guess, in ms.
     pub ipopt_time_ms: Option<f64>,
+    /// Whether IPOPT converged at the best answer (`Solve_Succeeded` or
+    /// `Solved_To_Acceptable_Level`): an answer checked feasible after IPOPT gave up is no
+    /// optimum to compare with.
+    pub converged: bool,
 }
 
 /// Relative cost gap of ours above the oracle's (negative: ours is lower).
@@ -81,6 +85,10 @@ pub fn load_golden(path: &Path) -> Result<BTreeMap<usize, OracleAnswer>> {
                 cost_own_starts: opt_f64(&v, "best_without_ours"),
                 cost_from_ours: from_ours,
                 ipopt_time_ms: opt_f64(&v, "ipopt_time_ms"),
+                converged: matches!(
+                    v.get("ipopt_status").and_then(serde_json::Value::as_str),
+                    Some("Solve_Succeeded" | "Solved_To_Acceptable_Level")
+                ),
             },
         );
     }
