@@ -8,7 +8,7 @@ use reconfig_core::limits::Limits;
 use reconfig_host::drivers::leo_tour::plan;
 use reconfig_host::drivers::leo_truth::replan_last_leg;
 use reconfig_host::fixture::leo_tour::{load, parse};
-use reconfig_tests::fixtures_dir;
+use reconfig_tests::{fixtures_dir, order_text};
 
 #[test]
 fn paper_single_arc_beats_the_published_run_and_the_oracle_confirms_the_arrival() {
@@ -441,13 +441,4 @@ fn the_leo_worst_case_sequencing_spends_its_whole_budget_and_stays_within_it() {
         i.work_units
     );
     assert_eq!(c.sequence.len, 5);
-}
-
-/// An order of clients (indices from 0) as the docs write it, numbered from 1.
-fn order_text(order: &[usize]) -> String {
-    order
-        .iter()
-        .map(|c| (c + 1).to_string())
-        .collect::<Vec<_>>()
-        .join(" → ")
 }

@@ -190,11 +190,7 @@ fn example_one_ranked_by_full_plans_is_the_cheapest_full_plan_of_all_120_orders(
     assert!((total - 1094.502).abs() < 0.01, "{total}");
     assert!(total < 1103.145 - 5.0, "{total}");
     assert_eq!(planned, 97);
-    let order = order
-        .iter()
-        .map(|c| (c + 1).to_string())
-        .collect::<Vec<_>>()
-        .join(" → ");
+    let order = reconfig_tests::order_text(&order);
     reconfig_host::figure_record::hold(
         "leo-full-plans",
         &reconfig_host::figure_record::Figure {
