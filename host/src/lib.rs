@@ -14,4 +14,5 @@ pub mod plot;
 pub mod plot_geo;
 pub mod plot_leo;
 pub mod scenario;
+pub mod table_record;
 pub mod truth;

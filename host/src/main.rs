@@ -35,6 +35,8 @@ enum Command {
     Plot(reconfig_host::cli::plot::Args),
     /// Two feeders at once (expensive + cheap, then two alike) against one flight service.
     Fairness(reconfig_host::cli::fairness::Args),
+    /// Where the service's workers and the feeder should sit: round trips per placement.
+    Placement(reconfig_host::cli::placement::Args),
     /// Planner A over seeded generated problems: the six families (default) or the tuning or
     /// held-out set of the kinds, a table row per family or kind.
     Sweep(reconfig_host::cli::sweep::Args),
@@ -77,6 +79,7 @@ fn main() -> ExitCode {
         Command::Feed(args) => reconfig_host::cli::feed::run(&args),
         Command::Plot(args) => reconfig_host::cli::plot::run(&args),
         Command::Fairness(args) => reconfig_host::cli::fairness::run(&args),
+        Command::Placement(args) => reconfig_host::cli::placement::run(&args),
         Command::Sweep(args) => reconfig_host::cli::sweep::run(&args),
         Command::Truth(args) => reconfig_host::cli::truth::run(&args),
     };

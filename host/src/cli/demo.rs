@@ -46,7 +46,8 @@ pub struct Args {
     #[arg(long, default_value_t = 30)]
     pub rows: usize,
     /// Write the README's demo figures (`fixtures/golden/figures/harness-demo.toml`,
-    /// `leo-on-board-host.toml`) from this run.
+    /// `leo-on-board-host.toml`) and the harness document's timing tables
+    /// (`fixtures/golden/tables/harness-demo-*.md`) from this run.
     #[arg(long)]
     pub record_figures: bool,
 }
@@ -119,6 +120,13 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         budget,
         Some(2 * workers),
     );
+    let tables = [report::table(&rep1), report::table(&rep2)];
+    let throughput = rep2.throughput.as_ref().map(|t| {
+        format!(
+            "{} requests in {:.3} s = {:.0} requests/s with {} in flight",
+            t.requests, t.seconds, t.per_second, t.window
+        )
+    });
     let ok = conclude(
         &items,
         &[(&sequential, rep1), (&saturated, rep2)],
@@ -173,6 +181,14 @@ pub fn run(args: &Args) -> Result<ExitCode> {
             onboard.as_ref().and_then(|r| r.as_ref().ok()),
             workers,
         )?;
+        record_tables(
+            ok,
+            started.elapsed().as_secs_f64(),
+            items.len(),
+            &tables,
+            throughput.as_deref().unwrap_or("not measured"),
+            args.budget_ms,
+        )?;
     }
     Ok(if ok {
         ExitCode::SUCCESS
@@ -180,6 +196,49 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         ExitCode::FAILURE
     })
 }
+
+/// The harness document's timing tables (one request at a time; every worker busy), from
+/// this run.
+fn record_tables(
+    ok: bool,
+    elapsed_s: f64,
+    requests: usize,
+    tables: &[crate::table_record::Table; 2],
+    throughput: &str,
+    budget_ms: f64,
+) -> Result<()> {
+    use crate::table_record::write;
+    let outcome = format!(
+        "The demo {} in {elapsed_s:.1} s: {requests} requests x 2 runs, {}. Microseconds; \
+         misses are round trips over the {} ms budget, with the worst overrun.",
+        if ok { "passed" } else { "FAILED" },
+        if ok {
+            "every answer correct"
+        } else {
+            "NOT every answer correct"
+        },
+        budget_ms
+    );
+    let [latency, busy] = tables;
+    write(
+        "harness-demo-latency",
+        RECORD_COMMAND,
+        &format!("{outcome} One request at a time (latency):"),
+        &[latency],
+    )
+    .map_err(|e| anyhow!(e))?;
+    write(
+        "harness-demo-busy",
+        RECORD_COMMAND,
+        &format!("Every worker busy (throughput: {throughput}):"),
+        &[busy],
+    )
+    .map_err(|e| anyhow!(e))
+}
+
+/// The command that writes the demo's records.
+const RECORD_COMMAND: &str =
+    "cargo run --release -p reconfig-host --bin reconfig -- demo --record-figures";
 
 /// The README's demo figures, from this run (timings: written by the run, never by a test).
 fn record_figures(
@@ -190,7 +249,7 @@ fn record_figures(
     workers: usize,
 ) -> Result<()> {
     use crate::figure_record::{write, Figure};
-    let command = "cargo run --release -p reconfig-host --bin reconfig -- demo --record-figures";
+    let command = RECORD_COMMAND;
     write(
         "harness-demo",
         &Figure {

@@ -6,6 +6,7 @@ pub mod demo;
 pub mod fairness;
 pub mod feed;
 pub mod montecarlo;
+pub mod placement;
 pub mod plot;
 pub mod serve;
 pub mod solve;

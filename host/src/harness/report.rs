@@ -197,6 +197,38 @@ pub fn build(
     }
 }
 
+/// The report's rows as a markdown table (µs), for a record of `docs/` (see
+/// [`crate::table_record`]).
+pub fn table(report: &Report) -> crate::table_record::Table {
+    let mut t = crate::table_record::Table::new(&[
+        ("planner", false),
+        ("size", false),
+        ("count", true),
+        ("solve p50", true),
+        ("p99", true),
+        ("max", true),
+        ("rtt p50", true),
+        ("p99", true),
+        ("max", true),
+        ("misses (worst overrun)", false),
+    ]);
+    for r in &report.rows {
+        t.push(vec![
+            r.planner.clone(),
+            r.size.clone(),
+            r.count.to_string(),
+            format!("{:.1}", r.solve_p50_us),
+            format!("{:.1}", r.solve_p99_us),
+            format!("{:.1}", r.solve_max_us),
+            format!("{:.1}", r.rtt_p50_us),
+            format!("{:.1}", r.rtt_p99_us),
+            format!("{:.1}", r.rtt_max_us),
+            format!("{} ({:.1})", r.deadline_misses, r.worst_overrun_us),
+        ]);
+    }
+    t
+}
+
 /// Print a report as a table.
 pub fn print(report: &Report) {
     println!(

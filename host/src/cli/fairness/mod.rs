@@ -23,6 +23,8 @@
 //! client than the round-robin allows (*served in turn*; *starved* counts the requests lost or
 //! served out of turn). Exit 0 only if all holds; the JSON report says which check failed.
 
+mod table;
+
 use crate::harness::child::ServiceChild;
 use crate::harness::dispatch::{ServiceOrder, NO_TURN};
 use crate::harness::feeder::{self, Fate, FeedOptions, FeedRun, Item};
@@ -39,6 +41,7 @@ use serde::Serialize;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Duration;
+use table::{held, mode_name, phase_table, print_phase, record};
 
 /// Arguments of `reconfig fairness`.
 #[derive(clap::Args, Debug)]
@@ -68,6 +71,10 @@ pub struct Args {
     /// flooder process in this mode (`read`, `abandon`, `ignore`; see `reconfig feed --flood`).
     #[arg(long, value_name = "MODE")]
     pub flood: Option<FloodMode>,
+    /// Write this run's tables for the harness document (`fixtures/golden/tables/
+    /// harness-fairness.md`, or `harness-flood-MODE.md` with `--flood`).
+    #[arg(long)]
+    pub record: bool,
 }
 
 /// One client's figures in one phase.
@@ -316,44 +323,6 @@ fn two_feeders(
     Ok([a, b])
 }
 
-fn print_phase(title: &str, rows: &[ClientFigures]) {
-    println!("\n== {title}");
-    println!(
-        "{:<10} {:>7} {:>7} {:>5} {:>5} {:>10} {:>10} {:>10} {:>10} {:>8} {:>7}",
-        "client",
-        "sent",
-        "correct",
-        "wrong",
-        "lost",
-        "req/s",
-        "rtt p50",
-        "p99",
-        "max (us)",
-        "starved",
-        "waited"
-    );
-    for r in rows {
-        println!(
-            "{:<10} {:>7} {:>7} {:>5} {:>5} {:>10.1} {:>10.1} {:>10.1} {:>10.1} {:>8} {:>7}",
-            r.client,
-            r.sent,
-            r.correct,
-            r.wrong,
-            r.lost,
-            r.throughput_per_s,
-            r.rtt_p50_us,
-            r.rtt_p99_us,
-            r.rtt_max_us,
-            r.starved,
-            r.most_other_turns_waited
-        );
-    }
-    println!(
-        "(starved: lost or served out of turn; waited: most turns of other clients one request \
-         waited for)"
-    );
-}
-
 fn write_json(path: Option<&std::path::Path>, out: &FairnessOut) -> Result<()> {
     if let Some(path) = path {
         std::fs::write(path, serde_json::to_string_pretty(out)?)?;
@@ -444,6 +413,28 @@ fn run_flood(args: &Args, mode: FloodMode, instance: &Instance) -> Result<ExitCo
         if stopped { "cleanly" } else { "UNCLEANLY" },
         if passed { "passed" } else { "FAILED" }
     );
+    if args.record {
+        record(
+            args,
+            &format!("harness-flood-{}", mode_name(mode)),
+            &format!(
+                "The cheap client (planner-B fixed points, {} /s, one at a time) for {} s beside \
+                 a `{}` flooder, then {} s after the flooder was killed (SIGKILL); the flooder's \
+                 last line: `{flooder_line}`. Every answer correct and nothing lost: {}; served \
+                 in turn: {}; p99 within {} ms: {}; service stopped cleanly: {}",
+                args.cheap_rate,
+                args.seconds,
+                mode_name(mode),
+                args.seconds,
+                held(checks.all_correct),
+                held(checks.served_in_turn),
+                args.budget_ms,
+                held(checks.cheap_within_budget),
+                held(checks.stopped_cleanly),
+            ),
+            &[&phase_table(&[during.clone(), after.clone()])],
+        )?;
+    }
     let out = FairnessOut {
         seconds: args.seconds,
         budget_ms: args.budget_ms,
@@ -569,6 +560,31 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         if stopped { "cleanly" } else { "UNCLEANLY" },
         if passed { "passed" } else { "FAILED" }
     );
+    if args.record {
+        record(
+            args,
+            "harness-fairness",
+            &format!(
+                "Two phases of {} s on one flight service: *mixed* (expensive: M8 N16 crossings, \
+                 {} in flight; cheap: planner-B fixed points, {} /s, one at a time), then *same \
+                 kind* (first and second: crossings, {} in flight each). Every answer correct \
+                 and nothing lost: {}; served in turn: {}; cheap p99 within {} ms: {}; \
+                 same-kind throughput ratio {ratio:.3} (at least 0.5): {}; service stopped \
+                 cleanly: {}",
+                args.seconds,
+                args.window,
+                args.cheap_rate,
+                args.window,
+                held(checks.all_correct),
+                held(checks.served_in_turn),
+                args.budget_ms,
+                held(checks.cheap_within_budget),
+                held(checks.throughput_ratio_ok),
+                held(checks.stopped_cleanly),
+            ),
+            &[&phase_table(&mixed), &phase_table(&same_kind)],
+        )?;
+    }
     let out = FairnessOut {
         seconds: args.seconds,
         budget_ms: args.budget_ms,
