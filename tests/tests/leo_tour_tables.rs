@@ -118,11 +118,7 @@ fn example_two_table_is_measured() {
     let row = |name: &str, cells: Vec<String>, total: String| {
         format!("| {name} | {} | {total} |\n", cells.join(" | "))
     };
-    let mut table = row(
-        "arc",
-        arcs.iter().map(arc_label).collect(),
-        "total".into(),
-    );
+    let mut table = row("arc", arcs.iter().map(arc_label).collect(), "total".into());
     table.push_str(&row(
         "---",
         arcs.iter().map(|_| "---".to_string()).collect(),

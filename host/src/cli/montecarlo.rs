@@ -38,6 +38,9 @@ pub struct Args {
     /// Print one JSON object instead of the table.
     #[arg(long)]
     pub json: bool,
+    /// Write the table for docs/planner-a.md (`fixtures/golden/tables/planner-a-montecarlo.md`).
+    #[arg(long)]
+    pub record: bool,
 }
 
 /// One configuration's statistics for one N.
@@ -195,34 +198,60 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         "Huang 2012 Table 2 reproduction: {} random initial guesses per N (analytic guess + N(0, ({} Umax)^2) control noise), seed {}",
         args.runs, args.sigma, args.seed
     );
-    println!(
-        "{:>3}  {:<40} {:>9} {:>9} {:>9} {:>10} {:>10} {:>7} {:>7} {:>8}",
-        "N",
-        "configuration",
-        "mean sep",
-        "min sep",
-        "mean J",
-        "mean ms",
-        "max ms",
-        "max QPs",
-        "max act",
-        "failures"
-    );
-    for r in &rows {
-        println!(
-            "{:>3}  {:<40} {:>9.4} {:>9.4} {:>9.5} {:>10.3} {:>10.3} {:>7} {:>7} {:>8}",
-            r.degree,
-            r.configuration,
-            r.mean_min_separation,
-            r.min_min_separation,
-            r.mean_cost,
-            r.mean_time_s * 1e3,
-            r.max_time_s * 1e3,
-            r.max_subproblems,
-            r.max_active,
-            r.failures
-        );
+    let table = table(&rows);
+    print!("{}", table.markdown());
+    println!("({NOTE})");
+    if args.record {
+        crate::table_record::write(
+            "planner-a-montecarlo",
+            &format!(
+                "cargo run --release -p reconfig-host --bin reconfig -- montecarlo --runs {} \
+                 --seed {} --record",
+                args.runs, args.seed
+            ),
+            &format!(
+                "Huang 2012 Table 2: {} random initial guesses per N (the analytic guess plus \
+                 N(0, ({} Umax)^2) control noise per node and axis), seed {}; {NOTE}.",
+                args.runs, args.sigma, args.seed
+            ),
+            &[&table],
+        )
+        .map_err(|e| anyhow::anyhow!(e))?;
     }
-    println!("(separations are the continuous minimum over the interpolated trajectory; a failure is a run below d - 1e-6 or without a usable status)");
     Ok(ExitCode::SUCCESS)
+}
+
+/// What the table's separations and failures are.
+const NOTE: &str = "separations are the continuous minimum over the interpolated trajectory; a \
+                    failure is a run below d - 1e-6 or without a usable status";
+
+/// The rows as a table (times in ms).
+fn table(rows: &[Row]) -> crate::table_record::Table {
+    let mut t = crate::table_record::Table::new(&[
+        ("N", true),
+        ("configuration", false),
+        ("mean sep", true),
+        ("min sep", true),
+        ("mean J", true),
+        ("mean ms", true),
+        ("max ms", true),
+        ("max QPs", true),
+        ("max active", true),
+        ("failures", true),
+    ]);
+    for r in rows {
+        t.push(vec![
+            r.degree.to_string(),
+            r.configuration.to_string(),
+            format!("{:.4}", r.mean_min_separation),
+            format!("{:.4}", r.min_min_separation),
+            format!("{:.5}", r.mean_cost),
+            format!("{:.3}", r.mean_time_s * 1e3),
+            format!("{:.3}", r.max_time_s * 1e3),
+            r.max_subproblems.to_string(),
+            r.max_active.to_string(),
+            r.failures.to_string(),
+        ]);
+    }
+    t
 }
