@@ -24,11 +24,16 @@ pub struct Table {
 }
 
 impl Table {
-    /// A table with these columns (`numeric[i]`: right-aligned) and no rows yet.
-    pub fn new(columns: &[(&str, bool)]) -> Self {
+    /// A table with these columns and no rows yet; `align` has one letter per column, `r` for
+    /// a right-aligned (number) column, anything else for a left-aligned one.
+    pub fn new(header: &[&str], align: &str) -> Self {
+        let mut right = align.chars().map(|c| c == 'r');
         Self {
-            header: columns.iter().map(|(n, _)| (*n).to_string()).collect(),
-            numeric: columns.iter().map(|(_, r)| *r).collect(),
+            header: header.iter().map(|n| (*n).to_string()).collect(),
+            numeric: header
+                .iter()
+                .map(|_| right.next().unwrap_or(false))
+                .collect(),
             rows: Vec::new(),
         }
     }
@@ -150,7 +155,7 @@ mod tests {
 
     #[test]
     fn a_table_is_markdown_with_aligned_numbers() {
-        let mut t = Table::new(&[("client", false), ("sent", true)]);
+        let mut t = Table::new(&["client", "sent"], "lr");
         t.push(vec!["cheap".into(), "3000".into()]);
         assert_eq!(
             t.markdown(),

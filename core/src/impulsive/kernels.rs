@@ -524,22 +524,8 @@ pub fn run(index: usize, ws: &mut Workspace, out: &mut Solution, prepared: &Prep
             black_box(true_anomaly(m, black_box(0.75), steps));
             0
         }
-        Kind::Solve(budget) => {
-            let p = problem(c.shape, false);
-            let s = Settings {
-                work_budget: if budget == 0 {
-                    settings.work_budget
-                } else {
-                    budget
-                },
-                ..settings
-            };
-            let r = super::solve(&p, &s, ws, out);
-            black_box(r.is_ok());
-            out.info.work_units
-        }
-        Kind::SolveSearch(budget) => {
-            let p = problem(c.shape, true);
+        Kind::Solve(budget) | Kind::SolveSearch(budget) => {
+            let p = problem(c.shape, matches!(c.kind, Kind::SolveSearch(_)));
             let s = Settings {
                 work_budget: if budget == 0 {
                     settings.work_budget
@@ -569,17 +555,8 @@ pub fn case_problem(index: usize) -> Option<Problem> {
 /// fixed point.
 fn solve_report(dv: XVector) -> super::solver::Report {
     super::solver::Report {
-        dv,
-        status: super::status::SolveStatus::Solved,
-        iterations: 0,
-        min_fuel_steps: 0,
-        min_fuel_gap_km_s: 0.0,
-        correction_steps: 0,
-        min_norm_total_km_s: 0.0,
-        linear_total_km_s: 0.0,
         min_fuel_used: true,
-        correction_used: false,
-        conditioning: pinv::Conditioning::default(),
+        ..super::solver::Report::holding(dv)
     }
 }
 

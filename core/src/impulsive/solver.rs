@@ -209,6 +209,25 @@ pub(crate) struct Report {
     pub conditioning: Conditioning,
 }
 
+impl Report {
+    /// A fresh solve's report holding the plan `dv`: `Solved`, no steps taken yet.
+    pub(crate) fn holding(dv: XVector) -> Self {
+        Self {
+            dv,
+            status: SolveStatus::Solved,
+            iterations: 0,
+            min_fuel_steps: 0,
+            min_fuel_gap_km_s: 0.0,
+            correction_steps: 0,
+            min_norm_total_km_s: 0.0,
+            linear_total_km_s: 0.0,
+            min_fuel_used: false,
+            correction_used: false,
+            conditioning: Conditioning::default(),
+        }
+    }
+}
+
 /// The full fixed-point solve at the points in `pts`.
 pub(crate) fn solve_points(
     ctx: &Context,
@@ -216,19 +235,7 @@ pub(crate) fn solve_points(
     settings: &Settings,
     seq: &mut Sequence,
 ) -> Report {
-    let mut rep = Report {
-        dv: XVector::zeros(),
-        status: SolveStatus::Solved,
-        iterations: 0,
-        min_fuel_steps: 0,
-        min_fuel_gap_km_s: 0.0,
-        correction_steps: 0,
-        min_norm_total_km_s: 0.0,
-        linear_total_km_s: 0.0,
-        min_fuel_used: false,
-        correction_used: false,
-        conditioning: Conditioning::default(),
-    };
+    let mut rep = Report::holding(XVector::zeros());
     let mut dv = XVector::zeros();
     let fp = match fixed_point(
         ctx,

@@ -406,22 +406,7 @@ impl Sqp {
             // The Newton step is taken at the answer, with the gradients there: the moving
             // checks go to the answer's local separation minima first (the envelope theorem
             // makes that the semi-infinite constraint's gradient).
-            ws.iterates.iterate = ws.iterates.accepted;
-            ws.work.charge(work_units::newton_step(
-                &ws.setup.transcription,
-                ws.iterates.qp.count,
-            ));
-            if settings.continuous_verification {
-                refine_moving_checks(ws);
-            }
-            if !newton::step(
-                &mut ws.setup.transcription,
-                &mut ws.iterates.qp,
-                &ws.iterates.accepted,
-                &mut ws.iterates.iterate,
-                newton::Scratch::from_buffers(ws.iterates.anderson.lend()),
-                &mut ws.work,
-            ) {
+            if !newton_step_at_answer(ws, settings.continuous_verification) {
                 ws.iterates.iterate = ws.iterates.accepted;
             }
             self.extrapolated = true;
@@ -449,6 +434,28 @@ impl Sqp {
 const ELASTIC_PENALTY_REL: f64 = 100.0;
 
 /// The elastic QP's penalty `rho` (see `qp::solve`) at the last answer.
+/// The Newton step from the accepted answer, charged first; with `refine` the moving checks go
+/// to the answer's local separation minima before it. False when the step failed (the iterate
+/// is then partly written: the caller restores it).
+pub(super) fn newton_step_at_answer(ws: &mut Workspace, refine: bool) -> bool {
+    ws.iterates.iterate = ws.iterates.accepted;
+    ws.work.charge(work_units::newton_step(
+        &ws.setup.transcription,
+        ws.iterates.qp.count,
+    ));
+    if refine {
+        refine_moving_checks(ws);
+    }
+    newton::step(
+        &mut ws.setup.transcription,
+        &mut ws.iterates.qp,
+        &ws.iterates.accepted,
+        &mut ws.iterates.iterate,
+        newton::Scratch::from_buffers(ws.iterates.anderson.lend()),
+        &mut ws.work,
+    )
+}
+
 fn elastic_penalty(ws: &Workspace) -> f64 {
     let tr = &ws.setup.transcription;
     let size = half_norm2(&ws.iterates.accepted, (tr.blocks(), tr.basis.free));

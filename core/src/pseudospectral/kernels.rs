@@ -17,8 +17,8 @@
 //! meets, so no check is pruned), at the capacity N = 24 and at N = 10, and 2 spacecraft at the
 //! least degree N = 4 (where the fixed-size clears weigh most).
 
-use super::iteration::{name_unmet, sqp, turn_unmet_pairs, SqpEnd};
-use super::linearise::{follow_minima, linearise, refine_moving_checks};
+use super::iteration::{name_unmet, newton_step_at_answer, sqp, turn_unmet_pairs, SqpEnd};
+use super::linearise::{follow_minima, linearise};
 use super::problem::{Problem, Spacecraft};
 use super::qp_state::Mode;
 use super::settings::Settings;
@@ -528,20 +528,7 @@ pub fn run(index: usize, ws: &mut Workspace, out: &mut Solution, prepared: &Prep
             if ws.iterates.qp.mode != Mode::Factor || !newton::applies(&ws.iterates.qp) {
                 return 0;
             }
-            ws.iterates.iterate = ws.iterates.accepted;
-            ws.work.charge(work_units::newton_step(
-                &ws.setup.transcription,
-                ws.iterates.qp.count,
-            ));
-            refine_moving_checks(ws);
-            black_box(newton::step(
-                &mut ws.setup.transcription,
-                &mut ws.iterates.qp,
-                &ws.iterates.accepted,
-                &mut ws.iterates.iterate,
-                newton::Scratch::from_buffers(ws.iterates.anderson.lend()),
-                &mut ws.work,
-            ));
+            black_box(newton_step_at_answer(ws, true));
             ws.work.used().saturating_sub(before)
         }
         Kind::NameUnmet(_) => {

@@ -227,18 +227,21 @@ const NOTE: &str = "separations are the continuous minimum over the interpolated
 
 /// The rows as a table (times in ms).
 fn table(rows: &[Row]) -> crate::table_record::Table {
-    let mut t = crate::table_record::Table::new(&[
-        ("N", true),
-        ("configuration", false),
-        ("mean sep", true),
-        ("min sep", true),
-        ("mean J", true),
-        ("mean ms", true),
-        ("max ms", true),
-        ("max QPs", true),
-        ("max active", true),
-        ("failures", true),
-    ]);
+    let mut t = crate::table_record::Table::new(
+        &[
+            "N",
+            "configuration",
+            "mean sep",
+            "min sep",
+            "mean J",
+            "mean ms",
+            "max ms",
+            "max QPs",
+            "max active",
+            "failures",
+        ],
+        "rlrrrrrrrr",
+    );
     for r in rows {
         t.push(vec![
             r.degree.to_string(),

@@ -86,17 +86,20 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     };
     let items = crate::scenario::generate(args.random, args.seed);
     let limits = Limits::default();
-    let mut table = Table::new(&[
-        ("service CPUs", false),
-        ("feeder", false),
-        ("in flight", true),
-        ("correct", true),
-        ("harness share p50 us", true),
-        ("p99", true),
-        ("max", true),
-        ("planner-A rtt p50 us", true),
-        ("requests/s", true),
-    ]);
+    let mut table = Table::new(
+        &[
+            "service CPUs",
+            "feeder",
+            "in flight",
+            "correct",
+            "harness share p50 us",
+            "p99",
+            "max",
+            "planner-A rtt p50 us",
+            "requests/s",
+        ],
+        "llrrrrrrr",
+    );
     let mut all_correct = true;
     let mut wanted: Option<Vec<Vec<u8>>> = None;
     for (k, p) in placements(a, b).iter().enumerate() {

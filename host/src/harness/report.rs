@@ -200,18 +200,21 @@ pub fn build(
 /// The report's rows as a markdown table (µs), for a record of `docs/` (see
 /// [`crate::table_record`]).
 pub fn table(report: &Report) -> crate::table_record::Table {
-    let mut t = crate::table_record::Table::new(&[
-        ("planner", false),
-        ("size", false),
-        ("count", true),
-        ("solve p50", true),
-        ("p99", true),
-        ("max", true),
-        ("rtt p50", true),
-        ("p99", true),
-        ("max", true),
-        ("misses (worst overrun)", false),
-    ]);
+    let mut t = crate::table_record::Table::new(
+        &[
+            "planner",
+            "size",
+            "count",
+            "solve p50",
+            "p99",
+            "max",
+            "rtt p50",
+            "p99",
+            "max",
+            "misses (worst overrun)",
+        ],
+        "llrrrrrrrl",
+    );
     for r in &report.rows {
         t.push(vec![
             r.planner.clone(),
@@ -235,36 +238,7 @@ pub fn print(report: &Report) {
         "\n== timing: {} (budget {} ms; times in us)",
         report.title, report.budget_ms
     );
-    println!(
-        "{:<15} {:<8} {:>6} | {:>9} {:>9} {:>9} | {:>9} {:>9} {:>9} | {:>6} {:>10}",
-        "planner",
-        "size",
-        "count",
-        "solve p50",
-        "p99",
-        "max",
-        "rtt p50",
-        "p99",
-        "max",
-        "misses",
-        "overrun"
-    );
-    for r in &report.rows {
-        println!(
-            "{:<15} {:<8} {:>6} | {:>9.1} {:>9.1} {:>9.1} | {:>9.1} {:>9.1} {:>9.1} | {:>6} {:>10.1}",
-            r.planner,
-            r.size,
-            r.count,
-            r.solve_p50_us,
-            r.solve_p99_us,
-            r.solve_max_us,
-            r.rtt_p50_us,
-            r.rtt_p99_us,
-            r.rtt_max_us,
-            r.deadline_misses,
-            r.worst_overrun_us
-        );
-    }
+    print!("{}", table(report).markdown());
     if let Some(t) = &report.throughput {
         println!(
             "throughput: {} requests in {:.3} s = {:.0} requests/s with {} in flight",

@@ -1,26 +1,29 @@
 //! `reconfig fairness`'s tables: printed, and written as records for the harness document.
 
-use super::{Args, ClientFigures};
+use super::{Args, Checks, ClientFigures};
 use crate::harness::flood::FloodMode;
 use crate::table_record::Table;
 use anyhow::{anyhow, Result};
 
 /// A phase's clients as a table (round trips in µs).
 pub(super) fn phase_table(rows: &[ClientFigures]) -> Table {
-    let mut t = Table::new(&[
-        ("client", false),
-        ("sent", true),
-        ("correct", true),
-        ("wrong", true),
-        ("lost", true),
-        ("req/s", true),
-        ("rtt p50 us", true),
-        ("p99 us", true),
-        ("max us", true),
-        ("starved", true),
-        ("waited", true),
-        ("other turns", true),
-    ]);
+    let mut t = Table::new(
+        &[
+            "client",
+            "sent",
+            "correct",
+            "wrong",
+            "lost",
+            "req/s",
+            "rtt p50 us",
+            "p99 us",
+            "max us",
+            "starved",
+            "waited",
+            "other turns",
+        ],
+        "lrrrrrrrrrrr",
+    );
     for r in rows {
         t.push(vec![
             r.client.clone(),
@@ -49,8 +52,15 @@ pub(super) fn print_phase(title: &str, rows: &[ClientFigures]) {
     println!("\n== {title}\n{}({COLUMNS})", phase_table(rows).markdown());
 }
 
-/// `--record`: the tables of this run as `fixtures/golden/tables/NAME.md`.
-pub(super) fn record(args: &Args, name: &str, caption: &str, tables: &[&Table]) -> Result<()> {
+/// `--record`: the tables of this run as `fixtures/golden/tables/NAME.md`, the caption
+/// `what` followed by each check's outcome.
+pub(super) fn record(
+    args: &Args,
+    name: &str,
+    what: &str,
+    checks: &Checks,
+    tables: &[&Table],
+) -> Result<()> {
     let mut command = format!(
         "cargo run --release -p reconfig-host --bin reconfig -- fairness --seconds {} --record",
         args.seconds
@@ -58,20 +68,31 @@ pub(super) fn record(args: &Args, name: &str, caption: &str, tables: &[&Table]) 
     if let Some(mode) = args.flood {
         command.push_str(&format!(" --flood {}", mode_name(mode)));
     }
-    crate::table_record::write(name, &command, &format!("{caption} ({COLUMNS}.)"), tables)
-        .map_err(|e| anyhow!(e))
+    let held = |ok: bool| if ok { "held" } else { "FAILED" };
+    let caption = format!(
+        "{what} Every answer correct and nothing lost: {}; served in turn: {}; cheap p99 within \
+         {} ms: {}; throughput ratio at least 0.5 (two phases only): {}; service stopped \
+         cleanly: {} ({COLUMNS}.)",
+        held(checks.all_correct),
+        held(checks.served_in_turn),
+        args.budget_ms,
+        held(checks.cheap_within_budget),
+        held(checks.throughput_ratio_ok),
+        held(checks.stopped_cleanly),
+    );
+    crate::table_record::write(name, &command, &caption, tables).map_err(|e| anyhow!(e))
+}
+
+/// The closing line of a run: how the service stopped and whether every check held.
+pub(super) fn print_stopped(stopped: bool, what: &str, passed: bool) {
+    println!(
+        "flight service stopped {}; {what} {}",
+        if stopped { "cleanly" } else { "UNCLEANLY" },
+        if passed { "passed" } else { "FAILED" }
+    );
 }
 
 /// The flood mode's name on the command line.
 pub(super) fn mode_name(mode: FloodMode) -> String {
     format!("{mode:?}").to_lowercase()
-}
-
-/// Whether a check held, in a record's words.
-pub(super) fn held(ok: bool) -> &'static str {
-    if ok {
-        "held"
-    } else {
-        "FAILED"
-    }
 }
