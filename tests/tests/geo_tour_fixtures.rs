@@ -83,10 +83,26 @@ fn reproduction_leg_by_leg_at_the_published_durations() {
     let mut drift_total = 0.0;
     let mut short_total = 0.0;
     let mut short_time = 0.0;
-    println!("leg  phase [deg]  t [d]   method   dv [m/s]");
-    for (k, (&du, &t)) in phases.iter().zip(durations).enumerate() {
+    // The legs' table of docs/geo-tour.md, measured.
+    let mut table = String::from(
+        "| leg | Δu (°) | t (d) | rule | Δv here (m/s) |\n| --- | --- | --- | --- | --- |\n",
+    );
+    let lon = |rad: f64| {
+        format!("{:.2}", rad / DEG)
+            .trim_end_matches('0')
+            .trim_end_matches('.')
+            .to_string()
+    };
+    let mut from = f.problem.start_lon_rad;
+    for ((&du, &t), &to) in phases.iter().zip(durations).zip(&f.problem.targets_lon_rad) {
         let (m, dv) = rule_leg(&g, &s, du, t * DAY_S);
-        println!("{:<4} {:>10.3} {:>7.3}  {m:?}  {dv:.4}", k + 1, du / DEG, t);
+        table.push_str(&format!(
+            "| {} → {} | {:.2} | {t:.3} | {m:?} | {dv:.4} |\n",
+            lon(from),
+            lon(to),
+            du / DEG
+        ));
+        from = to;
         if m == Method::Drift {
             drift_total += dv;
         } else {
@@ -98,6 +114,13 @@ fn reproduction_leg_by_leg_at_the_published_durations() {
         "drift legs {drift_total:.4} m/s, short legs {short_total:.4} m/s, total {:.4} (published 48.476)",
         drift_total + short_total
     );
+    reconfig_tests::doc_blocks::hold(
+        "docs/geo-tour.md",
+        "geo-published-legs",
+        "geo_tour_fixtures",
+        &table,
+    )
+    .unwrap();
     // Digest: the six drift legs at the published durations cost 47.348 m/s.
     assert!((drift_total - 47.348).abs() < 0.01, "{drift_total}");
     // The short legs cost far more by the standard formulas than the paper's 1.128 m/s.

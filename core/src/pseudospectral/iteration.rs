@@ -12,8 +12,8 @@
 //! convex-concave step, which cannot raise the cost from a point feasible at its checks). One
 //! backtrack per rejected step, each one QP of the `sqp_max_iter` budget.
 
+use super::anytime;
 use super::certificate;
-use super::kept;
 use super::kernel::{dot, u8_of, Coefficients, Live};
 use super::linearise::{self, follow_minima, refine_moving_checks};
 use super::newton;
@@ -312,7 +312,7 @@ impl Sqp {
         }
         ws.iterates.accepted = ws.iterates.trial;
         self.at_answer = true;
-        kept::offer(ws, settings, cost);
+        anytime::offer(ws, settings, cost);
         Step::CheckConvergence(Answer {
             cost,
             exact,

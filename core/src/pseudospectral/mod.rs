@@ -75,6 +75,7 @@ pub fn solve_warm(
 
 mod alternative;
 mod anderson;
+mod anytime;
 mod basis;
 mod collision;
 mod convex_minimum;
