@@ -2,6 +2,7 @@
 //! for the drift method's derivatives.
 
 use crate::lambert::Vec3;
+use crate::vec3;
 
 use crate::astro::{EARTH_MU_KM3_S2, EARTH_ROTATION_RAD_S, TWO_PI};
 
@@ -63,20 +64,14 @@ impl Geo {
 /// Convert a burn given in the local radial / along-track / normal frame of a state into an
 /// inertial velocity change (same units).
 pub fn rtn_to_inertial(r: &Vec3, v: &Vec3, rtn: &Vec3) -> Vec3 {
-    let rn = libm::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
-    let ir = [r[0] / rn, r[1] / rn, r[2] / rn];
-    let h = [
-        r[1] * v[2] - r[2] * v[1],
-        r[2] * v[0] - r[0] * v[2],
-        r[0] * v[1] - r[1] * v[0],
-    ];
-    let hn = libm::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
-    let ih = [h[0] / hn, h[1] / hn, h[2] / hn];
-    let it = [
-        ih[1] * ir[2] - ih[2] * ir[1],
-        ih[2] * ir[0] - ih[0] * ir[2],
-        ih[0] * ir[1] - ih[1] * ir[0],
-    ];
+    // Unit vectors by division (not a reciprocal's product): the bits the plans were held to.
+    let unit = |a: &Vec3| {
+        let n = vec3::norm(a);
+        [a[0] / n, a[1] / n, a[2] / n]
+    };
+    let ir = unit(r);
+    let ih = unit(&vec3::cross(r, v));
+    let it = vec3::cross(&ih, &ir);
     [
         rtn[0] * ir[0] + rtn[1] * it[0] + rtn[2] * ih[0],
         rtn[0] * ir[1] + rtn[1] * it[1] + rtn[2] * ih[1],
@@ -89,8 +84,7 @@ pub fn rtn_to_inertial(r: &Vec3, v: &Vec3, rtn: &Vec3) -> Vec3 {
 pub fn inertial_to_rtn(r: &Vec3, v: &Vec3, dv: &Vec3) -> Vec3 {
     let e = |rtn: Vec3| rtn_to_inertial(r, v, &rtn);
     let (ir, it, ih) = (e([1.0, 0.0, 0.0]), e([0.0, 1.0, 0.0]), e([0.0, 0.0, 1.0]));
-    let d = |a: &Vec3| a[0] * dv[0] + a[1] * dv[1] + a[2] * dv[2];
-    [d(&ir), d(&it), d(&ih)]
+    [vec3::dot(&ir, dv), vec3::dot(&it, dv), vec3::dot(&ih, dv)]
 }
 
 /// A number with its first derivative (forward-mode automatic differentiation), for the drift

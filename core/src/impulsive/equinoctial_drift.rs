@@ -90,7 +90,8 @@ pub(crate) fn flow_with(q: &Elements, r: &Rates, dt_s: f64) -> Elements {
     [q[A], q[LAMBDA] + r.lambda * dt_s, ex, ey, hx, hy]
 }
 
-/// `q` drifted for `dt_s` with its own rates.
+/// `q` drifted for `dt_s` with its own rates (the planner drifts through `Model::drift`).
+#[cfg(test)]
 pub(crate) fn flow(q: &Elements, dt_s: f64) -> Elements {
     flow_with(q, &rates(q), dt_s)
 }

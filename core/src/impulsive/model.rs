@@ -81,17 +81,7 @@ impl Model {
 
     /// `el` drifted by `dt_s` with its own J2 secular rates.
     pub fn drift(&self, el: &Elements, dt_s: f64) -> Elements {
-        match self.set {
-            ElementSet::Classical => {
-                let d = secular::rates(el);
-                let mut out = *el;
-                for (x, r) in out.iter_mut().zip(d.iter()) {
-                    *x += *r * dt_s;
-                }
-                out
-            }
-            ElementSet::Equinoctial => eq_drift::flow(el, dt_s),
-        }
+        self.drift_with(el, el, dt_s)
     }
 
     /// `el` drifted by `dt_s` with the rates of `rates_of` (a formation's target drifts with
