@@ -111,7 +111,14 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         let mut opts = FeedOptions::new(instance.clone());
         opts.window = p.window;
         opts.cpu = p.feeder_cpu;
-        let run = feeder::run(&items, &opts);
+        // A thread of its own: pinning the feeder must not pin this one (and the next
+        // placement's "unpinned" feeder with it).
+        let run = std::thread::scope(|scope| {
+            scope
+                .spawn(|| feeder::run(&items, &opts))
+                .join()
+                .unwrap_or_else(|_| Err(anyhow!("the feeder panicked")))
+        });
         let stopped = service.stop()?;
         let _ = crate::harness::remove_instance_segment(&instance);
         let run = run?;
@@ -149,7 +156,11 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     if args.record {
         crate::table_record::write(
             "harness-placement",
-            "cargo run --release -p reconfig-host --bin reconfig -- placement --record",
+            &format!(
+                "cargo run --release -p reconfig-host --bin reconfig -- placement --random {} \
+                 --seed {} --record",
+                args.random, args.seed
+            ),
             &format!(
                 "{} generated requests (seed {}) per placement; every answer compared with a \
                  local solve: {}.",
