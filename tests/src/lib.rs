@@ -159,6 +159,7 @@ pub mod alloc_count {
 }
 pub mod doc_blocks;
 pub mod golden;
+pub mod leo_tables;
 pub mod m7_record;
 pub mod numbers;
 pub mod qemu;

@@ -8,7 +8,11 @@ use reconfig_core::limits::Limits;
 use reconfig_host::drivers::leo_tour::plan;
 use reconfig_host::drivers::leo_truth::replan_last_leg;
 use reconfig_host::fixture::leo_tour::{load, parse};
-use reconfig_tests::{fixtures_dir, order_text};
+use reconfig_tests::doc_blocks::hold;
+use reconfig_tests::{fixtures_dir, leo_tables, order_text};
+
+/// This file, as the docs' generated blocks name it.
+const TEST: &str = "leo_tour_fixtures";
 
 #[test]
 fn paper_single_arc_beats_the_published_run_and_the_oracle_confirms_the_arrival() {
@@ -129,12 +133,15 @@ fn example_one_printed_order_is_solved_and_below_the_published_total() {
     // The oracle flies every client from the epoch with its own integrator: the misses include
     // the planning model's RK4 error in the clients' states at each arc start (measured 0.11 /
     // 19.5 / 32.3 / 43.7 m), which is what re-planning against the truth is for.
-    for (n, (m, v)) in check_against_golden(&arcs, "leo-tour-example1-printed-oracle.toml")
-        .iter()
-        .enumerate()
-    {
+    let oracle = check_against_golden(&arcs, "leo-tour-example1-printed-oracle.toml");
+    for (n, (m, v)) in oracle.iter().enumerate() {
         assert!(*m < 50.0 && *v < 0.05, "arc {n}: {m} m, {v} m/s");
     }
+    // The document's tables of these plans, their truth flights and re-plans.
+    let oracle_m: Vec<f64> = oracle.iter().map(|(m, _)| *m).collect();
+    let (arcs_table, replans) = leo_tables::example_one_arcs_and_replans(&f, &arcs, &oracle_m);
+    hold(leo_tables::DOC, "leo-example-one-arcs", TEST, &arcs_table).unwrap();
+    hold(leo_tables::DOC, "leo-example-one-replan", TEST, &replans).unwrap();
 }
 
 #[test]
@@ -336,6 +343,17 @@ fn example_one_flown_in_the_truth_model_with_multi_round_correction_arrives_with
     }
     let flown: f64 = rounds.iter().map(|r| r.dv_after_mps).sum();
     assert!((flown - 1235.148).abs() < 0.05, "{flown}");
+    let table = leo_tables::example_one_multi_round(&rounds);
+    hold(leo_tables::DOC, "leo-example-one-multi-round", TEST, &table).unwrap();
+}
+
+#[test]
+fn example_two_every_arc_is_usable_and_its_table_is_measured() {
+    let f = load(&fixtures_dir().join("leo-tour-example2.toml")).unwrap();
+    let arcs = plan(&f, &Limits::default()).unwrap();
+    assert!(arcs.iter().all(|a| a.solution.info.status.is_usable()));
+    let table = leo_tables::example_two(&f, &arcs);
+    hold(leo_tables::DOC, "leo-example-two", TEST, &table).unwrap();
 }
 
 #[test]

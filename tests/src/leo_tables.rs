@@ -1,46 +1,31 @@
-//! The LEO tour document's tables of the published examples, measured: each arc's plan, its
-//! flights in the truth model (J2 alone and full), the last leg re-planned against the truth,
-//! and the chained multi-round correction. Deterministic (no times: those are in the on-board
-//! figure), regenerated here and held to `docs/leo-tour.md` (`RECONFIG_UPDATE_DOCS=1` rewrites
-//! the blocks). The figures' bars are asserted by `leo_tour_fixtures.rs`.
+//! The LEO tour document's tables of the published examples, built from what the regression
+//! tests in `tests/tests/leo_tour_fixtures.rs` already computed (the plans, the oracle's
+//! misses, the multi-round correction) plus the truth-model flights of each arc. Deterministic
+//! (no times: those are in the on-board figure); the tests hold them to `docs/leo-tour.md`.
 
-use reconfig_core::limits::Limits;
-use reconfig_host::drivers::leo_tour::{plan, PlannedArc};
-use reconfig_host::drivers::leo_truth::{multi_round, replan_last_leg, truth_miss_m};
-use reconfig_host::fixture::leo_tour::load;
-use reconfig_tests::doc_blocks::hold;
-use reconfig_tests::fixtures_dir;
+use reconfig_host::drivers::leo_tour::PlannedArc;
+use reconfig_host::drivers::leo_truth::{replan_last_leg, truth_miss_m, Round};
+use reconfig_host::fixture::leo_tour::LeoTourFixture;
 
-const DOC: &str = "docs/leo-tour.md";
-const TEST: &str = "leo_tour_tables";
+/// The document the tables are in.
+pub const DOC: &str = "docs/leo-tour.md";
 
 /// "from → to", numbered from 1 as the paper does.
 fn arc_label(a: &PlannedArc) -> String {
     format!("{} → {}", a.from + 1, a.to + 1)
 }
 
-/// Oracle misses per arc from a golden file, m.
-fn oracle_misses_m(golden: &str) -> Vec<f64> {
-    let golden: toml::Table = toml::from_str(
-        &std::fs::read_to_string(fixtures_dir().join("golden").join(golden)).unwrap(),
-    )
-    .unwrap();
-    golden["arcs"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|g| g["oracle_miss_m"].as_float().unwrap())
-        .collect()
-}
-
-#[test]
-fn example_one_tables_are_measured() {
-    let f = load(&fixtures_dir().join("leo-tour-example1-printed.toml")).unwrap();
-    let limits = Limits::default();
-    let arcs = plan(&f, &limits).unwrap();
-    let oracle = oracle_misses_m("leo-tour-example1-printed-oracle.toml");
-    assert_eq!(oracle.len(), arcs.len());
-
+/// Example I's arc table and its re-plan table, from its plans and the oracle's position
+/// misses per arc (m).
+///
+/// # Panics
+/// When a truth-model flight or re-plan fails (a test's failure).
+pub fn example_one_arcs_and_replans(
+    f: &LeoTourFixture,
+    arcs: &[PlannedArc],
+    oracle_m: &[f64],
+) -> (String, String) {
+    assert_eq!(oracle_m.len(), arcs.len());
     let mut table = String::from(
         "| arc | published Δv | ours | burns (m/s) | oracle miss (J2, from epoch) | truth J2-only \
          | truth full | evaluations / work units |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n",
@@ -50,7 +35,7 @@ fn example_one_tables_are_measured() {
          | --- | --- | --- | --- |\n",
     );
     let (mut total, mut units) = (0.0, 0u64);
-    for ((a, published), oracle_m) in arcs.iter().zip(&f.published.arc_dv_mps).zip(&oracle) {
+    for ((a, published), oracle_m) in arcs.iter().zip(&f.published.arc_dv_mps).zip(oracle_m) {
         let s = &a.solution;
         let burns: Vec<String> = s
             .burns
@@ -83,15 +68,16 @@ fn example_one_tables_are_measured() {
         f.published.total_dv_mps.unwrap(),
         units as f64 / 1e6
     ));
-    hold(DOC, "leo-example-one-arcs", TEST, &table).unwrap();
-    hold(DOC, "leo-example-one-replan", TEST, &replans).unwrap();
+    (table, replans)
+}
 
-    let rounds = multi_round(&f, &arcs, &limits).unwrap();
+/// Example I's chained multi-round table.
+pub fn example_one_multi_round(rounds: &[Round]) -> String {
     let mut chained = String::from(
         "| arc | planned from the truth (m/s) | flown (m/s) | start offset carried in | truth miss \
          before | after |\n| --- | --- | --- | --- | --- | --- |\n",
     );
-    for r in &rounds {
+    for r in rounds {
         let offset = if r.start_offset_m == 0.0 {
             "0".to_string()
         } else {
@@ -108,13 +94,14 @@ fn example_one_tables_are_measured() {
     }
     let flown: f64 = rounds.iter().map(|r| r.dv_after_mps).sum();
     chained.push_str(&format!("| total | | **{flown:.3}** | | | |\n"));
-    hold(DOC, "leo-example-one-multi-round", TEST, &chained).unwrap();
+    chained
 }
 
-#[test]
-fn example_two_table_is_measured() {
-    let f = load(&fixtures_dir().join("leo-tour-example2.toml")).unwrap();
-    let arcs = plan(&f, &Limits::default()).unwrap();
+/// Example II's table (arcs as columns).
+///
+/// # Panics
+/// When a truth-model flight fails (a test's failure).
+pub fn example_two(f: &LeoTourFixture, arcs: &[PlannedArc]) -> String {
     let row = |name: &str, cells: Vec<String>, total: String| {
         format!("| {name} | {} | {total} |\n", cells.join(" | "))
     };
@@ -155,5 +142,5 @@ fn example_two_table_is_measured() {
             .collect(),
         String::new(),
     ));
-    hold(DOC, "leo-example-two", TEST, &table).unwrap();
+    table
 }
