@@ -99,6 +99,22 @@ pub fn write(name: &str, command: &str, caption: &str, tables: &[&Table]) -> Res
     Ok(())
 }
 
+/// How a record names a `reconfig` command: the command line that builds and runs it.
+pub const RECONFIG: &str = "cargo run --release -p reconfig-host --bin reconfig --";
+
+/// [`write`] for a record taken by `reconfig ARGUMENTS` (e.g. `placement --record`).
+///
+/// # Errors
+/// When the file cannot be written.
+pub fn write_reconfig(
+    name: &str,
+    arguments: &str,
+    caption: &str,
+    tables: &[&Table],
+) -> anyhow::Result<()> {
+    write(name, &format!("{RECONFIG} {arguments}"), caption, tables).map_err(anyhow::Error::msg)
+}
+
 /// The current time, `YYYY-MM-DD HH:MM UTC`.
 fn utc_now() -> String {
     let secs = std::time::SystemTime::now()

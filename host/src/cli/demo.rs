@@ -207,7 +207,7 @@ fn record_tables(
     throughput: &str,
     budget_ms: f64,
 ) -> Result<()> {
-    use crate::table_record::write;
+    use crate::table_record::write_reconfig;
     let outcome = format!(
         "The demo {} in {elapsed_s:.1} s: {requests} requests x 2 runs, {}. Microseconds; \
          misses are round trips over the {} ms budget, with the worst overrun.",
@@ -220,25 +220,22 @@ fn record_tables(
         budget_ms
     );
     let [latency, busy] = tables;
-    write(
+    write_reconfig(
         "harness-demo-latency",
-        RECORD_COMMAND,
+        RECORD_ARGUMENTS,
         &format!("{outcome} One request at a time (latency):"),
         &[latency],
-    )
-    .map_err(|e| anyhow!(e))?;
-    write(
+    )?;
+    write_reconfig(
         "harness-demo-busy",
-        RECORD_COMMAND,
+        RECORD_ARGUMENTS,
         &format!("Every worker busy (throughput: {throughput}):"),
         &[busy],
     )
-    .map_err(|e| anyhow!(e))
 }
 
-/// The command that writes the demo's records.
-const RECORD_COMMAND: &str =
-    "cargo run --release -p reconfig-host --bin reconfig -- demo --record-figures";
+/// The `reconfig` arguments that write the demo's records.
+const RECORD_ARGUMENTS: &str = "demo --record-figures";
 
 /// The README's demo figures, from this run (timings: written by the run, never by a test).
 fn record_figures(
@@ -249,7 +246,7 @@ fn record_figures(
     workers: usize,
 ) -> Result<()> {
     use crate::figure_record::{write, Figure};
-    let command = RECORD_COMMAND;
+    let command = format!("{} {RECORD_ARGUMENTS}", crate::table_record::RECONFIG);
     write(
         "harness-demo",
         &Figure {
@@ -265,7 +262,7 @@ fn record_figures(
             ),
             met: ok && elapsed_s < 60.0,
             doc: "harness".into(),
-            command: command.into(),
+            command: command.clone(),
         },
     )
     .map_err(|e| anyhow!(e))?;
@@ -280,7 +277,7 @@ fn record_figures(
                 measured: format!("{:.0} ms", r.total_ms()),
                 met: r.correct && r.total_ms() <= leo_onboard::BUDGET_MS,
                 doc: "leo-tour".into(),
-                command: command.into(),
+                command: command.clone(),
             },
         )
         .map_err(|e| anyhow!(e))?;

@@ -202,11 +202,10 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     print!("{}", table.markdown());
     println!("({NOTE})");
     if args.record {
-        crate::table_record::write(
+        crate::table_record::write_reconfig(
             "planner-a-montecarlo",
             &format!(
-                "cargo run --release -p reconfig-host --bin reconfig -- montecarlo --runs {} \
-                 --seed {} --record",
+                "montecarlo --runs {} --seed {} --record",
                 args.runs, args.seed
             ),
             &format!(
@@ -215,8 +214,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
                 args.runs, args.sigma, args.seed
             ),
             &[&table],
-        )
-        .map_err(|e| anyhow::anyhow!(e))?;
+        )?;
     }
     Ok(ExitCode::SUCCESS)
 }

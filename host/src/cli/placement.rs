@@ -154,11 +154,10 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     }
     println!("{}", table.markdown());
     if args.record {
-        crate::table_record::write(
+        crate::table_record::write_reconfig(
             "harness-placement",
             &format!(
-                "cargo run --release -p reconfig-host --bin reconfig -- placement --random {} \
-                 --seed {} --record",
+                "placement --random {} --seed {} --record",
                 args.random, args.seed
             ),
             &format!(
@@ -173,8 +172,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
                 }
             ),
             &[&table],
-        )
-        .map_err(|e| anyhow!(e))?;
+        )?;
     }
     Ok(if all_correct {
         ExitCode::SUCCESS

@@ -3,7 +3,7 @@
 use super::{Args, Checks, ClientFigures};
 use crate::harness::flood::FloodMode;
 use crate::table_record::Table;
-use anyhow::{anyhow, Result};
+use anyhow::Result;
 
 /// A phase's clients as a table (round trips in µs).
 pub(super) fn phase_table(rows: &[ClientFigures]) -> Table {
@@ -61,10 +61,7 @@ pub(super) fn record(
     checks: &Checks,
     tables: &[&Table],
 ) -> Result<()> {
-    let mut command = format!(
-        "cargo run --release -p reconfig-host --bin reconfig -- fairness --seconds {} --record",
-        args.seconds
-    );
+    let mut command = format!("fairness --seconds {} --record", args.seconds);
     if let Some(mode) = args.flood {
         command.push_str(&format!(" --flood {}", mode_name(mode)));
     }
@@ -80,7 +77,7 @@ pub(super) fn record(
         held(checks.throughput_ratio_ok),
         held(checks.stopped_cleanly),
     );
-    crate::table_record::write(name, &command, &caption, tables).map_err(|e| anyhow!(e))
+    crate::table_record::write_reconfig(name, &command, &caption, tables)
 }
 
 /// The closing line of a run: how the service stopped and whether every check held.
