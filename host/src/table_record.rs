@@ -102,7 +102,7 @@ pub fn write(name: &str, command: &str, caption: &str, tables: &[&Table]) -> Res
 /// How a record names a `reconfig` command: the command line that builds and runs it.
 pub const RECONFIG: &str = "cargo run --release -p reconfig-host --bin reconfig --";
 
-/// [`write`] for a record taken by `reconfig ARGUMENTS` (e.g. `placement --record`).
+/// [`write()`] for a record taken by `reconfig ARGUMENTS` (e.g. `placement --record`).
 ///
 /// # Errors
 /// When the file cannot be written.
