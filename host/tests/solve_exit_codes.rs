@@ -96,13 +96,13 @@ fn a_leo_tour_the_truth_model_does_not_confirm_exits_1_naming_the_arc() {
     let v: serde_json::Value = serde_json::from_str(&out).expect("one JSON object");
     assert_eq!(v["status"], "Usable", "{out}");
     assert!(v["truth_missed"].is_null(), "{out}");
-    // The same arc 180-220 km up: planned in the J2 model, but drag makes the truth-model
-    // re-plan of its 14-revolution last leg diverge (measured 1.2e6 m; before issue 31's check
-    // this was `Solved`, exit 0).
+    // The same arc 172-222 km up: planned in the J2 model, but drag makes the truth-model
+    // re-plan of its last leg diverge (measured 1.4e6 m; before issue 31's check this was
+    // `Solved`, exit 0). At 180-220 km the node seed's plan (issue 31) now re-plans within 1 m.
     let low = variant(
         "leo-tour-example1-single-arc",
         &[
-            ("[6778.14, 0.0, 97.0344", "[6560.0, 0.0, 97.0344"),
+            ("[6778.14, 0.0, 97.0344", "[6550.0, 0.0, 97.0344"),
             ("[6878.14, 0.0, 97.4063", "[6600.0, 0.0, 97.4063"),
         ],
         "low",
@@ -119,10 +119,7 @@ fn a_leo_tour_the_truth_model_does_not_confirm_exits_1_naming_the_arc() {
     );
     // The plan itself is still the core's usable answer: the status says what the truth
     // model showed, not less about the plan.
-    assert_eq!(
-        v["arcs"][0]["status"], "BudgetExhausted { verified: true }",
-        "{out}"
-    );
+    assert_eq!(v["arcs"][0]["status"], "Solved", "{out}");
 }
 
 #[test]

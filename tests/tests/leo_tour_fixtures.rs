@@ -93,24 +93,28 @@ fn example_one_printed_order_is_solved_and_below_the_published_total() {
     let arcs = plan(&f, &Limits::default()).unwrap();
     let published = &f.published.arc_dv_mps;
     let mut total = 0.0;
+    // Issue 31's reference: plans of these arcs in the same J2 model, flown independently.
+    let reference = [406.761, 376.330, 331.679, 93.888];
     for (n, a) in arcs.iter().enumerate() {
-        // Each search cut by the on-board budget (4 M units), each plan checked: it arrives.
-        assert_eq!(
-            a.solution.info.status,
-            SolveStatus::BudgetExhausted { verified: true },
-            "arc {n}"
-        );
+        // Each plan checked: it arrives (three searches cut by the on-board budget of 4 M
+        // units, `BudgetExhausted { verified: true }`; arc 3 -> 4 ends within it, `Solved`).
+        assert!(a.solution.info.status.is_usable(), "arc {n}");
         assert!(a.solution.info.work_units <= 4_000_000, "arc {n}");
         total += a.solution.total_dv_mps;
-        // Every arc at or below Table 2 (410.494 / 389.887 / 338.817 / 98.444 against
-        // 418.445 / 412.098 / 347.365 / 115.743 m/s).
+        // Every arc at or below Table 2 (418.445 / 412.098 / 347.365 / 115.743 m/s) and
+        // within 1 % of the reference (measured 410.494 / 376.671 / 331.172 / 94.579).
         assert!(a.solution.total_dv_mps <= published[n], "arc {n}");
+        assert!(
+            a.solution.total_dv_mps <= 1.01 * reference[n],
+            "arc {n}: {}",
+            a.solution.total_dv_mps
+        );
     }
     assert!(total <= f.published.total_dv_mps.unwrap(), "{total}");
-    // Issue 13's figure: the total at most 1245 m/s (the paper's stochastic search leaves
-    // at least 3.8 % on the table).
-    assert!(total <= 1245.0, "{total}");
-    assert!((total - 1237.641).abs() < 0.01, "{total}");
+    // Issue 31's figure: the total at most 1215 m/s (issue 13's was 1245; the paper's
+    // stochastic search leaves 6 % on the table).
+    assert!(total <= 1215.0, "{total}");
+    assert!((total - 1212.916).abs() < 0.01, "{total}");
     let cut = arcs
         .iter()
         .filter(|a| a.solution.info.status == SolveStatus::BudgetExhausted { verified: true })
@@ -119,12 +123,12 @@ fn example_one_printed_order_is_solved_and_below_the_published_total() {
         "leo-example-one",
         &reconfig_host::figure_record::Figure {
             what: "LEO tour, Example I printed order".into(),
-            target: "total ≤ 1245 m/s".into(),
+            target: "total ≤ 1215 m/s".into(),
             measured: format!(
                 "{total:.3} m/s, every arc's plan checked ({cut} of {} searches cut by the on-board budget: `BudgetExhausted {{ verified: true }}`)",
                 arcs.len()
             ),
-            met: total <= 1245.0 && arcs.iter().all(|a| a.solution.info.status.is_usable()),
+            met: total <= 1215.0 && arcs.iter().all(|a| a.solution.info.status.is_usable()),
             doc: "leo-tour".into(),
             command: "cargo test -p reconfig-tests --test leo_tour_fixtures".into(),
         },
@@ -173,8 +177,9 @@ fn example_one_order_is_chosen_by_branch_and_bound_deterministically() {
     // Over all 120 orders (free first client), every arc either planned or pruned by the
     // bound, and no planned arc cheaper than its bound, within the work budget: the order is
     // the cheapest for the sequencing's arc estimates (`leo_tour::estimate_arc_mps`, the
-    // search model's costs; measured 3 -> 4 -> 5 -> 1 -> 2, 1227.143 m/s with the coarse
-    // estimates, 117 of the tree's 320 arcs planned, 3,588,538 of the 4 M units).
+    // search model's costs; measured 4 -> 3 -> 1 -> 5 -> 2, 1079.782 m/s with the coarse
+    // estimates, 86 of the tree's 320 arcs planned, 3,215,457 of the 4 M units; 3 -> 4 -> 5 ->
+    // 1 -> 2 and 1227.143 m/s before the node seed, issue 31).
     let i = q.info;
     assert_eq!(i.status, SequenceStatus::Optimal);
     assert_eq!(i.orders_total, 120);
@@ -187,19 +192,19 @@ fn example_one_order_is_chosen_by_branch_and_bound_deterministically() {
         "{}",
         i.work_units
     );
-    assert_eq!(chosen.order, vec![2, 3, 4, 0, 1]);
+    assert_eq!(chosen.order, vec![3, 2, 0, 4, 1]);
     let q_total = q.total_dv_mps.unwrap();
-    assert!((q_total - 1227.143).abs() < 0.01, "{q_total}");
+    assert!((q_total - 1079.782).abs() < 0.01, "{q_total}");
     // Repeatable: the same request gives the same bits.
     let (_, again) = choose_order(&f, &Limits::default()).unwrap().unwrap();
     assert_eq!(again.sequence, q);
     // The chosen order planned with the full arc search: below the paper's best order of
-    // Table 5 (2 -> 5 -> 4 -> 3 -> 1, 1224.122 m/s; measured 1194.900 m/s), every arc's plan
+    // Table 5 (2 -> 5 -> 4 -> 3 -> 1, 1224.122 m/s; measured 1041.545 m/s), every arc's plan
     // checked (some searches cut by the on-board budget: `BudgetExhausted { verified: true }`).
     let arcs = plan(&chosen, &Limits::default()).unwrap();
     let total: f64 = arcs.iter().map(|a| a.solution.total_dv_mps).sum();
     assert!(arcs.iter().all(|a| a.solution.info.status.is_usable()));
-    assert!((total - 1194.900).abs() < 0.01, "{total}");
+    assert!((total - 1041.545).abs() < 0.01, "{total}");
     assert!(total <= 1224.122, "{total}");
     let on_board = (
         order_text(&chosen.order),
@@ -230,15 +235,16 @@ fn example_one_order_is_chosen_by_branch_and_bound_deterministically() {
         "{}",
         i.work_units
     );
-    // Measured 4 -> 3 -> 1 -> 5 -> 2, 1175.589 m/s in the finer estimates, 116 arcs planned.
+    // Measured 4 -> 3 -> 1 -> 5 -> 2, 1046.836 m/s in the finer estimates, 95 arcs planned, 20.0
+    // M units: the on-board order (before the node seed the ground's was 7.7 % cheaper).
     assert_eq!(chosen.order, vec![3, 2, 0, 4, 1]);
     let ground_total = c.sequence.total_dv_mps.unwrap();
-    assert!((ground_total - 1175.589).abs() < 0.01, "{ground_total}");
-    // Planned in full: 1103.145 m/s, 7.7 % below the on-board order's.
+    assert!((ground_total - 1046.836).abs() < 0.01, "{ground_total}");
+    // Planned in full: 1041.545 m/s, the on-board order's plans.
     let arcs = plan(&chosen, &Limits::default()).unwrap();
     let total: f64 = arcs.iter().map(|a| a.solution.total_dv_mps).sum();
     assert!(arcs.iter().all(|a| a.solution.info.status.is_usable()));
-    assert!((total - 1103.145).abs() < 0.01, "{total}");
+    assert!((total - 1041.545).abs() < 0.01, "{total}");
     assert!(total <= ground_total + 1e-9, "{total}");
     reconfig_host::figure_record::hold(
         "leo-sequencing-on-board",
@@ -286,7 +292,10 @@ fn example_one_order_is_chosen_by_branch_and_bound_deterministically() {
     // The arcs planned again are the plans that ranked the order (same search, same bits
     // up to the sum's order).
     assert!((flown - ranked).abs() < 1e-9, "{flown} {ranked}");
-    assert!(flown < total - 5.0, "{flown}");
+    // The same order as the finer estimates' (measured 4 -> 3 -> 1 -> 5 -> 2, 1041.545 m/s;
+    // before the node seed the full plans' order was more than 5 m/s below the finer
+    // estimates' 1103.145).
+    assert!((flown - total).abs() < 1e-9, "{flown}");
     // The bound is below every planned arc of both Example I tours.
     let g = f.settings.gravity();
     let printed = load(&fixtures_dir().join("leo-tour-example1-printed.toml")).unwrap();
@@ -322,8 +331,8 @@ fn example_one_flown_in_the_truth_model_with_multi_round_correction_arrives_with
     // The paper's multi-round correction, chained: each arc planned by the core from the truth
     // states reached (JGM-3 8x8, drag, Sun, Moon), its last leg re-planned against the truth,
     // the next arc starting where the chaser really is. Issue 13: every arrival within 1 m
-    // (the paper's tolerance was 5 km); measured at most 0.001 mm after, 3.9 / 0.16 / 4.5 /
-    // 17.9 km before; flown 1235.148 m/s (each round warm-started).
+    // (the paper's tolerance was 5 km); the misses before and after are in the table held
+    // below; flown 1213.049 m/s (each round warm-started; 1235.148 before the node seed).
     let f = load(&fixtures_dir().join("leo-tour-example1-printed.toml")).unwrap();
     let rounds = multi_round(
         &f,
@@ -342,7 +351,7 @@ fn example_one_flown_in_the_truth_model_with_multi_round_correction_arrives_with
         assert!((r.dv_after_mps - r.arc.solution.total_dv_mps).abs() < 1.0);
     }
     let flown: f64 = rounds.iter().map(|r| r.dv_after_mps).sum();
-    assert!((flown - 1235.148).abs() < 0.05, "{flown}");
+    assert!((flown - 1213.049).abs() < 0.05, "{flown}");
     let table = leo_tables::example_one_multi_round(&rounds);
     hold(leo_tables::DOC, "leo-example-one-multi-round", TEST, &table).unwrap();
 }
@@ -438,7 +447,7 @@ fn the_on_board_part_in_the_core_is_the_hosts_sequencing_and_plans_bit_for_bit()
     }
     assert!(onboard.arcs[4..].iter().all(Option::is_none));
     let total: f64 = host.iter().map(|a| a.solution.total_dv_mps).sum();
-    assert!((total - 1194.900).abs() < 0.01, "{total}");
+    assert!((total - 1041.545).abs() < 0.01, "{total}");
 }
 
 #[test]

@@ -164,15 +164,18 @@ pub(super) fn families(max_revs: u16) -> impl Iterator<Item = Family> {
     }))
 }
 
+/// The two-body period of `s`, s (0 off an ellipse).
 pub(crate) fn period_s(mu: f64, s: &State) -> f64 {
-    let r = norm(&pos(s));
-    let v = vel(s);
-    let a = 1.0 / (2.0 / r - dot(&v, &v) / mu);
-    if a > 0.0 {
+    semi_major_km(mu, s).map_or(0.0, |a| {
         2.0 * core::f64::consts::PI * libm::sqrt(a * a * a / mu)
-    } else {
-        0.0
-    }
+    })
+}
+
+/// The two-body semi-major axis of `s`, km (`None` off an ellipse).
+pub(crate) fn semi_major_km(mu: f64, s: &State) -> Option<f64> {
+    let v = vel(s);
+    let a = 1.0 / (2.0 / norm(&pos(s)) - dot(&v, &v) / mu);
+    (a > 0.0 && a.is_finite()).then_some(a)
 }
 
 impl Ctx<'_> {

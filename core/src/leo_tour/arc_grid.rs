@@ -16,7 +16,7 @@ use crate::vec3::{add, cross, dot, norm, scale, sub, Vec3};
 /// family `best`: its last leg is shorter by up to a revolution, so two revolutions fewer to one
 /// more than `best` (both branches). Measured: the same plans on Examples I and II and the
 /// same sequencing as all the families, for a fifth less time of the sequencing.
-fn near_families(settings: &Settings, best: Family) -> impl Iterator<Item = Family> {
+pub(super) fn near_families(settings: &Settings, best: Family) -> impl Iterator<Item = Family> {
     let lo = best.revs.saturating_sub(2);
     let hi = best.revs.saturating_add(1).min(settings.max_revolutions);
     families(settings.max_revolutions).filter(move |f| (lo..=hi).contains(&f.revs))
@@ -141,6 +141,12 @@ impl Ctx<'_> {
             }
             if self.impulses > 2 {
                 if let Some(p) = self.plane_seed(t1, &sa, cheapest.map(|(f, _)| f)) {
+                    if !self.meter.spend(work_units::GRID_INSERT) {
+                        return;
+                    }
+                    insert(out, keep, p, 1.5 * spacing);
+                }
+                if let Some(p) = self.node_seed(t1, cheapest.map(|(f, _)| f)) {
                     if !self.meter.spend(work_units::GRID_INSERT) {
                         return;
                     }

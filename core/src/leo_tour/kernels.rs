@@ -88,6 +88,9 @@ enum Kind {
     Refine(u32),
     /// A round of hops from the grid's best candidate.
     Hops,
+    /// A node seed at the arc start, its last leg's family chosen among all (the dearest
+    /// path: a grid epoch with no two-impulse family).
+    NodeSeed,
     /// The final check of the grid's best candidate (the planning model's flight and shooting).
     Finish,
     /// A whole solve of the paper's arc with this budget.
@@ -171,6 +174,7 @@ pub const CASES: &[Case] = &[
     case("grid-epoch-200-revs", Kind::GridEpoch(200)),
     case("refine-200", Kind::Refine(200)),
     case("hops", Kind::Hops),
+    case("node-seed", Kind::NodeSeed),
     case("finish", Kind::Finish),
     case("solve-budget-1", Kind::Solve(1)),
     case("solve-budget-2m", Kind::Solve(2_000_000)),
@@ -563,6 +567,12 @@ pub fn run(index: usize, sequence_ws: &mut SequenceWorkspace, prepared: &Prepare
             let mut c = ctx(p, (a, b), Model::MeanElements, budget);
             c.hops(&q, hops);
             black_box(&hops);
+            c.meter.used()
+        }
+        Kind::NodeSeed => {
+            let Workspace { a, b, .. } = ws;
+            let mut c = ctx(p, (a, b), Model::MeanElements, budget);
+            black_box(c.node_seed(0.0, None));
             c.meter.used()
         }
         Kind::Finish => with_point(p, ws, Model::MeanElements, |c, q| {

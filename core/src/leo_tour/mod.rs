@@ -32,6 +32,7 @@ mod altitude;
 mod arc;
 mod arc_grid;
 mod arc_hops;
+mod arc_node_seed;
 mod arc_warm;
 pub mod bound;
 pub mod elements;
