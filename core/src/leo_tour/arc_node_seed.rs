@@ -90,13 +90,79 @@ fn plane_change_split(v1: f64, vp: f64, va: f64, v2: f64, theta: f64) -> f64 {
     0.5 * (lo + hi)
 }
 
+/// The epoch of the chaser's crossing of the client's plane nearest `t1` (from the two-body
+/// angular rate of the chaser's orbit at `sa`, its state at `t1`; `sb` the client's), moved
+/// half a revolution on when it falls before the arc start.
+fn node_epoch(mu: f64, t1: f64, sa: &State, sb: &State) -> Option<f64> {
+    let p = planes(sa, sb)?;
+    // Angle from the chaser to the line of nodes in the direction of motion; the nearer of
+    // its two ends.
+    let ra_hat = unit(&pos(sa))?;
+    let mut ang = libm::atan2(dot(&cross(&ra_hat, &p.k), &p.ha), dot(&ra_hat, &p.k));
+    if ang > FRAC_PI_2 {
+        ang -= PI;
+    } else if ang < -FRAC_PI_2 {
+        ang += PI;
+    }
+    let period = period_s(mu, sa);
+    if period.is_nan() || period <= 0.0 {
+        return None;
+    }
+    let tn = t1 + ang / (2.0 * PI) * period;
+    Some(if tn < 0.0 { tn + 0.5 * period } else { tn })
+}
+
+/// The Hohmann transfer from the chaser at a node (`sa`) to the semi-major axis `a_b_km` of
+/// the client (`sb`, at the same epoch), the plane change split between its burns: the first
+/// burn (inertial, km/s) and the time of flight, s.
+fn node_transfer(mu: f64, sa: &State, sb: &State, a_b_km: f64) -> Option<(Vec3, f64)> {
+    let p = planes(sa, sb)?;
+    let ra = pos(sa);
+    let r1 = norm(&ra);
+    let at = 0.5 * (r1 + a_b_km);
+    let tof = PI * libm::sqrt(at * at * at / mu);
+    let (vp, vapo) = (
+        libm::sqrt(mu * (2.0 / r1 - 1.0 / at)),
+        libm::sqrt(mu * (2.0 / a_b_km - 1.0 / at)),
+    );
+    let f = plane_change_split(
+        norm(&vel(sa)),
+        vp,
+        vapo,
+        libm::sqrt(mu / a_b_km),
+        p.theta_rad,
+    );
+    // The transfer's plane: the chaser's turned by f theta about the line of nodes.
+    let turn = f * p.theta_rad;
+    let n = add(
+        &scale(&p.ha, libm::cos(turn)),
+        &scale(&cross(&p.k, &p.ha), libm::sin(turn)),
+    );
+    let along = unit(&cross(&n, &ra))?;
+    let dv1 = sub(&scale(&along, vp), &vel(sa));
+    (dv1.iter().all(|v| v.is_finite()) && tof.is_finite()).then_some((dv1, tof))
+}
+
+/// The node seed's own arithmetic, what [`work_units::NODE_SEED`] pays for (the kernel case
+/// `node-seed-arithmetic` runs it alone on the M7): the node's epoch from `t1`, then the
+/// transfer from the same states.
+pub(crate) fn seed_arithmetic(
+    mu: f64,
+    t1: f64,
+    sa: &State,
+    sb: &State,
+) -> Option<(f64, Vec3, f64)> {
+    let tn = node_epoch(mu, t1, sa, sb)?;
+    let (dv1, tof) = node_transfer(mu, sa, sb, semi_major_km(mu, sb)?)?;
+    Some((tn, dv1, tof))
+}
+
 impl Ctx<'_> {
     /// The node seed nearest the grid epoch `t1`: the chaser's nearest crossing of the
-    /// client's plane (from the two-body angular rate of client A's orbit), a Hohmann
-    /// transfer from there to the client's semi-major axis with the plane change split
-    /// between its burns, the last leg's family the cheapest near `near` (all when `None`).
-    /// `None` when the planes coincide, the crossing or the transfer falls outside the arc,
-    /// or a flight fails.
+    /// client's plane, a Hohmann transfer from there to the client's semi-major axis with the
+    /// plane change split between its burns, the last leg's family the cheapest near `near`
+    /// (all when `None`). `None` when the planes coincide, the crossing or the transfer falls
+    /// outside the arc, or a flight fails.
     pub(crate) fn node_seed(&mut self, t1: f64, near: Option<Family>) -> Option<Point> {
         if !self.meter.spend(work_units::NODE_SEED) {
             return None;
@@ -104,46 +170,11 @@ impl Ctx<'_> {
         let mu = self.settings.mu_km3_s2;
         let sa = self.client_state(Client::A, t1)?;
         let sb = self.client_state(Client::B, t1)?;
-        let p = planes(&sa, &sb)?;
-        // Angle from the chaser to the line of nodes in the direction of motion; the nearer
-        // of its two ends.
-        let ra_hat = unit(&pos(&sa))?;
-        let mut ang = libm::atan2(dot(&cross(&ra_hat, &p.k), &p.ha), dot(&ra_hat, &p.k));
-        if ang > FRAC_PI_2 {
-            ang -= PI;
-        } else if ang < -FRAC_PI_2 {
-            ang += PI;
-        }
-        let period = period_s(mu, &sa);
-        if period.is_nan() || period <= 0.0 {
-            return None;
-        }
-        let mut tn = t1 + ang / (2.0 * PI) * period;
-        if tn < 0.0 {
-            // The other end of the line of nodes, half a revolution on.
-            tn += 0.5 * period;
-        }
+        let tn = node_epoch(mu, t1, &sa, &sb)?;
         let a_b = semi_major_km(mu, &sb)?;
         let sa = self.client_state(Client::A, tn)?;
         let sb = self.client_state(Client::B, tn)?;
-        let p = planes(&sa, &sb)?;
-        let ra = pos(&sa);
-        let r1 = norm(&ra);
-        let at = 0.5 * (r1 + a_b);
-        let tof = PI * libm::sqrt(at * at * at / mu);
-        let (vp, vapo) = (
-            libm::sqrt(mu * (2.0 / r1 - 1.0 / at)),
-            libm::sqrt(mu * (2.0 / a_b - 1.0 / at)),
-        );
-        let f = plane_change_split(norm(&vel(&sa)), vp, vapo, libm::sqrt(mu / a_b), p.theta_rad);
-        // The transfer's plane: the chaser's turned by f theta about the line of nodes.
-        let turn = f * p.theta_rad;
-        let n = add(
-            &scale(&p.ha, libm::cos(turn)),
-            &scale(&cross(&p.k, &p.ha), libm::sin(turn)),
-        );
-        let along = unit(&cross(&n, &ra))?;
-        let dv1 = sub(&scale(&along, vp), &vel(&sa));
+        let (dv1, tof) = node_transfer(mu, &sa, &sb, a_b)?;
         let free = self.impulses.saturating_sub(1);
         let mut x = [0.0; MAX_VARS];
         // The epochs: the node, the Hohmann arrival, any later free impulse (with a zero

@@ -91,6 +91,9 @@ enum Kind {
     /// A node seed at the arc start, its last leg's family chosen among all (the dearest
     /// path: a grid epoch with no two-impulse family).
     NodeSeed,
+    /// The node seed's own arithmetic alone (the node's epoch, the transfer and its split),
+    /// what `NODE_SEED` pays for.
+    NodeSeedArithmetic,
     /// The final check of the grid's best candidate (the planning model's flight and shooting).
     Finish,
     /// A whole solve of the paper's arc with this budget.
@@ -175,6 +178,7 @@ pub const CASES: &[Case] = &[
     case("refine-200", Kind::Refine(200)),
     case("hops", Kind::Hops),
     case("node-seed", Kind::NodeSeed),
+    case("node-seed-arithmetic", Kind::NodeSeedArithmetic),
     case("finish", Kind::Finish),
     case("solve-budget-1", Kind::Solve(1)),
     case("solve-budget-2m", Kind::Solve(2_000_000)),
@@ -574,6 +578,16 @@ pub fn run(index: usize, sequence_ws: &mut SequenceWorkspace, prepared: &Prepare
             let mut c = ctx(p, (a, b), Model::MeanElements, budget);
             black_box(c.node_seed(0.0, None));
             c.meter.used()
+        }
+        Kind::NodeSeedArithmetic => {
+            let (from, to) = (&p.problem.from, &p.problem.to);
+            black_box(super::arc_node_seed::seed_arithmetic(
+                p.settings.mu_km3_s2,
+                0.0,
+                from,
+                to,
+            ));
+            wu::NODE_SEED
         }
         Kind::Finish => with_point(p, ws, Model::MeanElements, |c, q| {
             black_box(c.finish(&q));
