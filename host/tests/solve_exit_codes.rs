@@ -120,6 +120,28 @@ fn a_leo_tour_the_truth_model_does_not_confirm_exits_1_naming_the_arc() {
     // The plan itself is still the core's usable answer: the status says what the truth
     // model showed, not less about the plan.
     assert_eq!(v["arcs"][0]["status"], "Solved", "{out}");
+    // Lower still, 152-182 km: the plan flown uncorrected sinks below the truth model's
+    // floor. The answer says so (no full-model miss, the re-plan failed: `TruthMissed`, exit
+    // 1, the JSON printed); before, the command stopped with exit 2 and no report, as if the
+    // input had been refused.
+    let lower = variant(
+        "leo-tour-example1-single-arc",
+        &[
+            ("[6778.14, 0.0, 97.0344", "[6530.0, 0.0, 97.0344"),
+            ("[6878.14, 0.0, 97.4063", "[6560.0, 0.0, 97.4063"),
+        ],
+        "lower",
+    );
+    let (code, out) = solve(&lower);
+    assert_eq!(code, 1, "{out}");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("one JSON object");
+    assert_eq!(v["status"], "TruthMissed", "{out}");
+    assert_eq!(v["truth_missed"]["arc"], "1 -> 2", "{out}");
+    assert!(v["arcs"][0]["truth_miss_m"]["full"].is_null(), "{out}");
+    assert!(
+        v["arcs"][0]["truth_miss_m"]["j2_only"].as_f64().is_some(),
+        "{out}"
+    );
 }
 
 #[test]
