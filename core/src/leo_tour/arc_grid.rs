@@ -16,7 +16,7 @@ use crate::vec3::{add, cross, dot, norm, scale, sub, Vec3};
 /// family `best`: its last leg is shorter by up to a revolution, so two revolutions fewer to one
 /// more than `best` (both branches). Measured: the same plans on Examples I and II and the
 /// same sequencing as all the families, for a fifth less time of the sequencing.
-pub(super) fn near_families(settings: &Settings, best: Family) -> impl Iterator<Item = Family> {
+fn near_families(settings: &Settings, best: Family) -> impl Iterator<Item = Family> {
     let lo = best.revs.saturating_sub(2);
     let hi = best.revs.saturating_add(1).min(settings.max_revolutions);
     families(settings.max_revolutions).filter(move |f| (lo..=hi).contains(&f.revs))
@@ -194,10 +194,24 @@ impl Ctx<'_> {
         for (k, xi) in x.iter_mut().take(free).indexed() {
             *xi = t1 + ((k as f64) * step).min(tof);
         }
+        self.seed_point(x, &dv1, t1 + step, near)
+    }
+
+    /// A seed of the grid (plane or node seed) as a point: `x` with its free epochs set, the
+    /// first free impulse `dv1`, the last leg's offset estimated from the client's orbit from
+    /// `t2` (the second impulse), its family the cheapest of those near `near` (the grid
+    /// point's cheapest two-impulse family, see [`near_families`]), of all when `None`.
+    pub(super) fn seed_point(
+        &mut self,
+        mut x: [f64; MAX_VARS],
+        dv1: &Vec3,
+        t2: f64,
+        near: Option<Family>,
+    ) -> Option<Point> {
+        let free = self.impulses.saturating_sub(1);
         for (xi, d) in x.iter_mut().skip(free).zip(dv1.iter()) {
             *xi = *d;
         }
-        let t2 = t1 + step;
         let off = self.client_offset(t2)?;
         let (fam, cost) = match near {
             Some(f) => self.best_family_of(&x, &off, near_families(self.settings, f))?,

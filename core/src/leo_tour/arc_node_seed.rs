@@ -7,9 +7,8 @@
 //! small last burn) were not among the candidates refined.
 
 use super::arc::{period_s, semi_major_km, Client, Ctx, Point};
-use super::arc_grid::near_families;
 use super::j2::{pos, vel, State};
-use super::shoot::{Family, Secant};
+use super::shoot::Family;
 use super::types::MAX_VARS;
 use super::work_units;
 use crate::indexed::IndexedExt as _;
@@ -187,23 +186,8 @@ impl Ctx<'_> {
                 _ => t2 + 0.5 * (self.tf - t2) * (k as f64 - 1.0) / (free as f64 - 2.0),
             };
         }
-        for (xi, d) in x.iter_mut().skip(free).zip(dv1.iter()) {
-            *xi = *d;
-        }
         self.epochs(&x)?;
-        let off = self.client_offset(t2)?;
-        let (fam, cost) = match near {
-            Some(f) => self.best_family_of(&x, &off, near_families(self.settings, f))?,
-            None => self.best_family(&x, &off)?,
-        };
-        Some(Point {
-            x,
-            fam,
-            off,
-            cost,
-            shot: false,
-            secant: Secant::default(),
-        })
+        self.seed_point(x, &dv1, t2, near)
     }
 }
 
