@@ -3,6 +3,7 @@
 //!
 //! ```sh
 //! cargo run --release -p reconfig-host --example geo_revolutions -- FIRST LAST
+//! cargo run --release -p reconfig-host --example geo_revolutions -- default FIRST LAST
 //! ```
 //!
 //! Tours by seed (ChaCha8): tuning seeds 0-99 draw three kinds — a cluster of 2-6 clients within
@@ -136,12 +137,38 @@ fn print_fixture(seed: u64, ws: &mut Workspace, out: &mut Solution) {
     println!("policy = \"by-cost\"");
 }
 
+/// One line per tour at the default settings (`default FIRST LAST`): seed, clients, status,
+/// total Δv to the bit and work units, to compare two builds tour by tour.
+fn print_default(first: u64, last: u64) {
+    let mut ws = Box::new(Workspace::new());
+    let mut out = Box::new(Solution::new());
+    for seed in first..=last {
+        let p = tour(seed, &mut ws, &mut out);
+        match solve(&p, &Settings::default(), &mut ws, &mut out) {
+            Ok(()) => println!(
+                "{seed} {} {:?} {:.9} {}",
+                p.targets_lon_rad.len(),
+                out.info.status,
+                out.total_dv_mps,
+                out.info.work_units
+            ),
+            Err(e) => println!("{seed} {} refused {e:?}", p.targets_lon_rad.len()),
+        }
+    }
+}
+
 fn main() {
     let raw: Vec<String> = std::env::args().skip(1).collect();
     if let [cmd, seed] = raw.as_slice() {
         if cmd == "fixture" {
             let seed = seed.parse().unwrap_or(0);
             print_fixture(seed, &mut Workspace::new(), &mut Solution::new());
+            return;
+        }
+    }
+    if let [cmd, first, last] = raw.as_slice() {
+        if cmd == "default" {
+            print_default(first.parse().unwrap_or(0), last.parse().unwrap_or(0));
             return;
         }
     }

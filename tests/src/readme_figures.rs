@@ -318,7 +318,7 @@ pub const FIGURES_END: &str = "<!-- readme-figures:end -->";
 
 /// The README's order of the figure records (`fixtures/golden/figures/NAME.toml`); every
 /// record is listed once, and every listed name has a record.
-pub const FIGURE_ORDER: [&str; 27] = [
+pub const FIGURE_ORDER: [&str; 28] = [
     "a-paper-case-cost",
     "a-dynamics-error",
     "a-square-swap",
@@ -333,6 +333,7 @@ pub const FIGURE_ORDER: [&str; 27] = [
     "geo-60-day-allocation",
     "geo-brute-published",
     "geo-brute-small-tours",
+    "geo-brute-held-out",
     "geo-timing",
     "leo-example-one",
     "leo-sequencing-on-board",

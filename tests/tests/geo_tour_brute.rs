@@ -352,29 +352,17 @@ fn tours_where_more_revolutions_once_planned_worse() {
     );
 }
 
-/// Known gaps of the exchange search, which changes one leg at a time: where the optimum needs
-/// two legs to change method at once it stays above the brute force. Measured (issue 31):
-/// three Lambert legs squeezed into 1.2 days, 4.901356 against 4.895621 m/s (+0.12 %: the
-/// middle leg keeps its radial transfer, the brute force flies a 0.48-day direct arc); tuning
-/// seed 82, 0.337405 against 0.334912 m/s (+0.74 %: a drift and a three-revolution well,
-/// where two four-revolution wells, one moved 0.3 d early, are cheaper). Held within 1 % here
-/// so that a regression shows; closing them needs a search over pairs or a dynamic programme.
+/// Tours whose optimum needs more than one leg's method changed, or a well moved far from its
+/// bottom, which the one-leg exchange once missed (issue 31): three Lambert legs squeezed into
+/// 1.2 days (4.901356 against 4.895621 m/s, +0.12 %: the middle leg kept its radial transfer
+/// where the brute force flies a 0.48-day arc of its 0-revolution well, whose bottom at 0.99 d
+/// ranked it 2 m/s dear); tuning seed 82 (0.337405 against 0.334912 m/s, +0.74 %: a drift and
+/// a three-revolution well, where a four-revolution well and the drift on the other leg are
+/// cheaper; neither change alone is, the pair stage tries both).
 #[test]
-fn known_gaps_of_the_one_leg_exchange_stay_within_one_percent() {
-    for (start, targets, days, cap) in [
-        (20.0, &[20.04, 20.1, 20.13][..], 1.2, 5.0),
-        (52.239754, &[52.360497, 52.451771][..], 7.660245, 5.0),
-    ] {
-        let (planner, brute) = compare(start, targets, days, cap);
-        assert!(
-            planner >= brute - 1e-3,
-            "{planner} {brute}: the brute force is the optimum"
-        );
-        assert!(
-            planner <= brute * 1.01,
-            "{start} -> {targets:?}: planner {planner}, brute force {brute}"
-        );
-    }
+fn tours_whose_optimum_needs_two_legs_changed_or_a_well_moved_far() {
+    assert_agrees(20.0, &[20.04, 20.1, 20.13], 1.2, 5.0);
+    assert_agrees(52.239754, &[52.360497, 52.451771], 7.660245, 5.0);
 }
 
 /// Every small tour of this file, for the README's line: (start, clients, days, cap).
@@ -414,7 +402,7 @@ fn the_readme_figure_counts_the_small_tours() {
         format!("{within} of {n} tours")
     } else {
         format!(
-            "{within} of {n} tours; {} need two legs to change method at once: {}",
+            "{within} of {n} tours; above it by {}: {}",
             gaps.len(),
             gaps.join(", ")
         )
@@ -429,6 +417,112 @@ fn the_readme_figure_counts_the_small_tours() {
             met: within == n,
             doc: "geo-tour".into(),
             command: "cargo test -p reconfig-tests --test geo_tour_brute".into(),
+        },
+    )
+    .unwrap();
+}
+
+/// SplitMix64: the held-out tours' generator (no state shared with any tuning set).
+struct SplitMix(u64);
+
+impl SplitMix {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next()
+    }
+}
+
+/// Held-out small tours, generated after the exchange's pair stage and re-pricing bound were
+/// chosen on the tours above (seeds 1-16, never looked at before): 1-3 clients 0.02-0.3 deg
+/// apart, 1-6 days, a cap of 1-5 m/s. The tours the planner cannot fit (faster than its fastest
+/// tour) are skipped and counted. The README's held-out line: how many agree within 1e-3 m/s.
+#[test]
+fn held_out_small_tours_agree_with_the_brute_force() {
+    let s = Settings::default();
+    let g = Geo::standard();
+    let mut within = 0;
+    let mut planned = 0;
+    let mut worst = 0.0_f64;
+    for seed in 1..=16_u64 {
+        let mut r = SplitMix(seed);
+        let start = r.range(0.0, 360.0);
+        let legs = 1 + (r.next() * 3.0) as usize;
+        let mut lon = start;
+        let targets: Vec<f64> = (0..legs)
+            .map(|_| {
+                lon += r.range(0.02, 0.3);
+                lon
+            })
+            .collect();
+        let days = r.range(1.0, 6.0);
+        let cap = r.range(1.0, 5.0);
+        let out = plan(start, &targets, days, cap, &s);
+        if out.info.status != SolveStatus::Solved {
+            println!("seed {seed}: {:?}, skipped", out.info.status);
+            continue;
+        }
+        planned += 1;
+        let phases: Vec<f64> = std::iter::once(start)
+            .chain(targets.iter().copied())
+            .collect::<Vec<_>>()
+            .windows(2)
+            .map(|w| (w[1] - w[0]) * DEG)
+            .collect();
+        let brute = brute_optimum(&g, &s, &phases, days * DAY_S, cap);
+        let gap = out.total_dv_mps - brute;
+        println!(
+            "seed {seed}: {start:.3} -> {targets:?}, {days:.3} d, cap {cap:.3}: planner {:.6} brute {brute:.6} ({})",
+            out.total_dv_mps,
+            out.legs
+                .iter()
+                .map(|l| format!("{:?} {:.4} d {:.6}", l.method, l.duration_s / DAY_S, l.dv_mps))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+        assert!(
+            gap >= -1e-3,
+            "seed {seed}: the brute force is the optimum ({gap})"
+        );
+        worst = worst.max(gap / brute);
+        if gap <= 1e-3 {
+            within += 1;
+        }
+    }
+    println!(
+        "held out: {within} of {planned} within 1e-3 m/s, worst +{:.3} %",
+        100.0 * worst
+    );
+    // Every held-out tour within 2 % (the one-leg exchange left 10-13 % on some generated
+    // tours of examples/geo_revolutions.rs), and most to the brute force's resolution.
+    assert!(worst < 0.02, "worst +{:.3} %", 100.0 * worst);
+    assert!(2 * within > planned, "{within} of {planned}");
+    let measured = if within == planned {
+        format!("{within} of {planned} tours (seeds 1-16)")
+    } else {
+        format!(
+            "{within} of {planned} tours (seeds 1-16); the others within +{:.2} %",
+            100.0 * worst
+        )
+    };
+    reconfig_host::figure_record::hold(
+        "geo-brute-held-out",
+        &reconfig_host::figure_record::Figure {
+            what: "GEO: by cost vs the brute force, held-out small tours (1-3 clients \
+                   0.02-0.3 deg apart, 1-6 d, cap 1-5 m/s)"
+                .into(),
+            target: "within 1e-3 m/s".into(),
+            measured,
+            met: within == planned,
+            doc: "geo-tour".into(),
+            command: "cargo test -p reconfig-tests --test geo_tour_brute held_out".into(),
         },
     )
     .unwrap();

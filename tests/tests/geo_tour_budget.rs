@@ -149,7 +149,7 @@ fn the_default_budget_cuts_no_fixture() {
         let out = run(&f.problem, &f.settings);
         assert_eq!(out.info.status, SolveStatus::Solved, "{}", f.name);
         // Well within: the fixtures use under a quarter of the budget (the 16-client tour
-        // 475,329 units since its Lambert wells move with the time price, issue 31).
+        // 481,675 units since the exchange's pair stage, issue 31).
         assert!(
             out.info.work_units < DEFAULT_WORK_BUDGET / 4,
             "{}: {} units",

@@ -3,12 +3,14 @@
 //! (Lambert wells re-priced first) is evaluated exactly, the drift legs' time re-allocated,
 //! and kept when the total falls.
 
+use super::exchange_pairs::pair_stage;
 use super::geo::Geo;
-use super::lambert_phasing::well_minimum;
+use super::lambert_phasing::{well_minimum, well_window_s};
 use super::pick::{drift_beaten, drift_pick, point_pick, totals, Choice, Pick};
 use super::reallocate::{reallocate, WellSearches};
 use super::table::{bounds, direction_of, LegTable, MAX_POINTS};
 use super::types::{PointKind, Settings, MAX_TARGETS};
+use super::well_price::well_leg_count;
 use super::work_units::{self, spend, Cut, Gauge};
 use crate::indexed::IndexedExt as _;
 use crate::work::Meter;
@@ -23,6 +25,19 @@ const WELL_SEARCHES_PER_LEG: u8 = 1;
 /// 14 Lambert legs and no drift tried one per leg per round for 3.3 M units (held-out seed
 /// 2087 of `examples/geo_revolutions.rs`; 235,000 before the wells could move).
 const WELL_SEARCHES_PER_SOLVE: u8 = 16;
+
+/// Of [`WELL_SEARCHES_PER_SOLVE`], those a trial that frees time (a leg moved earlier, not to
+/// a drift) may start: the wells moved into the freed time show what it is worth (three
+/// Lambert legs in 1.2 days: the middle leg's 0.48-day arc beats its radial transfer only so).
+const FREEING_SEARCHES_PER_SOLVE: u8 = 4;
+/// Searches moving the wells the pair stages ([`pair_stage`]) may start over the solve.
+const PAIR_WELL_SEARCHES_PER_SOLVE: u8 = 2;
+/// The freeing and pair searches run only on assignments with at most this many well legs: a
+/// search's cost grows with them (one on the 120-day sixteen-client capacity tour of
+/// `tests/geo_tour_wire.rs`, sixteen well legs, took 1.02 M units, and two of them took that
+/// tour from 2.9 M units past the 4 M budget), and the tours they were measured to pay on have
+/// two to six.
+pub(super) const DEAR_SEARCH_MAX_WELL_LEGS: usize = 6;
 
 /// A leg's alternatives in the exchange search (point index or drift, with time and cost).
 /// Lambert wells are first re-priced: moved to the minimum of `dv + price t` of their well
@@ -43,9 +58,23 @@ fn alternatives(
     let (phase, cap) = (t.phase_rad, t.cap_mps);
     for (i, p) in t.points.iter_mut().indexed() {
         if let PointKind::Well(m) = p.kind {
-            let est = (p.dv_mps - cur.dv_mps) + price * (p.duration_s - cur.duration_s);
+            // Whether the well may beat the current pick at the price: by its stored point's
+            // estimate, and for the direct family (well 1) by a bound, its bottom's Δv plus
+            // the price of its window's earliest time. That family's window spans a whole
+            // period from a minute, so at a high price its best point is far from its bottom
+            // (three Lambert legs in 1.2 days: the middle leg's direct family, whose bottom at
+            // 0.99 d is 2 m/s dearer by the estimate, has at 0.48 d a point that beats its
+            // radial transfer). The bound on every well re-priced so many more that the
+            // sixteen-client fixture took 14 % more work for no lower total.
+            let estimate = (p.dv_mps - cur.dv_mps) + price * (p.duration_s - cur.duration_s);
+            let bound = if m == 1 {
+                let earliest_s = well_window_s(&g, dir, phase, m).0;
+                (p.floor_dv_mps - cur.dv_mps) + price * (earliest_s - cur.duration_s)
+            } else {
+                estimate
+            };
             let stale = (p.price - price).abs() > 0.01 * price;
-            if est < s.exchange_margin_mps && stale {
+            if bound < s.exchange_margin_mps && stale {
                 spend(meter, work_units::WELL)?;
                 let mut gauge = Gauge::metered(meter);
                 let w = well_minimum(
@@ -123,6 +152,8 @@ pub(super) fn exchange(
     let mut changed = false;
     let mut alts = heapless::Vec::new();
     let mut searches_left = WELL_SEARCHES_PER_SOLVE;
+    let mut freeing_left = FREEING_SEARCHES_PER_SOLVE;
+    let mut pair_searches_left = PAIR_WELL_SEARCHES_PER_SOLVE;
     'rounds: for _ in 0..s.exchange_rounds {
         let mut improved = false;
         for j in 0..n {
@@ -143,7 +174,14 @@ pub(super) fn exchange(
                 // for (with no drift before, none did): such a trial that its drifts fit but
                 // do not make cheaper is tried with the wells moved too. Other trials keep
                 // the price, at which the wells are already placed (re-priced above).
-                well_searches.retry_fitting = alt.choice == Choice::Drift;
+                // Likewise a trial that frees time (a leg moved earlier) for the other legs'
+                // wells: only moving them shows what the time is worth.
+                let frees_time = alt.choice != Choice::Drift
+                    && alt.duration_s < cur.duration_s * (1.0 - 1e-9)
+                    && freeing_left > 0
+                    && well_leg_count(tables, picks) <= DEAR_SEARCH_MAX_WELL_LEGS;
+                well_searches.retry_fitting = alt.choice == Choice::Drift || frees_time;
+                let left_before = well_searches.left;
                 if spend(meter, work_units::ASSIGNMENT).is_err() {
                     *cut = true;
                     break 'rounds;
@@ -153,7 +191,7 @@ pub(super) fn exchange(
                     *slot = *alt;
                 }
                 *exchanges = exchanges.saturating_add(1);
-                let p = match reallocate(
+                let result = reallocate(
                     tables,
                     trial,
                     budget_s,
@@ -162,7 +200,11 @@ pub(super) fn exchange(
                     Some(price),
                     (best_dv, &mut well_searches),
                     meter,
-                ) {
+                );
+                if frees_time && well_searches.left < left_before {
+                    freeing_left = freeing_left.saturating_sub(1);
+                }
+                let p = match result {
                     Ok(Some(p)) => p,
                     Ok(None) => continue,
                     Err(Cut) => {
@@ -187,7 +229,27 @@ pub(super) fn exchange(
                 searches_left.saturating_sub(leg_searches.saturating_sub(well_searches.left));
         }
         if !improved {
-            break;
+            // No one leg's change pays: two legs' together (at most once per round).
+            match pair_stage(
+                tables,
+                (picks, trial),
+                budget_s,
+                s,
+                (price, best_dv),
+                (iterations, exchanges, &mut pair_searches_left),
+                meter,
+            ) {
+                Ok(Some((p, dv))) => {
+                    price = p;
+                    best_dv = dv;
+                    changed = true;
+                }
+                Ok(None) => break,
+                Err(Cut) => {
+                    *cut = true;
+                    break;
+                }
+            }
         }
     }
     changed.then_some((price, best_dv))

@@ -26,6 +26,7 @@ mod drift;
 mod drift_time;
 mod error;
 mod exchange;
+mod exchange_pairs;
 mod geo;
 mod hohmann;
 #[doc(hidden)]

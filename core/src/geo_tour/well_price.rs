@@ -92,6 +92,18 @@ pub(super) fn has_well_leg(tables: &[LegTable], picks: &[Pick]) -> bool {
         .any(|(t, p)| well_of(t, p).is_some())
 }
 
+/// How many of the assignment's legs are on a Lambert well (each a golden section per price
+/// step of a search moving the wells).
+pub(super) fn well_leg_count(tables: &[LegTable], picks: &[Pick]) -> usize {
+    tables
+        .iter()
+        .zip(picks)
+        .filter(|(t, p)| well_of(t, p).is_some())
+        // Not `count`: it inherits the caller's overflow checks, a panic path the abort-proof
+        // C library must not link (docs/c-api.md, "Abort-free").
+        .fold(0_usize, |n, _| n.saturating_add(1))
+}
+
 /// Re-allocate the time of the assignment `picks` with its well legs and drift legs moved by
 /// one price (see the module doc): the least price at which the tour fits `budget_s`, the
 /// picks' durations and costs written. `None` when it cannot fit (every well at its window's

@@ -184,6 +184,35 @@ pub(crate) const fn alternatives_leg() -> u64 {
     PICK_LEG.saturating_add(DRIFT_EVAL)
 }
 
+/// One leg's alternatives scored by the exchange's pair stage (`points` table points and the
+/// drift): each effect.
+pub(crate) fn pair_leg(points: usize) -> u64 {
+    let p = u64::try_from(points).unwrap_or(u64::MAX).saturating_add(1);
+    PAIR_SCAN.saturating_add(p.saturating_mul(PAIR_ALTERNATIVE))
+}
+
+/// One pair of legs scanned by the pair stage: the second leg's alternatives scored
+/// ([`pair_leg`]), and per pair of the two legs' alternatives the effects summed and the
+/// best-scored list's test (an insertion into its 8 entries at most).
+pub(crate) fn pair_scan(points_a: usize, points_b: usize) -> u64 {
+    let a = u64::try_from(points_a)
+        .unwrap_or(u64::MAX)
+        .saturating_add(1);
+    let b = u64::try_from(points_b)
+        .unwrap_or(u64::MAX)
+        .saturating_add(1);
+    pair_leg(points_b).saturating_add(a.saturating_mul(b).saturating_mul(PAIR_COMBO))
+}
+
+/// A leg's or a pair of legs' set-up in the pair scan.
+pub(crate) const PAIR_SCAN: u64 = 4;
+/// One alternative scored in the pair scan.
+pub(crate) const PAIR_ALTERNATIVE: u64 = 2;
+/// One pair of alternatives in the pair scan.
+pub(crate) const PAIR_COMBO: u64 = 1;
+/// One pair of legs' test against the pair scan's cut-off (their least effects summed).
+pub(crate) const PAIR_TEST: u64 = 1;
+
 /// One leg of the returned plan at its bound (paid from the reserve): its manoeuvre rebuilt
 /// (a point of `kind`, or the drift) and the leg checked.
 pub(crate) fn leg_assembly(s: &Settings, kind: Option<PointKind>) -> u64 {
