@@ -1,5 +1,6 @@
 //! The LEO arc planner on generated arcs: one JSON line per arc (seed, kind, impulses, status,
-//! Δv, work units, evaluations), then a summary line. The search's settings are chosen on the
+//! Δv, work units, evaluations, the problem's two states and the plan's burns, which
+//! `tests/oracle/leo_arc_optimum.py` restarts from), then a summary line. The search's settings are chosen on the
 //! tuning seeds (0..40) and its figures reported on held-out seeds (1000..1040), which add a
 //! kind the tuning set never has (`eccentric`).
 //!
@@ -127,6 +128,10 @@ fn main() -> Result<()> {
                 "duration_s": problem.duration_s, "status": status,
                 "dv_mps": out.total_dv_mps, "work_units": out.info.work_units,
                 "evaluations": out.info.evaluations,
+                "from": problem.from, "to": problem.to,
+                "burns": out.burns.iter().take(usize::from(out.impulses))
+                    .map(|b| serde_json::json!({"epoch_s": b.epoch_s, "dv_km_s": b.dv_km_s}))
+                    .collect::<Vec<_>>(),
             })
         );
     }

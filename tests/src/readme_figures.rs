@@ -318,7 +318,7 @@ pub const FIGURES_END: &str = "<!-- readme-figures:end -->";
 
 /// The README's order of the figure records (`fixtures/golden/figures/NAME.toml`); every
 /// record is listed once, and every listed name has a record.
-pub const FIGURE_ORDER: [&str; 28] = [
+pub const FIGURE_ORDER: [&str; 29] = [
     "a-paper-case-cost",
     "a-dynamics-error",
     "a-square-swap",
@@ -339,6 +339,7 @@ pub const FIGURE_ORDER: [&str; 28] = [
     "leo-sequencing-on-board",
     "leo-full-plans",
     "leo-held-out-tours",
+    "leo-arc-oracle",
     "leo-on-board-host",
     "truth-vs-scipy",
     "c-interface",
