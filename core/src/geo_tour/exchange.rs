@@ -1,7 +1,8 @@
 //! The exchange search after the time price ([`super::allocate`]): for the price's
 //! assignment, every alternative of every leg with a negative first-order effect at the price
 //! (Lambert wells re-priced first) is evaluated exactly, the drift legs' time re-allocated,
-//! and kept when the total falls.
+//! and kept when the total falls; when no one leg's change pays, two legs change at once
+//! ([`super::exchange_pairs`]).
 
 use super::exchange_pairs::pair_stage;
 use super::geo::Geo;
