@@ -263,6 +263,16 @@ fn plan(
     out
 }
 
+/// Each leg's phase offset, rad: the eastward tour from `start_deg` through `targets_deg`.
+fn phases_rad(start_deg: f64, targets_deg: &[f64]) -> Vec<f64> {
+    std::iter::once(start_deg)
+        .chain(targets_deg.iter().copied())
+        .collect::<Vec<_>>()
+        .windows(2)
+        .map(|w| (w[1] - w[0]) * DEG)
+        .collect()
+}
+
 /// Planner against brute force on one tour; returns (planner, brute).
 fn compare(start_deg: f64, targets_deg: &[f64], days: f64, cap_mps: f64) -> (f64, f64) {
     let s = Settings::default();
@@ -273,16 +283,13 @@ fn compare(start_deg: f64, targets_deg: &[f64], days: f64, cap_mps: f64) -> (f64
         SolveStatus::Solved,
         "{start_deg} {targets_deg:?} {days} d {cap_mps} m/s"
     );
-    let mut prev = start_deg;
-    let phases: Vec<f64> = targets_deg
-        .iter()
-        .map(|&lon| {
-            let d = (lon - prev) * DEG;
-            prev = lon;
-            d
-        })
-        .collect();
-    let brute = brute_optimum(&g, &s, &phases, days * DAY_S, cap_mps);
+    let brute = brute_optimum(
+        &g,
+        &s,
+        &phases_rad(start_deg, targets_deg),
+        days * DAY_S,
+        cap_mps,
+    );
     println!(
         "{start_deg} -> {targets_deg:?}, {days} d, cap {cap_mps}: planner {:.6} brute {brute:.6} m/s ({})",
         out.total_dv_mps,
@@ -470,13 +477,7 @@ fn held_out_small_tours_agree_with_the_brute_force() {
             continue;
         }
         planned += 1;
-        let phases: Vec<f64> = std::iter::once(start)
-            .chain(targets.iter().copied())
-            .collect::<Vec<_>>()
-            .windows(2)
-            .map(|w| (w[1] - w[0]) * DEG)
-            .collect();
-        let brute = brute_optimum(&g, &s, &phases, days * DAY_S, cap);
+        let brute = brute_optimum(&g, &s, &phases_rad(start, &targets), days * DAY_S, cap);
         let gap = out.total_dv_mps - brute;
         println!(
             "seed {seed}: {start:.3} -> {targets:?}, {days:.3} d, cap {cap:.3}: planner {:.6} brute {brute:.6} ({})",

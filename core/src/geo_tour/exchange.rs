@@ -7,8 +7,8 @@
 use super::exchange_pairs::pair_stage;
 use super::geo::Geo;
 use super::lambert_phasing::{well_minimum, well_window_s};
-use super::pick::{drift_beaten, drift_pick, point_pick, totals, Choice, Pick};
-use super::reallocate::{reallocate, WellSearches};
+use super::pick::{drift_beaten, drift_pick, point_pick, Choice, Pick};
+use super::reallocate::{trial_improves, WellSearches};
 use super::table::{bounds, direction_of, LegTable, MAX_POINTS};
 use super::types::{PointKind, Settings, MAX_TARGETS};
 use super::well_price::well_leg_count;
@@ -192,38 +192,36 @@ pub(super) fn exchange(
                     *slot = *alt;
                 }
                 *exchanges = exchanges.saturating_add(1);
-                let result = reallocate(
+                let result = trial_improves(
                     tables,
                     trial,
                     budget_s,
                     s,
                     iterations,
-                    Some(price),
+                    price,
                     (best_dv, &mut well_searches),
                     meter,
                 );
                 if frees_time && well_searches.left < left_before {
                     freeing_left = freeing_left.saturating_sub(1);
                 }
-                let p = match result {
-                    Ok(Some(p)) => p,
-                    Ok(None) => continue,
+                match result {
+                    Ok(None) => {}
+                    Ok(Some((p, dv))) => {
+                        best_dv = dv;
+                        price = p;
+                        *picks = *trial;
+                        improved = true;
+                        changed = true;
+                        if alt.choice == cur.choice {
+                            *refined = refined.saturating_add(1);
+                        }
+                        break;
+                    }
                     Err(Cut) => {
                         *cut = true;
                         break 'rounds;
                     }
-                };
-                let (time_s, dv) = totals(tables, trial);
-                if time_s <= budget_s && dv < best_dv - 1e-12 {
-                    best_dv = dv;
-                    price = p;
-                    *picks = *trial;
-                    improved = true;
-                    changed = true;
-                    if alt.choice == cur.choice {
-                        *refined = refined.saturating_add(1);
-                    }
-                    break;
                 }
             }
             searches_left =

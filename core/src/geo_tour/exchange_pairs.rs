@@ -11,8 +11,8 @@
 //! with the wells moved when that is what pays.
 
 use super::exchange::DEAR_SEARCH_MAX_WELL_LEGS;
-use super::pick::{drift_beaten, drift_pick, point_pick, totals, Choice, Pick};
-use super::reallocate::{reallocate, WellSearches};
+use super::pick::{drift_beaten, drift_pick, point_pick, Choice, Pick};
+use super::reallocate::{trial_improves, WellSearches};
 use super::table::{LegTable, MAX_POINTS};
 use super::types::{Settings, MAX_TARGETS};
 use super::well_price::well_leg_count;
@@ -208,24 +208,20 @@ pub(super) fn pair_stage(
             *slot = pair.picks.1;
         }
         *exchanges = exchanges.saturating_add(1);
-        let result = reallocate(
+        let result = trial_improves(
             tables,
             trial,
             budget_s,
             s,
             iterations,
-            Some(price),
+            price,
             (best_dv, &mut well_searches),
             meter,
         );
         if affordable {
             *well_searches_left = well_searches.left;
         }
-        let Some(p) = result? else {
-            continue;
-        };
-        let (time_s, dv) = totals(tables, trial);
-        if time_s <= budget_s && dv < best_dv - 1e-12 {
+        if let Some((p, dv)) = result? {
             *picks = *trial;
             return Ok(Some((p, dv)));
         }

@@ -55,6 +55,39 @@ pub(super) fn reallocate(
     )
 }
 
+/// One trial of the exchange search (a leg's or a pair of legs' change, already written into
+/// `trial`) re-allocated by [`reallocate`] from `price`: its new price and total Δv when it fits
+/// `budget_s` and lowers the total below `best_dv`, `None` otherwise; [`Cut`] as
+/// [`reallocate`]. Shared by the one-leg rounds ([`super::exchange`]) and the pair stage
+/// ([`super::exchange_pairs`]).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn trial_improves(
+    tables: &[LegTable],
+    trial: &mut [Pick],
+    budget_s: f64,
+    s: &Settings,
+    iterations: &mut u32,
+    price: f64,
+    (best_dv, well_searches): (f64, &mut WellSearches),
+    meter: &mut Meter,
+) -> Result<Option<(f64, f64)>, Cut> {
+    let Some(p) = reallocate(
+        tables,
+        trial,
+        budget_s,
+        s,
+        iterations,
+        Some(price),
+        (best_dv, well_searches),
+        meter,
+    )?
+    else {
+        return Ok(None);
+    };
+    let (time_s, dv) = totals(tables, trial);
+    Ok((time_s <= budget_s && dv < best_dv - 1e-12).then_some((p, dv)))
+}
+
 /// The searches moving the wells ([`wells_allocate`]) a caller of [`reallocate`] allows.
 pub(super) struct WellSearches {
     /// How many may still start.
