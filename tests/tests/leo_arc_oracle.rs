@@ -15,10 +15,10 @@
 use reconfig_core::leo_tour::{solve_arc, ArcProblem, ArcSolution, Settings, Workspace};
 
 /// The most the plan may stay above the oracle's optimum from it, relative: the measured worst
-/// (+5.42 %, seed 1001, a four-impulse arc the budget cut) rounded up, so that a regression of
-/// the search shows as a wider gap. Not the target: the plans are not yet at their basin's
-/// bottom (docs/leo-tour.md, "Against an optimiser restarted from the plans").
-const MAX_GAP: f64 = 0.06;
+/// (+2.21 %, seed 1001, a four-impulse arc; +5.42 % before the descent) rounded up, so that a
+/// regression of the search shows as a wider gap. Not the target: not every plan is at its
+/// basin's bottom yet (docs/leo-tour.md, "Against an optimiser restarted from the plans").
+const MAX_GAP: f64 = 0.025;
 
 fn state(v: &toml::Value) -> [f64; 6] {
     let a: Vec<f64> = v

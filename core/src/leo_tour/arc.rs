@@ -221,7 +221,7 @@ impl Ctx<'_> {
         out
     }
 
-    fn nvars(&self) -> usize {
+    pub(crate) fn nvars(&self) -> usize {
         self.impulses
             .saturating_sub(1)
             .saturating_add(self.impulses.saturating_sub(2).saturating_mul(3))
@@ -389,7 +389,7 @@ impl Ctx<'_> {
 
     /// Re-shoot the last leg at `p` (exact J2): `p` with the new offset and its cost, or
     /// `None` when the shooting did not reach `arrival_tol_km`.
-    fn reshoot(&mut self, p: &Point) -> Option<Point> {
+    pub(crate) fn reshoot(&mut self, p: &Point) -> Option<Point> {
         let flown = self.fly_to_last_leg(&p.x)?;
         let (_, s, t) = &flown;
         let t_last = *t.get(self.impulses.checked_sub(2)?)?;

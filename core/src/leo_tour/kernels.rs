@@ -86,6 +86,9 @@ enum Kind {
     GridEpoch(u16),
     /// A refinement of the grid's best candidate with this many evaluations.
     Refine(u32),
+    /// A descent of this many iterations from the grid's best candidate of the paper's arc
+    /// with four impulses (nine variables, the most), refined first.
+    Descent(u32),
     /// A round of hops from the grid's best candidate.
     Hops,
     /// A node seed at the arc start, its last leg's family chosen among all (the dearest
@@ -176,6 +179,7 @@ pub const CASES: &[Case] = &[
     case("grid-epoch", Kind::GridEpoch(40)),
     case("grid-epoch-200-revs", Kind::GridEpoch(200)),
     case("refine-200", Kind::Refine(200)),
+    case("descent-4-impulses-3", Kind::Descent(3)),
     case("hops", Kind::Hops),
     case("node-seed", Kind::NodeSeed),
     case("node-seed-arithmetic", Kind::NodeSeedArithmetic),
@@ -363,7 +367,10 @@ pub fn prepare(index: usize, ws: &mut SequenceWorkspace) -> Option<Prepared> {
     let ws = &mut ws.arc;
     let kind = CASES.get(index)?.kind;
     let settings = settings_of(kind);
-    let problem = paper_arc()?;
+    let mut problem = paper_arc()?;
+    if let Kind::Descent(_) = kind {
+        problem.impulses = 4;
+    }
     let g = settings.gravity();
     let planning = settings.flight(Model::Planning);
     let mut meter = Meter::new(u64::MAX);
@@ -397,6 +404,7 @@ pub fn prepare(index: usize, ws: &mut SequenceWorkspace) -> Option<Prepared> {
             | Kind::EvaluationAgain
             | Kind::BestFamily
             | Kind::Refine(_)
+            | Kind::Descent(_)
             | Kind::Hops
             | Kind::Finish
     );
@@ -411,6 +419,9 @@ pub fn prepare(index: usize, ws: &mut SequenceWorkspace) -> Option<Prepared> {
         let mut c = ctx(&defaults, (a, b), Model::MeanElements, u64::MAX);
         c.grid(candidates);
         prepared.point = candidates.first().copied().flatten();
+        if let Kind::Descent(_) = kind {
+            prepared.point = prepared.point.map(|q| c.refine(q));
+        }
         if let (Kind::EvaluationAgain, Some(q)) = (kind, prepared.point) {
             c.cost(&q.x, q.fam, &q.off)?;
             prepared.caches = (c.coasts, c.start_cache);
@@ -565,6 +576,9 @@ pub fn run(index: usize, sequence_ws: &mut SequenceWorkspace, prepared: &Prepare
                 black_box(c.refine(q));
             })
         }
+        Kind::Descent(iterations) => with_point(p, ws, Model::MeanElements, |c, q| {
+            black_box(c.descend(q, iterations));
+        }),
         Kind::Hops => {
             let Some(q) = p.point else { return 0 };
             let Workspace { a, b, hops, .. } = ws;

@@ -30,6 +30,7 @@
 
 mod altitude;
 mod arc;
+mod arc_descent;
 mod arc_grid;
 mod arc_hops;
 mod arc_node_seed;
@@ -333,6 +334,7 @@ fn solve_arc_from(
             .max(at_least)
     };
     let polish_reserve = reserve(POLISH_SHARE_PERCENT, check);
+    let descent_reserve = reserve(DESCENT_SHARE_PERCENT, check.saturating_mul(2));
     ctx.meter.reserve(match settings.search_model {
         Model::Planning => polish_reserve,
         Model::MeanElements => reserve(SEARCH_SHARE_PERCENT, check.saturating_mul(2)),
@@ -350,8 +352,20 @@ fn solve_arc_from(
             // the planning model, which decides.
             ctx.flight.model = Model::Planning;
             for q in kept.iter().flatten() {
+                // The descent finishes the search in its own model (arc_descent.rs: the
+                // compass search's frozen offset leaves it short of the bottom).
+                ctx.meter.next_stage(descent_reserve);
+                let descended = ctx.in_model(Model::MeanElements, |c| {
+                    c.descend(*q, arc_descent::DESCENT_MAX_ITERATIONS)
+                });
                 ctx.meter.next_stage(polish_reserve);
-                let polished = ctx.polish(*q);
+                let mut polished = ctx.polish(descended);
+                // The descent may end at the edge of the last leg's Lambert family, which the
+                // planning model moves a little: where its point has no transfer there, the
+                // search's own point is polished instead.
+                if !polished.shot && descended.cost < q.cost {
+                    polished = ctx.polish(*q);
+                }
                 ctx.meter.next_stage(0);
                 consider(&mut ctx, polished, &mut best);
             }
@@ -413,9 +427,14 @@ fn solve_arc_from(
 }
 
 /// The search's share of the work budget, percent: it stops there, leaving the rest for the
-/// planning model's polish and final check of its best plan (on the tuning seeds the polish
-/// and check took 10-30 % of an arc's units).
-const SEARCH_SHARE_PERCENT: u64 = 85;
+/// descent of its best point, then the planning model's polish and final check (on the tuning
+/// seeds the polish and check took 10-30 % of an arc's units). Chosen on the tuning seeds
+/// 0-39 of `host/examples/leo_arc_campaign.rs` among 70-85 (80: the lowest mean Δv, no arc
+/// dearer than with no descent; docs/leo-tour.md, "The descent").
+const SEARCH_SHARE_PERCENT: u64 = 80;
+
+/// Where the descent stops, percent of the budget (the polish then runs to its own share).
+const DESCENT_SHARE_PERCENT: u64 = 85;
 
 /// Where the polish stops, percent of the budget: the final check (an exact shooting of the
 /// last leg in the planning model) may spend the rest, and at least [`check_units`]; the

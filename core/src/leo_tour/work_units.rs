@@ -108,3 +108,8 @@ pub const fn flight(steps: u32) -> u64 {
 pub const fn two_body_propagation() -> u64 {
     TWO_BODY_SET_UP.saturating_add(TWO_BODY_ITERATION.saturating_mul(TWO_BODY_MAX_ITER as u64))
 }
+
+/// An iteration of the descent outside its evaluations and shooting (`arc_descent.rs`: the
+/// direction, the step's scaling, the inverse Hessian's update, over at most `MAX_VARS` = 9
+/// variables).
+pub const DESCENT_ITERATION: u64 = 40;
