@@ -15,11 +15,12 @@
 //! the planning model's RK4 (a descent there cost 3-10 times an arc's budget for little more).
 //!
 //! Each iteration: the gradient by forward differences (`nvars` evaluations, a backward one
-//! where the forward point breaks the epochs' order), the step `-H g` (at most
+//! where the forward point breaks the epochs' order or has no transfer), the step `-H g` (at most
 //! [`MAX_STEP_SCALES`] of the variables' scales long), then a backtracking line search with
 //! Armijo's rule (at most [`LINE_SEARCH_HALVINGS`] halvings). Every evaluation is a re-shot
 //! point (the plan flown to its last leg, the last leg shot to `arrival_tol_km` from the
-//! point's offset and the context's quasi-Newton matrix, the cost). Worst case
+//! offset and the quasi-Newton matrix of the point it moves from, the cost). When the
+//! quasi-Newton step finds no decrease, the gradient is tried once before the descent stops. Worst case
 //! `max_iterations x (nvars + LINE_SEARCH_HALVINGS + 1) + nvars` re-shot evaluations, each
 //! at most `shoot_max_iter` aim-point iterations, all charged to the meter, which stops it
 //! first when smaller ([`super::work_units::DESCENT_ITERATION`] per iteration for its own
@@ -181,9 +182,8 @@ impl Ctx<'_> {
         best
     }
 
-    /// Backtracking from the full step `d` (scaled) at `p`: the step taken and the point it
-    /// reaches (its frozen-offset cost, not re-shot), or `None` when no halving gives Armijo's
-    /// decrease.
+    /// Backtracking from the full step `d` (scaled) at `p`: the step taken and the re-shot
+    /// point it reaches, or `None` when no halving gives Armijo's decrease.
     fn line_search(
         &mut self,
         p: &Point,
