@@ -14,7 +14,8 @@
 //! after 1, 2 and 60 iterations; compass-search evaluations in both models (and one refused
 //! at its epochs, and one repeated, its coast and client state looked up); the cheapest last-leg family over every family; a shooting cut after one
 //! aim-point iteration and one to convergence in the search model; a grid epoch (with the
-//! default families and with 200 revolutions allowed); a bounded refinement; a round of hops;
+//! default families and with 200 revolutions allowed); a bounded refinement; three iterations of
+//! the descent on four impulses; a round of hops;
 //! the final check of a plan; whole solves and an estimate cut at several budgets; three whole
 //! sequencings (Example I at the defaults, eight clients whose estimates are all refused, eight
 //! clients with one-epoch estimates). The image
