@@ -425,13 +425,19 @@ impl Ctx<'_> {
     /// search from a sixteenth of the search's first steps, `polish_max_evals` evaluations,
     /// the family kept.
     pub fn polish(&mut self, p: Point) -> Point {
-        let s = self.settings;
         self.refine_with(
             p,
-            (s.search_step_s / 16.0, s.search_step_km_s / 16.0),
-            s.polish_max_evals,
+            self.polish_first_steps(),
+            self.settings.polish_max_evals,
             false,
         )
+    }
+
+    /// The polish's first steps (an epoch's, s; a burn component's, km/s): a sixteenth of the
+    /// search's. Also the descent's scales of its variables (`arc_descent.rs`).
+    pub(crate) fn polish_first_steps(&self) -> (f64, f64) {
+        let s = self.settings;
+        (s.search_step_s / 16.0, s.search_step_km_s / 16.0)
     }
 
     /// Bounded compass search from `p` with first steps `(epoch s, component km/s)`, at most
