@@ -103,6 +103,13 @@ impl Meter {
         self.used
     }
 
+    /// A step of the current stage was refused: that stage's loops stop. A later stage
+    /// ([`Meter::next_stage`]) may spend again, so the loops of a stage test this, not
+    /// [`Meter::exhausted`], which stays set once any stage was cut.
+    pub const fn stage_refused(&self) -> bool {
+        self.refusing
+    }
+
     /// A step was refused (in any stage): the solve stopped short of its own end.
     pub const fn exhausted(&self) -> bool {
         self.exhausted
@@ -135,10 +142,13 @@ mod tests {
         m.charge(25);
         assert_eq!(m.used(), 95);
         // A next stage may spend its share again; the cut stays reported.
+        assert!(m.stage_refused());
         m.next_stage(0);
+        assert!(!m.stage_refused());
+        assert!(m.exhausted());
         assert!(m.spend(5));
         assert!(!m.spend(1));
-        assert!(m.exhausted());
+        assert!(m.stage_refused() && m.exhausted());
     }
 
     #[test]

@@ -14,7 +14,7 @@ fn the_tour_plot_draws_every_arc_from_the_start_offset_to_the_rendezvous() {
     std::fs::remove_file(&out).ok();
     assert!(svg.contains("leo-tour-example1-printed"));
     assert!(
-        svg.contains("total dv 1209.592 m/s (published 1293.651)"),
+        svg.contains("total dv 1209.528 m/s (published 1293.651)"),
         "caption"
     );
     assert_eq!(drawn.arcs.len(), 4);

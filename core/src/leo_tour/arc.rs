@@ -363,7 +363,7 @@ impl Ctx<'_> {
                     best = Some((fam, c));
                 }
             }
-            if self.meter.exhausted() {
+            if self.meter.stage_refused() {
                 break;
             }
         }
@@ -490,7 +490,7 @@ impl Ctx<'_> {
                 for i in 0..nv {
                     for sign in [1.0, -1.0] {
                         if self.evals.saturating_sub(start_evals) >= budget
-                            || self.meter.exhausted()
+                            || self.meter.stage_refused()
                         {
                             break 'levels;
                         }
@@ -510,7 +510,7 @@ impl Ctx<'_> {
                                 let mut stride = h;
                                 for _ in 0..EXPANSIONS {
                                     if self.evals.saturating_sub(start_evals) >= budget
-                                        || self.meter.exhausted()
+                                        || self.meter.stage_refused()
                                     {
                                         break;
                                     }

@@ -211,7 +211,7 @@ impl Ctx<'_> {
                     return Some((step, q));
                 }
             }
-            if self.meter.exhausted() {
+            if self.meter.stage_refused() {
                 return None;
             }
             alpha *= 0.5;

@@ -120,7 +120,7 @@ impl Ctx<'_> {
                     &off,
                     &mut self.meter,
                 ) else {
-                    if self.meter.exhausted() {
+                    if self.meter.stage_refused() {
                         return;
                     }
                     continue;

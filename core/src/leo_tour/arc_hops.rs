@@ -77,7 +77,7 @@ impl Ctx<'_> {
                     secant: Secant::default(),
                 });
             }
-            if self.meter.exhausted() {
+            if self.meter.stage_refused() {
                 break;
             }
         }

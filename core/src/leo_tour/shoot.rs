@@ -321,7 +321,7 @@ pub fn shoot_continued(
             }
             None => increment *= 0.5,
         }
-        if meter.exhausted() {
+        if meter.stage_refused() {
             break;
         }
     }
