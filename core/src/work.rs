@@ -9,7 +9,7 @@
 //! Every planner's weights are set so that each charged step, measured alone on its dearest
 //! path on the Cortex-M7 under QEMU, costs at most its planner's `MAX_INSTRUCTIONS_PER_UNIT`
 //! instructions per unit (`pseudospectral/kernels.rs`, `impulsive/kernels.rs`,
-//! `geo_tour/kernels.rs`, `leo_tour/kernels.rs`, checked by the QEMU tests).
+//! `geo_tour/kernels.rs`, `leo_tour/kernels/`, checked by the QEMU tests).
 //!
 //! Every count saturates (no overflow, no float): the meter is plain integer arithmetic.
 

@@ -22,7 +22,7 @@ fn kernels_leo_cases_are_within_the_per_unit_bound() {
         planner: "LEO arc",
         marker: KERNELS_LEO_MARKER,
         key: "kl",
-        source: "core/src/leo_tour/kernels.rs",
+        source: "core/src/leo_tour/kernels/mod.rs",
         work_units: "core/src/leo_tour/work_units.rs",
         cases: CASES.iter().map(|c| (c.name, c.charged())).collect(),
         max_instructions_per_unit: MAX_INSTRUCTIONS_PER_UNIT,
