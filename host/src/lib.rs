@@ -3,6 +3,7 @@
 //! feeder (`harness`), the subcommands of `reconfig` (`cli`), planner A's generated problems (`families`),
 //! plots, generated scenarios and the truth model.
 
+pub mod campaign;
 pub mod cli;
 pub mod drivers;
 pub mod families;

@@ -22,6 +22,9 @@ struct Cli {
 enum Command {
     /// Solve one fixture and print a report (or JSON).
     Solve(reconfig_host::cli::solve::Args),
+    /// A Monte Carlo campaign of one fixture: dispersed cases answered in parallel on every
+    /// core, a CSV row per case.
+    Campaign(reconfig_host::cli::campaign::Args),
     /// Reproduce Huang 2012 Table 2: random initial guesses, with and without test points.
     Montecarlo(reconfig_host::cli::montecarlo::Args),
     /// The main job: start the flight service, feed it every fixture, the fault set and
@@ -61,6 +64,7 @@ fn main() -> ExitCode {
     if matches!(
         cli.command,
         Command::Solve(_)
+            | Command::Campaign(_)
             | Command::Montecarlo(_)
             | Command::Plot(_)
             | Command::Sweep(_)
@@ -74,6 +78,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Solve(args) => reconfig_host::cli::solve::run(&args),
         Command::Montecarlo(args) => reconfig_host::cli::montecarlo::run(&args),
+        Command::Campaign(args) => reconfig_host::cli::campaign::run(&args),
         Command::Demo(args) => reconfig_host::cli::demo::run(&args),
         Command::Serve(args) => reconfig_host::cli::serve::run(&args),
         Command::Feed(args) => reconfig_host::cli::feed::run(&args),

@@ -2,6 +2,7 @@
 //! `crate::drivers` (answering and reporting a fixture's requests), `crate::harness` (the
 //! flight service, the feeders and their checks) and `crate::fixture`.
 
+pub mod campaign;
 pub mod demo;
 pub mod fairness;
 pub mod feed;

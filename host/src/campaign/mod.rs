@@ -1,0 +1,248 @@
+//! Campaigns: one fixture, many dispersed cases, each answered through the core's one request
+//! path (`wire::answer`, the same call as `reconfig solve` and the flight service), in parallel
+//! on every core, one table row per case (issue 32).
+//!
+//! * [`dispersion`]: which numbers of the fixture vary and how ([`Dispersion`]);
+//! * [`table`]: the rows as CSV and the campaign's summary.
+//!
+//! Determinism: case `k`'s numbers are drawn from its own random stream (ChaCha8, the
+//! campaign's seed, stream `k`), so a case is the same file whatever thread answers it and
+//! whatever the thread count; the rows are collected in case order. Only `solve_time_s`
+//! differs between runs (`campaign_is_the_same_on_one_thread_and_on_every_core` in
+//! `host/tests/campaign.rs`).
+
+pub mod dispersion;
+pub mod table;
+
+use crate::drivers::answer::{answer, buffers};
+use crate::fixture::{self};
+use anyhow::{bail, Context, Result};
+use dispersion::Dispersion;
+use indicatif::ProgressBar;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+use reconfig_core::limits::Limits;
+use reconfig_core::wire::{AllPlanners, OutcomeRef};
+
+/// A campaign: the fixture's document, its dispersions, the seed and the number of cases.
+#[derive(Debug, Clone)]
+pub struct Campaign {
+    base: toml::Value,
+    name: String,
+    dispersions: Vec<Dispersion>,
+    seed: u64,
+    cases: u64,
+    limits: Limits,
+}
+
+/// One case's answer: a row of the table.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row {
+    /// The case's index (its random stream).
+    pub case: u64,
+    /// The dispersed numbers, in the order of the dispersions.
+    pub inputs: Vec<f64>,
+    /// The planner's status (`Solved`, `BudgetExhausted { verified: true }`, ...), or
+    /// `LimitExceeded` (refused by the limits), `Rejected` (refused by the planner or by the
+    /// fixture's own checks).
+    pub status: String,
+    /// Whether the plan may be flown (the status's verdict); `None` when nothing was planned.
+    pub usable: Option<bool>,
+    /// The plan's objective (planner A: J; the others: total Δv, m/s) when it is usable.
+    pub cost: Option<f64>,
+    /// The work units the planner used; `None` when nothing was planned.
+    pub work_units: Option<u64>,
+    /// Wall time of the answer, s: the only column that differs between runs.
+    pub solve_time_s: f64,
+    /// Why nothing was planned (the refusal, naming the field, value and limit).
+    pub message: String,
+}
+
+impl Campaign {
+    /// A campaign of `cases` cases of the fixture `text` (named `name` in messages).
+    ///
+    /// # Errors
+    /// The fixture does not parse, stands for more than one request (a LEO tour of several
+    /// arcs), or a dispersion names no float of it.
+    pub fn new(
+        name: &str,
+        text: &str,
+        dispersions: Vec<Dispersion>,
+        seed: u64,
+        cases: u64,
+        limits: Limits,
+    ) -> Result<Self> {
+        let fixture = fixture::parse(text).with_context(|| format!("in fixture {name}"))?;
+        let requests = fixture.requests()?;
+        if requests.len() != 1 {
+            bail!(
+                "{name} stands for {} requests; a campaign answers fixtures of one request \
+                 (a LEO tour of two clients, one arc)",
+                requests.len()
+            );
+        }
+        let base: toml::Value = toml::from_str(text).with_context(|| format!("in {name}"))?;
+        let campaign = Self {
+            base,
+            name: name.to_owned(),
+            dispersions,
+            seed,
+            cases,
+            limits,
+        };
+        // Every path checked once, before any case runs: it names a number, and the fixture
+        // still reads with that number in float form (a field of integers, such as an
+        // impulse's `revolutions`, is refused here, named, not in every row).
+        campaign.case_document(0)?;
+        for d in &campaign.dispersions {
+            let mut doc = campaign.base.clone();
+            d.path.as_float(&mut doc)?;
+            fixture::from_value(doc)
+                .with_context(|| format!("path `{}` cannot be dispersed", d.path))?;
+        }
+        Ok(campaign)
+    }
+
+    /// The dispersions.
+    pub fn dispersions(&self) -> &[Dispersion] {
+        &self.dispersions
+    }
+
+    /// Number of cases.
+    pub const fn cases(&self) -> u64 {
+        self.cases
+    }
+
+    /// Case `case`'s document and its dispersed numbers.
+    ///
+    /// # Errors
+    /// A dispersion names no float of the fixture.
+    pub fn case_document(&self, case: u64) -> Result<(toml::Value, Vec<f64>)> {
+        let mut rng = ChaCha8Rng::seed_from_u64(self.seed);
+        rng.set_stream(case);
+        let mut doc = self.base.clone();
+        let inputs = self
+            .dispersions
+            .iter()
+            .map(|d| d.apply(&mut doc, &mut rng))
+            .collect::<Result<Vec<f64>>>()?;
+        Ok((doc, inputs))
+    }
+
+    /// Case `case` as fixture text: `reconfig solve` on it gives the case's row.
+    ///
+    /// # Errors
+    /// As [`Self::case_document`].
+    pub fn case_text(&self, case: u64) -> Result<String> {
+        Ok(toml::to_string(&self.case_document(case)?.0)?)
+    }
+
+    /// Answer case `case` with `buffers`.
+    pub fn answer_case(&self, case: u64, buffers: &mut AllPlanners) -> Row {
+        let mut row = Row {
+            case,
+            inputs: Vec::new(),
+            status: String::new(),
+            usable: None,
+            cost: None,
+            work_units: None,
+            solve_time_s: 0.0,
+            message: String::new(),
+        };
+        let request = self.case_document(case).and_then(|(doc, inputs)| {
+            row.inputs = inputs;
+            let fixture = fixture::from_value(doc)?;
+            let mut requests = fixture.requests()?;
+            match requests.pop() {
+                Some(r) if requests.is_empty() => Ok(r.request),
+                _ => bail!("{}: case {case} stands for several requests", self.name),
+            }
+        });
+        let request = match request {
+            Ok(r) => r,
+            Err(e) => {
+                // The fixture's own checks refused the dispersed file (an eccentricity below
+                // 0, say): a row that says so, named, and the campaign goes on.
+                row.status = "Rejected".into();
+                row.message = format!("{e:#}");
+                return row;
+            }
+        };
+        let answered = answer(&request, &self.limits, buffers);
+        row.solve_time_s = answered.time_s;
+        let outcome = answered.outcome;
+        row.usable = outcome.usable();
+        row.work_units = outcome.work_units();
+        match &outcome {
+            OutcomeRef::LimitExceeded(v) => {
+                row.status = "LimitExceeded".into();
+                row.message = v.to_string();
+            }
+            _ => {
+                if let Some(e) = outcome.rejection() {
+                    row.status = "Rejected".into();
+                    row.message = e.to_string();
+                } else {
+                    row.status = status_text(&outcome);
+                    if row.usable == Some(true) {
+                        row.cost = cost(&outcome);
+                    }
+                }
+            }
+        }
+        row
+    }
+
+    /// Answer every case on `threads` threads (0: one per core), in case order.
+    ///
+    /// # Errors
+    /// The thread pool cannot start.
+    pub fn run(&self, threads: usize, progress: &ProgressBar) -> Result<Vec<Row>> {
+        // The flight service's workers' stack: a solve's values pass through the stack on
+        // their way into the boxed buffers (rayon's default 2 MB overflowed in the tests).
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .stack_size(crate::harness::worker::WORKER_STACK_BYTES)
+            .build()
+            .context("cannot start the campaign's threads")?;
+        Ok(pool.install(|| {
+            (0..self.cases)
+                .into_par_iter()
+                .map_init(buffers, |b, case| {
+                    let row = self.answer_case(case, b);
+                    progress.inc(1);
+                    row
+                })
+                .collect()
+        }))
+    }
+}
+
+/// The planner's status as `{:?}` prints it, for an outcome with a plan.
+fn status_text(outcome: &OutcomeRef) -> String {
+    match outcome {
+        OutcomeRef::Pseudospectral(s) => format!("{:?}", s.info.status),
+        OutcomeRef::Impulsive(s) | OutcomeRef::ImpulsiveForm { solution: s, .. } => {
+            format!("{:?}", s.info.status)
+        }
+        OutcomeRef::GeoTour(s) => format!("{:?}", s.info.status),
+        OutcomeRef::LeoArc(s) => format!("{:?}", s.info.status),
+        OutcomeRef::LeoSequence(q) => format!("{:?}", q.info.status),
+        other => format!("Unexpected {other:?}"),
+    }
+}
+
+/// The plan's objective: planner A's J, the others' total Δv (m/s).
+fn cost(outcome: &OutcomeRef) -> Option<f64> {
+    match outcome {
+        OutcomeRef::Pseudospectral(s) => Some(s.cost),
+        OutcomeRef::Impulsive(s) | OutcomeRef::ImpulsiveForm { solution: s, .. } => {
+            Some(s.total_dv_mps)
+        }
+        OutcomeRef::GeoTour(s) => Some(s.total_dv_mps),
+        OutcomeRef::LeoArc(s) => Some(s.total_dv_mps),
+        OutcomeRef::LeoSequence(q) => q.total_dv_mps,
+        _ => None,
+    }
+}
