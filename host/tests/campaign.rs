@@ -202,3 +202,35 @@ fn the_cli_writes_one_row_per_case_and_shows_a_case_as_a_fixture() {
     let doc: toml::Value = toml::from_str(&case).expect("toml");
     assert_eq!(doc["relative"]["initial_roe_m"][1].as_float(), Some(drawn));
 }
+
+#[test]
+fn the_sweep_answers_are_the_same_on_one_thread_and_on_two() {
+    use reconfig_core::pseudospectral::Settings;
+    use reconfig_host::drivers::sweep_run::sweep;
+    use reconfig_host::families::six;
+    // 72 problems: more than one chunk of 64 solved side by side.
+    let problems = six::generate_all(12, 9);
+    assert_eq!(problems.len(), 72);
+    let settings = Settings::default();
+    let run = |threads| {
+        let mut order = Vec::new();
+        let swept = sweep(&problems, None, &settings, None, threads, |i, _, _, _| {
+            order.push(i);
+            Ok(())
+        })
+        .expect("sweep");
+        (swept, order)
+    };
+    let ((one, order_one), (two, order_two)) = (run(1), run(2));
+    // `each` sees the problems in order, whatever the threads.
+    assert_eq!(order_one, (0..72).collect::<Vec<_>>());
+    assert_eq!(order_one, order_two);
+    let key = |s: &reconfig_host::drivers::sweep_run::Swept| {
+        s.outcomes
+            .iter()
+            .map(|o| (o.family, o.status, o.cost.to_bits()))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(key(&one), key(&two));
+    assert!(one.outcomes.iter().filter(|o| o.status.is_some()).count() > 60);
+}

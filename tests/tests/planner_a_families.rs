@@ -25,9 +25,14 @@ fn tables(block: &str, work_budget: Option<u64>, starts: Option<AlternativeStart
     if let Some(budget) = work_budget {
         settings.work_budget = budget;
     }
-    let swept = sweep(&problems, Some(&oracle), &settings, starts, |_, _, _, _| {
-        Ok(())
-    })
+    let swept = sweep(
+        &problems,
+        Some(&oracle),
+        &settings,
+        starts,
+        0,
+        |_, _, _, _| Ok(()),
+    )
     .unwrap();
     assert_eq!(
         swept.outcomes.iter().filter(|o| o.oracle.is_some()).count(),

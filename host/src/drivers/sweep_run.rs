@@ -8,6 +8,7 @@ use super::sweep_oracle::{percentile, relative_gap, OracleAnswer, GAP_REPORT_REL
 use super::sweep_report::Tally;
 use crate::families::Named;
 use anyhow::Result;
+use rayon::prelude::*;
 use reconfig_core::pseudospectral::{AlternativeStarts, Problem, Settings, SolveStatus};
 use std::collections::BTreeMap;
 
@@ -42,20 +43,45 @@ pub struct Swept {
     pub outcomes: Vec<Outcome>,
 }
 
-/// Solve every problem; `each` sees each one's index, family, problem and answer (for the
-/// answer file and progress) before it is tallied.
+/// Problems solved side by side before their answers are tallied in order: bounds the
+/// answers held at once (each a boxed planner-A solution).
+const CHUNK: usize = 64;
+
+/// Solve every problem, on `threads` threads (0: one per core); `each` sees each one's index,
+/// family, problem and answer (for the answer file and progress), in the problems' order,
+/// before it is tallied. Each solve has its own workspace, so the answers (all but their
+/// times) are the same whatever the thread count.
 ///
 /// # Errors
-/// What `each` returns.
+/// What `each` returns, or the threads cannot start.
 pub fn sweep(
     problems: &[Named],
     oracle: Option<&OracleData>,
     settings: &Settings,
     starts: Option<AlternativeStarts>,
+    threads: usize,
     mut each: impl FnMut(usize, &'static str, &Problem, &Result<(Timed, u8)>) -> Result<()>,
 ) -> Result<Swept> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .stack_size(crate::harness::worker::WORKER_STACK_BYTES)
+        .build()?;
     let mut swept = Swept::default();
+    let mut answers = Vec::with_capacity(CHUNK);
     for (this, (family, p)) in problems.iter().enumerate() {
+        if this % CHUNK == 0 {
+            let chunk = problems.get(this..).unwrap_or_default();
+            answers = pool.install(|| {
+                chunk
+                    .par_iter()
+                    .take(CHUNK)
+                    .map(|(_, q)| Some(solve_timed_with_starts(q, settings, starts)))
+                    .collect::<Vec<_>>()
+            });
+        }
+        let Some(answer) = answers.get_mut(this % CHUNK).and_then(Option::take) else {
+            anyhow::bail!("sweep: no answer for problem {this}");
+        };
         let family: &'static str = family;
         // The oracle's answer counts only for the very problem it solved.
         let stored = oracle.and_then(|(golden, stored)| {
@@ -76,7 +102,6 @@ pub fn sweep(
             cost: f64::NAN,
             time_ms: f64::NAN,
         };
-        let answer = solve_timed_with_starts(p, settings, starts);
         each(this, family, p, &answer)?;
         let tally = swept.tallies.entry(family).or_default();
         match answer {
