@@ -106,8 +106,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         timed(&campaign, threads, !to_stdout)?
     };
     match &args.out {
-        Some(p) if to_stdout => {
-            let _ = p;
+        Some(_) if to_stdout => {
             write_csv(&campaign, &rows, !args.no_times, std::io::stdout().lock())?;
         }
         Some(p) => {
