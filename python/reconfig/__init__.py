@@ -83,6 +83,11 @@ def solve(fixture: Fixture) -> Result:
     )
 
 
+def _check_seed(seed) -> None:
+    if not isinstance(seed, int) or not 0 <= seed < 2**64:
+        raise ValueError(f"seed = {seed!r} is not a whole number in [0, 2^64)")
+
+
 def _laws(
     disperse: Optional[Mapping[str, float]], uniform: Optional[Mapping[str, Tuple[float, float]]]
 ):
@@ -108,6 +113,7 @@ def campaign(
         raise ValueError(f"cases = {cases!r} is not a whole number >= 0")
     if not isinstance(threads, int) or threads < 0:
         raise ValueError(f"threads = {threads!r} is not a whole number >= 0")
+    _check_seed(seed)
     gauss, flat = _laws(disperse, uniform)
     cols = _reconfig.campaign(fixture.name, fixture.text, cases, gauss, flat, seed, threads)
     out: Dict[str, np.ndarray] = {}
@@ -131,6 +137,9 @@ def case_fixture(
     seed: int = 1,
 ) -> Fixture:
     """Case ``case`` of a campaign as a fixture (``reconfig campaign --show-case``)."""
+    _check_seed(seed)
+    if not isinstance(case, int) or not 0 <= case < 2**64 - 1:
+        raise ValueError(f"case = {case!r} is not a whole number in [0, 2^64 - 1)")
     gauss, flat = _laws(disperse, uniform)
     text = _reconfig.case_text(fixture.name, fixture.text, gauss, flat, seed, case)
     return Fixture(name=f"{fixture.name} case {case}", text=text)

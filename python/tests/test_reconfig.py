@@ -84,6 +84,12 @@ def test_refused_inputs_raise_and_name_what_is_wrong(tmp_path):
         reconfig.campaign(f, 3, disperse={"chief.semi_major": 1.0})
     with pytest.raises(ValueError, match="cases = -1"):
         reconfig.campaign(f, -1)
+    with pytest.raises(ValueError, match="seed = -3"):
+        reconfig.campaign(f, 3, seed=-3)
+    with pytest.raises(ValueError, match="threads = 1.5"):
+        reconfig.campaign(f, 3, threads=1.5)
+    with pytest.raises(ValueError, match="not finite"):
+        reconfig.campaign(f, 3, disperse={"chief.eccentricity": float("nan")})
     with pytest.raises(ValueError, match="sigma = -1"):
         reconfig.campaign(f, 3, disperse={"chief.eccentricity": -1.0})
     bad = reconfig.Fixture(f.name, f.text.replace("eccentricity = 0.0678", "eccentricity = 1.5"))
