@@ -105,3 +105,23 @@ def test_refused_inputs_raise_and_name_what_is_wrong(tmp_path):
     # A fixture saved from Python reads back as itself.
     f.save(tmp_path / "f.toml")
     assert reconfig.load_fixture(tmp_path / "f.toml").text == f.text
+
+
+def test_the_type_stubs_name_what_the_extension_exports():
+    import ast
+    import inspect
+
+    from reconfig import _reconfig
+
+    stub = ast.parse((pathlib.Path(reconfig.__file__).parent / "_reconfig.pyi").read_text())
+    stubbed = {
+        node.name: [a.arg for a in node.args.args]
+        for node in stub.body
+        if isinstance(node, ast.FunctionDef)
+    }
+    exported = {n for n in dir(_reconfig) if not n.startswith("_")}
+    assert set(stubbed) == exported
+    for name, args in stubbed.items():
+        # PyO3 gives each function its Rust signature's names (`text_signature`).
+        assert list(inspect.signature(getattr(_reconfig, name)).parameters) == args, name
+    assert (pathlib.Path(reconfig.__file__).parent / "py.typed").exists()
