@@ -356,16 +356,7 @@ enum Ending {
 /// The name of how an outcome ended: its variant and, for a plan, its status's variant
 /// (`Pseudospectral/BudgetExhausted`), for the tally.
 fn ending_name(o: &OutcomeRef<'_>) -> String {
-    let status = match o {
-        OutcomeRef::Pseudospectral(s) => format!("{:?}", s.info.status),
-        OutcomeRef::Impulsive(s) | OutcomeRef::ImpulsiveForm { solution: s, .. } => {
-            format!("{:?}", s.info.status)
-        }
-        OutcomeRef::GeoTour(s) => format!("{:?}", s.info.status),
-        OutcomeRef::LeoArc(s) => format!("{:?}", s.info.status),
-        OutcomeRef::LeoSequence(q) => format!("{:?}", q.info.status),
-        other => format!("{other:?}"),
-    };
+    let status = reconfig_host::drivers::answer::status_text(o).unwrap_or_else(|| format!("{o:?}"));
     let word = |t: &str| {
         t.split(|c: char| !c.is_alphanumeric())
             .next()

@@ -14,7 +14,7 @@
 pub mod dispersion;
 pub mod table;
 
-use crate::drivers::answer::{answer, buffers};
+use crate::drivers::answer::{answer, buffers, status_text};
 use crate::fixture::{self};
 use anyhow::{bail, Context, Result};
 use dispersion::Dispersion;
@@ -184,7 +184,8 @@ impl Campaign {
                     row.status = "Rejected".into();
                     row.message = e.to_string();
                 } else {
-                    row.status = status_text(&outcome);
+                    row.status =
+                        status_text(&outcome).unwrap_or_else(|| format!("Unexpected {outcome:?}"));
                     if row.usable == Some(true) {
                         row.cost = cost(&outcome);
                     }
@@ -216,20 +217,6 @@ impl Campaign {
                 })
                 .collect()
         }))
-    }
-}
-
-/// The planner's status as `{:?}` prints it, for an outcome with a plan.
-fn status_text(outcome: &OutcomeRef) -> String {
-    match outcome {
-        OutcomeRef::Pseudospectral(s) => format!("{:?}", s.info.status),
-        OutcomeRef::Impulsive(s) | OutcomeRef::ImpulsiveForm { solution: s, .. } => {
-            format!("{:?}", s.info.status)
-        }
-        OutcomeRef::GeoTour(s) => format!("{:?}", s.info.status),
-        OutcomeRef::LeoArc(s) => format!("{:?}", s.info.status),
-        OutcomeRef::LeoSequence(q) => format!("{:?}", q.info.status),
-        other => format!("Unexpected {other:?}"),
     }
 }
 

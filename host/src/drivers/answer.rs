@@ -45,6 +45,21 @@ pub fn answer<'a, B: Buffers + ?Sized>(
     }
 }
 
+/// The planner's status as `{:?}` prints it (`BudgetExhausted { verified: true }`), for an
+/// outcome with a plan; `None` when nothing was planned.
+pub fn status_text(outcome: &OutcomeRef) -> Option<String> {
+    match outcome {
+        OutcomeRef::Pseudospectral(s) => Some(format!("{:?}", s.info.status)),
+        OutcomeRef::Impulsive(s) | OutcomeRef::ImpulsiveForm { solution: s, .. } => {
+            Some(format!("{:?}", s.info.status))
+        }
+        OutcomeRef::GeoTour(s) => Some(format!("{:?}", s.info.status)),
+        OutcomeRef::LeoArc(s) => Some(format!("{:?}", s.info.status)),
+        OutcomeRef::LeoSequence(q) => Some(format!("{:?}", q.info.status)),
+        _ => None,
+    }
+}
+
 /// The exit code of a planned answer: [`EXIT_USABLE`] or [`EXIT_NOT_USABLE`].
 pub fn exit_code(usable: bool) -> ExitCode {
     ExitCode::from(if usable { EXIT_USABLE } else { EXIT_NOT_USABLE })
