@@ -27,7 +27,7 @@ fn campaign(stem: &str, dispersions: &[&str], cases: u64) -> Campaign {
 
 fn csv(c: &Campaign, rows: &[reconfig_host::campaign::Row]) -> Vec<u8> {
     let mut out = Vec::new();
-    write_csv(c, rows, false, &mut out).expect("csv");
+    write_csv(c, rows, false, true, &mut out).expect("csv");
     out
 }
 
@@ -56,6 +56,36 @@ fn campaign_is_the_same_on_one_thread_and_on_every_core() {
     // A second campaign of the same seed draws the same cases.
     let again = c.run(2, &hidden).expect("run");
     assert!(same_answers(&one, &again));
+}
+
+#[test]
+fn the_parts_of_a_campaign_are_its_rows_and_its_table() {
+    let c = campaign(
+        "huang2012-three-sats-n10",
+        &["spacecraft[2].initial[1]=0.2"],
+        10,
+    );
+    let hidden = indicatif::ProgressBar::hidden();
+    let whole = c.run(2, &hidden).expect("run");
+    let mut table = Vec::new();
+    let mut rows = Vec::new();
+    for (first, count) in [(0, 3), (3, 0), (3, 4), (7, 3)] {
+        let part = c.run_range(first, count, 1, &hidden).expect("part");
+        assert_eq!(part.len(), usize::try_from(count).expect("small"));
+        write_csv(&c, &part, false, first == 0, &mut table).expect("csv");
+        rows.extend(part);
+    }
+    assert!(same_answers(&whole, &rows));
+    assert_eq!(table, csv(&c, &whole));
+    // A part past the campaign's cases is refused, named.
+    for (first, count) in [(8, 3), (u64::MAX, 2)] {
+        let e = c.run_range(first, count, 1, &hidden).expect_err("refused");
+        assert!(
+            e.to_string().contains(&format!("cases {first} + {count}"))
+                && e.to_string().contains("10 cases"),
+            "{e}"
+        );
+    }
 }
 
 /// `reconfig solve FILE --json`'s JSON.
@@ -101,6 +131,17 @@ fn each_row_is_what_reconfig_solve_answers_for_its_case() {
             );
             let status = json["status"].as_str().map(str::to_owned);
             assert_eq!(status.as_deref(), Some(row.status.as_str()), "{json}");
+            // The JSON a front end is handed (the Python package's) is the one printed,
+            // every field but the time.
+            let mut buffers = reconfig_host::drivers::answer::buffers();
+            let (again, handed) = c.answer_case_json(row.case, &mut buffers);
+            let mut handed = handed.expect("a request").expect("json");
+            assert!(same_answers(std::slice::from_ref(row), &[again]));
+            let mut printed = json.clone();
+            for v in [&mut handed, &mut printed] {
+                v["solve_time_s"] = serde_json::Value::Null;
+            }
+            assert_eq!(handed, printed, "{stem} case {}", row.case);
         }
         // The base value moved: the case's file is not the fixture.
         let base = c.case_document(0).expect("case").1[0];

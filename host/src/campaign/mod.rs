@@ -18,7 +18,7 @@ use crate::drivers::answer::{answer, buffers, status_text};
 use crate::fixture::{self};
 use anyhow::{bail, Context, Result};
 use dispersion::Dispersion;
-use indicatif::ProgressBar;
+use indicatif::{ProgressBar, ProgressStyle};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
@@ -74,6 +74,22 @@ impl Campaign {
         limits: Limits,
     ) -> Result<Self> {
         let fixture = fixture::parse(text).with_context(|| format!("in fixture {name}"))?;
+        Self::of_parsed(name, text, &fixture, dispersions, seed, cases, limits)
+    }
+
+    /// As [`Self::new`], of the fixture `text` already parsed as `fixture`.
+    ///
+    /// # Errors
+    /// As [`Self::new`].
+    pub fn of_parsed(
+        name: &str,
+        text: &str,
+        fixture: &fixture::Fixture,
+        dispersions: Vec<Dispersion>,
+        seed: u64,
+        cases: u64,
+        limits: Limits,
+    ) -> Result<Self> {
         let requests = fixture.requests()?;
         if requests.len() != 1 {
             bail!(
@@ -140,6 +156,27 @@ impl Campaign {
 
     /// Answer case `case` with `buffers`.
     pub fn answer_case(&self, case: u64, buffers: &mut AllPlanners) -> Row {
+        self.answer(case, buffers, false).0
+    }
+
+    /// Answer case `case` with `buffers`: its row and the JSON object `reconfig solve --json`
+    /// prints for it (`None` when the case's fixture was refused before its request was
+    /// made: the row says why; an error for an answer no request of a fixture can have).
+    pub fn answer_case_json(
+        &self,
+        case: u64,
+        buffers: &mut AllPlanners,
+    ) -> (Row, Option<Result<serde_json::Value>>) {
+        self.answer(case, buffers, true)
+    }
+
+    /// Answer case `case`; its JSON object too when `json`.
+    fn answer(
+        &self,
+        case: u64,
+        buffers: &mut AllPlanners,
+        json: bool,
+    ) -> (Row, Option<Result<serde_json::Value>>) {
         let mut row = Row {
             case,
             inputs: Vec::new(),
@@ -155,18 +192,18 @@ impl Campaign {
             let fixture = fixture::from_value(doc)?;
             let mut requests = fixture.requests()?;
             match requests.pop() {
-                Some(r) if requests.is_empty() => Ok(r.request),
+                Some(r) if requests.is_empty() => Ok((fixture, r.request)),
                 _ => bail!("{}: case {case} stands for several requests", self.name),
             }
         });
-        let request = match request {
+        let (fixture, request) = match request {
             Ok(r) => r,
             Err(e) => {
                 // The fixture's own checks refused the dispersed file (an eccentricity below
                 // 0, say): a row that says so, named, and the campaign goes on.
                 row.status = "Rejected".into();
                 row.message = format!("{e:#}");
-                return row;
+                return (row, None);
             }
         };
         let answered = answer(&request, &self.limits, buffers);
@@ -192,7 +229,8 @@ impl Campaign {
                 }
             }
         }
-        row
+        let report = json.then(|| crate::drivers::json::of(&fixture, &answered));
+        (row, report)
     }
 
     /// Answer every case on `threads` threads (0: one per core), in case order.
@@ -200,6 +238,31 @@ impl Campaign {
     /// # Errors
     /// The thread pool cannot start.
     pub fn run(&self, threads: usize, progress: &ProgressBar) -> Result<Vec<Row>> {
+        self.run_range(0, self.cases, threads, progress)
+    }
+
+    /// Answer cases `first .. first + count` on `threads` threads (0: one per core), in case
+    /// order: a part of the campaign (a cluster's partition), the same rows as those of
+    /// [`Self::run`].
+    ///
+    /// # Errors
+    /// The range is not within the campaign's cases (named), or the thread pool cannot start.
+    pub fn run_range(
+        &self,
+        first: u64,
+        count: u64,
+        threads: usize,
+        progress: &ProgressBar,
+    ) -> Result<Vec<Row>> {
+        let end = first
+            .checked_add(count)
+            .filter(|&end| end <= self.cases)
+            .with_context(|| {
+                format!(
+                    "cases {first} + {count} are not within the campaign's {} cases",
+                    self.cases
+                )
+            })?;
         // The flight service's workers' stack: a solve's values pass through the stack on
         // their way into the boxed buffers (rayon's default 2 MB overflowed in the tests).
         let pool = rayon::ThreadPoolBuilder::new()
@@ -208,7 +271,7 @@ impl Campaign {
             .build()
             .context("cannot start the campaign's threads")?;
         Ok(pool.install(|| {
-            (0..self.cases)
+            (first..end)
                 .into_par_iter()
                 .map_init(buffers, |b, case| {
                     let row = self.answer_case(case, b);
@@ -218,6 +281,21 @@ impl Campaign {
                 .collect()
         }))
     }
+}
+
+/// A progress bar of `cases` cases on standard error (hidden unless `shown`), the one the CLI
+/// and the Python package show.
+pub fn progress_bar(cases: u64, shown: bool) -> ProgressBar {
+    if !shown {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(cases);
+    if let Ok(style) =
+        ProgressStyle::with_template("{bar:40} {pos}/{len} cases {elapsed_precise} ({per_sec})")
+    {
+        bar.set_style(style);
+    }
+    bar
 }
 
 /// The plan's objective: planner A's J, the others' total Δv (m/s).

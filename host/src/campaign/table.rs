@@ -8,15 +8,23 @@ use std::io::Write;
 
 /// Write `rows` as CSV to `out`. Numbers print as Rust's shortest round-trip form, so two
 /// runs' tables are equal byte for byte when their answers are equal bit for bit, apart from
-/// the `solve_time_s` column (left empty with `times = false`).
+/// the `solve_time_s` column (left empty with `times = false`). The header line comes first
+/// when `header`: the parts of a campaign (`Campaign::run_range`) written in turn, the first
+/// with its header, are the whole campaign's table.
 ///
 /// # Errors
 /// Writing to `out` fails.
-pub fn write_csv<W: Write>(campaign: &Campaign, rows: &[Row], times: bool, out: W) -> Result<()> {
+pub fn write_csv<W: Write>(
+    campaign: &Campaign,
+    rows: &[Row],
+    times: bool,
+    header: bool,
+    out: W,
+) -> Result<()> {
     let mut w = csv::Writer::from_writer(out);
-    let mut header = vec!["case".to_owned()];
-    header.extend(campaign.dispersions().iter().map(|d| d.path.to_string()));
-    header.extend(
+    let mut names = vec!["case".to_owned()];
+    names.extend(campaign.dispersions().iter().map(|d| d.path.to_string()));
+    names.extend(
         [
             "status",
             "usable",
@@ -27,7 +35,9 @@ pub fn write_csv<W: Write>(campaign: &Campaign, rows: &[Row], times: bool, out: 
         ]
         .map(String::from),
     );
-    w.write_record(&header)?;
+    if header {
+        w.write_record(&names)?;
+    }
     let opt = |x: Option<String>| x.unwrap_or_default();
     for r in rows {
         let mut rec = vec![r.case.to_string()];

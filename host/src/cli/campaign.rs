@@ -4,10 +4,9 @@
 
 use crate::campaign::dispersion::Dispersion;
 use crate::campaign::table::{same_answers, summary, write_csv};
-use crate::campaign::{Campaign, Row};
+use crate::campaign::{progress_bar, Campaign, Row};
 use crate::limits::LimitsArg;
 use anyhow::{bail, Context, Result};
-use indicatif::{ProgressBar, ProgressStyle};
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -107,7 +106,13 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     };
     match &args.out {
         Some(_) if to_stdout => {
-            write_csv(&campaign, &rows, !args.no_times, std::io::stdout().lock())?;
+            write_csv(
+                &campaign,
+                &rows,
+                !args.no_times,
+                true,
+                std::io::stdout().lock(),
+            )?;
         }
         Some(p) => {
             let file = std::fs::File::create(p)
@@ -116,6 +121,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
                 &campaign,
                 &rows,
                 !args.no_times,
+                true,
                 std::io::BufWriter::new(file),
             )?;
         }
@@ -230,14 +236,7 @@ fn peak_resident_mb() -> Option<f64> {
 
 /// Run `campaign` on `threads` threads: the rows and the throughput, cases/s.
 fn timed(campaign: &Campaign, threads: usize, progress: bool) -> Result<(Vec<Row>, f64)> {
-    let bar = if progress {
-        ProgressBar::new(campaign.cases())
-    } else {
-        ProgressBar::hidden()
-    };
-    bar.set_style(ProgressStyle::with_template(
-        "{bar:40} {pos}/{len} cases {elapsed_precise} ({per_sec})",
-    )?);
+    let bar = progress_bar(campaign.cases(), progress);
     let started = Instant::now();
     let rows = campaign.run(threads, &bar)?;
     let elapsed = started.elapsed().as_secs_f64();

@@ -4,7 +4,7 @@
 
 use reconfig_core::limits::{LimitViolation, Limits};
 use reconfig_core::wire::{self, AllPlanners, Buffers, Outcome, OutcomeRef, Rejection, Request};
-use serde_json::json;
+use serde_json::{json, Value};
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -65,14 +65,31 @@ pub fn exit_code(usable: bool) -> ExitCode {
     ExitCode::from(if usable { EXIT_USABLE } else { EXIT_NOT_USABLE })
 }
 
+/// A planner's `PlanError` as the JSON object `reconfig solve --json` prints.
+pub fn rejection_json(name: &str, err: &dyn Rejection) -> Value {
+    json!({ "name": name, "status": "Rejected", "error": format!("{err:?}"), "message": err.to_string() })
+}
+
+/// A refusal by the limits as the JSON object `reconfig solve --json` prints (nothing was
+/// solved; `check_time_s` is the answer's time).
+pub fn refusal_json(name: &str, v: &LimitViolation, check_time_s: f64) -> Value {
+    json!({
+        "name": name,
+        "status": "LimitExceeded",
+        "setting": v.setting.name(),
+        "value": v.value,
+        "limit": v.limit,
+        "rule": format!("{:?}", v.rule),
+        "message": v.to_string(),
+        "check_time_s": check_time_s,
+    })
+}
+
 /// Report a planner's `PlanError` in the one shape every planner uses and return exit code
 /// [`EXIT_REJECTED`].
 pub fn report_rejection(name: &str, err: &dyn Rejection, json_output: bool) -> ExitCode {
     if json_output {
-        println!(
-            "{}",
-            json!({ "name": name, "status": "Rejected", "error": format!("{err:?}"), "message": err.to_string() })
-        );
+        println!("{}", rejection_json(name, err));
     } else {
         println!("{name}: rejected: {err}");
     }
@@ -89,19 +106,7 @@ pub fn report_refusal(
     json_output: bool,
 ) -> ExitCode {
     if json_output {
-        println!(
-            "{}",
-            json!({
-                "name": name,
-                "status": "LimitExceeded",
-                "setting": v.setting.name(),
-                "value": v.value,
-                "limit": v.limit,
-                "rule": format!("{:?}", v.rule),
-                "message": v.to_string(),
-                "check_time_s": check_time_s,
-            })
-        );
+        println!("{}", refusal_json(name, v, check_time_s));
     } else {
         println!("{name}: refused, limit exceeded: {v}");
         println!(
@@ -135,14 +140,31 @@ pub fn report_other(
         anyhow::bail!("{name}: unexpected answer {outcome:?}");
     };
     if json_output {
-        println!(
-            "{}",
-            json!({ "name": name, "outcome": outcome, "solve_time_s": answered.time_s })
-        );
+        println!("{}", other_json(name, answered)?);
     } else {
         println!("{name}: {outcome:?}");
     }
     Ok(exit_code(usable))
+}
+
+/// The JSON object `reconfig solve --json` prints for an answer that the planner's own report
+/// does not show ([`report_other`]): a refusal by the limits, a rejection, or the outcome as
+/// the wire carries it.
+///
+/// # Errors
+/// An outcome that no request of a fixture can have (as [`report_other`]).
+pub fn other_json(name: &str, answered: &Answered) -> anyhow::Result<Value> {
+    let outcome = &answered.outcome;
+    if let OutcomeRef::LimitExceeded(v) = outcome {
+        return Ok(refusal_json(name, v, answered.time_s));
+    }
+    if let Some(err) = outcome.rejection() {
+        return Ok(rejection_json(name, err));
+    }
+    if outcome.usable().is_none() {
+        anyhow::bail!("{name}: unexpected answer {outcome:?}");
+    }
+    Ok(json!({ "name": name, "outcome": outcome, "solve_time_s": answered.time_s }))
 }
 
 /// A request that got no plan (a refusal by the limits, a rejection by the planner), as the
@@ -207,6 +229,27 @@ pub fn report_error(name: &str, error: &anyhow::Error, json_output: bool) -> Exi
             ..
         }) => report_refusal(name, v, *time_s, json_output),
         _ => report_rejection(name, &Chain(error), json_output),
+    }
+}
+
+/// The JSON object [`report_error`] prints, its status (`LimitExceeded` or `Rejected`) and
+/// message.
+pub fn error_json(name: &str, error: &anyhow::Error) -> (Value, &'static str, String) {
+    match error.downcast_ref::<NoPlan>() {
+        Some(NoPlan {
+            outcome: Outcome::LimitExceeded(v),
+            time_s,
+            ..
+        }) => (
+            refusal_json(name, v, *time_s),
+            "LimitExceeded",
+            v.to_string(),
+        ),
+        _ => (
+            rejection_json(name, &Chain(error)),
+            "Rejected",
+            error.to_string(),
+        ),
     }
 }
 

@@ -24,77 +24,26 @@ pub fn report(fixture: &ImpulsiveFixture, answered: &Answered, json: bool) -> Re
     else {
         return report_other(&fixture.name, answered, json);
     };
-    let settings = fixture.settings;
     let solve_time_s = answered.time_s;
-    // The angle the impulse points are counted in (mean longitude for an equatorial chief).
-    let equatorial = point_phase(&fixture.problem.chief, &settings) == Phase::MeanLongitude;
-    let (mean_key, true_key, mean_head, true_head) = if equatorial {
-        (
-            "mean_longitude_deg",
-            "true_longitude_deg",
-            "l mean [deg]",
-            "l true [deg]",
-        )
-    } else {
-        (
-            "arg_latitude_deg",
-            "true_arg_latitude_deg",
-            "u mean [deg]",
-            "u true [deg]",
-        )
-    };
-    // The end state in the form the fixture gave the relative state (or the deputy) in.
-    let end = end_state_json(
-        &fixture.problem.chief,
-        &fixture.problem.target,
-        s,
-        fixture.end_form,
-    )?;
     if json {
-        let impulses: Vec<_> = s
-            .impulses
-            .iter()
-            .map(|i| {
-                let mut entry = json!({
-                    "time_s": i.time_s,
-                    "revolutions": i.revolutions,
-                    "dv_rtn_mps": i.dv_rtn_mps,
-                });
-                entry[mean_key] = json!(i.arg_latitude_rad.to_degrees());
-                entry[true_key] = json!(i.true_arg_latitude_rad.to_degrees());
-                entry
-            })
-            .collect();
-        let t = s.terminal_error.as_ref();
         println!(
             "{}",
-            serde_json::to_string_pretty(&json!({
-                "name": fixture.name,
-                "status": format!("{:?}", s.info.status),
-                "total_dv_mps": s.total_dv_mps,
-                "min_norm_total_dv_mps": s.min_norm_total_dv_mps,
-                "linear_total_dv_mps": s.linear_total_dv_mps,
-                "impulses": impulses,
-                "final_time_s": s.final_time_s,
-                // Absent (null) when the nonlinear check could not be flown.
-                "terminal_error_m": t.map(|t| t.along_track_m),
-                "terminal_position_error_m": t.map(|t| t.position_m),
-                "terminal_error_elements": t.map(|t| t.elements.as_array()),
-                "terminal_error_equinoctial": t.map(|t| t.equinoctial.as_array()),
-                "end_state": end,
-                "element_set": format!("{:?}", settings.element_set),
-                "iterations": s.info.iterations,
-                "min_fuel_iterations": s.info.min_fuel_iterations,
-                "correction_iterations": s.info.correction_iterations,
-                "rank": s.info.rank,
-                "condition_number": s.info.condition_number,
-                "min_fuel_used": s.info.min_fuel_used,
-                "correction_used": s.info.correction_used,
-                "evaluations": s.info.evaluations,
-                "solve_time_s": solve_time_s,
-            }))?
+            serde_json::to_string_pretty(&to_json(fixture, s, solve_time_s)?)?
         );
     } else {
+        // The angle the impulse points are counted in (mean longitude for an equatorial chief).
+        let (mean_head, true_head) = if point_keys(fixture).0 == "mean_longitude_deg" {
+            ("l mean [deg]", "l true [deg]")
+        } else {
+            ("u mean [deg]", "u true [deg]")
+        };
+        // The end state in the form the fixture gave the relative state (or the deputy) in.
+        let end = end_state_json(
+            &fixture.problem.chief,
+            &fixture.problem.target,
+            s,
+            fixture.end_form,
+        )?;
         let plan = match &fixture.problem.plan {
             ImpulsePlan::Fixed(p) => format!("{} impulses at fixed points", p.len()),
             ImpulsePlan::Search {
@@ -155,6 +104,73 @@ pub fn report(fixture: &ImpulsiveFixture, answered: &Answered, json: bool) -> Re
         println!("frame: dv in the deputy's local frame (radial, along-track, normal)");
     }
     Ok(exit_code(s.info.status.is_usable()))
+}
+
+/// The JSON object `reconfig solve --json` prints for planner B: the impulses (their points in
+/// the angle the chief counts them in), the end state in the form the fixture gave its target
+/// in, the nonlinear check and the iteration figures.
+///
+/// # Errors
+/// An end state that cannot be written.
+pub fn to_json(fixture: &ImpulsiveFixture, s: &Solution, solve_time_s: f64) -> Result<Value> {
+    let settings = fixture.settings;
+    let (mean_key, true_key) = point_keys(fixture);
+    let end = end_state_json(
+        &fixture.problem.chief,
+        &fixture.problem.target,
+        s,
+        fixture.end_form,
+    )?;
+    let impulses: Vec<_> = s
+        .impulses
+        .iter()
+        .map(|i| {
+            let mut entry = json!({
+                "time_s": i.time_s,
+                "revolutions": i.revolutions,
+                "dv_rtn_mps": i.dv_rtn_mps,
+            });
+            entry[mean_key] = json!(i.arg_latitude_rad.to_degrees());
+            entry[true_key] = json!(i.true_arg_latitude_rad.to_degrees());
+            entry
+        })
+        .collect();
+    let t = s.terminal_error.as_ref();
+    Ok(json!({
+        "name": fixture.name,
+        "status": format!("{:?}", s.info.status),
+        "total_dv_mps": s.total_dv_mps,
+        "min_norm_total_dv_mps": s.min_norm_total_dv_mps,
+        "linear_total_dv_mps": s.linear_total_dv_mps,
+        "impulses": impulses,
+        "final_time_s": s.final_time_s,
+        // Absent (null) when the nonlinear check could not be flown.
+        "terminal_error_m": t.map(|t| t.along_track_m),
+        "terminal_position_error_m": t.map(|t| t.position_m),
+        "terminal_error_elements": t.map(|t| t.elements.as_array()),
+        "terminal_error_equinoctial": t.map(|t| t.equinoctial.as_array()),
+        "end_state": end,
+        "element_set": format!("{:?}", settings.element_set),
+        "iterations": s.info.iterations,
+        "min_fuel_iterations": s.info.min_fuel_iterations,
+        "correction_iterations": s.info.correction_iterations,
+        "rank": s.info.rank,
+        "condition_number": s.info.condition_number,
+        "min_fuel_used": s.info.min_fuel_used,
+        "correction_used": s.info.correction_used,
+        "evaluations": s.info.evaluations,
+        "solve_time_s": solve_time_s,
+    }))
+}
+
+/// The JSON keys of an impulse point's mean and true angles: the argument of latitude, or
+/// the mean longitude for an equatorial chief (`point_phase`).
+fn point_keys(fixture: &ImpulsiveFixture) -> (&'static str, &'static str) {
+    if point_phase(&fixture.problem.chief, &fixture.settings) == Phase::MeanLongitude {
+        ("mean_longitude_deg", "true_longitude_deg")
+    } else {
+        ("arg_latitude_deg", "true_arg_latitude_deg")
+    }
 }
 
 /// The plan's end state (the core's [`end_state`]) as JSON, in the form the fixture gave the

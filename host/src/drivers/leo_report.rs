@@ -6,7 +6,7 @@
 //! correction after ([`super::leo_truth`]).
 
 use super::answer::{exit_code, report_error};
-use super::leo_tour::{plan, prepare, ChosenOrder, ChosenSchedule};
+use super::leo_tour::{plan, prepare, ChosenOrder, ChosenSchedule, PlannedArc};
 use super::leo_truth::{multi_round, replan_last_leg, truth_miss_m, Round};
 use crate::fixture::leo_tour::LeoTourFixture;
 use anyhow::Result;
@@ -78,27 +78,42 @@ pub fn truth_verdict(
     replan.or(round)
 }
 
-/// Answer and report a LEO tour fixture under `limits`: exit code 0 when every arc's plan is
-/// usable and the truth model confirms each arrival within [`TRUTH_ARRIVAL_TOL_M`] after its
-/// re-plan (and in the multi-round correction), 1 when not, 2 when a request was refused by
-/// the limits (reported as a refusal, nothing more planned) or rejected.
+/// A LEO tour answered and checked: the tour's requests answered in turn, each arc flown in the
+/// truth model, its last leg re-planned there, and the multi-round correction; what
+/// `reconfig solve` reports of it, readable or as JSON.
+pub struct TourReport {
+    prepared: super::leo_tour::Prepared,
+    arcs: Vec<PlannedArc>,
+    /// Per arc, what the truth model made of its plan.
+    misses: Vec<ArcMisses>,
+    rounds: Result<Vec<Round>>,
+    truth: Option<TruthMiss>,
+    status: &'static str,
+    usable: bool,
+    total: f64,
+}
+
+/// One arc's plan in the truth model.
+struct ArcMisses {
+    /// The arrival miss flown with J2 alone and with the full model, m; absent when the arc
+    /// was not flown.
+    j2_only_m: Option<f64>,
+    full_m: Option<f64>,
+    /// After its last leg's re-plan in the truth model: (miss m, the arc's Δv m/s), NaN when
+    /// the re-plan failed.
+    after_replan: (f64, f64),
+}
+
+/// Answer and check a LEO tour fixture under `limits` (see [`TourReport`]).
 ///
 /// # Errors
-/// None today: a truth flight that fails is part of the answer (its miss absent, the tour
-/// `TruthMissed` when the re-plan or the correction fails); the `Result` is the solve
-/// commands' common shape.
-pub fn run(f: &LeoTourFixture, limits: &Limits, json_output: bool) -> Result<ExitCode> {
-    let prepared = match prepare(f, limits) {
-        Ok(p) => p,
-        Err(e) => return Ok(report_error(&f.name, &e, json_output)),
-    };
+/// A request refused by the limits or rejected (as `report_error` reports them): nothing more
+/// is planned. A truth flight that fails is part of the answer (its miss absent, the tour
+/// `TruthMissed` when the re-plan or the correction fails).
+pub fn evaluate(f: &LeoTourFixture, limits: &Limits) -> Result<TourReport> {
+    let prepared = prepare(f, limits)?;
     let f = &prepared.fixture;
-    let seq_json = prepared.order.as_ref().map(sequence_json);
-    let schedule_json = prepared.schedule.as_ref().map(schedule_json);
-    let arcs = match plan(f, limits) {
-        Ok(a) => a,
-        Err(e) => return Ok(report_error(&f.name, &e, json_output)),
-    };
+    let arcs = plan(f, limits)?;
     let total: f64 = arcs.iter().map(|a| a.solution.total_dv_mps).sum();
     // The tour's status says no more than its arcs': `Solved` when every arc is, `Usable` when
     // every arc has a plan that arrives but the work budget cut some arc's search.
@@ -106,7 +121,7 @@ pub fn run(f: &LeoTourFixture, limits: &Limits, json_output: bool) -> Result<Exi
     let solved = arcs
         .iter()
         .all(|a| a.solution.info.status == reconfig_core::leo_tour::SolveStatus::Solved);
-    let mut rows = Vec::new();
+    let mut misses = Vec::new();
     for a in &arcs {
         // An arc without a plan is not flown (its misses are absent: null in JSON). A plan the
         // truth model cannot fly uncorrected (it sinks below the model's floor: drag on a low
@@ -119,15 +134,20 @@ pub fn run(f: &LeoTourFixture, limits: &Limits, json_output: bool) -> Result<Exi
         };
         // A re-plan that fails is reported as such (NaN: printed as "failed", null in JSON).
         let after = replan_last_leg(a, &f.settings).unwrap_or((f64::NAN, f64::NAN));
-        rows.push((a, j2_miss, full_miss, after));
+        misses.push(ArcMisses {
+            j2_only_m: j2_miss,
+            full_m: full_miss,
+            after_replan: after,
+        });
     }
     // The chained multi-round correction in the truth model; an error is reported, not fatal.
     let rounds = multi_round(f, &arcs, limits);
     // Only planned arcs are re-planned: an arc without a plan is already not usable.
-    let replans: Vec<_> = rows
+    let replans: Vec<_> = arcs
         .iter()
-        .filter(|(a, ..)| a.solution.impulses > 0)
-        .map(|(a, _, _, after)| ((a.from, a.to), after.0))
+        .zip(&misses)
+        .filter(|(a, _)| a.solution.impulses > 0)
+        .map(|(a, m)| ((a.from, a.to), m.after_replan.0))
         .collect();
     let truth = usable
         .then(|| truth_verdict(&replans, &rounds, TRUTH_ARRIVAL_TOL_M))
@@ -138,15 +158,66 @@ pub fn run(f: &LeoTourFixture, limits: &Limits, json_output: bool) -> Result<Exi
         (true, true, None) => "Solved",
         (false, true, None) => "Usable",
     };
-    let truth_json = truth.as_ref().map(|m| {
-        json!({
-            "check": m.check,
-            "arc": m.arc.map(|(from, to)| format!("{from} -> {to}")),
-            "miss_m": m.miss_m.is_finite().then_some(m.miss_m),
-            "tolerance_m": TRUTH_ARRIVAL_TOL_M,
+    Ok(TourReport {
+        prepared,
+        arcs,
+        misses,
+        rounds,
+        truth,
+        status,
+        usable,
+        total,
+    })
+}
+
+impl TourReport {
+    /// Whether the tour may be flown: every arc's plan usable and confirmed by the truth model.
+    pub fn usable(&self) -> bool {
+        self.usable && self.truth.is_none()
+    }
+
+    /// The tour's status (`Solved`, `Usable`, `TruthMissed`, `NotSolved`).
+    pub fn status(&self) -> &'static str {
+        self.status
+    }
+
+    /// The work units the tour's requests used (the sequencing's and every arc's).
+    pub fn work_units(&self) -> u64 {
+        let order = self
+            .prepared
+            .order
+            .as_ref()
+            .map_or(0, |c| c.sequence.info.work_units);
+        self.arcs.iter().fold(order, |sum, a| {
+            sum.saturating_add(a.solution.info.work_units)
         })
-    });
-    if json_output {
+    }
+
+    /// The total Δv of the tour's arcs, m/s.
+    pub fn total_dv_mps(&self) -> f64 {
+        self.total
+    }
+
+    /// The JSON object `reconfig solve --json` prints.
+    pub fn to_json(&self) -> serde_json::Value {
+        let f = &self.prepared.fixture;
+        let (status, total, rounds) = (self.status, self.total, &self.rounds);
+        let seq_json = self.prepared.order.as_ref().map(sequence_json);
+        let schedule_json = self.prepared.schedule.as_ref().map(schedule_json);
+        let truth_json = self.truth.as_ref().map(|m| {
+            json!({
+                "check": m.check,
+                "arc": m.arc.map(|(from, to)| format!("{from} -> {to}")),
+                "miss_m": m.miss_m.is_finite().then_some(m.miss_m),
+                "tolerance_m": TRUTH_ARRIVAL_TOL_M,
+            })
+        });
+        let rows: Vec<_> = self
+            .arcs
+            .iter()
+            .zip(&self.misses)
+            .map(|(a, m)| (a, &m.j2_only_m, &m.full_m, &m.after_replan))
+            .collect();
         let arcs_json: Vec<_> = rows
             .iter()
             .map(|(a, j2m, fm, after)| {
@@ -181,26 +252,36 @@ pub fn run(f: &LeoTourFixture, limits: &Limits, json_output: bool) -> Result<Exi
                 })
             })
             .collect();
-        println!(
-            "{}",
-            json!({
-                "name": f.name,
-                "epoch_jd_utc": f.epoch_jd,
-                "status": status,
-                "truth_missed": truth_json,
-                "order": f.order.iter().map(|k| k + 1).collect::<Vec<_>>(),
-                "total_dv_mps": total,
-                "sequence": seq_json,
-                "schedule": schedule_json,
-                "arcs": arcs_json,
-                "multi_round": rounds_json(&rounds),
-                "published": {
-                    "arc_dv_mps": f.published.arc_dv_mps,
-                    "total_dv_mps": f.published.total_dv_mps,
-                },
-            })
-        );
-    } else {
+        json!({
+            "name": f.name,
+            "epoch_jd_utc": f.epoch_jd,
+            "status": status,
+            "truth_missed": truth_json,
+            "order": f.order.iter().map(|k| k + 1).collect::<Vec<_>>(),
+            "total_dv_mps": total,
+            "sequence": seq_json,
+            "schedule": schedule_json,
+            "arcs": arcs_json,
+            "multi_round": rounds_json(rounds),
+            "published": {
+                "arc_dv_mps": f.published.arc_dv_mps,
+                "total_dv_mps": f.published.total_dv_mps,
+            },
+        })
+    }
+
+    /// Print the readable report.
+    fn print(&self) {
+        let f = &self.prepared.fixture;
+        let (truth, total, rounds) = (&self.truth, self.total, &self.rounds);
+        let status = self.status;
+        let prepared = &self.prepared;
+        let rows: Vec<_> = self
+            .arcs
+            .iter()
+            .zip(&self.misses)
+            .map(|(a, m)| (a, &m.j2_only_m, &m.full_m, &m.after_replan))
+            .collect();
         let order: Vec<String> = f.order.iter().map(|k| (k + 1).to_string()).collect();
         println!("{}: {status}, order {}", f.name, order.join(" -> "));
         if let Some(m) = &truth {
@@ -303,9 +384,29 @@ pub fn run(f: &LeoTourFixture, limits: &Limits, json_output: bool) -> Result<Exi
             .total_dv_mps
             .map_or(String::new(), |p| format!(" (published {p:.3})"));
         println!("  total {total:.3} m/s{published}");
-        print_rounds(&rounds);
+        print_rounds(rounds);
     }
-    Ok(exit_code(usable && truth.is_none()))
+}
+
+/// Answer and report a LEO tour fixture under `limits`: exit code 0 when every arc's plan is
+/// usable and the truth model confirms each arrival within [`TRUTH_ARRIVAL_TOL_M`] after its
+/// re-plan (and in the multi-round correction), 1 when not, 2 when a request was refused by
+/// the limits (reported as a refusal, nothing more planned) or rejected.
+///
+/// # Errors
+/// None today: a truth flight that fails is part of the answer; the `Result` is the solve
+/// commands' common shape.
+pub fn run(f: &LeoTourFixture, limits: &Limits, json_output: bool) -> Result<ExitCode> {
+    let report = match evaluate(f, limits) {
+        Ok(r) => r,
+        Err(e) => return Ok(report_error(&f.name, &e, json_output)),
+    };
+    if json_output {
+        println!("{}", report.to_json());
+    } else {
+        report.print();
+    }
+    Ok(exit_code(report.usable()))
 }
 
 pub fn sequence_json(c: &ChosenOrder) -> serde_json::Value {
