@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # The Python package's tests (issue 32): a virtual environment in target/python-venv with
-# maturin, pytest and NumPy from PyPI, the extension built into it (`maturin develop`, the
-# workspace's dev profile, so the crates `cargo test --workspace` built are reused), then
-# pytest against the CLI of the same build (target/debug/reconfig).
+# pytest, NumPy, Dask's `distributed` and matplotlib (the session example's plots) from PyPI;
+# the package installed into it the way the README installs it, `pip install ./python`
+# (maturin builds the wheel), but in the workspace's dev profile (MATURIN_PEP517_ARGS) so the
+# crates `cargo test --workspace` built are reused; then pytest against the CLI of the same
+# build (target/debug/reconfig).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -10,7 +12,10 @@ venv=$root/target/python-venv
 if [ ! -x "$venv/bin/python" ]; then
   python3 -m venv "$venv"
 fi
-"$venv/bin/pip" install -q --disable-pip-version-check "maturin>=1.5,<2" pytest numpy
-(cd python && VIRTUAL_ENV=$venv PATH=$venv/bin:$PATH maturin develop -q)
+pip=("$venv/bin/pip" -q --disable-pip-version-check)
+"${pip[@]}" install pytest numpy "dask[distributed]" matplotlib
+# --force-reinstall --no-deps: the same version number, rebuilt from this tree every run.
+MATURIN_PEP517_ARGS="--profile dev" "${pip[@]}" install --force-reinstall --no-deps ./python
 cargo build -q -p reconfig-host --bin reconfig
+# From the repository's root, where no `reconfig` directory shadows the installed package.
 RECONFIG_BIN=$root/target/debug/reconfig "$venv/bin/python" -m pytest -q python/tests

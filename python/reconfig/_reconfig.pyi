@@ -1,10 +1,10 @@
 """Type stubs of the Rust extension (python/src/lib.rs); the package's API is `reconfig`."""
 
-from typing import Dict, List, Optional, Union
+from typing import Any, Dict, List, Optional, Tuple, Union
 
 Column = Union[List[int], List[Optional[float]], List[str], List[Optional[bool]], List[Optional[int]], List[float]]
 
-def solve_text(name: str, fixture_text: str) -> Dict[str, Column]: ...
+def solve_text(name: str, fixture_text: str) -> Tuple[Dict[str, Column], Optional[Dict[str, Any]]]: ...
 def campaign(
     name: str,
     fixture_text: str,
@@ -13,7 +13,12 @@ def campaign(
     uniform: List[str],
     seed: int,
     threads: int,
-) -> Dict[str, Column]: ...
+    first: int,
+    count: int,
+    table: bool,
+    times: bool,
+    progress: bool,
+) -> Tuple[Dict[str, Column], Optional[str]]: ...
 def case_text(
     name: str,
     fixture_text: str,
@@ -22,3 +27,5 @@ def case_text(
     seed: int,
     case: int,
 ) -> str: ...
+def toml_from_json(json_text: str) -> str: ...
+def json_from_toml(text: str) -> str: ...

@@ -29,7 +29,6 @@ use reconfig_core::wire::{AllPlanners, OutcomeRef};
 #[derive(Debug, Clone)]
 pub struct Campaign {
     base: toml::Value,
-    name: String,
     dispersions: Vec<Dispersion>,
     seed: u64,
     cases: u64,
@@ -74,22 +73,6 @@ impl Campaign {
         limits: Limits,
     ) -> Result<Self> {
         let fixture = fixture::parse(text).with_context(|| format!("in fixture {name}"))?;
-        Self::of_parsed(name, text, &fixture, dispersions, seed, cases, limits)
-    }
-
-    /// As [`Self::new`], of the fixture `text` already parsed as `fixture`.
-    ///
-    /// # Errors
-    /// As [`Self::new`].
-    pub fn of_parsed(
-        name: &str,
-        text: &str,
-        fixture: &fixture::Fixture,
-        dispersions: Vec<Dispersion>,
-        seed: u64,
-        cases: u64,
-        limits: Limits,
-    ) -> Result<Self> {
         let requests = fixture.requests()?;
         if requests.len() != 1 {
             bail!(
@@ -101,7 +84,6 @@ impl Campaign {
         let base: toml::Value = toml::from_str(text).with_context(|| format!("in {name}"))?;
         let campaign = Self {
             base,
-            name: name.to_owned(),
             dispersions,
             seed,
             cases,
@@ -177,60 +159,21 @@ impl Campaign {
         buffers: &mut AllPlanners,
         json: bool,
     ) -> (Row, Option<Result<serde_json::Value>>) {
-        let mut row = Row {
-            case,
-            inputs: Vec::new(),
-            status: String::new(),
-            usable: None,
-            cost: None,
-            work_units: None,
-            solve_time_s: 0.0,
-            message: String::new(),
-        };
-        let request = self.case_document(case).and_then(|(doc, inputs)| {
-            row.inputs = inputs;
+        let fixture = self.case_document(case).and_then(|(doc, inputs)| {
             let fixture = fixture::from_value(doc)?;
-            let mut requests = fixture.requests()?;
-            match requests.pop() {
-                Some(r) if requests.is_empty() => Ok((fixture, r.request)),
-                _ => bail!("{}: case {case} stands for several requests", self.name),
-            }
+            Ok((fixture, inputs))
         });
-        let (fixture, request) = match request {
-            Ok(r) => r,
-            Err(e) => {
-                // The fixture's own checks refused the dispersed file (an eccentricity below
-                // 0, say): a row that says so, named, and the campaign goes on.
-                row.status = "Rejected".into();
-                row.message = format!("{e:#}");
-                return (row, None);
+        match fixture {
+            Ok((fixture, inputs)) => {
+                let (mut row, report) = answer_fixture(&fixture, &self.limits, buffers, json);
+                row.case = case;
+                row.inputs = inputs;
+                (row, report)
             }
-        };
-        let answered = answer(&request, &self.limits, buffers);
-        row.solve_time_s = answered.time_s;
-        let outcome = answered.outcome;
-        row.usable = outcome.usable();
-        row.work_units = outcome.work_units();
-        match &outcome {
-            OutcomeRef::LimitExceeded(v) => {
-                row.status = "LimitExceeded".into();
-                row.message = v.to_string();
-            }
-            _ => {
-                if let Some(e) = outcome.rejection() {
-                    row.status = "Rejected".into();
-                    row.message = e.to_string();
-                } else {
-                    row.status =
-                        status_text(&outcome).unwrap_or_else(|| format!("Unexpected {outcome:?}"));
-                    if row.usable == Some(true) {
-                        row.cost = cost(&outcome);
-                    }
-                }
-            }
+            // The fixture's own checks refused the dispersed file (an eccentricity below 0,
+            // say): a row that says so, named, and the campaign goes on.
+            Err(e) => (refused_row(case, &e), None),
         }
-        let report = json.then(|| crate::drivers::json::of(&fixture, &answered));
-        (row, report)
     }
 
     /// Answer every case on `threads` threads (0: one per core), in case order.
@@ -281,6 +224,79 @@ impl Campaign {
                 .collect()
         }))
     }
+}
+
+/// A row of a case whose fixture was refused before its request was made.
+fn refused_row(case: u64, e: &anyhow::Error) -> Row {
+    Row {
+        case,
+        inputs: Vec::new(),
+        status: "Rejected".into(),
+        usable: None,
+        cost: None,
+        work_units: None,
+        solve_time_s: 0.0,
+        message: format!("{e:#}"),
+    }
+}
+
+/// Answer a fixture of one request with `buffers` under `limits`: its row (case 0, no
+/// dispersed numbers) and, when `json`, the JSON object `reconfig solve --json` prints for it
+/// (an error for an answer no request of a fixture can have). A fixture of several requests
+/// (a LEO tour of several arcs) is a `Rejected` row, named. What every case of a campaign
+/// runs, and a front end's single solve (the Python package's).
+pub fn answer_fixture(
+    fixture: &fixture::Fixture,
+    limits: &Limits,
+    buffers: &mut AllPlanners,
+    json: bool,
+) -> (Row, Option<Result<serde_json::Value>>) {
+    let request = fixture
+        .requests()
+        .and_then(|mut requests| match requests.pop() {
+            Some(r) if requests.is_empty() => Ok(r.request),
+            _ => bail!(
+                "{} stands for {} requests, not one",
+                fixture.name(),
+                requests.len() + 1
+            ),
+        });
+    let request = match request {
+        Ok(r) => r,
+        Err(e) => return (refused_row(0, &e), None),
+    };
+    let answered = answer(&request, limits, buffers);
+    let outcome = answered.outcome;
+    let mut row = Row {
+        case: 0,
+        inputs: Vec::new(),
+        status: String::new(),
+        usable: outcome.usable(),
+        cost: None,
+        work_units: outcome.work_units(),
+        solve_time_s: answered.time_s,
+        message: String::new(),
+    };
+    match &outcome {
+        OutcomeRef::LimitExceeded(v) => {
+            row.status = "LimitExceeded".into();
+            row.message = v.to_string();
+        }
+        _ => {
+            if let Some(e) = outcome.rejection() {
+                row.status = "Rejected".into();
+                row.message = e.to_string();
+            } else {
+                row.status =
+                    status_text(&outcome).unwrap_or_else(|| format!("Unexpected {outcome:?}"));
+                if row.usable == Some(true) {
+                    row.cost = cost(&outcome);
+                }
+            }
+        }
+    }
+    let report = json.then(|| crate::drivers::json::of(fixture, &answered));
+    (row, report)
 }
 
 /// A progress bar of `cases` cases on standard error (hidden unless `shown`), the one the CLI

@@ -12,6 +12,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
+use rayon::prelude::*;
 use reconfig_core::pseudospectral::{self, Problem, Settings, Solution, SolveStatus, Workspace};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -41,6 +42,21 @@ pub struct Args {
     /// Write the table for docs/planner-a.md (`fixtures/golden/tables/planner-a-montecarlo.md`).
     #[arg(long)]
     pub record: bool,
+    /// Threads (0: one per core). The counts, separations and costs are the same whatever the
+    /// number; the per-solve times are measured while the other threads run, so the recorded
+    /// table (`--record`) is measured on one, the default.
+    #[arg(long, default_value_t = 1)]
+    pub threads: usize,
+}
+
+/// One run's figures, in the order the runs are tallied.
+struct RunFigures {
+    separation: f64,
+    cost: f64,
+    elapsed_s: f64,
+    max_active: u16,
+    subproblems: u16,
+    status: SolveStatus,
 }
 
 /// One configuration's statistics for one N.
@@ -94,9 +110,10 @@ pub fn study(args: &Args, progress: bool) -> Result<Vec<Row>> {
     bar.set_style(ProgressStyle::with_template(
         "{bar:40} {pos}/{len} solves {elapsed_precise}",
     )?);
-    let mut workspace = Box::new(Workspace::new());
-    let mut solution = Box::new(Solution::new());
-    let mut guess = Box::new(Solution::new());
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads)
+        .stack_size(crate::harness::worker::WORKER_STACK_BYTES)
+        .build()?;
     let mut rows = Vec::new();
     for &degree in &args.degrees {
         let mut rng = ChaCha8Rng::seed_from_u64(args.seed ^ u64::from(degree));
@@ -134,33 +151,54 @@ pub fn study(args: &Args, progress: bool) -> Result<Vec<Row>> {
                 max_subproblems: 0,
                 failures: 0,
             };
-            for noise in &guesses {
-                analytic_guess(&problem, noise, &mut guess);
-                let start = Instant::now();
-                pseudospectral::solve_warm(
-                    &problem,
-                    &settings,
-                    &mut workspace,
-                    &guess,
-                    &mut solution,
-                )?;
-                let elapsed = start.elapsed().as_secs_f64();
-                // No pair (one spacecraft): nothing to come close to.
-                let separation = solution.min_separation_lu.unwrap_or(f64::INFINITY);
+            // Solved side by side, each thread with its own workspace, then tallied in run
+            // order: the same sums, bit for bit, whatever the thread count.
+            let runs: Vec<RunFigures> = pool.install(|| {
+                guesses
+                    .par_iter()
+                    .map_init(
+                        || {
+                            (
+                                Box::new(Workspace::new()),
+                                Box::new(Solution::new()),
+                                Box::new(Solution::new()),
+                            )
+                        },
+                        |(workspace, solution, guess), noise| {
+                            analytic_guess(&problem, noise, guess);
+                            let start = Instant::now();
+                            pseudospectral::solve_warm(
+                                &problem, &settings, workspace, guess, solution,
+                            )?;
+                            bar.inc(1);
+                            Ok(RunFigures {
+                                // No pair (one spacecraft): nothing to come close to.
+                                separation: solution.min_separation_lu.unwrap_or(f64::INFINITY),
+                                cost: solution.cost,
+                                elapsed_s: start.elapsed().as_secs_f64(),
+                                max_active: solution.info.max_active,
+                                subproblems: solution.info.sqp_iterations,
+                                status: solution.info.status,
+                            })
+                        },
+                    )
+                    .collect::<Result<Vec<_>>>()
+            })?;
+            for run in &runs {
+                let separation = run.separation;
                 stats.mean_min_separation += separation / args.runs as f64;
                 stats.min_min_separation = stats.min_min_separation.min(separation);
-                stats.mean_cost += solution.cost / args.runs as f64;
-                stats.mean_time_s += elapsed / args.runs as f64;
-                stats.max_time_s = stats.max_time_s.max(elapsed);
-                stats.max_active = stats.max_active.max(solution.info.max_active);
-                stats.max_subproblems = stats.max_subproblems.max(solution.info.sqp_iterations);
+                stats.mean_cost += run.cost / args.runs as f64;
+                stats.mean_time_s += run.elapsed_s / args.runs as f64;
+                stats.max_time_s = stats.max_time_s.max(run.elapsed_s);
+                stats.max_active = stats.max_active.max(run.max_active);
+                stats.max_subproblems = stats.max_subproblems.max(run.subproblems);
                 let separated = separation >= problem.keep_out_lu - 1e-6;
-                let usable = matches!(solution.info.status, SolveStatus::Solved)
-                    || (!verify && solution.info.status == SolveStatus::SeparationNotVerified);
+                let usable = matches!(run.status, SolveStatus::Solved)
+                    || (!verify && run.status == SolveStatus::SeparationNotVerified);
                 if !separated || !usable {
                     stats.failures += 1;
                 }
-                bar.inc(1);
             }
             rows.push(stats);
         }
