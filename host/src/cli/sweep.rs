@@ -197,6 +197,8 @@ pub fn run(args: &Args) -> Result<ExitCode> {
              (no --alternative-starts)"
         );
     }
+    // The campaigns' progress bar (drawn only on a terminal).
+    let bar = crate::campaign::progress_bar(problems.len() as u64, true);
     let swept = sweep(
         &problems,
         oracle.as_ref(),
@@ -204,9 +206,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         starts,
         args.threads,
         |this, family, p, answer| {
-            if !families && this % 200 == 0 && this > 0 {
-                eprintln!("sweep: {this} of {} problems", problems.len());
-            }
+            bar.inc(1);
             if let Some(f) = file.as_mut() {
                 writeln!(
                     f,
@@ -226,6 +226,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
             Ok(())
         },
     )?;
+    bar.finish_and_clear();
     let (tallies, all) = (&swept.tallies, &swept.all);
     let none = Tally::default();
     for row in &rows {
