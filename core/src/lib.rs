@@ -43,6 +43,7 @@ pub mod astro;
 pub mod capacity;
 pub mod contract;
 pub mod geo_tour;
+pub mod hybrid;
 pub mod impulsive;
 pub mod indexed;
 pub mod lambert;
