@@ -146,6 +146,8 @@ impl Model {
 pub enum Throttle {
     /// `u = 1`.
     Full,
+    /// `u = 0` (a coast arc of the bang-bang law).
+    Coast,
     /// `u*` of eq. 16 for the integrand `u − ε u (1 − u)`.
     Smoothed {
         /// ε in [0, 1].
@@ -158,6 +160,7 @@ impl Throttle {
     pub fn of(&self, s: f64) -> f64 {
         match *self {
             Self::Full => 1.0,
+            Self::Coast => 0.0,
             Self::Smoothed { epsilon } => {
                 if s > epsilon {
                     0.0
@@ -203,6 +206,30 @@ impl Model {
         1.0 - norm(&y.lambda_v) * self.exhaust_vu / y.m_mu - y.lambda_m
     }
 
+    /// `dS/dt = c (λr·λv)/(m |λv|)`, the same whatever the throttle (so continuous at a
+    /// switch); 0 where `λv` is.
+    pub fn switching_rate(&self, y: &Augmented) -> f64 {
+        let l = norm(&y.lambda_v);
+        if l > 0.0 {
+            self.exhaust_vu * dot(&y.lambda_r, &y.lambda_v) / (y.m_mu * l)
+        } else {
+            0.0
+        }
+    }
+
+    /// `dS/dy` (14): `dS/dm = |λv| c/m²`, `dS/dλv = −(c/m) λv/|λv|`, `dS/dλm = −1`.
+    pub fn switching_gradient(&self, y: &Augmented) -> [f64; 14] {
+        let (l, alpha) = primer(&y.lambda_v);
+        let c = self.exhaust_vu;
+        let m = y.m_mu;
+        // −(c/m) λv/|λv| = (c/m) α.
+        let dl = scale(&alpha, c / m);
+        let dm = if l > 0.0 { l * c / (m * m) } else { 0.0 };
+        [
+            0.0, 0.0, 0.0, 0.0, 0.0, 0.0, dm, 0.0, 0.0, 0.0, dl[0], dl[1], dl[2], -1.0,
+        ]
+    }
+
     /// The canonical system's derivative (eq. 17 with the digest's corrections).
     pub fn derivative(&self, law: Throttle, y: &Augmented) -> Augmented {
         let (l, alpha) = primer(&y.lambda_v);
@@ -240,6 +267,8 @@ impl Model {
             Throttle::Smoothed { epsilon } => drift + engine * (s - epsilon + epsilon * u),
             // The thrust and mass terms alone: −T|λv|/m − λm T/c = (T/c)(S − 1).
             Throttle::Full => drift + engine * (s - 1.0),
+            // The bang-bang law's arcs (ε = 0): the minimum-fuel Hamiltonian, u S T/c.
+            Throttle::Coast => drift,
         }
     }
 }
@@ -276,11 +305,17 @@ pub(crate) mod tests {
     #[test]
     fn the_canonical_system_is_the_hamiltonians_gradient() {
         let model = Model::paper();
-        let law = Throttle::Smoothed { epsilon: 0.4 };
+        let smoothed = Throttle::Smoothed { epsilon: 0.4 };
         let probe = sample(0.0);
         let s0 = model.switching(&probe);
-        // λm moves S by −1 per unit: S = 0.9 (off), −0.9 (full), 0.1 (in between).
-        for target_s in [0.9, -0.9, 0.1] {
+        // λm moves S by −1 per unit: S = 0.9 (off), −0.9 (full), 0.1 (in between); and the
+        // minimum-time law (full thrust whatever S).
+        for (law, target_s) in [
+            (smoothed, 0.9),
+            (smoothed, -0.9),
+            (smoothed, 0.1),
+            (Throttle::Full, 0.9),
+        ] {
             let y = sample(s0 - target_s);
             assert!((model.switching(&y) - target_s).abs() < 1e-12);
             let f = model.derivative(law, &y).to_array();

@@ -1,16 +1,128 @@
 //! The flow of the canonical system and its state-transition matrix: the 14 unknowns alone, or
 //! with the 196 variational equations `Φ' = A Φ`, `Φ(0) = I` (SPEC-hybrid.md eq. 19), on the
-//! DOP853 integrator ([`super::integrate`]). The throttle laws here are continuous in the state
-//! (minimum time, or the smoothed law with ε > 0); the bang-bang law's switch jumps (eq. 22)
-//! come with its event location.
+//! DOP853 integrator ([`super::integrate`]). The smoothed law with ε = 0 is bang-bang: it is
+//! flown arc by arc, the throttle fixed on each, every switch (`S = 0`) located as the arc's
+//! event, and the state-transition matrix carried across it by the jump of eq. 22,
+//! `Ψ = I + (f⁺ − f⁻) (dS/dy)/Ṡ`.
 
 use super::dynamics::{Augmented, Model, Throttle};
-use super::integrate::{integrate, Counts, Stop, Tolerance};
+use super::integrate::{integrate, integrate_arc, Counts, Stop, Tolerance};
 use super::jacobian::{jacobian, Jacobian};
 
 /// The state and its state-transition matrix, as the integrator carries them: the 14 unknowns,
 /// then Φ column by column.
 type WithStm = [f64; 210];
+
+/// Switches of the bang-bang law one propagation may cross.
+pub const MAX_SWITCHES: u32 = 256;
+
+/// Whether `law` is the bang-bang law (the smoothed law at ε = 0).
+fn bang_bang(law: Throttle) -> bool {
+    matches!(law, Throttle::Smoothed { epsilon } if epsilon <= 0.0)
+}
+
+/// The throttle on the arc that starts at `y` (thrust where `S < 0`), and the sign that keeps
+/// `polarity × S` non-negative along it.
+fn arc_law(model: &Model, y: &Augmented) -> (Throttle, f64) {
+    if model.switching(y) < 0.0 {
+        (Throttle::Full, -1.0)
+    } else {
+        (Throttle::Coast, 1.0)
+    }
+}
+
+/// The bang-bang flow, arc by arc; with `phi`, the state-transition matrix carried along and
+/// across the switches. Returns the end and the number of switches.
+fn bang(
+    model: &Model,
+    y0: &Augmented,
+    duration_tu: f64,
+    tol: &Tolerance,
+    counts: &mut Counts,
+    mut phi: Option<&mut Jacobian>,
+) -> Result<(Augmented, u32), Stop> {
+    let mut y = *y0;
+    let mut left = duration_tu;
+    let mut switches = 0_u32;
+    loop {
+        let (law, polarity) = arc_law(model, &y);
+        let (end, time, event) = match phi.as_deref_mut() {
+            None => {
+                let f = |z: &[f64; 14]| model.derivative(law, &Augmented::from_array(z)).to_array();
+                let g = |z: &[f64; 14]| polarity * model.switching(&Augmented::from_array(z));
+                let arc = integrate_arc(f, g, &y.to_array(), left, first_step(left), tol, counts)?;
+                (Augmented::from_array(&arc.end), arc.time, arc.event)
+            }
+            Some(phi) => {
+                let mut start = [0.0; 210];
+                pack(&y.to_array(), phi, &mut start);
+                let g = |z: &WithStm| {
+                    let (state, _) = unpack(z);
+                    polarity * model.switching(&Augmented::from_array(&state))
+                };
+                let arc = integrate_arc(
+                    with_stm(model, law),
+                    g,
+                    &start,
+                    left,
+                    first_step(left),
+                    tol,
+                    counts,
+                )?;
+                let (state, carried) = unpack(&arc.end);
+                *phi = carried;
+                (Augmented::from_array(&state), arc.time, arc.event)
+            }
+        };
+        y = end;
+        left -= time;
+        if !event {
+            return Ok((y, switches));
+        }
+        switches = switches.saturating_add(1);
+        if switches > MAX_SWITCHES {
+            return Err(Stop::SwitchLimit {
+                time: duration_tu - left,
+            });
+        }
+        if let Some(phi) = phi.as_deref_mut() {
+            // Ψ = I + (f⁺ − f⁻) (dS/dy)/Ṡ at the switch.
+            let rate = model.switching_rate(&y);
+            if rate != 0.0 {
+                let next = if polarity < 0.0 {
+                    Throttle::Coast
+                } else {
+                    Throttle::Full
+                };
+                let before = model.derivative(law, &y).to_array();
+                let after = model.derivative(next, &y).to_array();
+                let mut jump = [0.0; 14];
+                for ((j, a), b) in jump.iter_mut().zip(after).zip(before) {
+                    *j = (a - b) / rate;
+                }
+                let jump = nalgebra::SVector::<f64, 14>::from(jump);
+                let grad = nalgebra::SVector::<f64, 14>::from(model.switching_gradient(&y));
+                let mut psi = Jacobian::identity();
+                psi.ger(1.0, &jump, &grad, 1.0);
+                let carried = *phi;
+                psi.mul_to(&carried, phi);
+            }
+        }
+    }
+}
+
+/// The derivative of the state with its state-transition matrix under `law`.
+fn with_stm(model: &Model, law: Throttle) -> impl Fn(&WithStm) -> WithStm + '_ {
+    move |z: &WithStm| {
+        let (y, phi) = unpack(z);
+        let state = Augmented::from_array(&y);
+        let mut a_phi = Jacobian::zeros();
+        jacobian(model, law, &state).mul_to(&phi, &mut a_phi);
+        let mut out = [0.0; 210];
+        pack(&model.derivative(law, &state).to_array(), &a_phi, &mut out);
+        out
+    }
+}
 
 /// The flow from `y0` over `duration_tu` (either sign).
 ///
@@ -24,6 +136,9 @@ pub fn propagate(
     tol: &Tolerance,
     counts: &mut Counts,
 ) -> Result<Augmented, Stop> {
+    if bang_bang(law) {
+        return bang(model, y0, duration_tu, tol, counts, None).map(|(y, _)| y);
+    }
     let f = |y: &[f64; 14]| model.derivative(law, &Augmented::from_array(y)).to_array();
     let end = integrate(
         f,
@@ -48,17 +163,14 @@ pub fn propagate_with_stm(
     tol: &Tolerance,
     counts: &mut Counts,
 ) -> Result<(Augmented, Jacobian), Stop> {
+    if bang_bang(law) {
+        let mut phi = Jacobian::identity();
+        let (end, _) = bang(model, y0, duration_tu, tol, counts, Some(&mut phi))?;
+        return Ok((end, phi));
+    }
     let mut start = [0.0; 210];
     pack(&y0.to_array(), &Jacobian::identity(), &mut start);
-    let f = |z: &WithStm| {
-        let (y, phi) = unpack(z);
-        let state = Augmented::from_array(&y);
-        let mut a_phi = Jacobian::zeros();
-        jacobian(model, law, &state).mul_to(&phi, &mut a_phi);
-        let mut out = [0.0; 210];
-        pack(&model.derivative(law, &state).to_array(), &a_phi, &mut out);
-        out
-    };
+    let f = with_stm(model, law);
     let end = integrate(f, &start, duration_tu, first_step(duration_tu), tol, counts)?;
     let (y, phi) = unpack(&end);
     Ok((Augmented::from_array(&y), phi))
@@ -156,6 +268,63 @@ mod tests {
         }
         // Issue 30's bar: 1e-10 (the throttle's ramp ends are kinks the steps cross).
         assert!(drift < 1e-10, "H drifts by {drift} (H = {h0})");
+    }
+
+    /// The bang-bang law (ε = 0): the arc coasts, switches the engine on where S crosses zero,
+    /// and the state-transition matrix, carried across the switch by eq. 22's jump, is the
+    /// flow's derivative; H is constant across the switch.
+    #[test]
+    fn the_bang_bang_flow_switches_and_its_matrix_jumps() {
+        let model = Model::paper();
+        let law = Throttle::Smoothed { epsilon: 0.0 };
+        let y0 = sample(model.switching(&sample(0.0)) - 0.1);
+        assert!(model.switching(&y0) > 0.0 && model.switching_rate(&y0) < 0.0);
+        let duration = 0.6;
+        let mut counts = Counts::default();
+        let mut phi = Jacobian::identity();
+        let (end, switches) =
+            bang(&model, &y0, duration, &TIGHT, &mut counts, Some(&mut phi)).unwrap();
+        assert!(switches >= 1, "the engine switched on");
+        let (alone, _) = bang(&model, &y0, duration, &TIGHT, &mut counts, None).unwrap();
+        for (a, b) in end.to_array().iter().zip(alone.to_array()) {
+            assert!((a - b).abs() < 1e-10 * (1.0 + b.abs()), "the same flow");
+        }
+        let h0 = model.hamiltonian(law, &y0);
+        assert!(
+            (model.hamiltonian(law, &end) - h0).abs() < 1e-10,
+            "H across the switch"
+        );
+        let base = y0.to_array();
+        for col in 0..14 {
+            let h = 1e-4 * (1.0 + base[col].abs());
+            let at = |dx: f64| {
+                let mut z = base;
+                z[col] += dx;
+                let mut c = Counts::default();
+                propagate(
+                    &model,
+                    law,
+                    &Augmented::from_array(&z),
+                    duration,
+                    &TIGHT,
+                    &mut c,
+                )
+                .unwrap()
+                .to_array()
+            };
+            let (plus, minus) = (at(h), at(-h));
+            let (plus2, minus2) = (at(h / 2.0), at(-h / 2.0));
+            for row in 0..14 {
+                let coarse = (plus[row] - minus[row]) / (2.0 * h);
+                let fine = (plus2[row] - minus2[row]) / h;
+                let fd = (4.0 * fine - coarse) / 3.0;
+                assert!(
+                    (phi[(row, col)] - fd).abs() < 1e-5 * (1.0 + fd.abs()),
+                    "Φ[{row}][{col}] = {} against {fd}",
+                    phi[(row, col)]
+                );
+            }
+        }
     }
 
     /// The state-transition matrix is the flow's derivative: every column against central

@@ -159,6 +159,11 @@ pub enum Stop {
         /// The time reached.
         time: f64,
     },
+    /// The bang-bang law switched more often than a propagation allows.
+    SwitchLimit {
+        /// The time reached.
+        time: f64,
+    },
 }
 
 /// What an integration did.
@@ -239,13 +244,50 @@ fn step<const N: usize, F: FnMut(&[f64; N]) -> [f64; N]>(
 /// # Errors
 /// [`Stop`]: the step limit, a step below the time's resolution, or a non-finite derivative.
 pub fn integrate<const N: usize, F: FnMut(&[f64; N]) -> [f64; N]>(
-    mut f: F,
+    f: F,
     y0: &[f64; N],
     duration: f64,
     first_step: f64,
     tol: &Tolerance,
     counts: &mut Counts,
 ) -> Result<[f64; N], Stop> {
+    integrate_arc(f, |_: &[f64; N]| 1.0, y0, duration, first_step, tol, counts).map(|arc| arc.end)
+}
+
+/// Where an arc ended: at its duration, or where its event function turned negative.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Arc<const N: usize> {
+    /// The state there.
+    pub end: [f64; N],
+    /// The time reached, from the start (signed as the duration).
+    pub time: f64,
+    /// Whether the event ended it (before the duration).
+    pub event: bool,
+}
+
+/// Event locations: bisection-secant (Illinois) iterations on the step size at most.
+const MAX_EVENT_ITERATIONS: u32 = 60;
+
+/// As [`integrate`], but the arc ends early where `event` (non-negative along the arc; its
+/// value at the start is not checked) turns negative: the crossing is located on the last
+/// step by the Illinois method on the step size (each trial one DOP853 step from the step's
+/// start), to the time's resolution, in at most 60 iterations.
+///
+/// # Errors
+/// As [`integrate`].
+pub fn integrate_arc<const N: usize, F, G>(
+    mut f: F,
+    mut event: G,
+    y0: &[f64; N],
+    duration: f64,
+    first_step: f64,
+    tol: &Tolerance,
+    counts: &mut Counts,
+) -> Result<Arc<N>, Stop>
+where
+    F: FnMut(&[f64; N]) -> [f64; N],
+    G: FnMut(&[f64; N]) -> f64,
+{
     let direction = if duration < 0.0 { -1.0 } else { 1.0 };
     let end = duration.abs();
     let mut t = 0.0;
@@ -287,18 +329,71 @@ pub fn integrate<const N: usize, F: FnMut(&[f64; N]) -> [f64; N]>(
         } else {
             (0.9 * libm::pow(err, -1.0 / 8.0)).clamp(0.2, 10.0)
         };
-        if err <= 1.0 {
-            counts.accepted = counts.accepted.saturating_add(1);
-            t = if last { end } else { t + size };
-            y = y_new;
-            fy = f_new;
-            h = size * factor;
-        } else {
+        if err > 1.0 {
             counts.rejected = counts.rejected.saturating_add(1);
             h = size * factor.min(1.0);
+            continue;
         }
+        counts.accepted = counts.accepted.saturating_add(1);
+        let g_new = event(&y_new);
+        if g_new < 0.0 {
+            // The crossing lies in (0, size]: Illinois on the step size, g at 0 taken as
+            // non-negative (a switch just left lies on the arc's side by construction).
+            let (mut lo, mut hi) = (0.0, size);
+            let (mut g_lo, mut g_hi) = (event(&y).max(0.0), g_new);
+            let mut at = (y_new, hi);
+            let mut side = 0_i8;
+            for _ in 0..MAX_EVENT_ITERATIONS {
+                if hi - lo <= f64::EPSILON * (t + hi).max(1.0) {
+                    break;
+                }
+                let mid = if g_lo - g_hi > 0.0 {
+                    (lo * (-g_hi) + hi * g_lo) / (g_lo - g_hi)
+                } else {
+                    0.5 * (lo + hi)
+                };
+                let mid = if mid > lo && mid < hi {
+                    mid
+                } else {
+                    0.5 * (lo + hi)
+                };
+                let (y_mid, _, _) = step(&mut f, &y, &fy, mid * direction, tol);
+                counts.evaluations = counts.evaluations.saturating_add(12);
+                let g_mid = event(&y_mid);
+                if g_mid < 0.0 {
+                    hi = mid;
+                    g_hi = g_mid;
+                    at = (y_mid, mid);
+                    if side == -1 {
+                        g_lo *= 0.5;
+                    }
+                    side = -1;
+                } else {
+                    lo = mid;
+                    g_lo = g_mid;
+                    if side == 1 {
+                        g_hi *= 0.5;
+                    }
+                    side = 1;
+                }
+            }
+            // The first point past the crossing: the arc's event is there.
+            return Ok(Arc {
+                end: at.0,
+                time: (t + at.1) * direction,
+                event: true,
+            });
+        }
+        t = if last { end } else { t + size };
+        y = y_new;
+        fy = f_new;
+        h = size * factor;
     }
-    Ok(y)
+    Ok(Arc {
+        end: y,
+        time: t * direction,
+        event: false,
+    })
 }
 
 #[cfg(test)]

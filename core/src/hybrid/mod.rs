@@ -13,16 +13,22 @@
 //! * [`integrate`]: DOP853 with a bounded step count;
 //! * [`flow`]: the flow and its state-transition matrix (210 equations);
 //! * [`shooting`]: fixed-time shooting on the initial costates (damped Newton, analytic
-//!   Jacobian), from a given departure state.
+//!   Jacobian), from a given departure state;
+//! * [`departure`]: the state after the impulse (eq. 4) and its derivatives in κ and θ;
+//! * [`min_time`]: minimum-time shooting (normalised multipliers, free t_f);
+//! * [`ladder`]: the ε homotopy from minimum energy to minimum fuel (bang-bang at ε = 0, its
+//!   switches located by [`flow`]).
 //!
-//! Not yet a planner: the departure of eq. 4 with κ and θ, minimum time, the ε ladder to
-//! minimum fuel with the bang-bang switches, the published cases and the request path follow
-//! (issue 30 stays open).
+//! Not yet a planner: κ and θ free, the published cases beyond Table 3's first group, the
+//! request path, the CLI and the on-board re-convergence follow (issue 30 stays open).
 
+pub mod departure;
 pub mod dynamics;
 pub mod flow;
 pub mod integrate;
 pub mod jacobian;
+pub mod ladder;
+pub mod min_time;
 pub mod shooting;
 pub mod units;
 
