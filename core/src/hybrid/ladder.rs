@@ -92,7 +92,8 @@ mod tests {
     use crate::hybrid::departure::Departure;
     use crate::hybrid::flow::propagate;
     use crate::hybrid::integrate::Counts;
-    use crate::hybrid::units::time_tu;
+    use crate::hybrid::min_time::{self, Endpoints, Unknowns};
+    use crate::hybrid::units::{days, time_tu};
 
     fn table_3_transfer(days: f64) -> Transfer {
         let x0 = Departure::paper().state(1.4, -2.0).state;
@@ -110,17 +111,19 @@ mod tests {
     /// Table 3's first group (κ = 1.40, θ = −2, κ and θ fixed), minimum fuel: minimum energy
     /// at 4.3800 d from costates near the ones a seeded multistart found, the ladder to ε = 0
     /// (bang-bang, switches located), then the shorter flights by continuation in t_f from the
-    /// minimum-energy costates. Final masses within 1e-4 of the printed 0.3365 and 0.3341. (At
+    /// minimum-energy costates. Final masses within 1e-4 of the printed 0.3365 and 0.3341; then
+    /// Table 2's minimum time at κ = 1.40 from the minimum-fuel direction. (At
     /// 3.7061 d the ladder stalls at ε ≈ 0.13: a step ratio of 0.99 still fails there; the
     /// third row needs another path, left for the next piece.)
     #[test]
-    fn the_ladder_reaches_table_3s_fixed_kappa_rows() {
+    fn the_ladder_reaches_table_3s_fixed_kappa_rows_and_table_2s_minimum_time() {
         let model = Model::paper();
         let settings = Settings {
             max_iterations: 40,
             max_halvings: 20,
             ..Settings::default()
         };
+        let mut fuel_costates = None;
         // The minimum-energy costates at 4.38 d, to four digits (the shooting refines them).
         let mut energy = [
             1.635, 7.972, -0.069_96, -0.020_72, 0.016_16, 9.53e-6, 0.066_14,
@@ -160,6 +163,30 @@ mod tests {
             let first = shoot(&model, &transfer, &energy, &settings);
             assert_eq!(first.status, Status::Converged);
             energy = first.costates;
+            fuel_costates = Some(ladder.solution.costates);
         }
+        // Table 2, κ = 1.40 (θ = −2): minimum time from the direction of the 4.0431 d
+        // minimum-fuel costates (λ0 = 0.1, any of 1e-3 to 3 converges alike), t_f from 4.0431 d.
+        let lam = fuel_costates.unwrap();
+        let raw = [0.1, lam[0], lam[1], lam[2], lam[3], lam[4], lam[5], lam[6]];
+        let norm = libm::sqrt(raw.iter().map(|x| x * x).sum::<f64>());
+        let x0 = Departure::paper().state(1.4, -2.0).state;
+        let ends = Endpoints {
+            departure_r_lu: [x0[0], x0[1], x0[2]],
+            departure_v_vu: [x0[3], x0[4], x0[5]],
+            departure_m_mu: x0[6],
+            arrival_r_lu: [0.823_385_182_067, 0.0, -0.022_277_556_273],
+            arrival_v_vu: [0.0, 0.134_184_170_262, 0.0],
+        };
+        let guess = Unknowns {
+            multipliers: raw.map(|x| x / norm),
+            duration_tu: time_tu(4.0431),
+        };
+        let fastest = min_time::shoot(&model, &ends, &guess, &settings);
+        assert_eq!(fastest.status, Status::Converged, "{fastest:?}");
+        let t_min_days = days(fastest.unknowns.duration_tu);
+        assert!((t_min_days - 3.3692).abs() < 1e-3, "t_min {t_min_days} d");
+        let m_f = x0[6] - model.thrust_fu / model.exhaust_vu * fastest.unknowns.duration_tu;
+        assert!((m_f - 0.3200).abs() < 1e-4, "m_f {m_f}");
     }
 }
