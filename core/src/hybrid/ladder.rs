@@ -86,6 +86,69 @@ pub fn descend(
     Some(at)
 }
 
+/// How far a continuation in the time of flight went.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Walk {
+    /// Whether it reached the target time of flight.
+    pub reached: bool,
+    /// The time of flight of the last converged shooting, TU.
+    pub duration_tu: f64,
+    /// That shooting.
+    pub solution: Solution,
+    /// Shootings run (converged or not).
+    pub steps: u32,
+}
+
+/// Walk the transfer's time of flight to `target_tu` by steps of at most `step_tu`, each
+/// shooting started from the previous one's costates (converged at `costates` for the
+/// transfer's own time); a failed step is retried at half the size, down to a thousandth of
+/// `step_tu`; at most `max_steps` shootings. `None` when the transfer itself does not
+/// converge from `costates`.
+pub fn walk_duration(
+    model: &Model,
+    transfer: &Transfer,
+    costates: &[f64; 7],
+    target_tu: f64,
+    step_tu: f64,
+    max_steps: u32,
+    settings: &Settings,
+) -> Option<Walk> {
+    let first = shoot(model, transfer, costates, settings);
+    if first.status != Status::Converged {
+        return None;
+    }
+    let mut at = Walk {
+        reached: (transfer.duration_tu - target_tu).abs() <= f64::EPSILON * target_tu.abs(),
+        duration_tu: transfer.duration_tu,
+        solution: first,
+        steps: 1,
+    };
+    let mut size = step_tu.abs();
+    while !at.reached && at.steps < max_steps && size >= step_tu.abs() * 1e-3 {
+        let gap = target_tu - at.duration_tu;
+        let last = gap.abs() <= size;
+        let next = if last {
+            target_tu
+        } else {
+            at.duration_tu + size * gap.signum()
+        };
+        let leg = Transfer {
+            duration_tu: next,
+            ..*transfer
+        };
+        let s = shoot(model, &leg, &at.solution.costates, settings);
+        at.steps = at.steps.saturating_add(1);
+        if s.status == Status::Converged {
+            at.duration_tu = next;
+            at.solution = s;
+            at.reached = last;
+        } else {
+            size *= 0.5;
+        }
+    }
+    Some(at)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -111,10 +174,9 @@ mod tests {
     /// Table 3's first group (κ = 1.40, θ = −2, κ and θ fixed), minimum fuel: minimum energy
     /// at 4.3800 d from costates near the ones a seeded multistart found, the ladder to ε = 0
     /// (bang-bang, switches located), then the shorter flights by continuation in t_f from the
-    /// minimum-energy costates. Final masses within 1e-4 of the printed 0.3365 and 0.3341; then
-    /// Table 2's minimum time at κ = 1.40 from the minimum-fuel direction. (At
-    /// 3.7061 d the ladder stalls at ε ≈ 0.13: a step ratio of 0.99 still fails there; the
-    /// third row needs another path, left for the next piece.)
+    /// minimum-energy costates. Final masses within 1e-4 of the printed 0.3365 and 0.3341; at
+    /// 3.7061 d, where the ladder stalls at ε ≈ 0.13, by walking t_f down at ε = 0 instead
+    /// (0.3306). Then Table 2's minimum time at κ = 1.40 from the minimum-fuel direction.
     #[test]
     fn the_ladder_reaches_table_3s_fixed_kappa_rows_and_table_2s_minimum_time() {
         let model = Model::paper();
@@ -165,6 +227,35 @@ mod tests {
             energy = first.costates;
             fuel_costates = Some(ladder.solution.costates);
         }
+        // The third row, 3.7061 d, where the ladder stalls (ε ≈ 0.15): walked at ε = 0 from
+        // the 4.0431 d minimum-fuel costates by steps of 0.05 d.
+        let walk = walk_duration(
+            &model,
+            &Transfer {
+                law: Throttle::Smoothed { epsilon: 0.0 },
+                ..table_3_transfer(4.0431)
+            },
+            &fuel_costates.unwrap(),
+            time_tu(3.7061),
+            time_tu(0.05),
+            20,
+            &settings,
+        )
+        .unwrap();
+        assert!(walk.reached && walk.steps <= 10, "{walk:?}");
+        let fuel = Transfer {
+            law: Throttle::Smoothed { epsilon: 0.0 },
+            ..table_3_transfer(3.7061)
+        };
+        let mut counts = Counts::default();
+        let y0 = fuel.initial(&walk.solution.costates);
+        let tol = &settings.integration;
+        let end = propagate(&model, fuel.law, &y0, fuel.duration_tu, tol, &mut counts).unwrap();
+        assert!(
+            (end.m_mu - 0.3306).abs() < 1e-4,
+            "3.7061 d: m_f {}",
+            end.m_mu
+        );
         // Table 2, κ = 1.40 (θ = −2): minimum time from the direction of the 4.0431 d
         // minimum-fuel costates (λ0 = 0.1, any of 1e-3 to 3 converges alike), t_f from 4.0431 d.
         let lam = fuel_costates.unwrap();
