@@ -15,16 +15,18 @@
 //! * [`shooting`]: fixed-time shooting on the initial costates (damped Newton, analytic
 //!   Jacobian), from a given departure state;
 //! * [`departure`]: the state after the impulse (eq. 4) and its derivatives in κ and θ;
+//! * [`free`]: shooting with κ and/or θ free by their transversality conditions;
 //! * [`min_time`]: minimum-time shooting (normalised multipliers, free t_f);
 //! * [`ladder`]: the ε homotopy from minimum energy to minimum fuel (bang-bang at ε = 0, its
 //!   switches located by [`flow`]).
 //!
-//! Not yet a planner: κ and θ free, the published cases beyond Table 3's first group, the
-//! request path, the CLI and the on-board re-convergence follow (issue 30 stays open).
+//! Not yet a planner: θ free to convergence, the published cases beyond κ = 1.40, the request
+//! path, the CLI and the on-board re-convergence follow (issue 30 stays open).
 
 pub mod departure;
 pub mod dynamics;
 pub mod flow;
+pub mod free;
 pub mod integrate;
 pub mod jacobian;
 pub mod ladder;
