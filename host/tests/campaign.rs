@@ -179,6 +179,27 @@ fn a_case_the_checks_refuse_is_a_named_row_and_the_campaign_goes_on() {
 }
 
 #[test]
+fn a_case_the_fixtures_own_checks_refuse_keeps_its_numbers_in_its_row() {
+    // A LEO arc's client eccentricity 0 +- 0.05: a negative one is refused by the fixture's
+    // own check (before any request is made), and its row still says which number it drew.
+    let c = campaign("leo-tour-example1-single-arc", &["clients[1][1]=0.05"], 6);
+    let mut buffers = reconfig_host::drivers::answer::buffers();
+    let rows: Vec<_> = (0..6).map(|k| c.answer_case(k, &mut buffers)).collect();
+    let refused: Vec<_> = rows.iter().filter(|r| r.status == "Rejected").collect();
+    assert!(!refused.is_empty(), "{rows:?}");
+    for r in &refused {
+        assert_eq!(r.inputs.len(), 1, "{r:?}");
+        assert!(
+            r.inputs[0] < 0.0 && r.message.contains("not an elliptic orbit"),
+            "{r:?}"
+        );
+    }
+    // The table is square: every row has the case, the number and the answer's columns.
+    let table = String::from_utf8(csv(&c, &rows)).expect("utf-8");
+    assert_eq!(table.lines().count(), 7, "{table}");
+}
+
+#[test]
 fn a_dispersion_that_cannot_apply_is_refused_before_any_case_by_name() {
     let text = fixture_text("wang2018-gco-to-pco-2imp");
     let refuse = |arg: &str| {

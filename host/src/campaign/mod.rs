@@ -159,21 +159,21 @@ impl Campaign {
         buffers: &mut AllPlanners,
         json: bool,
     ) -> (Row, Option<Result<serde_json::Value>>) {
-        let fixture = self.case_document(case).and_then(|(doc, inputs)| {
-            let fixture = fixture::from_value(doc)?;
-            Ok((fixture, inputs))
-        });
-        match fixture {
-            Ok((fixture, inputs)) => {
-                let (mut row, report) = answer_fixture(&fixture, &self.limits, buffers, json);
-                row.case = case;
-                row.inputs = inputs;
-                (row, report)
-            }
+        // A dispersion that does not apply was refused when the campaign was made.
+        let (doc, inputs) = match self.case_document(case) {
+            Ok(d) => d,
+            Err(e) => return (refused_row(case, &e), None),
+        };
+        let (mut row, report) = match fixture::from_value(doc) {
+            Ok(fixture) => answer_fixture(&fixture, &self.limits, buffers, json),
             // The fixture's own checks refused the dispersed file (an eccentricity below 0,
             // say): a row that says so, named, and the campaign goes on.
             Err(e) => (refused_row(case, &e), None),
-        }
+        };
+        // Every row carries its case's numbers, a refused one too (the table stays square).
+        row.case = case;
+        row.inputs = inputs;
+        (row, report)
     }
 
     /// Answer every case on `threads` threads (0: one per core), in case order.
