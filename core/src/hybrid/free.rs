@@ -7,7 +7,8 @@
 use super::departure::Departure;
 use super::dynamics::{Augmented, Model, Throttle};
 use super::flow::{propagate, propagate_with_stm};
-use super::integrate::Counts;
+use super::integrate::{Counts, Stop, Tolerance};
+use super::newton::{iterate, System};
 use super::shooting::{Settings, Status};
 use crate::vec3::Vec3;
 use nalgebra::{SMatrix, SVector};
@@ -111,55 +112,56 @@ impl ImpulseTransfer {
 
 /// Shoot from `start` under `settings` (as [`super::shooting::shoot`]; a fixed parameter's
 /// column is the identity, so the 9 × 9 system stays square).
-// nalgebra's f64 vectors and matrices: the integer-overflow lint does not apply.
-#[allow(clippy::arithmetic_side_effects)]
 pub fn shoot(
     model: &Model,
     transfer: &ImpulseTransfer,
     start: &Point,
     settings: &Settings,
 ) -> Solution {
-    let law = transfer.law;
-    let tol = &settings.integration;
-    let mut counts = Counts::default();
-    let mut p = *start;
-    let mut iterations = 0;
-    let answer = |status, point, residual, iterations, counts| Solution {
-        status,
-        point,
-        residual,
-        iterations,
-        counts,
+    let system = ImpulseFree {
+        model,
+        transfer,
+        tol: &settings.integration,
     };
-    loop {
-        let y0 = transfer.initial(&p);
+    let o = iterate(&system, *start, settings);
+    Solution {
+        status: o.status,
+        point: o.point,
+        residual: o.residual,
+        iterations: o.iterations,
+        counts: o.counts,
+    }
+}
+
+/// The equations with the impulse free, for [`iterate`].
+struct ImpulseFree<'a> {
+    model: &'a Model,
+    transfer: &'a ImpulseTransfer,
+    tol: &'a Tolerance,
+}
+
+// nalgebra's f64 vectors and matrices: the integer-overflow lint does not apply.
+#[allow(clippy::arithmetic_side_effects)]
+impl System<9> for ImpulseFree<'_> {
+    type Point = Point;
+
+    fn linearised(
+        &self,
+        p: &Point,
+        counts: &mut Counts,
+    ) -> Result<(Vector9, Option<Vector9>), Stop> {
+        let t = self.transfer;
+        let y0 = t.initial(p);
         let (end, phi) =
-            match propagate_with_stm(model, law, &y0, transfer.duration_tu, tol, &mut counts) {
-                Ok(v) => v,
-                Err(stop) => {
-                    return answer(
-                        Status::Integration(stop),
-                        p,
-                        f64::INFINITY,
-                        iterations,
-                        counts,
-                    )
-                }
-            };
-        let f = transfer.residual(&p, &end);
-        let size = f.amax();
-        if size <= settings.tolerance {
-            return answer(Status::Converged, p, size, iterations, counts);
-        }
-        if iterations >= settings.max_iterations {
-            return answer(Status::IterationLimit, p, size, iterations, counts);
-        }
-        iterations = iterations.saturating_add(1);
-        let d = transfer.departure.state(p.kappa, p.theta_rad);
-        let (_, _, theta_kk) = transfer.departure.chemical_cost(p.kappa);
+            propagate_with_stm(self.model, t.law, &y0, t.duration_tu, self.tol, counts)?;
+        let f = t.residual(p, &end);
+        let d = t.departure.state(p.kappa, p.theta_rad);
+        let (_, _, theta_kk) = t.departure.chemical_cost(p.kappa);
         let dk = SVector::<f64, 7>::from(d.d_kappa);
         let dt = SVector::<f64, 7>::from(d.d_theta);
         let lam = SVector::<f64, 7>::from(p.costates);
+        // λ·∂²x0/∂κ∂θ, the cross term of both conditions.
+        let cross = lam.dot(&SVector::<f64, 7>::from(d.d_kappa_theta));
         // Rows r, v (0..6) and λm (13) of Φ, against the costates (columns 7..14) and against
         // the departure state (columns 0..7, through x0's derivatives).
         let mut rows = SMatrix::<f64, 7, 14>::zeros();
@@ -171,61 +173,53 @@ pub fn shoot(
         let mut jac = SMatrix::<f64, 9, 9>::zeros();
         jac.fixed_view_mut::<7, 7>(0, 0)
             .copy_from(&rows.fixed_view::<7, 7>(0, 7));
-        if transfer.free.kappa {
+        if t.free.kappa {
             jac.fixed_view_mut::<7, 1>(0, 7).copy_from(&(by_state * dk));
             jac.fixed_view_mut::<1, 7>(7, 0).copy_from(&dk.transpose());
             let dkk = SVector::<f64, 7>::from(d.d_kappa_kappa);
             jac.fixed_view_mut::<1, 1>(7, 7)
                 .fill(theta_kk + lam.dot(&dkk));
-            let dkt = SVector::<f64, 7>::from(d.d_kappa_theta);
-            if transfer.free.theta {
-                jac.fixed_view_mut::<1, 1>(7, 8).fill(lam.dot(&dkt));
+            if t.free.theta {
+                jac.fixed_view_mut::<1, 1>(7, 8).fill(cross);
             }
         } else {
             jac.fixed_view_mut::<1, 1>(7, 7).fill(1.0);
         }
-        if transfer.free.theta {
+        if t.free.theta {
             jac.fixed_view_mut::<7, 1>(0, 8).copy_from(&(by_state * dt));
             jac.fixed_view_mut::<1, 7>(8, 0).copy_from(&dt.transpose());
             let dtt = SVector::<f64, 7>::from(d.d_theta_theta);
             jac.fixed_view_mut::<1, 1>(8, 8).fill(lam.dot(&dtt));
-            if transfer.free.kappa {
-                let dkt = SVector::<f64, 7>::from(d.d_kappa_theta);
-                jac.fixed_view_mut::<1, 1>(8, 7).fill(lam.dot(&dkt));
+            if t.free.kappa {
+                jac.fixed_view_mut::<1, 1>(8, 7).fill(cross);
             }
         } else {
             jac.fixed_view_mut::<1, 1>(8, 8).fill(1.0);
         }
-        let Some(step) = jac.full_piv_lu().solve(&(-f)) else {
-            return answer(Status::Singular, p, size, iterations, counts);
-        };
-        let (step_k, step_t) = (step.fixed_rows::<1>(7).x, step.fixed_rows::<1>(8).x);
-        let mut fraction = 1.0;
-        let mut accepted = false;
-        for _ in 0..=settings.max_halvings {
-            let mut trial = p;
-            for (v, s) in trial.costates.iter_mut().zip(step.iter()) {
-                *v += fraction * s;
-            }
-            if transfer.free.kappa {
-                trial.kappa += fraction * step_k;
-            }
-            if transfer.free.theta {
-                trial.theta_rad += fraction * step_t;
-            }
-            let y = transfer.initial(&trial);
-            if let Ok(end) = propagate(model, law, &y, transfer.duration_tu, tol, &mut counts) {
-                if transfer.residual(&trial, &end).amax() < size {
-                    p = trial;
-                    accepted = true;
-                    break;
-                }
-            }
-            fraction *= 0.5;
+        let step = jac.full_piv_lu().solve(&(-f));
+        Ok((f, step))
+    }
+
+    fn residual(&self, p: &Point, counts: &mut Counts) -> Option<Vector9> {
+        let t = self.transfer;
+        let y = t.initial(p);
+        let end = propagate(self.model, t.law, &y, t.duration_tu, self.tol, counts).ok()?;
+        Some(t.residual(p, &end))
+    }
+
+    /// A fixed parameter stays where it is.
+    fn moved(&self, p: &Point, step: &Vector9, fraction: f64) -> Option<Point> {
+        let mut trial = *p;
+        for (v, s) in trial.costates.iter_mut().zip(step.iter()) {
+            *v += fraction * s;
         }
-        if !accepted {
-            return answer(Status::NoDescent, p, size, iterations, counts);
+        if self.transfer.free.kappa {
+            trial.kappa += fraction * step.fixed_rows::<1>(7).x;
         }
+        if self.transfer.free.theta {
+            trial.theta_rad += fraction * step.fixed_rows::<1>(8).x;
+        }
+        Some(trial)
     }
 }
 

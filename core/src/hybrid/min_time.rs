@@ -7,7 +7,8 @@
 
 use super::dynamics::{Augmented, Model, Throttle};
 use super::flow::{propagate, propagate_with_stm};
-use super::integrate::Counts;
+use super::integrate::{Counts, Stop, Tolerance};
+use super::newton::{iterate, System};
 use super::shooting::{Settings, Status};
 use crate::vec3::Vec3;
 use nalgebra::{SMatrix, SVector};
@@ -85,45 +86,43 @@ impl Endpoints {
 
 /// Shoot for minimum time from `guess` under `settings` (its tolerance on the residual, its
 /// bounds on the iterations, halvings and integration steps, as [`super::shooting::shoot`]).
+pub fn shoot(model: &Model, ends: &Endpoints, guess: &Unknowns, settings: &Settings) -> Solution {
+    let system = MinimumTime {
+        model,
+        ends,
+        tol: &settings.integration,
+    };
+    let o = iterate(&system, *guess, settings);
+    Solution {
+        status: o.status,
+        unknowns: o.point,
+        residual: o.residual,
+        iterations: o.iterations,
+        counts: o.counts,
+    }
+}
+
+/// The minimum-time shooting's equations for [`iterate`].
+struct MinimumTime<'a> {
+    model: &'a Model,
+    ends: &'a Endpoints,
+    tol: &'a Tolerance,
+}
+
 // nalgebra's f64 vectors and matrices: the integer-overflow lint does not apply.
 #[allow(clippy::arithmetic_side_effects)]
-pub fn shoot(model: &Model, ends: &Endpoints, guess: &Unknowns, settings: &Settings) -> Solution {
-    let law = Throttle::Full;
-    let tol = &settings.integration;
-    let mut counts = Counts::default();
-    let mut x = *guess;
-    let mut iterations = 0;
-    let answer = |status, unknowns, residual, iterations, counts| Solution {
-        status,
-        unknowns,
-        residual,
-        iterations,
-        counts,
-    };
-    loop {
-        let y0 = ends.initial(&x.multipliers);
-        let (end, phi) = match propagate_with_stm(model, law, &y0, x.duration_tu, tol, &mut counts)
-        {
-            Ok(v) => v,
-            Err(stop) => {
-                return answer(
-                    Status::Integration(stop),
-                    x,
-                    f64::INFINITY,
-                    iterations,
-                    counts,
-                )
-            }
-        };
-        let f = ends.residual(model, &x.multipliers, &end);
-        let size = f.amax();
-        if size <= settings.tolerance {
-            return answer(Status::Converged, x, size, iterations, counts);
-        }
-        if iterations >= settings.max_iterations {
-            return answer(Status::IterationLimit, x, size, iterations, counts);
-        }
-        iterations = iterations.saturating_add(1);
+impl System<9> for MinimumTime<'_> {
+    type Point = Unknowns;
+
+    fn linearised(
+        &self,
+        x: &Unknowns,
+        counts: &mut Counts,
+    ) -> Result<(Vector9, Option<Vector9>), Stop> {
+        let (model, law) = (self.model, Throttle::Full);
+        let y0 = self.ends.initial(&x.multipliers);
+        let (end, phi) = propagate_with_stm(model, law, &y0, x.duration_tu, self.tol, counts)?;
+        let f = self.ends.residual(model, &x.multipliers, &end);
         // Columns: λ0, λ(t0) (7), t_f.
         let mut jac = SMatrix::<f64, 9, 9>::zeros();
         let lambda_cols = phi.fixed_view::<14, 7>(0, 7);
@@ -151,33 +150,32 @@ pub fn shoot(model: &Model, ends: &Endpoints, guess: &Unknowns, settings: &Setti
         let p = SVector::<f64, 8>::from(x.multipliers);
         jac.fixed_view_mut::<1, 8>(8, 0)
             .copy_from(&(p.transpose() * 2.0));
-        let Some(step) = jac.full_piv_lu().solve(&(-f)) else {
-            return answer(Status::Singular, x, size, iterations, counts);
-        };
-        let step_tf = step.fixed_rows::<1>(8).x;
-        let mut fraction = 1.0;
-        let mut accepted = false;
-        for _ in 0..=settings.max_halvings {
-            let mut trial = x;
-            for (v, d) in trial.multipliers.iter_mut().zip(step.iter()) {
-                *v += fraction * d;
-            }
-            trial.duration_tu += fraction * step_tf;
-            let y = ends.initial(&trial.multipliers);
-            if trial.duration_tu > 0.0 {
-                if let Ok(end) = propagate(model, law, &y, trial.duration_tu, tol, &mut counts) {
-                    if ends.residual(model, &trial.multipliers, &end).amax() < size {
-                        x = trial;
-                        accepted = true;
-                        break;
-                    }
-                }
-            }
-            fraction *= 0.5;
+        let step = jac.full_piv_lu().solve(&(-f));
+        Ok((f, step))
+    }
+
+    fn residual(&self, x: &Unknowns, counts: &mut Counts) -> Option<Vector9> {
+        let y = self.ends.initial(&x.multipliers);
+        let end = propagate(
+            self.model,
+            Throttle::Full,
+            &y,
+            x.duration_tu,
+            self.tol,
+            counts,
+        )
+        .ok()?;
+        Some(self.ends.residual(self.model, &x.multipliers, &end))
+    }
+
+    /// `None` for a time of flight that is not positive.
+    fn moved(&self, x: &Unknowns, step: &Vector9, fraction: f64) -> Option<Unknowns> {
+        let mut trial = *x;
+        for (v, d) in trial.multipliers.iter_mut().zip(step.iter()) {
+            *v += fraction * d;
         }
-        if !accepted {
-            return answer(Status::NoDescent, x, size, iterations, counts);
-        }
+        trial.duration_tu += fraction * step.fixed_rows::<1>(8).x;
+        (trial.duration_tu > 0.0).then_some(trial)
     }
 }
 

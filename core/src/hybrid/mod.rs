@@ -31,6 +31,7 @@ pub mod integrate;
 pub mod jacobian;
 pub mod ladder;
 pub mod min_time;
+mod newton;
 pub mod shooting;
 pub mod units;
 

@@ -7,6 +7,7 @@
 use super::dynamics::{Augmented, Model, Throttle};
 use super::flow::{propagate, propagate_with_stm};
 use super::integrate::{Counts, Stop, Tolerance};
+use super::newton::{iterate, System};
 use crate::vec3::Vec3;
 use nalgebra::{SMatrix, SVector};
 
@@ -121,92 +122,72 @@ impl Transfer {
 /// Shoot from `guess` (initial costates) under `settings`. Its work is bounded: at most
 /// `max_iterations` propagations with the state-transition matrix and
 /// `max_iterations × (max_halvings + 1)` without, each of at most `integration.max_steps` steps.
-// nalgebra's f64 vectors: the integer-overflow lint does not apply.
-#[allow(clippy::arithmetic_side_effects)]
 pub fn shoot(
     model: &Model,
     transfer: &Transfer,
     guess: &[f64; 7],
     settings: &Settings,
 ) -> Solution {
-    let mut counts = Counts::default();
-    let mut lambda = *guess;
-    let answer = |status, lambda: [f64; 7], residual: f64, iterations, counts| Solution {
-        status,
-        costates: lambda,
-        residual,
-        iterations,
-        counts,
+    let system = FixedTime {
+        model,
+        transfer,
+        tol: &settings.integration,
     };
-    let tol = &settings.integration;
-    let mut iterations = 0;
-    loop {
-        let y0 = transfer.initial(&lambda);
-        let (end, phi) = match propagate_with_stm(
-            model,
-            transfer.law,
-            &y0,
-            transfer.duration_tu,
-            tol,
-            &mut counts,
-        ) {
-            Ok(x) => x,
-            Err(stop) => {
-                return answer(
-                    Status::Integration(stop),
-                    lambda,
-                    f64::INFINITY,
-                    iterations,
-                    counts,
-                )
-            }
-        };
-        let f = transfer.residual(&end);
-        let size = f.amax();
-        if size <= settings.tolerance {
-            return answer(Status::Converged, lambda, size, iterations, counts);
-        }
-        if iterations >= settings.max_iterations {
-            return answer(Status::IterationLimit, lambda, size, iterations, counts);
-        }
-        iterations = iterations.saturating_add(1);
+    let o = iterate(&system, *guess, settings);
+    Solution {
+        status: o.status,
+        costates: o.point,
+        residual: o.residual,
+        iterations: o.iterations,
+        counts: o.counts,
+    }
+}
+
+/// The fixed-time shooting's equations for [`iterate`].
+struct FixedTime<'a> {
+    model: &'a Model,
+    transfer: &'a Transfer,
+    tol: &'a Tolerance,
+}
+
+// nalgebra's f64 vectors: the integer-overflow lint does not apply.
+#[allow(clippy::arithmetic_side_effects)]
+impl System<7> for FixedTime<'_> {
+    type Point = [f64; 7];
+
+    fn linearised(
+        &self,
+        lambda: &[f64; 7],
+        counts: &mut Counts,
+    ) -> Result<(Residual, Option<Residual>), Stop> {
+        let t = self.transfer;
+        let y0 = t.initial(lambda);
+        let (end, phi) =
+            propagate_with_stm(self.model, t.law, &y0, t.duration_tu, self.tol, counts)?;
+        let f = t.residual(&end);
         // Rows r, v (0..6) and λm (13) of Φ; columns λr, λv, λm (7..14).
         let mut jac = SMatrix::<f64, 7, 7>::zeros();
         jac.fixed_view_mut::<6, 7>(0, 0)
             .copy_from(&phi.fixed_view::<6, 7>(0, 7));
         jac.fixed_view_mut::<1, 7>(6, 0)
             .copy_from(&phi.fixed_view::<1, 7>(13, 7));
-        let Some(step) = jac.full_piv_lu().solve(&(-f)) else {
-            return answer(Status::Singular, lambda, size, iterations, counts);
-        };
-        // Halve the step until the residual falls (a damped Newton iteration).
-        let mut fraction = 1.0;
-        let mut accepted = false;
-        for _ in 0..=settings.max_halvings {
-            let mut trial = lambda;
-            for (x, d) in trial.iter_mut().zip(step.iter()) {
-                *x += fraction * d;
-            }
-            let y = transfer.initial(&trial);
-            if let Ok(end) = propagate(
-                model,
-                transfer.law,
-                &y,
-                transfer.duration_tu,
-                tol,
-                &mut counts,
-            ) {
-                if transfer.residual(&end).amax() < size {
-                    lambda = trial;
-                    accepted = true;
-                    break;
-                }
-            }
-            fraction *= 0.5;
+        let step = jac.full_piv_lu().solve(&(-f));
+        Ok((f, step))
+    }
+
+    fn residual(&self, lambda: &[f64; 7], counts: &mut Counts) -> Option<Residual> {
+        let t = self.transfer;
+        let y = t.initial(lambda);
+        let end = propagate(self.model, t.law, &y, t.duration_tu, self.tol, counts).ok()?;
+        Some(t.residual(&end))
+    }
+
+    fn moved(&self, lambda: &[f64; 7], step: &Residual, fraction: f64) -> Option<[f64; 7]> {
+        let mut trial = *lambda;
+        for (x, d) in trial.iter_mut().zip(step.iter()) {
+            *x += fraction * d;
         }
-        if !accepted {
-            return answer(Status::NoDescent, lambda, size, iterations, counts);
-        }
+        Some(trial)
     }
 }
 
