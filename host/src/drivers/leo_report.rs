@@ -198,6 +198,17 @@ impl TourReport {
         self.total
     }
 
+    /// Each arc with what the truth model made of it: (arc, J2-only miss, full miss, the
+    /// re-plan's (miss, Δv)), as both reports list them.
+    #[allow(clippy::type_complexity)]
+    fn rows(&self) -> Vec<(&PlannedArc, &Option<f64>, &Option<f64>, &(f64, f64))> {
+        self.arcs
+            .iter()
+            .zip(&self.misses)
+            .map(|(a, m)| (a, &m.j2_only_m, &m.full_m, &m.after_replan))
+            .collect()
+    }
+
     /// The JSON object `reconfig solve --json` prints.
     pub fn to_json(&self) -> serde_json::Value {
         let f = &self.prepared.fixture;
@@ -212,12 +223,7 @@ impl TourReport {
                 "tolerance_m": TRUTH_ARRIVAL_TOL_M,
             })
         });
-        let rows: Vec<_> = self
-            .arcs
-            .iter()
-            .zip(&self.misses)
-            .map(|(a, m)| (a, &m.j2_only_m, &m.full_m, &m.after_replan))
-            .collect();
+        let rows = self.rows();
         let arcs_json: Vec<_> = rows
             .iter()
             .map(|(a, j2m, fm, after)| {
@@ -276,12 +282,7 @@ impl TourReport {
         let (truth, total, rounds) = (&self.truth, self.total, &self.rounds);
         let status = self.status;
         let prepared = &self.prepared;
-        let rows: Vec<_> = self
-            .arcs
-            .iter()
-            .zip(&self.misses)
-            .map(|(a, m)| (a, &m.j2_only_m, &m.full_m, &m.after_replan))
-            .collect();
+        let rows = self.rows();
         let order: Vec<String> = f.order.iter().map(|k| (k + 1).to_string()).collect();
         println!("{}: {status}, order {}", f.name, order.join(" -> "));
         if let Some(m) = &truth {
