@@ -661,8 +661,8 @@ fn prepared() -> &'static Prepared {
                     expected.push(l_expected(&f.name, p, st));
                     l_first.get_or_insert((f.name.clone(), *p));
                 }
-                // The LEO tour's order has no C interface.
-                Request::LeoSequence { .. } => {}
+                // The LEO tour's order has no C interface, nor yet the hybrid transfer.
+                Request::LeoSequence { .. } | Request::Hybrid { .. } => {}
             }
         }
         // The first arc once more with `min_gap_s = -1` (the C programs' last line): refused

@@ -38,6 +38,7 @@ enum Kind {
     GeoTour,
     LeoArc,
     LeoSequence,
+    Hybrid,
 }
 
 fn kind(request: &Request) -> Kind {
@@ -48,6 +49,7 @@ fn kind(request: &Request) -> Kind {
         Request::GeoTour { .. } => Kind::GeoTour,
         Request::LeoArc { .. } => Kind::LeoArc,
         Request::LeoSequence { .. } => Kind::LeoSequence,
+        Request::Hybrid { .. } => Kind::Hybrid,
     }
 }
 
@@ -105,6 +107,10 @@ fn cheapen(mut request: Request) -> Request {
         } => {
             settings.max_arcs = settings.max_arcs.min(120);
             cheapen_leo(arc_settings);
+        }
+        Request::Hybrid { settings, .. } => {
+            settings.max_iterations = settings.max_iterations.min(8);
+            settings.max_halvings = settings.max_halvings.min(6);
         }
     }
     request
@@ -323,6 +329,7 @@ fn set_budget(request: &mut Request, budget: u64) {
         Request::GeoTour { settings, .. } => settings.work_budget = budget,
         Request::LeoArc { settings, .. } => settings.work_budget = budget,
         Request::LeoSequence { arc_settings, .. } => arc_settings.work_budget = budget,
+        Request::Hybrid { settings, .. } => settings.work_budget = budget,
     }
 }
 
@@ -390,6 +397,8 @@ fn owned(o: &OutcomeRef<'_>) -> Outcome {
         OutcomeRef::LeoSequence(q) => Outcome::LeoSequence(*q),
         OutcomeRef::LeoSequenceRejected(e) => Outcome::LeoSequenceRejected(e),
         OutcomeRef::Unsupported(p) => Outcome::Unsupported(p),
+        OutcomeRef::Hybrid(s) => Outcome::Hybrid(*s),
+        OutcomeRef::HybridRejected(e) => Outcome::HybridRejected(e),
     }
 }
 
@@ -605,6 +614,12 @@ fn geo_tour_answers_are_finite() {
 fn leo_arc_answers_are_finite() {
     let tally = run(Kind::LeoArc, 100, 0x29_06_05, |_| true);
     assert_reached(Kind::LeoArc, &tally, &[Ending::Usable, Ending::Refused]);
+}
+
+#[test]
+fn hybrid_answers_are_finite() {
+    let tally = run(Kind::Hybrid, 120, 0x30_06_07, |_| true);
+    assert_reached(Kind::Hybrid, &tally, &ALL);
 }
 
 #[test]

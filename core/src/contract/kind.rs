@@ -17,6 +17,8 @@ pub enum PlannerKind {
     LeoArc = 3,
     /// The LEO tour's order.
     LeoSequence = 4,
+    /// The hybrid chemical + electric transfer to a libration-point orbit.
+    Hybrid = 5,
 }
 
 impl PlannerKind {
@@ -28,6 +30,7 @@ impl PlannerKind {
             Self::GeoTour => "geo-tour",
             Self::LeoArc => "leo-arc",
             Self::LeoSequence => "leo-sequence",
+            Self::Hybrid => "hybrid",
         }
     }
 }

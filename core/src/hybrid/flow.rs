@@ -32,7 +32,8 @@ fn arc_law(model: &Model, y: &Augmented) -> (Throttle, f64) {
 }
 
 /// The bang-bang flow, arc by arc; with `phi`, the state-transition matrix carried along and
-/// across the switches. Returns the end and the number of switches.
+/// across the switches; `on_switch` sees each switch (its time from the start, signed as the
+/// duration, and the state there). Returns the end and the number of switches.
 fn bang(
     model: &Model,
     y0: &Augmented,
@@ -40,6 +41,7 @@ fn bang(
     tol: &Tolerance,
     counts: &mut Counts,
     mut phi: Option<&mut Jacobian>,
+    on_switch: &mut dyn FnMut(f64, &Augmented),
 ) -> Result<(Augmented, u32), Stop> {
     let mut y = *y0;
     let mut left = duration_tu;
@@ -80,6 +82,7 @@ fn bang(
             return Ok((y, switches));
         }
         switches = switches.saturating_add(1);
+        on_switch(duration_tu - left, &y);
         if switches > MAX_SWITCHES {
             return Err(Stop::SwitchLimit {
                 time: duration_tu - left,
@@ -137,7 +140,7 @@ pub fn propagate(
     counts: &mut Counts,
 ) -> Result<Augmented, Stop> {
     if bang_bang(law) {
-        return bang(model, y0, duration_tu, tol, counts, None).map(|(y, _)| y);
+        return bang(model, y0, duration_tu, tol, counts, None, &mut |_, _| {}).map(|(y, _)| y);
     }
     let f = |y: &[f64; 14]| model.derivative(law, &Augmented::from_array(y)).to_array();
     let end = integrate(
@@ -149,6 +152,26 @@ pub fn propagate(
         counts,
     )?;
     Ok(Augmented::from_array(&end))
+}
+
+/// As [`propagate`], and `on_switch` sees every switch of the bang-bang law (its time from
+/// `y0`, signed as the duration, and the state there; never called for another law).
+///
+/// # Errors
+/// The integrator's [`Stop`].
+pub fn propagate_observed(
+    model: &Model,
+    law: Throttle,
+    y0: &Augmented,
+    duration_tu: f64,
+    tol: &Tolerance,
+    counts: &mut Counts,
+    on_switch: &mut dyn FnMut(f64, &Augmented),
+) -> Result<Augmented, Stop> {
+    if bang_bang(law) {
+        return bang(model, y0, duration_tu, tol, counts, None, on_switch).map(|(y, _)| y);
+    }
+    propagate(model, law, y0, duration_tu, tol, counts)
 }
 
 /// The flow from `y0` over `duration_tu` and its state-transition matrix `dy(t)/dy0`.
@@ -165,7 +188,15 @@ pub fn propagate_with_stm(
 ) -> Result<(Augmented, Jacobian), Stop> {
     if bang_bang(law) {
         let mut phi = Jacobian::identity();
-        let (end, _) = bang(model, y0, duration_tu, tol, counts, Some(&mut phi))?;
+        let (end, _) = bang(
+            model,
+            y0,
+            duration_tu,
+            tol,
+            counts,
+            Some(&mut phi),
+            &mut |_, _| {},
+        )?;
         return Ok((end, phi));
     }
     let mut start = [0.0; 210];
@@ -282,10 +313,27 @@ mod tests {
         let duration = 0.6;
         let mut counts = Counts::default();
         let mut phi = Jacobian::identity();
-        let (end, switches) =
-            bang(&model, &y0, duration, &TIGHT, &mut counts, Some(&mut phi)).unwrap();
+        let (end, switches) = bang(
+            &model,
+            &y0,
+            duration,
+            &TIGHT,
+            &mut counts,
+            Some(&mut phi),
+            &mut |_, _| {},
+        )
+        .unwrap();
         assert!(switches >= 1, "the engine switched on");
-        let (alone, _) = bang(&model, &y0, duration, &TIGHT, &mut counts, None).unwrap();
+        let (alone, _) = bang(
+            &model,
+            &y0,
+            duration,
+            &TIGHT,
+            &mut counts,
+            None,
+            &mut |_, _| {},
+        )
+        .unwrap();
         for (a, b) in end.to_array().iter().zip(alone.to_array()) {
             assert!((a - b).abs() < 1e-10 * (1.0 + b.abs()), "the same flow");
         }

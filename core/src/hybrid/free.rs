@@ -37,6 +37,9 @@ pub struct ImpulseTransfer {
     pub law: Throttle,
     /// Which parameters are free.
     pub free: Free,
+    /// Added to the state after the impulse, `[r (LU), v (LU/TU), m (MU)]`: a navigation
+    /// update of the departure (zero for the planned one). Its derivatives in κ and θ are 0.
+    pub offset: [f64; 7],
 }
 
 /// The unknowns: costates, κ, θ (a parameter not free stays as given).
@@ -69,7 +72,10 @@ type Vector9 = SVector<f64, 9>;
 
 impl ImpulseTransfer {
     fn initial(&self, p: &Point) -> Augmented {
-        let x = self.departure.state(p.kappa, p.theta_rad).state;
+        let mut x = self.departure.state(p.kappa, p.theta_rad).state;
+        for (xi, di) in x.iter_mut().zip(self.offset) {
+            *xi += di;
+        }
         let l = p.costates;
         Augmented {
             r_lu: [x[0], x[1], x[2]],
@@ -302,6 +308,7 @@ mod tests {
                     kappa: true,
                     theta: false,
                 },
+                offset: [0.0; 7],
             };
             // The envelope: d(1 − m_f)/dκ by fixed-κ solves at κ ± 1e-4.
             let h = 1e-4;

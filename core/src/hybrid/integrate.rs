@@ -2,7 +2,8 @@
 //! Wanner, *Solving ODEs I*, the coefficients of their DOP853, as SciPy's `DOP853` also uses
 //! them), with the step chosen for a mixed relative/absolute tolerance and bounded by a step
 //! count: fixed memory (13 stages of the state on the stack), no heap, and a documented worst
-//! case (`max_steps` accepted or rejected steps, 12 evaluations each).
+//! case (`max_steps` step trials, accepted, rejected or locating an event, 12 evaluations each;
+//! the count runs on over every integration that shares a [`Counts`]).
 
 // The coefficients as published, to 30 digits; the compiler rounds each to the nearest double.
 #![allow(clippy::excessive_precision)]
@@ -137,7 +138,8 @@ pub struct Tolerance {
     pub relative: f64,
     /// Absolute tolerance per component.
     pub absolute: f64,
-    /// Most steps (accepted and rejected) before the integration stops unfinished.
+    /// Most step trials (accepted, rejected and event-locating; [`Counts::step_trials`], over
+    /// every integration sharing the `Counts`) before an integration stops unfinished.
     pub max_steps: u32,
 }
 
@@ -175,6 +177,18 @@ pub struct Counts {
     pub rejected: u32,
     /// Evaluations of the derivative.
     pub evaluations: u32,
+    /// Trial steps that located an event (a switch of the bang-bang law).
+    pub event_trials: u32,
+}
+
+impl Counts {
+    /// Step trials of every kind: accepted, rejected and those that located events. The
+    /// integrations' work, which `Tolerance::max_steps` bounds.
+    pub fn step_trials(&self) -> u32 {
+        self.accepted
+            .saturating_add(self.rejected)
+            .saturating_add(self.event_trials)
+    }
 }
 
 /// `y + h Σ_j w_j k_j` over the stages given.
@@ -296,7 +310,7 @@ where
     counts.evaluations = counts.evaluations.saturating_add(1);
     let mut h = first_step.abs().min(end);
     while t < end {
-        if counts.accepted.saturating_add(counts.rejected) >= tol.max_steps {
+        if counts.step_trials() >= tol.max_steps {
             return Err(Stop::StepLimit {
                 time: t * direction,
             });
@@ -357,8 +371,14 @@ where
                 } else {
                     0.5 * (lo + hi)
                 };
+                if counts.step_trials() >= tol.max_steps {
+                    return Err(Stop::StepLimit {
+                        time: (t + lo) * direction,
+                    });
+                }
                 let (y_mid, _, _) = step(&mut f, &y, &fy, mid * direction, tol);
                 counts.evaluations = counts.evaluations.saturating_add(12);
+                counts.event_trials = counts.event_trials.saturating_add(1);
                 let g_mid = event(&y_mid);
                 if g_mid < 0.0 {
                     hi = mid;

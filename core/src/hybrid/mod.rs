@@ -18,10 +18,15 @@
 //! * [`free`]: shooting with κ and/or θ free by their transversality conditions;
 //! * [`min_time`]: minimum-time shooting (normalised multipliers, free t_f);
 //! * [`ladder`]: the ε homotopy from minimum energy to minimum fuel (bang-bang at ε = 0, its
-//!   switches located by [`flow`]).
+//!   switches located by [`flow`]);
+//! * [`trace`]: a plan flown again in pieces, its switches and the Hamiltonian's drift.
 //!
-//! Not yet a planner: θ free to convergence, the published cases beyond κ = 1.40, the request
-//! path, the CLI and the on-board re-convergence follow (issue 30 stays open).
+//! The planner (`Hybrid`, [`solve`]; the one request path's `Request::Hybrid`): the request's
+//! shooting from the ground's design (`objective_shooting`), a walk from that design to the
+//! request where the shooting alone does not converge (`walk`), the plan flown once more to
+//! check it, and a status that says what was shown (docs/hybrid.md). Not yet: θ free to
+//! convergence, the published cases below κ = 1.40, the C interface and the M7 image (issue 30
+//! stays open).
 
 pub mod departure;
 pub mod dynamics;
@@ -32,7 +37,21 @@ pub mod jacobian;
 pub mod ladder;
 pub mod min_time;
 mod newton;
+mod objective_shooting;
+mod planner;
+#[cfg(test)]
+mod planner_tests;
+mod problem;
 pub mod shooting;
+mod solution;
+pub mod trace;
 pub mod units;
+mod walk;
 
 pub use dynamics::{Augmented, Model, Throttle};
+pub use planner::{fly_plan, solve, Hybrid, Workspace};
+pub use problem::{Field, Objective, PlanError, Problem, MAX_COSTATE};
+pub use solution::{
+    FlownPlan, SettingId, Settings, Solution, SolveInfo, SolveStatus, Stopped, Walked,
+    DEFAULT_WORK_BUDGET,
+};

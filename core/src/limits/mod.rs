@@ -49,6 +49,7 @@ macro_rules! planner_limits {
 }
 
 pub mod geo_tour;
+pub mod hybrid;
 pub mod impulsive;
 mod impulsive_forms;
 pub mod leo_tour;
@@ -74,6 +75,8 @@ pub enum Setting {
     LeoArc(crate::leo_tour::SettingId),
     /// A LEO-sequencing setting.
     LeoSequence(crate::leo_tour::sequence::SettingId),
+    /// A hybrid-transfer setting.
+    Hybrid(crate::hybrid::SettingId),
     /// A problem quantity the limits bound.
     Problem(ProblemLimit),
 }
@@ -87,6 +90,7 @@ impl Setting {
             Self::GeoTour(id) => id.name(),
             Self::LeoArc(id) => id.name(),
             Self::LeoSequence(id) => id.name(),
+            Self::Hybrid(id) => id.name(),
             Self::Problem(p) => p.name(),
         }
     }
@@ -99,6 +103,7 @@ impl Setting {
             Self::GeoTour(_) => PlannerKind::GeoTour,
             Self::LeoArc(_) => PlannerKind::LeoArc,
             Self::LeoSequence(_) => PlannerKind::LeoSequence,
+            Self::Hybrid(_) => PlannerKind::Hybrid,
             Self::Problem(p) => p.planner(),
         }
     }
@@ -113,6 +118,7 @@ impl Setting {
             Self::GeoTour(id) => id as u8,
             Self::LeoArc(id) => id as u8,
             Self::LeoSequence(id) => id as u8,
+            Self::Hybrid(id) => id as u8,
             Self::Problem(p) => ProblemLimit::CODE_BASE.saturating_add(p as u8),
         }
     }
@@ -215,6 +221,7 @@ setting_of_planner!(
     GeoTour(crate::geo_tour::SettingId),
     LeoArc(crate::leo_tour::SettingId),
     LeoSequence(crate::leo_tour::sequence::SettingId),
+    Hybrid(crate::hybrid::SettingId),
 );
 
 planner_limits! {
@@ -230,6 +237,8 @@ planner_limits! {
         geo_tour: geo_tour::Limits = geo_tour::Limits::BUILT_IN,
         /// The LEO tour's arcs and sequencing.
         leo_tour: leo_tour::Limits = leo_tour::Limits::BUILT_IN,
+        /// The hybrid transfer.
+        hybrid: hybrid::Limits = hybrid::Limits::BUILT_IN,
     }
 }
 
@@ -256,6 +265,7 @@ impl Limits {
             Request::ImpulsiveForm { problem, settings } => {
                 self.impulsive.check_form(problem, settings)
             }
+            Request::Hybrid { problem, settings } => self.hybrid.check(problem, settings),
         }
     }
 }

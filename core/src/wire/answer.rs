@@ -14,7 +14,7 @@ use crate::contract::PlannerKind;
 use crate::leo_tour::sequence::Sequence;
 use crate::leo_tour::tour_order::{LeoSequence, SequencePlanSettings, SequenceWorkspace};
 use crate::limits::Limits;
-use crate::{geo_tour, impulsive, leo_tour, pseudospectral};
+use crate::{geo_tour, hybrid, impulsive, leo_tour, pseudospectral};
 
 /// A planner's workspace and the solution it writes.
 #[derive(Debug)]
@@ -60,6 +60,10 @@ pub trait Buffers {
     fn leo_sequence(&mut self) -> Lent<'_, SequenceWorkspace, Sequence> {
         None
     }
+    /// The hybrid transfer's.
+    fn hybrid(&mut self) -> Lent<'_, hybrid::Workspace, hybrid::Solution> {
+        None
+    }
 }
 
 /// Every planner's buffers (the flight service's workers and `reconfig solve` carry them all).
@@ -76,6 +80,8 @@ pub struct AllPlanners {
     pub leo_arc: Slot<leo_tour::Workspace, leo_tour::ArcSolution>,
     /// The LEO sequencing.
     pub leo_sequence: Slot<SequenceWorkspace, Sequence>,
+    /// The hybrid transfer.
+    pub hybrid: Slot<hybrid::Workspace, hybrid::Solution>,
 }
 
 impl AllPlanners {
@@ -102,6 +108,10 @@ impl AllPlanners {
                 workspace: SequenceWorkspace::new(),
                 solution: Sequence::new(),
             },
+            hybrid: Slot {
+                workspace: hybrid::Workspace::new(),
+                solution: hybrid::Solution::new(),
+            },
         }
     }
 }
@@ -127,6 +137,9 @@ impl Buffers for AllPlanners {
     }
     fn leo_sequence(&mut self) -> Lent<'_, SequenceWorkspace, Sequence> {
         self.leo_sequence.lend()
+    }
+    fn hybrid(&mut self) -> Lent<'_, hybrid::Workspace, hybrid::Solution> {
+        self.hybrid.lend()
     }
 }
 
@@ -190,6 +203,11 @@ pub fn answer<'a, B: Buffers + ?Sized>(
             ),
             buffers.leo_sequence(),
             (OutcomeRef::LeoSequence, OutcomeRef::LeoSequenceRejected),
+        ),
+        Request::Hybrid { problem, settings } => run::<hybrid::Hybrid>(
+            (problem, settings),
+            buffers.hybrid(),
+            (OutcomeRef::Hybrid, OutcomeRef::HybridRejected),
         ),
     }
 }

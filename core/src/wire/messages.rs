@@ -2,7 +2,7 @@
 
 use super::FrameError;
 use crate::contract::PlannerKind;
-use crate::{geo_tour, impulsive, leo_tour, pseudospectral};
+use crate::{geo_tour, hybrid, impulsive, leo_tour, pseudospectral};
 use serde::{Deserialize, Serialize};
 
 /// A planning request for either planner.
@@ -56,6 +56,14 @@ pub enum Request {
         /// The per-arc search's settings for the arc estimates.
         arc_settings: leo_tour::Settings,
     },
+    /// The hybrid chemical + electric transfer to a libration-point orbit: its shooting
+    /// re-converged from the request's costates.
+    Hybrid {
+        /// The transfer and the costates to start from.
+        problem: hybrid::Problem,
+        /// Loop bounds, tolerances and the work budget.
+        settings: hybrid::Settings,
+    },
 }
 
 impl Request {
@@ -67,6 +75,7 @@ impl Request {
             Self::GeoTour { .. } => PlannerKind::GeoTour,
             Self::LeoArc { .. } => PlannerKind::LeoArc,
             Self::LeoSequence { .. } => PlannerKind::LeoSequence,
+            Self::Hybrid { .. } => PlannerKind::Hybrid,
         }
     }
 }
@@ -115,6 +124,10 @@ pub enum Outcome {
     /// The front end that answered does not carry the request's planner (a one-planner flight
     /// image); nothing was solved.
     Unsupported(PlannerKind),
+    /// The hybrid transfer planned; the solution's `info.status` says how it ended.
+    Hybrid(hybrid::Solution),
+    /// The hybrid planner rejected the request.
+    HybridRejected(hybrid::PlanError),
 }
 
 /// How long an expired request waited and the deadline it had, in microseconds.
@@ -164,6 +177,10 @@ pub enum OutcomeRef<'a> {
     LeoSequenceRejected(leo_tour::sequence::SequenceError),
     /// See [`Outcome::Unsupported`].
     Unsupported(PlannerKind),
+    /// See [`Outcome::Hybrid`].
+    Hybrid(&'a hybrid::Solution),
+    /// See [`Outcome::HybridRejected`].
+    HybridRejected(hybrid::PlanError),
 }
 
 /// A planner's refusal of a request before planning (its `PlanError`), as a report shows it.
@@ -184,6 +201,7 @@ impl OutcomeRef<'_> {
             Self::GeoTour(s) => Some(s.info.status.is_usable()),
             Self::LeoArc(s) => Some(s.info.status.is_usable()),
             Self::LeoSequence(q) => Some(q.info.status.is_usable()),
+            Self::Hybrid(s) => Some(s.info.status.is_usable()),
             _ => None,
         }
     }
@@ -196,6 +214,7 @@ impl OutcomeRef<'_> {
             Self::GeoTourRejected(e) => Some(e),
             Self::LeoArcRejected(e) => Some(e),
             Self::LeoSequenceRejected(e) => Some(e),
+            Self::HybridRejected(e) => Some(e),
             _ => None,
         }
     }
@@ -208,6 +227,7 @@ impl OutcomeRef<'_> {
             Self::Impulsive(s) | Self::ImpulsiveForm { solution: s, .. } => Some(s.info.work_units),
             Self::LeoArc(s) => Some(s.info.work_units),
             Self::GeoTour(s) => Some(s.info.work_units),
+            Self::Hybrid(s) => Some(s.info.work_units),
             _ => None,
         }
     }
@@ -238,6 +258,8 @@ impl Outcome {
             Self::LeoSequence(q) => OutcomeRef::LeoSequence(q),
             Self::LeoSequenceRejected(e) => OutcomeRef::LeoSequenceRejected(*e),
             Self::Unsupported(p) => OutcomeRef::Unsupported(*p),
+            Self::Hybrid(s) => OutcomeRef::Hybrid(s),
+            Self::HybridRejected(e) => OutcomeRef::HybridRejected(*e),
         }
     }
 }

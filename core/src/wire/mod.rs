@@ -61,7 +61,9 @@ pub use messages::{Expiry, Outcome, OutcomeRef, Rejection, Request};
 ///    `contract::PlannerKind` (same codes).
 /// 9: the LEO sequencing's settings gained `full_plans` (orders ranked by each arc's full plan,
 ///    a ground design the built-in limits keep off; issue 31).
-pub const PROTOCOL_VERSION: u16 = 9;
+/// 10: the hybrid transfer joins (`Request::Hybrid`, `Outcome::Hybrid`, `Outcome::HybridRejected`,
+///    `PlannerKind::Hybrid` = 5, `limits::Setting::Hybrid`; issue 30).
+pub const PROTOCOL_VERSION: u16 = 10;
 /// First two bytes of a request frame.
 pub const REQUEST_MAGIC: [u8; 2] = *b"RQ";
 /// First two bytes of a response frame.
