@@ -13,6 +13,7 @@ pub mod harness;
 pub mod limits;
 pub mod plot;
 pub mod plot_geo;
+pub mod plot_hybrid;
 pub mod plot_leo;
 pub mod scenario;
 pub mod table_record;

@@ -45,6 +45,9 @@ enum Command {
     Sweep(reconfig_host::cli::sweep::Args),
     /// Planner-B fixtures: fly the plan in the high-fidelity truth model and report the miss.
     Truth(reconfig_host::cli::truth::Args),
+    /// The hybrid transfer's on-board re-convergence over families of perturbations of a
+    /// ground design (navigation updates, times of flight, derated engines).
+    Reconverge(reconfig_host::cli::reconverge::Args),
 }
 
 /// A report command whose reader stops early (`reconfig solve … | head`) ends quietly, as Unix
@@ -69,6 +72,7 @@ fn main() -> ExitCode {
             | Command::Plot(_)
             | Command::Sweep(_)
             | Command::Truth(_)
+            | Command::Reconverge(_)
     ) {
         end_quietly_on_a_closed_pipe();
     }
@@ -87,6 +91,7 @@ fn main() -> ExitCode {
         Command::Placement(args) => reconfig_host::cli::placement::run(&args),
         Command::Sweep(args) => reconfig_host::cli::sweep::run(&args),
         Command::Truth(args) => reconfig_host::cli::truth::run(&args),
+        Command::Reconverge(args) => reconfig_host::cli::reconverge::run(&args),
     };
     match result {
         Ok(code) => code,

@@ -314,7 +314,8 @@ pub fn progress_bar(cases: u64, shown: bool) -> ProgressBar {
     bar
 }
 
-/// The plan's objective: planner A's J, the others' total Δv (m/s).
+/// The plan's objective: planner A's J, the hybrid transfer's propellant fraction `1 − m_f`
+/// (minimum time: t_f in days), the others' total Δv (m/s).
 fn cost(outcome: &OutcomeRef) -> Option<f64> {
     match outcome {
         OutcomeRef::Pseudospectral(s) => Some(s.cost),
@@ -324,6 +325,12 @@ fn cost(outcome: &OutcomeRef) -> Option<f64> {
         OutcomeRef::GeoTour(s) => Some(s.total_dv_mps),
         OutcomeRef::LeoArc(s) => Some(s.total_dv_mps),
         OutcomeRef::LeoSequence(q) => q.total_dv_mps,
+        OutcomeRef::Hybrid(s) => match s.objective {
+            reconfig_core::hybrid::Objective::MinTime => {
+                Some(reconfig_core::hybrid::units::days(s.duration_tu))
+            }
+            _ => s.flown.map(|f| 1.0 - f.final_mass),
+        },
         _ => None,
     }
 }

@@ -9,6 +9,7 @@ pub mod feed;
 pub mod montecarlo;
 pub mod placement;
 pub mod plot;
+pub mod reconverge;
 pub mod serve;
 pub mod solve;
 pub mod sweep;

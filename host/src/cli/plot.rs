@@ -38,6 +38,15 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         return Ok(ExitCode::SUCCESS);
     }
     match fixture::load(&args.file)? {
+        Fixture::Hybrid(f) => {
+            let s = crate::plot_hybrid::transfer_svg(&f, &args.output)?;
+            println!(
+                "{}: {:?}, {} thrust arcs",
+                f.name,
+                s.info.status,
+                s.flown.map_or(0, |p| p.thrust_arcs)
+            );
+        }
         Fixture::GeoTour(f) => {
             if args.pareto {
                 let days: Vec<f64> = (10..=60).map(|k| f64::from(k) * 2.0).collect();

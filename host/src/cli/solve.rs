@@ -5,7 +5,7 @@
 //! (`crate::drivers`).
 
 use crate::drivers::answer::{answer, buffers, report_other};
-use crate::drivers::{geo_tour, impulsive, leo_report, pseudospectral};
+use crate::drivers::{geo_tour, hybrid, impulsive, leo_report, pseudospectral};
 use crate::fixture::{self, Fixture};
 use crate::limits::LimitsArg;
 use anyhow::{bail, Result};
@@ -36,6 +36,70 @@ pub struct Args {
     /// GEO tour: override the fixture's mission time, days (refused for other planners).
     #[arg(long)]
     pub mission_days: Option<f64>,
+    #[command(flatten)]
+    pub hybrid: HybridOverrides,
+}
+
+/// The hybrid transfer's overrides of its fixture (refused for other planners): one fixture
+/// gives any case. The shooting still starts from the fixture's costates: far from their
+/// design it may not converge, and says so.
+#[derive(clap::Args, Debug, Default)]
+pub struct HybridOverrides {
+    /// Hybrid: the objective, `min-fuel`, `min-energy` or `min-time`.
+    #[arg(long)]
+    pub objective: Option<String>,
+    /// Hybrid: the impulse ratio κ (its start value when free).
+    #[arg(long)]
+    pub kappa: Option<f64>,
+    /// Hybrid: the impulse's phase θ, rad (its start value when free).
+    #[arg(long)]
+    pub theta_rad: Option<f64>,
+    /// Hybrid: the time of flight, days (minimum time: its first guess).
+    #[arg(long)]
+    pub tf_days: Option<f64>,
+    /// Hybrid: the free impulse parameters, comma-separated (`kappa`, `theta`, `kappa,theta`;
+    /// `none` frees neither).
+    #[arg(long)]
+    pub free: Option<String>,
+}
+
+impl HybridOverrides {
+    fn any(&self) -> bool {
+        self.objective.is_some()
+            || self.kappa.is_some()
+            || self.theta_rad.is_some()
+            || self.tf_days.is_some()
+            || self.free.is_some()
+    }
+
+    /// Apply the overrides to a hybrid fixture.
+    ///
+    /// # Errors
+    /// An unknown objective or free parameter.
+    pub fn apply(&self, f: &mut fixture::hybrid::HybridFixture) -> Result<()> {
+        let p = &mut f.problem;
+        if let Some(o) = &self.objective {
+            p.objective = fixture::hybrid::objective(o)?;
+        }
+        if let Some(k) = self.kappa {
+            p.kappa = k;
+        }
+        if let Some(t) = self.theta_rad {
+            p.theta_rad = t;
+        }
+        if let Some(d) = self.tf_days {
+            p.duration_days = d;
+        }
+        if let Some(free) = &self.free {
+            let names: Vec<String> = free
+                .split(',')
+                .map(|n| n.trim().to_owned())
+                .filter(|n| n != "none")
+                .collect();
+            (p.free_kappa, p.free_theta) = fixture::hybrid::free(&names)?;
+        }
+        Ok(())
+    }
 }
 
 /// Run `reconfig solve`. Exit codes [`EXIT_USABLE`], [`EXIT_NOT_USABLE`], [`EXIT_REJECTED`]
@@ -54,6 +118,17 @@ pub fn run(args: &Args) -> Result<ExitCode> {
             );
         };
         f.problem.mission_time_s = days * fixture::geo_tour::DAY_S;
+    }
+    if args.hybrid.any() {
+        let Fixture::Hybrid(f) = &mut fixture else {
+            bail!(
+                "--objective, --kappa, --theta-rad, --tf-days and --free apply to hybrid \
+                 fixtures; {} is a {} fixture",
+                fixture.name(),
+                fixture.planner()
+            );
+        };
+        args.hybrid.apply(f)?;
     }
     // A LEO tour stands for several requests, answered in turn by its driver.
     if let Fixture::LeoTour(f) = &fixture {
@@ -74,6 +149,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         Fixture::Pseudospectral(f) => pseudospectral::report(f, &answered, args.json),
         Fixture::Impulsive(f) => impulsive::report(f, &answered, args.json),
         Fixture::GeoTour(f) => geo_tour::report(f, &answered, args.json),
+        Fixture::Hybrid(f) => hybrid::report(f, &answered, args.json),
         _ => report_other(fixture.name(), &answered, args.json),
     }
 }

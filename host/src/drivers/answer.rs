@@ -56,6 +56,7 @@ pub fn status_text(outcome: &OutcomeRef) -> Option<String> {
         OutcomeRef::GeoTour(s) => Some(format!("{:?}", s.info.status)),
         OutcomeRef::LeoArc(s) => Some(format!("{:?}", s.info.status)),
         OutcomeRef::LeoSequence(q) => Some(format!("{:?}", q.info.status)),
+        OutcomeRef::Hybrid(s) => Some(format!("{:?}", s.info.status)),
         _ => None,
     }
 }

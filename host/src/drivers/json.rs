@@ -4,7 +4,7 @@
 //! without a report of its own. The same functions build what `reconfig solve --json` prints.
 
 use super::answer::{other_json, Answered};
-use super::{geo_tour, impulsive, pseudospectral};
+use super::{geo_tour, hybrid, impulsive, pseudospectral};
 use crate::fixture::Fixture;
 use anyhow::Result;
 use reconfig_core::wire::OutcomeRef;
@@ -30,6 +30,9 @@ pub fn of(fixture: &Fixture, answered: &Answered) -> Result<Value> {
             s,
             answered.time_s,
         )),
+        (Fixture::Hybrid(f), OutcomeRef::Hybrid(s)) => {
+            Ok(hybrid::answered_json(f, s, answered.time_s))
+        }
         _ => other_json(fixture.name(), answered),
     }
 }

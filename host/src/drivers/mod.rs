@@ -6,7 +6,7 @@
 //!
 //! * [`answer`]: a request answered and timed, the exit codes, the shared reports of a
 //!   refusal, a rejection and an answer without a report of its own;
-//! * [`pseudospectral`], [`impulsive`], [`geo_tour`]: one planner's report;
+//! * [`pseudospectral`], [`impulsive`], [`geo_tour`], [`hybrid`]: one planner's report;
 //! * [`json`]: the JSON object of an answered fixture of one request, as a value;
 //! * [`leo_tour`]: the LEO tour's requests answered in turn (the order, the schedule, the arcs);
 //! * [`leo_truth`]: the LEO tour's plans flown in the truth model and re-planned there;
@@ -16,6 +16,7 @@
 
 pub mod answer;
 pub mod geo_tour;
+pub mod hybrid;
 pub mod impulsive;
 pub mod json;
 pub mod leo_report;
