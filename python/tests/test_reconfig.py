@@ -45,6 +45,17 @@ def test_solve_is_the_cli_answer_to_the_bit(stem, cost_key):
     assert r.work_units > 0
 
 
+def test_a_hybrid_transfer_is_the_cli_answer_with_its_trajectory():
+    path = FIXTURES / "hybrid-min-fuel-k140-4p38d.toml"
+    r = reconfig.solve(reconfig.load_fixture(path))
+    j = json.loads(cli("solve", path, "--json"))
+    assert r.status == j["status"] == "Solved"
+    # The campaign's cost of a hybrid transfer is the propellant fraction 1 - m_f.
+    assert r.cost == 1.0 - j["final_mass"]
+    assert abs(j["final_mass"] - 0.3365) < 1e-4
+    assert len(j["trajectory"]) == 401
+
+
 def test_campaign_is_the_cli_table_whatever_the_threads():
     path = FIXTURES / "wang2018-gco-to-pco-2imp-roe.toml"
     f = reconfig.load_fixture(path)
