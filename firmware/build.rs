@@ -51,6 +51,7 @@ fn main() {
     let (with_a, with_b) = (has("PSEUDOSPECTRAL"), has("IMPULSIVE"));
     let with_geo = has("GEO_TOUR");
     let with_leo = has("LEO_TOUR");
+    let with_hybrid = has("HYBRID");
     // The GEO and LEO images also run their planners' worst-case requests
     // (fixtures/worst-case/), unless another folder was asked for (docs/geo-tour.md and
     // docs/leo-tour.md, "Work budget").
@@ -81,6 +82,7 @@ fn main() {
             PlannerKind::Impulsive => with_b,
             PlannerKind::GeoTour => with_geo,
             PlannerKind::LeoArc | PlannerKind::LeoSequence => with_leo,
+            PlannerKind::Hybrid => with_hybrid,
             // A planner no image carries yet.
             #[allow(unreachable_patterns)]
             _ => false,

@@ -138,3 +138,61 @@ fn the_leo_image_table_is_the_record() {
     let table = reconfig_tests::readme_figures::leo_image_table(&record).expect("render");
     reconfig_tests::doc_blocks::hold(DOCS_FILE, "m7-leo-image", "m7_docs", &table).unwrap();
 }
+
+/// docs/hybrid.md's M7 table, from `fixtures/golden/m7-figures-hybrid.toml`: per fixture the
+/// instructions, the time at 400 MHz, the work units and instructions per unit, the stack.
+fn hybrid_image_table(record: &str) -> Result<String, String> {
+    let file: toml::Table = record.parse().map_err(|e| format!("{e}"))?;
+    let number = |t: &toml::Table, key: &str| -> Result<f64, String> {
+        t.get(key)
+            .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
+            .ok_or_else(|| format!("{key} missing"))
+    };
+    let mut out = String::from(
+        "| fixture | instructions | at 400 MHz | work units | instructions per unit | stack |\n\
+         | --- | ---: | ---: | ---: | ---: | ---: |\n",
+    );
+    let fixtures = file
+        .get("hybrid_fixture")
+        .and_then(|v| v.as_array())
+        .ok_or("no [[hybrid_fixture]]")?;
+    for f in fixtures {
+        let t = f.as_table().ok_or("not a table")?;
+        let name = t.get("name").and_then(|v| v.as_str()).ok_or("no name")?;
+        let instructions = number(t, "instructions")?;
+        out.push_str(&format!(
+            "| `{name}` | {:.3} G | {:.2} s | {:.0} | {:.0} | {:.1} KB |\n",
+            instructions / 1e9,
+            instructions / 400e6,
+            number(t, "work_units")?,
+            number(t, "instructions_per_work_unit")?,
+            number(t, "stack_bytes")? / 1000.0
+        ));
+    }
+    let image = file
+        .get("hybrid_image")
+        .and_then(|v| v.as_table())
+        .ok_or("no [hybrid_image]")?;
+    let binary = file
+        .get("hybrid_binary")
+        .and_then(|v| v.as_table())
+        .ok_or("no [hybrid_binary]")?;
+    out.push_str(&format!(
+        "\nThe image: {:.0} B of static RAM, {:.0} B of RAM with its largest stack, {:.1} KB of \
+         text.\n",
+        number(binary, "static_ram_bytes")?,
+        number(image, "ram_bytes")?,
+        number(binary, "text_bytes")? / 1000.0
+    ));
+    Ok(out)
+}
+
+#[test]
+fn the_hybrid_image_table_is_the_record() {
+    let record =
+        std::fs::read_to_string(m7_record::root().join("fixtures/golden/m7-figures-hybrid.toml"))
+            .expect("hybrid record");
+    let table = hybrid_image_table(&record).expect("render");
+    reconfig_tests::doc_blocks::hold("docs/hybrid.md", "m7-hybrid-image", "m7_docs", &table)
+        .unwrap();
+}

@@ -10,6 +10,7 @@
 //! planners pseudospectral_workspace_bytes=.. pseudospectral_solution_bytes=.. impulsive_workspace_bytes=.. impulsive_solution_bytes=..
 //! planners geo_tour_workspace_bytes=.. geo_tour_solution_bytes=..   (GEO image only)
 //! planners leo_workspace_bytes=.. leo_sequence_workspace_bytes=.. leo_arc_solution_bytes=.. leo_sequence_bytes=..   (LEO image only)
+//! planners hybrid_workspace_bytes=.. hybrid_solution_bytes=..   (hybrid image only)
 //! fixture index=0 name=.. planner=pseudospectral outcome=ok|error stack_bytes=.. systick_instructions=.. work_units=.. (work_units when the planner meters its work)
 //! result index=0 hex=..
 //! kernel index=0 name=.. units=.. stack_bytes=.. systick_instructions=..   (GEO image only, after the fixtures)
@@ -47,6 +48,8 @@ use measure::{measured, repaint_stack, systick};
 use output::{print_result, report, Out};
 #[cfg(feature = "geo_tour")]
 use reconfig_core::geo_tour;
+#[cfg(feature = "hybrid")]
+use reconfig_core::hybrid;
 #[cfg(feature = "leo_tour")]
 use reconfig_core::leo_tour;
 use reconfig_core::limits::Limits;
@@ -95,6 +98,12 @@ struct Image {
         &'static mut leo_tour::ArcSolution,
         &'static mut leo_tour::sequence::Sequence,
     ),
+    /// The hybrid transfer's (its workspace is empty: the integrator's stages are on the stack).
+    #[cfg(feature = "hybrid")]
+    hybrid: (
+        &'static mut hybrid::Workspace,
+        &'static mut hybrid::Solution,
+    ),
 }
 
 impl Buffers for Image {
@@ -127,6 +136,10 @@ impl Buffers for Image {
         &mut leo_tour::sequence::Sequence,
     )> {
         Some((&mut *self.leo.0, &mut *self.leo.2))
+    }
+    #[cfg(feature = "hybrid")]
+    fn hybrid(&mut self) -> Option<(&mut hybrid::Workspace, &mut hybrid::Solution)> {
+        Some((&mut *self.hybrid.0, &mut *self.hybrid.1))
     }
 }
 
@@ -175,6 +188,10 @@ fn main() -> ! {
     static mut LEO_ARC: leo_tour::ArcSolution = leo_tour::ArcSolution::new();
     #[cfg(feature = "leo_tour")]
     static mut LEO_SEQUENCE: leo_tour::sequence::Sequence = leo_tour::sequence::Sequence::new();
+    #[cfg(feature = "hybrid")]
+    static mut HY_WORKSPACE: hybrid::Workspace = hybrid::Workspace::new();
+    #[cfg(feature = "hybrid")]
+    static mut HY_SOLUTION: hybrid::Solution = hybrid::Solution::new();
 
     let mut image = Image {
         #[cfg(feature = "pseudospectral")]
@@ -185,6 +202,8 @@ fn main() -> ! {
         geo_tour: (GEO_WORKSPACE, GEO_SOLUTION),
         #[cfg(feature = "leo_tour")]
         leo: (LEO_WORKSPACE, LEO_ARC, LEO_SEQUENCE),
+        #[cfg(feature = "hybrid")]
+        hybrid: (HY_WORKSPACE, HY_SOLUTION),
     };
 
     let mut out = Out::new();
@@ -235,6 +254,14 @@ fn main() -> ! {
         core::mem::size_of::<leo_tour::tour_order::SequenceWorkspace>(),
         core::mem::size_of::<leo_tour::ArcSolution>(),
         core::mem::size_of::<leo_tour::sequence::Sequence>(),
+    );
+
+    #[cfg(feature = "hybrid")]
+    let _ = writeln!(
+        out,
+        "planners hybrid_workspace_bytes={} hybrid_solution_bytes={}",
+        core::mem::size_of::<hybrid::Workspace>(),
+        core::mem::size_of::<hybrid::Solution>(),
     );
 
     systick::start();

@@ -44,6 +44,11 @@ pub fn leo_image_fixtures() -> Vec<EncodedRequest> {
     image_fixtures(&[PlannerKind::LeoArc, PlannerKind::LeoSequence])
 }
 
+/// The hybrid image's requests: the hybrid fixtures.
+pub fn hybrid_image_fixtures() -> Vec<EncodedRequest> {
+    image_fixtures(&[PlannerKind::Hybrid])
+}
+
 pub fn hex(bytes: &[u8]) -> String {
     bytes.iter().fold(String::new(), |mut s, b| {
         let _ = write!(s, "{b:02x}");

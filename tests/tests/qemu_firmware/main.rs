@@ -23,8 +23,9 @@
 //! Modules: [`prerequisites`] (what the run needs, skip or fail), [`image`] (build, run and parse
 //! an image), [`host`] (the host's answer to a baked request), [`record`] (the figures file, drift
 //! and budget checks), [`disassembly`] (the fused multiply-add check), [`default_image`],
-//! [`geo_image`] and [`leo_image`] (the tests of each image; the LEO arc image's record is its
-//! own file, `fixtures/golden/m7-figures-leo.toml`), and [`kernels_a_image`] /
+//! [`geo_image`], [`leo_image`] and [`hybrid_image`] (the tests of each image; the LEO arc
+//! image's and the hybrid image's records are their own files,
+//! `fixtures/golden/m7-figures-leo.toml` and `m7-figures-hybrid.toml`), and [`kernels_a_image`] /
 //! [`kernels_b_image`] / [`kernels_leo_image`] (planners A's and B's and the LEO arc's charged
 //! steps one at a time, checked by [`kernels_image`]: fails when one costs more than the
 //! planner's `MAX_INSTRUCTIONS_PER_UNIT` M7 instructions per unit it is charged).
@@ -38,6 +39,7 @@ mod default_image;
 mod disassembly;
 mod geo_image;
 mod host;
+mod hybrid_image;
 mod image;
 mod kernels_a_image;
 mod kernels_b_image;
