@@ -48,6 +48,9 @@ enum Command {
     /// The hybrid transfer's on-board re-convergence over families of perturbations of a
     /// ground design (navigation updates, times of flight, derated engines).
     Reconverge(reconfig_host::cli::reconverge::Args),
+    /// The hybrid transfer's continuation from a fixture's design: walk t_f or kappa, print
+    /// each point and draw the (t_f, m_f) curve.
+    Pareto(reconfig_host::cli::pareto::Args),
 }
 
 /// A report command whose reader stops early (`reconfig solve … | head`) ends quietly, as Unix
@@ -73,6 +76,7 @@ fn main() -> ExitCode {
             | Command::Sweep(_)
             | Command::Truth(_)
             | Command::Reconverge(_)
+            | Command::Pareto(_)
     ) {
         end_quietly_on_a_closed_pipe();
     }
@@ -92,6 +96,7 @@ fn main() -> ExitCode {
         Command::Sweep(args) => reconfig_host::cli::sweep::run(&args),
         Command::Truth(args) => reconfig_host::cli::truth::run(&args),
         Command::Reconverge(args) => reconfig_host::cli::reconverge::run(&args),
+        Command::Pareto(args) => reconfig_host::cli::pareto::run(&args),
     };
     match result {
         Ok(code) => code,

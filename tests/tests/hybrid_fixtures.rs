@@ -199,3 +199,46 @@ fn the_docs_table_quotes_the_answers() {
         }
     }
 }
+
+/// The continuation on the ground (`reconfig pareto`): walking t_f down from the 4.38 d design
+/// every point converges, the final mass falls with t_f, and the walk stops just below Table
+/// 2's minimum time (3.3692 d), where no minimum-fuel transfer exists; walking κ down at
+/// minimum time stops where the family ends (issue 30: near κ ≈ 1.38).
+#[test]
+fn the_continuation_reaches_the_minimum_time_and_stops_there() {
+    use reconfig_host::cli::pareto::{walk, Walk};
+    let load = |stem: &str| {
+        reconfig_host::fixture::hybrid::load(
+            &reconfig_tests::fixtures_dir().join(format!("{stem}.toml")),
+        )
+        .expect("fixture")
+    };
+    let down = walk(&load("hybrid-min-fuel-k140-4p38d"), Walk::Tf, 3.3, 0.05).expect("walk");
+    let stop = down.stop.expect("stops before 3.3 d");
+    let (converged, last) = down.points.split_at(down.points.len() - 1);
+    assert!(!last[0].solution.info.status.is_usable(), "{stop}");
+    assert!(last[0].value < 3.3692, "{stop}");
+    let masses: Vec<f64> = converged
+        .iter()
+        .map(|p| p.solution.flown.expect("flown").final_mass)
+        .collect();
+    assert!(masses.windows(2).all(|w| w[1] < w[0]), "{masses:?}");
+    let shortest = converged.last().expect("points").value;
+    assert!((3.3692..3.45).contains(&shortest), "{shortest}");
+    let kappa = walk(&load("hybrid-min-time-k140"), Walk::Kappa, 1.30, 0.0025).expect("walk");
+    assert!(kappa.stop.is_some());
+    let reached = kappa
+        .points
+        .iter()
+        .filter(|p| p.solution.info.status.is_usable())
+        .map(|p| p.value)
+        .fold(f64::INFINITY, f64::min);
+    assert!((1.375..1.39).contains(&reached), "{reached}");
+    // Table 2's trade on the way: κ = 1.395 flies 3.47636 d (docs/hybrid.md).
+    let at = kappa
+        .points
+        .iter()
+        .find(|p| (p.value - 1.395).abs() < 1e-9)
+        .expect("1.395");
+    assert!((days(at.solution.duration_tu) - 3.47636).abs() < 1e-5);
+}

@@ -7,6 +7,7 @@ pub mod demo;
 pub mod fairness;
 pub mod feed;
 pub mod montecarlo;
+pub mod pareto;
 pub mod placement;
 pub mod plot;
 pub mod reconverge;
