@@ -202,7 +202,7 @@ impl System<9> for ImpulseFree<'_> {
         } else {
             jac.fixed_view_mut::<1, 1>(8, 8).fill(1.0);
         }
-        let step = jac.full_piv_lu().solve(&(-f));
+        let step = super::linear::solve(&jac, &(-f));
         Ok((f, step))
     }
 

@@ -150,7 +150,7 @@ impl System<9> for MinimumTime<'_> {
         let p = SVector::<f64, 8>::from(x.multipliers);
         jac.fixed_view_mut::<1, 8>(8, 0)
             .copy_from(&(p.transpose() * 2.0));
-        let step = jac.full_piv_lu().solve(&(-f));
+        let step = super::linear::solve(&jac, &(-f));
         Ok((f, step))
     }
 

@@ -35,6 +35,7 @@ pub mod free;
 pub mod integrate;
 pub mod jacobian;
 pub mod ladder;
+mod linear;
 pub mod min_time;
 mod newton;
 mod objective_shooting;

@@ -171,7 +171,7 @@ impl System<7> for FixedTime<'_> {
             .copy_from(&phi.fixed_view::<6, 7>(0, 7));
         jac.fixed_view_mut::<1, 7>(6, 0)
             .copy_from(&phi.fixed_view::<1, 7>(13, 7));
-        let step = jac.full_piv_lu().solve(&(-f));
+        let step = super::linear::solve(&jac, &(-f));
         Ok((f, step))
     }
 
