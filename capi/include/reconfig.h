@@ -21,6 +21,10 @@
 // One arc of the LEO tour (`reconfig_leo_arc_*`).
 #define RECONFIG_PLANNER_LEO_ARC 3
 
+// The hybrid chemical + electric transfer (`reconfig_hybrid_*`). Code 4, the LEO tour's
+// sequencing, has no C interface: `reconfig_setting_name` answers NULL for it.
+#define RECONFIG_PLANNER_HYBRID 5
+
 // No solve has written this solution.
 #define RECONFIG_UNSOLVED 0
 
@@ -127,6 +131,34 @@
 // LEO arc: the work budget ran out; the returned plan misses or dips below (its burns, miss
 // and lowest altitude are returned), or there is none (`impulses` 0). Not usable.
 #define RECONFIG_LEO_BUDGET_EXHAUSTED_UNVERIFIED 306
+
+// Hybrid transfer: the shooting converged and the plan, flown once more, reaches the arrival to
+// `flight_tol` with the Hamiltonian constant to `hamiltonian_tol`. May be flown.
+#define RECONFIG_HYBRID_SOLVED 501
+
+// Hybrid transfer: the work budget ran out; the returned plan passed the checks of SOLVED
+// (never today: the core offers no unverified plan as verified). May be flown.
+#define RECONFIG_HYBRID_BUDGET_EXHAUSTED_VERIFIED 502
+
+// Hybrid transfer: `max_iterations` Newton iterations did not converge. Not usable.
+#define RECONFIG_HYBRID_ITERATION_LIMIT 503
+
+// Hybrid transfer: no step along the last Newton direction lowered the residual. Not usable.
+#define RECONFIG_HYBRID_NO_DESCENT 504
+
+// Hybrid transfer: the shooting's Jacobian was singular. Not usable.
+#define RECONFIG_HYBRID_SINGULAR 505
+
+// Hybrid transfer: a propagation stopped early (`stopped` says why). Not usable.
+#define RECONFIG_HYBRID_INTEGRATION_STOPPED 506
+
+// Hybrid transfer: the shooting converged but the check flight missed the arrival by more
+// than `flight_tol` or the Hamiltonian drifted beyond `hamiltonian_tol`. Not usable.
+#define RECONFIG_HYBRID_CHECK_FAILED 507
+
+// Hybrid transfer: the work budget ran out before the shooting converged or the check flight
+// ended; the costates are the best iterate. Not usable.
+#define RECONFIG_HYBRID_BUDGET_EXHAUSTED_UNVERIFIED 508
 
 // Refused: a pointer argument is null (`error.field` names it when the solution is usable).
 #define RECONFIG_ERR_NULL_POINTER -1
@@ -252,6 +284,22 @@
 // or leaves the finite numbers (`field` `RECONFIG_FIELD_LEO_FROM` or `_TO`).
 #define RECONFIG_LEO_ERR_PROPAGATION -402
 
+// Hybrid transfer refused: a value is not finite or outside its range (`field` a
+// `RECONFIG_FIELD_HYBRID_*`, `index` the component of an array, else -1; `detail` 0 below the
+// range, 1 above it, 2 not finite; `limit` the end it broke, the upper end when not finite).
+// With the minimum-time objective a free flag of 1 is this code too (`limit` 0).
+#define RECONFIG_HYBRID_ERR_OUT_OF_RANGE -601
+
+// Hybrid transfer refused: the arrival point does not return to itself after
+// `halo_period_tu` (`field` `RECONFIG_FIELD_HYBRID_HALO_PERIOD`, `value` the largest component
+// of the miss, LU or LU/TU, `limit` `halo_closure_tol`).
+#define RECONFIG_HYBRID_ERR_NOT_ON_PERIODIC_ORBIT -602
+
+// Hybrid transfer refused: the flight over `halo_period_tu` that checks the arrival point did
+// not finish within its share of the work budget (a sixteenth) or met a singularity (`field`
+// `RECONFIG_FIELD_HYBRID_HALO_PERIOD`).
+#define RECONFIG_HYBRID_ERR_HALO_CHECK_UNFINISHED -603
+
 // No field (the refusal is about the request as a whole).
 #define RECONFIG_FIELD_NONE 0
 
@@ -351,6 +399,60 @@
 
 // LEO arc: the perigee altitude of the `to` state's osculating orbit, km.
 #define RECONFIG_FIELD_LEO_TO_PERIGEE_ALTITUDE 85
+
+// Hybrid transfer: `kappa` (the field codes are 100 plus the core's `hybrid::Field` code).
+#define RECONFIG_FIELD_HYBRID_KAPPA 100
+
+// Hybrid transfer: `theta_rad`.
+#define RECONFIG_FIELD_HYBRID_THETA 101
+
+// Hybrid transfer: `duration_days`.
+#define RECONFIG_FIELD_HYBRID_DURATION 102
+
+// Hybrid transfer: `thrust_n`.
+#define RECONFIG_FIELD_HYBRID_THRUST 103
+
+// Hybrid transfer: `specific_impulse_s`.
+#define RECONFIG_FIELD_HYBRID_SPECIFIC_IMPULSE 104
+
+// Hybrid transfer: `chemical_specific_impulse_s`.
+#define RECONFIG_FIELD_HYBRID_CHEMICAL_SPECIFIC_IMPULSE 105
+
+// Hybrid transfer: `parking_radius_km`.
+#define RECONFIG_FIELD_HYBRID_PARKING_RADIUS 106
+
+// Hybrid transfer: `departure_offset[index]`.
+#define RECONFIG_FIELD_HYBRID_DEPARTURE_OFFSET 107
+
+// Hybrid transfer: `arrival_r_lu[index]`.
+#define RECONFIG_FIELD_HYBRID_ARRIVAL_POSITION 108
+
+// Hybrid transfer: `arrival_v_vu[index]`.
+#define RECONFIG_FIELD_HYBRID_ARRIVAL_VELOCITY 109
+
+// Hybrid transfer: `halo_period_tu` (also the halo check's refusals).
+#define RECONFIG_FIELD_HYBRID_HALO_PERIOD 110
+
+// Hybrid transfer: `costates[index]`.
+#define RECONFIG_FIELD_HYBRID_COSTATES 111
+
+// Hybrid transfer: `cost_multiplier`.
+#define RECONFIG_FIELD_HYBRID_COST_MULTIPLIER 112
+
+// Hybrid transfer: `free_kappa` (0 or 1; 0 for minimum time).
+#define RECONFIG_FIELD_HYBRID_FREE_KAPPA 113
+
+// Hybrid transfer: `free_theta` (0 or 1; 0 for minimum time).
+#define RECONFIG_FIELD_HYBRID_FREE_THETA 114
+
+// Hybrid transfer: `design_duration_days`.
+#define RECONFIG_FIELD_HYBRID_DESIGN_DURATION 115
+
+// Hybrid transfer: `design_thrust_n`.
+#define RECONFIG_FIELD_HYBRID_DESIGN_THRUST 116
+
+// Hybrid transfer: `objective` (`RECONFIG_HYBRID_OBJECTIVE_*`).
+#define RECONFIG_FIELD_HYBRID_OBJECTIVE 117
 
 // The `workspace` argument.
 #define RECONFIG_FIELD_WORKSPACE 40
@@ -478,6 +580,33 @@
 
 // Direction code: no sweep was returned.
 #define RECONFIG_GEO_DIRECTION_NONE 2
+
+// Switch times a solution carries at most (`hybrid::trace::MAX_SWITCH_TIMES`).
+#define RECONFIG_HYBRID_MAX_SWITCH_TIMES 32
+
+// Components of the state with its mass (`[r, v, m]`) and of its costates (`[lambda_r, lambda_v, lambda_m]`).
+#define RECONFIG_HYBRID_STATE_LEN 7
+
+// Objective code (`objective`): least propellant at a fixed time of flight (the bang-bang
+// law; `hybrid::Objective::MinFuel`).
+#define RECONFIG_HYBRID_OBJECTIVE_MIN_FUEL 0
+
+// Objective code: least thrust energy at a fixed time of flight (`MinEnergy`).
+#define RECONFIG_HYBRID_OBJECTIVE_MIN_ENERGY 1
+
+// Objective code: least time of flight at full thrust (`MinTime`; `duration_days` is the first
+// guess, `cost_multiplier` the start's lambda0; no free kappa or theta).
+#define RECONFIG_HYBRID_OBJECTIVE_MIN_TIME 2
+
+// Why an integration stopped (`stopped`, with `RECONFIG_HYBRID_INTEGRATION_STOPPED`): the step
+// fell below the resolution of the time (a primary hit).
+#define RECONFIG_HYBRID_STOPPED_STEP_TOO_SMALL 0
+
+// Why an integration stopped: a derivative was not finite.
+#define RECONFIG_HYBRID_STOPPED_NOT_FINITE 1
+
+// Why an integration stopped: the bang-bang law switched more often than a propagation allows.
+#define RECONFIG_HYBRID_STOPPED_SWITCH_LIMIT 2
 
 // Most impulses of one arc (`leo_tour::MAX_IMPULSES`).
 #define RECONFIG_LEO_MAX_IMPULSES 4
@@ -654,6 +783,145 @@ typedef struct {
   // Legs in visiting order; the first `leg_count` are used.
   ReconfigGeoLeg legs[RECONFIG_GEO_MAX_TARGETS];
 } ReconfigGeoSolution;
+
+// The hybrid planner's settings (`reconfig_core::hybrid::Settings`, same names).
+typedef struct {
+  // Converged when the shooting residual's largest component is at most this.
+  double tolerance;
+  // `SOLVED` needs the Hamiltonian constant along the flown plan to this.
+  double hamiltonian_tol;
+  // The integrator's relative tolerance per component.
+  double relative_tol;
+  // The integrator's absolute tolerance per component.
+  double absolute_tol;
+  // The arrival point must return to itself after the halo period to this (LU or LU/TU).
+  double halo_closure_tol;
+  // `SOLVED` needs the check flight to reach the arrival to this.
+  double flight_tol;
+  // Step trials of the integrator the whole solve may use; when they run out the solve ends
+  // `RECONFIG_HYBRID_BUDGET_EXHAUSTED_*`.
+  uint64_t work_budget;
+  // Newton iterations at most.
+  uint16_t max_iterations;
+  // Halvings of a Newton step at most.
+  uint16_t max_halvings;
+  // Pieces of the check flight.
+  uint16_t check_segments;
+  // Shootings of the walk from the start's design to the request at most (0: no walk).
+  uint16_t continuation_steps;
+} ReconfigHybridSettings;
+
+// A transfer from the circular parking orbit through the chemical impulse to a point of the
+// halo orbit (`hybrid::Problem`, same names), with the costates designed on the ground to start
+// the shooting from.
+typedef struct {
+  // Impulse ratio kappa (speed after / before the impulse), in [1, sqrt(2)).
+  double kappa;
+  // Phase of the impulse on the parking orbit, rad, in [-2 pi, 2 pi].
+  double theta_rad;
+  // Time of flight, days, in [0.1, 100] (for minimum time its first guess).
+  double duration_days;
+  // Largest thrust of the electric engine, N, in [1e-3, 1e3].
+  double thrust_n;
+  // Specific impulse of the electric engine, s, in [100, 1e5].
+  double specific_impulse_s;
+  // Specific impulse of the chemical engine, s, in [50, 1000].
+  double chemical_specific_impulse_s;
+  // Radius of the circular parking orbit about the Earth, km, in [6478, 50000].
+  double parking_radius_km;
+  // Added to the state after the impulse: a navigation update of the departure, position
+  // (LU, at most 0.01), velocity (LU/TU, at most 0.1), mass (MU, at most 0.1); zero for the
+  // planned departure.
+  double departure_offset[RECONFIG_HYBRID_STATE_LEN];
+  // Arrival position on the halo orbit, LU (rotating frame, barycentric).
+  double arrival_r_lu[3];
+  // Arrival velocity, LU/TU.
+  double arrival_v_vu[3];
+  // Period of the halo orbit through the arrival point, TU: the request is refused
+  // (`RECONFIG_HYBRID_ERR_NOT_ON_PERIODIC_ORBIT`) when the point does not return to itself
+  // after it to `halo_closure_tol`.
+  double halo_period_tu;
+  // Initial costates to start the shooting from, `[lambda_r, lambda_v, lambda_m]` (the ground's design).
+  double costates[RECONFIG_HYBRID_STATE_LEN];
+  // The cost multiplier lambda0 of minimum time (at least 0 there); unused by the fixed-time
+  // objectives but must be finite.
+  double cost_multiplier;
+  // The time of flight the start costates were designed for, days (the request's own when
+  // they were designed for it).
+  double design_duration_days;
+  // The thrust the start costates were designed for, N.
+  double design_thrust_n;
+  // `RECONFIG_HYBRID_OBJECTIVE_*`.
+  uint8_t objective;
+  // 1: kappa free by its transversality condition (minimum fuel or energy only); 0: fixed.
+  uint8_t free_kappa;
+  // 1: theta free by its transversality condition (minimum fuel or energy only); 0: fixed.
+  uint8_t free_theta;
+} ReconfigHybridProblem;
+
+// The plan flown once more from the returned costates (`hybrid::FlownPlan`).
+typedef struct {
+  // Mass at the arrival, MU (fraction of the mass before the impulse).
+  double final_mass;
+  // Largest component of `[r(t_f) - r_f, v(t_f) - v_f, lambda_m(t_f)]` on this flight.
+  double end_miss;
+  // Largest `|H(t) - H(0)|` over the check flight's pieces and switches.
+  double hamiltonian_drift;
+  // Arcs of full thrust.
+  uint32_t thrust_arcs;
+  // Switches of the bang-bang law.
+  uint32_t switches;
+  // The first switch times, TU from the departure (`switches` of them at most, the rest 0).
+  double switch_times_tu[RECONFIG_HYBRID_MAX_SWITCH_TIMES];
+} ReconfigHybridFlown;
+
+// A hybrid transfer (`hybrid::Solution`), or with a status other than SOLVED what could be
+// shown. Every number is finite; an absent value is 0 with its `has_` flag 0.
+typedef struct {
+  // The status code the solve returned (`RECONFIG_HYBRID_*`, or a refusal).
+  int32_t status;
+  // With `RECONFIG_HYBRID_INTEGRATION_STOPPED`: `RECONFIG_HYBRID_STOPPED_*`; else 0.
+  int32_t stopped;
+  // Why the request was refused (all zero when it was not).
+  ReconfigError error;
+  // 1 when the plan may be flown (SOLVED, BUDGET_EXHAUSTED_VERIFIED).
+  uint8_t usable;
+  // What was minimised (`RECONFIG_HYBRID_OBJECTIVE_*`).
+  uint8_t objective;
+  // 1 when `residual` holds a value (the returned costates could be flown).
+  uint8_t has_residual;
+  // 1 when `flown` holds the check flight (it was flown to the end).
+  uint8_t has_flown;
+  // Shootings of the walk from the design (0: the request's own shooting converged, or no
+  // walk was tried).
+  uint16_t walked_shootings;
+  // Newton iterations.
+  uint32_t iterations;
+  // Work units used: step trials of every integration, at most `work_budget`.
+  uint64_t work_units;
+  // Evaluations of the derivative (with or without the state-transition matrix).
+  uint64_t evaluations;
+  // The fraction of the way from the design to the request whose shooting converged last
+  // (1: the request's).
+  double walked_reached;
+  // Impulse ratio kappa.
+  double kappa;
+  // Phase of the impulse, rad.
+  double theta_rad;
+  // Time of flight, TU.
+  double duration_tu;
+  // Initial costates `[lambda_r, lambda_v, lambda_m]` (the converged ones, or the best iterate).
+  double costates[RECONFIG_HYBRID_STATE_LEN];
+  // lambda0 of minimum time (1 for the fixed-time objectives).
+  double cost_multiplier;
+  // Mass after the chemical impulse, MU.
+  double mass_after_impulse;
+  // Largest component of the shooting residual at the returned costates when
+  // `has_residual`; else 0.
+  double residual;
+  // The check flight when `has_flown`; else all zero.
+  ReconfigHybridFlown flown;
+} ReconfigHybridSolution;
 
 // Loop bounds, tolerances and thresholds (`reconfig_core::impulsive::Settings`, same names).
 // Flags are 0 or 1.
@@ -1266,6 +1534,52 @@ int32_t reconfig_geo_tour_solve(void *workspace,
                                 const ReconfigGeoProblem *problem,
                                 const ReconfigGeoSettings *settings,
                                 ReconfigGeoSolution *out);
+
+// Bytes of caller memory one hybrid-transfer workspace needs (the request, the built-in limits
+// and the solution: the planner's own scratch is on the stack, see `reconfig_hybrid_solve`).
+size_t reconfig_hybrid_workspace_size(void);
+
+// Alignment, in bytes, a hybrid-transfer workspace needs.
+size_t reconfig_hybrid_workspace_align(void);
+
+// Initialise a hybrid-transfer workspace in `size` bytes of caller memory at `workspace`.
+//
+// Returns 0, or `RECONFIG_ERR_NULL_POINTER`, `RECONFIG_ERR_MISALIGNED` or
+// `RECONFIG_ERR_WORKSPACE_TOO_SMALL`.
+//
+// # Safety
+// `workspace` is null or points to `size` writable bytes used by nothing else while the
+// workspace is in use.
+int32_t reconfig_hybrid_init(void *workspace, size_t size);
+
+// Write the default settings into `out`. Returns 0, or a null/misaligned refusal.
+//
+// # Safety
+// `out` is null or points to writable memory for one `ReconfigHybridSettings`.
+int32_t reconfig_hybrid_default_settings(ReconfigHybridSettings *out);
+
+// Re-converge the transfer `problem` from its design costates with `settings` in the
+// initialised `workspace`; write the result into `out`. The request is answered by the core's
+// request path with the built-in limits (the flight service's): a setting outside them is
+// refused `RECONFIG_ERR_LIMIT_EXCEEDED`, named.
+//
+// The solve is stack-only: the integrator's stages with the state-transition matrix need
+// about 74 KB of the calling thread's stack on the Cortex-M7 (docs/c-api.md); call it from a
+// task whose stack allows that.
+//
+// Returns the status code (also in `out->status`): `>= 0` a solve status (only
+// `RECONFIG_HYBRID_SOLVED` and `RECONFIG_HYBRID_BUDGET_EXHAUSTED_VERIFIED` may be flown:
+// `usable`), `< 0` a refusal whose field, index, value and limit are in `out->error` (when
+// `out` is usable).
+//
+// # Safety
+// Each pointer is null or valid for its type (`workspace`: a block of at least
+// `reconfig_hybrid_workspace_size()` bytes); `workspace` and `out` are used by nothing else
+// during the call.
+int32_t reconfig_hybrid_solve(void *workspace,
+                              const ReconfigHybridProblem *problem,
+                              const ReconfigHybridSettings *settings,
+                              ReconfigHybridSolution *out);
 
 // Bytes of caller memory one planner-B workspace needs.
 size_t reconfig_impulsive_workspace_size(void);

@@ -5,7 +5,8 @@
 //! plain `int32_t` status codes. See `docs/c-api.md`.
 //!
 //! Per planner (`pseudospectral` = planner A, `impulsive` = planner B, `geo_tour` = the GEO
-//! servicing tour, `leo_arc` = one arc of the LEO tour, module [`leo_tour`]):
+//! servicing tour, `leo_arc` = one arc of the LEO tour, module [`leo_tour`], `hybrid` = the
+//! hybrid chemical + electric transfer, module [`hybrid`]):
 //! `reconfig_<planner>_workspace_size()`, `_workspace_align()`, `_init(workspace, size)`,
 //! `_default_settings(out)` and `_solve(workspace, problem, settings, out)`; planner B also
 //! `_solve_form` for its other input forms. `reconfig_setting_name(planner, code)` names the
@@ -19,9 +20,10 @@
 //! ## Boundary rules
 //! * Every pointer is checked for null and alignment; a workspace also for size and for having
 //!   been initialised by `_init`.
-//! * C structs ([`types_a`], [`types_b`], [`types_b_form`], [`types_geo`], [`types_leo`]) are
-//!   converted to the core's types in one place each ([`convert_a`], [`convert_b`],
-//!   [`convert_b_form`], [`convert_geo`], [`convert_leo`]; the settings by one
+//! * C structs ([`types_a`], [`types_b`], [`types_b_form`], [`types_geo`], [`types_leo`],
+//!   [`types_hybrid`]) are converted to the core's types in one place each ([`convert_a`],
+//!   [`convert_b`], [`convert_b_form`], [`convert_geo`], [`convert_leo`], [`convert_hybrid`];
+//!   the settings by one
 //!   [`mirror_settings!`] line each, [`settings`]); the
 //!   built-in limits and the core's own validation decide what is refused, and the refusal
 //!   (field, index, value, limit) is copied to the caller's error detail.
@@ -39,8 +41,10 @@ pub mod convert_a;
 pub mod convert_b;
 pub mod convert_b_form;
 pub mod convert_geo;
+pub mod convert_hybrid;
 pub mod convert_leo;
 pub mod geo_tour;
+pub mod hybrid;
 pub mod impulsive;
 pub mod leo_tour;
 pub mod names;
@@ -52,6 +56,7 @@ pub mod types_a;
 pub mod types_b;
 pub mod types_b_form;
 pub mod types_geo;
+pub mod types_hybrid;
 pub mod types_leo;
 
 // Never defined anywhere: the abort-free proof (docs/c-api.md, "Abort-free"). The C library

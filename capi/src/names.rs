@@ -7,7 +7,7 @@
 use core::ffi::c_char;
 use reconfig_core::contract::PlannerKind;
 use reconfig_core::limits::ProblemLimit;
-use reconfig_core::{geo_tour, impulsive, leo_tour, pseudospectral};
+use reconfig_core::{geo_tour, hybrid, impulsive, leo_tour, pseudospectral};
 
 /// Planner A (`reconfig_pseudospectral_*`).
 pub const RECONFIG_PLANNER_PSEUDOSPECTRAL: i32 = 0;
@@ -17,12 +17,16 @@ pub const RECONFIG_PLANNER_IMPULSIVE: i32 = 1;
 pub const RECONFIG_PLANNER_GEO_TOUR: i32 = 2;
 /// One arc of the LEO tour (`reconfig_leo_arc_*`).
 pub const RECONFIG_PLANNER_LEO_ARC: i32 = 3;
+/// The hybrid chemical + electric transfer (`reconfig_hybrid_*`). Code 4, the LEO tour's
+/// sequencing, has no C interface: `reconfig_setting_name` answers NULL for it.
+pub const RECONFIG_PLANNER_HYBRID: i32 = 5;
 
 // Literals so that the header can spell them; the wire's planner codes decide.
 const _: () = assert!(RECONFIG_PLANNER_PSEUDOSPECTRAL == PlannerKind::Pseudospectral as i32);
 const _: () = assert!(RECONFIG_PLANNER_IMPULSIVE == PlannerKind::Impulsive as i32);
 const _: () = assert!(RECONFIG_PLANNER_GEO_TOUR == PlannerKind::GeoTour as i32);
 const _: () = assert!(RECONFIG_PLANNER_LEO_ARC == PlannerKind::LeoArc as i32);
+const _: () = assert!(RECONFIG_PLANNER_HYBRID == PlannerKind::Hybrid as i32);
 
 /// Bytes of one name slot, the NUL included.
 const NAME_BYTES: usize = 40;
@@ -136,6 +140,8 @@ static B_NAMES: [Name; impulsive::SettingId::ALL.len()] = names_by_code!(impulsi
 static GEO_NAMES: [Name; geo_tour::SettingId::ALL.len()] = names_by_code!(geo_tour::SettingId);
 #[allow(clippy::indexing_slicing, clippy::arithmetic_side_effects)]
 static LEO_ARC_NAMES: [Name; leo_tour::SettingId::ALL.len()] = names_by_code!(leo_tour::SettingId);
+#[allow(clippy::indexing_slicing, clippy::arithmetic_side_effects)]
+static HYBRID_NAMES: [Name; hybrid::SettingId::ALL.len()] = names_by_code!(hybrid::SettingId);
 static PROBLEM_NAMES: [Name; PROBLEM_LIMITS.len()] = problem_names();
 
 /// The NUL-terminated name of setting `code` of `planner`, if any.
@@ -155,6 +161,7 @@ fn name_slot(planner: i32, code: i32) -> Option<&'static Name> {
             RECONFIG_PLANNER_IMPULSIVE => &B_NAMES,
             RECONFIG_PLANNER_GEO_TOUR => &GEO_NAMES,
             RECONFIG_PLANNER_LEO_ARC => &LEO_ARC_NAMES,
+            RECONFIG_PLANNER_HYBRID => &HYBRID_NAMES,
             _ => return None,
         };
         table.get(usize::from(code))?

@@ -1,5 +1,5 @@
 //! The C settings structs (`ReconfigASettings`, `ReconfigBSettings`, `ReconfigGeoSettings`,
-//! `ReconfigLeoArcSettings`) mirror the core's settings tables field by field, under the same
+//! `ReconfigLeoArcSettings`, `ReconfigHybridSettings`) mirror the core's settings tables field by field, under the same
 //! names. Each mirror is one
 //! [`mirror_settings!`](crate::mirror_settings) line listing the fields once: the conversion
 //! both ways and the by-name accessors the coverage test walks follow from it. The C structs

@@ -20,7 +20,7 @@ use crate::status::{
 use core::ffi::c_void;
 use reconfig_core::limits::Limits;
 use reconfig_core::wire::{self, Buffers, Lent, OutcomeRef, Request};
-use reconfig_core::{geo_tour, impulsive, leo_tour, pseudospectral};
+use reconfig_core::{geo_tour, hybrid, impulsive, leo_tour, pseudospectral};
 
 /// A planner's workspace and the solution it writes (the block's `wire::Buffers`).
 #[repr(C)]
@@ -51,6 +51,12 @@ impl Buffers for Slot<geo_tour::Workspace, geo_tour::Solution> {
 
 impl Buffers for Slot<leo_tour::Workspace, leo_tour::ArcSolution> {
     fn leo_arc(&mut self) -> Lent<'_, leo_tour::Workspace, leo_tour::ArcSolution> {
+        Some((&mut self.workspace, &mut self.solution))
+    }
+}
+
+impl Buffers for Slot<hybrid::Workspace, hybrid::Solution> {
+    fn hybrid(&mut self) -> Lent<'_, hybrid::Workspace, hybrid::Solution> {
         Some((&mut self.workspace, &mut self.solution))
     }
 }

@@ -10,7 +10,11 @@
 //! flown?"); `Unsolved` is 0 for every planner ([`status_code`]; the unit test
 //! `c_codes_are_base_plus_the_core_code` checks every constant below against it). The LEO arc
 //! (base 300) is mapped by hand (`convert_leo::status_to_c`): its `BudgetExhausted` is not its
-//! last status, so its unverified budget stop takes the code after its last (306).
+//! last status, so its unverified budget stop takes the code after its last (306). So is the
+//! hybrid transfer (base 500, `convert_hybrid::status_to_c`; its unverified budget stop 508).
+//! A planner's base is its wire planner code (`contract::PlannerKind`) times 100 and its
+//! refusals are below minus (code + 1) times 100: the LEO sequencing (planner code 4, no C
+//! interface yet) keeps 400 and -501 ..
 
 /// No solve has written this solution.
 pub const RECONFIG_UNSOLVED: i32 = 0;
@@ -91,6 +95,27 @@ pub const RECONFIG_LEO_BELOW_MIN_ALTITUDE: i32 = 305;
 /// LEO arc: the work budget ran out; the returned plan misses or dips below (its burns, miss
 /// and lowest altitude are returned), or there is none (`impulses` 0). Not usable.
 pub const RECONFIG_LEO_BUDGET_EXHAUSTED_UNVERIFIED: i32 = 306;
+
+/// Hybrid transfer: the shooting converged and the plan, flown once more, reaches the arrival to
+/// `flight_tol` with the Hamiltonian constant to `hamiltonian_tol`. May be flown.
+pub const RECONFIG_HYBRID_SOLVED: i32 = 501;
+/// Hybrid transfer: the work budget ran out; the returned plan passed the checks of SOLVED
+/// (never today: the core offers no unverified plan as verified). May be flown.
+pub const RECONFIG_HYBRID_BUDGET_EXHAUSTED_VERIFIED: i32 = 502;
+/// Hybrid transfer: `max_iterations` Newton iterations did not converge. Not usable.
+pub const RECONFIG_HYBRID_ITERATION_LIMIT: i32 = 503;
+/// Hybrid transfer: no step along the last Newton direction lowered the residual. Not usable.
+pub const RECONFIG_HYBRID_NO_DESCENT: i32 = 504;
+/// Hybrid transfer: the shooting's Jacobian was singular. Not usable.
+pub const RECONFIG_HYBRID_SINGULAR: i32 = 505;
+/// Hybrid transfer: a propagation stopped early (`stopped` says why). Not usable.
+pub const RECONFIG_HYBRID_INTEGRATION_STOPPED: i32 = 506;
+/// Hybrid transfer: the shooting converged but the check flight missed the arrival by more
+/// than `flight_tol` or the Hamiltonian drifted beyond `hamiltonian_tol`. Not usable.
+pub const RECONFIG_HYBRID_CHECK_FAILED: i32 = 507;
+/// Hybrid transfer: the work budget ran out before the shooting converged or the check flight
+/// ended; the costates are the best iterate. Not usable.
+pub const RECONFIG_HYBRID_BUDGET_EXHAUSTED_UNVERIFIED: i32 = 508;
 
 /// Refused: a pointer argument is null (`error.field` names it when the solution is usable).
 pub const RECONFIG_ERR_NULL_POINTER: i32 = -1;
@@ -187,6 +212,20 @@ pub const RECONFIG_LEO_ERR_OUT_OF_RANGE: i32 = -401;
 /// or leaves the finite numbers (`field` `RECONFIG_FIELD_LEO_FROM` or `_TO`).
 pub const RECONFIG_LEO_ERR_PROPAGATION: i32 = -402;
 
+/// Hybrid transfer refused: a value is not finite or outside its range (`field` a
+/// `RECONFIG_FIELD_HYBRID_*`, `index` the component of an array, else -1; `detail` 0 below the
+/// range, 1 above it, 2 not finite; `limit` the end it broke, the upper end when not finite).
+/// With the minimum-time objective a free flag of 1 is this code too (`limit` 0).
+pub const RECONFIG_HYBRID_ERR_OUT_OF_RANGE: i32 = -601;
+/// Hybrid transfer refused: the arrival point does not return to itself after
+/// `halo_period_tu` (`field` `RECONFIG_FIELD_HYBRID_HALO_PERIOD`, `value` the largest component
+/// of the miss, LU or LU/TU, `limit` `halo_closure_tol`).
+pub const RECONFIG_HYBRID_ERR_NOT_ON_PERIODIC_ORBIT: i32 = -602;
+/// Hybrid transfer refused: the flight over `halo_period_tu` that checks the arrival point did
+/// not finish within its share of the work budget (a sixteenth) or met a singularity (`field`
+/// `RECONFIG_FIELD_HYBRID_HALO_PERIOD`).
+pub const RECONFIG_HYBRID_ERR_HALO_CHECK_UNFINISHED: i32 = -603;
+
 /// No field (the refusal is about the request as a whole).
 pub const RECONFIG_FIELD_NONE: i32 = 0;
 /// Planner A: `horizon_tu`.
@@ -254,6 +293,42 @@ pub const RECONFIG_FIELD_LEO_IMPULSES: i32 = 83;
 pub const RECONFIG_FIELD_LEO_FROM_PERIGEE_ALTITUDE: i32 = 84;
 /// LEO arc: the perigee altitude of the `to` state's osculating orbit, km.
 pub const RECONFIG_FIELD_LEO_TO_PERIGEE_ALTITUDE: i32 = 85;
+/// Hybrid transfer: `kappa` (the field codes are 100 plus the core's `hybrid::Field` code).
+pub const RECONFIG_FIELD_HYBRID_KAPPA: i32 = 100;
+/// Hybrid transfer: `theta_rad`.
+pub const RECONFIG_FIELD_HYBRID_THETA: i32 = 101;
+/// Hybrid transfer: `duration_days`.
+pub const RECONFIG_FIELD_HYBRID_DURATION: i32 = 102;
+/// Hybrid transfer: `thrust_n`.
+pub const RECONFIG_FIELD_HYBRID_THRUST: i32 = 103;
+/// Hybrid transfer: `specific_impulse_s`.
+pub const RECONFIG_FIELD_HYBRID_SPECIFIC_IMPULSE: i32 = 104;
+/// Hybrid transfer: `chemical_specific_impulse_s`.
+pub const RECONFIG_FIELD_HYBRID_CHEMICAL_SPECIFIC_IMPULSE: i32 = 105;
+/// Hybrid transfer: `parking_radius_km`.
+pub const RECONFIG_FIELD_HYBRID_PARKING_RADIUS: i32 = 106;
+/// Hybrid transfer: `departure_offset[index]`.
+pub const RECONFIG_FIELD_HYBRID_DEPARTURE_OFFSET: i32 = 107;
+/// Hybrid transfer: `arrival_r_lu[index]`.
+pub const RECONFIG_FIELD_HYBRID_ARRIVAL_POSITION: i32 = 108;
+/// Hybrid transfer: `arrival_v_vu[index]`.
+pub const RECONFIG_FIELD_HYBRID_ARRIVAL_VELOCITY: i32 = 109;
+/// Hybrid transfer: `halo_period_tu` (also the halo check's refusals).
+pub const RECONFIG_FIELD_HYBRID_HALO_PERIOD: i32 = 110;
+/// Hybrid transfer: `costates[index]`.
+pub const RECONFIG_FIELD_HYBRID_COSTATES: i32 = 111;
+/// Hybrid transfer: `cost_multiplier`.
+pub const RECONFIG_FIELD_HYBRID_COST_MULTIPLIER: i32 = 112;
+/// Hybrid transfer: `free_kappa` (0 or 1; 0 for minimum time).
+pub const RECONFIG_FIELD_HYBRID_FREE_KAPPA: i32 = 113;
+/// Hybrid transfer: `free_theta` (0 or 1; 0 for minimum time).
+pub const RECONFIG_FIELD_HYBRID_FREE_THETA: i32 = 114;
+/// Hybrid transfer: `design_duration_days`.
+pub const RECONFIG_FIELD_HYBRID_DESIGN_DURATION: i32 = 115;
+/// Hybrid transfer: `design_thrust_n`.
+pub const RECONFIG_FIELD_HYBRID_DESIGN_THRUST: i32 = 116;
+/// Hybrid transfer: `objective` (`RECONFIG_HYBRID_OBJECTIVE_*`).
+pub const RECONFIG_FIELD_HYBRID_OBJECTIVE: i32 = 117;
 /// The `workspace` argument.
 pub const RECONFIG_FIELD_WORKSPACE: i32 = 40;
 /// The `problem` argument.

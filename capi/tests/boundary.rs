@@ -766,3 +766,352 @@ fn leo_arc_status_codes_are_distinct() {
     codes.dedup();
     assert_eq!(codes.len(), all.len());
 }
+
+/// The paper's minimum-fuel transfer at kappa = 1.40, 4.38 days
+/// (`fixtures/hybrid-min-fuel-k140-4p38d.toml`) as the C struct.
+fn hybrid_problem() -> reconfig_capi::types_hybrid::ReconfigHybridProblem {
+    use reconfig_capi::types_hybrid::*;
+    ReconfigHybridProblem {
+        kappa: 1.40,
+        theta_rad: -2.0,
+        duration_days: 4.38,
+        thrust_n: 10.0,
+        specific_impulse_s: 3000.0,
+        chemical_specific_impulse_s: 300.0,
+        parking_radius_km: 6778.0,
+        arrival_r_lu: [0.823385182067, 0.0, -0.022277556273],
+        arrival_v_vu: [0.0, 0.134184170262, 0.0],
+        halo_period_tu: 2.746337,
+        costates: [
+            1.51293,
+            7.36403,
+            -0.122107,
+            -0.0191786,
+            0.014939,
+            5.13983e-06,
+            0.0596219,
+        ],
+        design_duration_days: 4.38,
+        design_thrust_n: 10.0,
+        objective: RECONFIG_HYBRID_OBJECTIVE_MIN_FUEL,
+        ..Default::default()
+    }
+}
+
+#[test]
+fn hybrid_refusals_name_field_index_value_and_limit_and_a_solve_matches_the_core() {
+    use reconfig_capi::hybrid::*;
+    use reconfig_capi::names::RECONFIG_PLANNER_HYBRID;
+    use reconfig_capi::types_hybrid::*;
+    use reconfig_core::hybrid;
+    let size = reconfig_hybrid_workspace_size();
+    let mut mem = memory(size);
+    let ws = mem.as_mut_ptr().cast::<c_void>();
+    let mut settings = ReconfigHybridSettings::default();
+    let mut out = ReconfigHybridSolution::default();
+    let good = hybrid_problem();
+    // SAFETY: valid pointers; `ws` has `size` bytes.
+    unsafe {
+        assert_eq!(reconfig_hybrid_default_settings(&mut settings), 0);
+        assert_eq!(settings.work_budget, hybrid::DEFAULT_WORK_BUDGET);
+        assert_eq!(
+            reconfig_hybrid_solve(ws, &good, &settings, &mut out),
+            RECONFIG_ERR_WORKSPACE_NOT_INITIALISED
+        );
+        assert_eq!(
+            reconfig_hybrid_init(ws, size - 8),
+            RECONFIG_ERR_WORKSPACE_TOO_SMALL
+        );
+        assert_eq!(reconfig_hybrid_init(ws, size), 0);
+        // Null arguments.
+        assert_eq!(
+            reconfig_hybrid_solve(ws, core::ptr::null(), &settings, &mut out),
+            RECONFIG_ERR_NULL_POINTER
+        );
+        assert_eq!(out.error.field, RECONFIG_FIELD_PROBLEM);
+        // Codes a C struct can hold and the core's types cannot: named, the largest code.
+        let mut p = good;
+        p.objective = 3;
+        assert_eq!(
+            reconfig_hybrid_solve(ws, &p, &settings, &mut out),
+            RECONFIG_ERR_INVALID_CODE
+        );
+        assert_eq!(
+            (
+                out.error.field,
+                out.error.value,
+                out.error.limit,
+                out.usable
+            ),
+            (RECONFIG_FIELD_HYBRID_OBJECTIVE, 3.0, 2.0, 0)
+        );
+        let mut p = good;
+        p.free_theta = 2;
+        assert_eq!(
+            reconfig_hybrid_solve(ws, &p, &settings, &mut out),
+            RECONFIG_ERR_INVALID_CODE
+        );
+        assert_eq!(
+            (out.error.field, out.error.value, out.error.limit),
+            (RECONFIG_FIELD_HYBRID_FREE_THETA, 2.0, 1.0)
+        );
+        // A field out of range: named, value, the end broken (kappa's upper end is open).
+        let mut p = good;
+        p.kappa = core::f64::consts::SQRT_2;
+        assert_eq!(
+            reconfig_hybrid_solve(ws, &p, &settings, &mut out),
+            RECONFIG_HYBRID_ERR_OUT_OF_RANGE
+        );
+        let e = out.error;
+        assert_eq!(
+            (e.field, e.index, e.detail, e.value, e.limit),
+            (
+                RECONFIG_FIELD_HYBRID_KAPPA,
+                -1,
+                1,
+                core::f64::consts::SQRT_2,
+                core::f64::consts::SQRT_2
+            )
+        );
+        // An array's component: its index; not finite: detail 2, the upper end.
+        let mut p = good;
+        p.costates[3] = f64::NAN;
+        assert_eq!(
+            reconfig_hybrid_solve(ws, &p, &settings, &mut out),
+            RECONFIG_HYBRID_ERR_OUT_OF_RANGE
+        );
+        let e = out.error;
+        assert_eq!(
+            (e.field, e.index, e.detail, e.limit),
+            (RECONFIG_FIELD_HYBRID_COSTATES, 3, 2, hybrid::MAX_COSTATE)
+        );
+        assert!(e.value.is_nan());
+        let mut p = good;
+        p.departure_offset[1] = -0.02;
+        assert_eq!(
+            reconfig_hybrid_solve(ws, &p, &settings, &mut out),
+            RECONFIG_HYBRID_ERR_OUT_OF_RANGE
+        );
+        let e = out.error;
+        assert_eq!(
+            (e.field, e.index, e.detail, e.value, e.limit),
+            (RECONFIG_FIELD_HYBRID_DEPARTURE_OFFSET, 1, 0, -0.02, -1e-2)
+        );
+        // Minimum time has no free impulse: the flag named, 1 above its only value 0.
+        let mut p = good;
+        p.objective = RECONFIG_HYBRID_OBJECTIVE_MIN_TIME;
+        p.free_kappa = 1;
+        assert_eq!(
+            reconfig_hybrid_solve(ws, &p, &settings, &mut out),
+            RECONFIG_HYBRID_ERR_OUT_OF_RANGE
+        );
+        assert_eq!(
+            (
+                out.error.field,
+                out.error.detail,
+                out.error.value,
+                out.error.limit
+            ),
+            (RECONFIG_FIELD_HYBRID_FREE_KAPPA, 1, 1.0, 0.0)
+        );
+        // An arrival point off the halo orbit: the miss and the tolerance.
+        let mut p = good;
+        p.arrival_v_vu[1] += 1e-3;
+        assert_eq!(
+            reconfig_hybrid_solve(ws, &p, &settings, &mut out),
+            RECONFIG_HYBRID_ERR_NOT_ON_PERIODIC_ORBIT
+        );
+        let e = out.error;
+        assert_eq!(
+            (e.field, e.limit),
+            (RECONFIG_FIELD_HYBRID_HALO_PERIOD, settings.halo_closure_tol)
+        );
+        assert!(e.value > settings.halo_closure_tol, "{e:?}");
+        // A budget whose sixteenth cannot fly the halo period.
+        let mut small = settings;
+        small.work_budget = 100;
+        assert_eq!(
+            reconfig_hybrid_solve(ws, &good, &small, &mut out),
+            RECONFIG_HYBRID_ERR_HALO_CHECK_UNFINISHED
+        );
+        assert_eq!(out.error.field, RECONFIG_FIELD_HYBRID_HALO_PERIOD);
+        // A setting: NaN (not finite), and one past the built-in limits, named.
+        let mut bad = settings;
+        bad.flight_tol = f64::NAN;
+        assert_eq!(
+            reconfig_hybrid_solve(ws, &good, &bad, &mut out),
+            RECONFIG_ERR_SETTING_OUT_OF_RANGE
+        );
+        assert_eq!(
+            (out.error.field, out.error.index, out.error.detail),
+            (
+                RECONFIG_FIELD_SETTINGS,
+                hybrid::SettingId::FlightTol as i32,
+                2
+            )
+        );
+        let mut bad = settings;
+        bad.max_iterations = 31;
+        assert_eq!(
+            reconfig_hybrid_solve(ws, &good, &bad, &mut out),
+            RECONFIG_ERR_LIMIT_EXCEEDED
+        );
+        assert_eq!(
+            setting_name(RECONFIG_PLANNER_HYBRID, out.error.index).as_deref(),
+            Some("max_iterations")
+        );
+        assert_eq!((out.error.value, out.error.limit), (31.0, 30.0));
+        // A budget that runs out in the shooting (unverified, nothing flown) and the default
+        // one (solved): the answer through the C structs, as through the core, bit for bit.
+        for (budget, want) in [
+            (1_200, RECONFIG_HYBRID_BUDGET_EXHAUSTED_UNVERIFIED),
+            (hybrid::DEFAULT_WORK_BUDGET, RECONFIG_HYBRID_SOLVED),
+        ] {
+            let mut run = settings;
+            run.work_budget = budget;
+            let status = reconfig_hybrid_solve(ws, &good, &run, &mut out);
+            assert_eq!(status, want, "budget {budget}");
+            assert_eq!(out.error, ReconfigError::default());
+            hybrid_matches_the_core(&good, budget, &out);
+        }
+    }
+}
+
+/// `out` is the core's answer to `c` with the default settings but `work_budget`, bit for bit.
+fn hybrid_matches_the_core(
+    c: &reconfig_capi::types_hybrid::ReconfigHybridProblem,
+    work_budget: u64,
+    out: &reconfig_capi::types_hybrid::ReconfigHybridSolution,
+) {
+    use reconfig_core::hybrid;
+    let core_problem = hybrid::Problem {
+        objective: hybrid::Objective::MinFuel,
+        kappa: c.kappa,
+        theta_rad: c.theta_rad,
+        free_kappa: false,
+        free_theta: false,
+        duration_days: c.duration_days,
+        thrust_n: c.thrust_n,
+        specific_impulse_s: c.specific_impulse_s,
+        chemical_specific_impulse_s: c.chemical_specific_impulse_s,
+        parking_radius_km: c.parking_radius_km,
+        departure_offset: c.departure_offset,
+        arrival_r_lu: c.arrival_r_lu,
+        arrival_v_vu: c.arrival_v_vu,
+        halo_period_tu: c.halo_period_tu,
+        costates: c.costates,
+        cost_multiplier: c.cost_multiplier,
+        design_duration_days: c.design_duration_days,
+        design_thrust_n: c.design_thrust_n,
+    };
+    let core_settings = hybrid::Settings {
+        work_budget,
+        ..Default::default()
+    };
+    let mut solution = hybrid::Solution::new();
+    hybrid::solve(
+        &core_problem,
+        &core_settings,
+        &mut hybrid::Workspace::new(),
+        &mut solution,
+    )
+    .unwrap();
+    let (code, stopped) = reconfig_capi::convert_hybrid::status_to_c(solution.info.status);
+    assert_eq!((out.status, out.stopped), (code, stopped));
+    assert_eq!(out.usable, u8::from(solution.info.status.is_usable()));
+    assert_eq!(
+        (out.work_units, out.evaluations, out.iterations),
+        (
+            solution.info.work_units,
+            solution.info.evaluations,
+            solution.info.iterations
+        )
+    );
+    assert_eq!(out.walked_shootings, solution.info.walked.shootings);
+    let pairs = [
+        (out.walked_reached, solution.info.walked.reached),
+        (out.kappa, solution.kappa),
+        (out.theta_rad, solution.theta_rad),
+        (out.duration_tu, solution.duration_tu),
+        (out.cost_multiplier, solution.cost_multiplier),
+        (out.mass_after_impulse, solution.mass_after_impulse),
+        (out.residual, solution.residual.unwrap_or(0.0)),
+    ];
+    for (c, r) in pairs {
+        assert_eq!(c.to_bits(), r.to_bits());
+    }
+    assert_eq!(out.has_residual, u8::from(solution.residual.is_some()));
+    for (c, r) in out.costates.iter().zip(solution.costates) {
+        assert_eq!(c.to_bits(), r.to_bits());
+    }
+    assert_eq!(out.has_flown, u8::from(solution.flown.is_some()));
+    let flown = solution.flown.unwrap_or_default();
+    let f = &out.flown;
+    for (c, r) in [
+        (f.final_mass, flown.final_mass),
+        (f.end_miss, flown.end_miss),
+        (f.hamiltonian_drift, flown.hamiltonian_drift),
+    ] {
+        assert_eq!(c.to_bits(), r.to_bits());
+    }
+    assert_eq!(
+        (f.switches, f.thrust_arcs),
+        (flown.switches, flown.thrust_arcs)
+    );
+    for (c, r) in f.switch_times_tu.iter().zip(flown.switch_times_tu) {
+        assert_eq!(c.to_bits(), r.to_bits());
+    }
+}
+
+#[test]
+fn hybrid_status_codes_are_distinct_and_on_base_500() {
+    use reconfig_capi::convert_hybrid::status_to_c;
+    use reconfig_capi::types_hybrid::*;
+    use reconfig_core::hybrid::{SolveStatus as H, Stopped};
+    let all = [
+        (H::Unsolved, RECONFIG_UNSOLVED),
+        (H::Solved, RECONFIG_HYBRID_SOLVED),
+        (
+            H::BudgetExhausted { verified: true },
+            RECONFIG_HYBRID_BUDGET_EXHAUSTED_VERIFIED,
+        ),
+        (H::IterationLimit, RECONFIG_HYBRID_ITERATION_LIMIT),
+        (H::NoDescent, RECONFIG_HYBRID_NO_DESCENT),
+        (H::Singular, RECONFIG_HYBRID_SINGULAR),
+        (
+            H::IntegrationStopped(Stopped::SwitchLimit),
+            RECONFIG_HYBRID_INTEGRATION_STOPPED,
+        ),
+        (H::CheckFailed, RECONFIG_HYBRID_CHECK_FAILED),
+        (
+            H::BudgetExhausted { verified: false },
+            RECONFIG_HYBRID_BUDGET_EXHAUSTED_UNVERIFIED,
+        ),
+    ];
+    for (s, c) in all {
+        assert_eq!(status_to_c(s).0, c, "{s:?}");
+        // The core's own code on the planner's base (the wire's planner code 5, times 100),
+        // but for the unverified budget stop, after the last status.
+        if s != (H::BudgetExhausted { verified: false }) && s != H::Unsolved {
+            assert_eq!(c, 500 + i32::from(s.code()), "{s:?}");
+        }
+    }
+    let mut codes: Vec<i32> = all.iter().map(|(s, _)| status_to_c(*s).0).collect();
+    codes.sort_unstable();
+    codes.dedup();
+    assert_eq!(codes.len(), all.len());
+    for (why, code) in [
+        (
+            Stopped::StepTooSmall,
+            RECONFIG_HYBRID_STOPPED_STEP_TOO_SMALL,
+        ),
+        (Stopped::NotFinite, RECONFIG_HYBRID_STOPPED_NOT_FINITE),
+        (Stopped::SwitchLimit, RECONFIG_HYBRID_STOPPED_SWITCH_LIMIT),
+    ] {
+        assert_eq!(
+            status_to_c(H::IntegrationStopped(why)),
+            (RECONFIG_HYBRID_INTEGRATION_STOPPED, code)
+        );
+        assert_eq!(code, i32::from(why as u8));
+    }
+}

@@ -1,7 +1,7 @@
 //! Every setting of every planner through the C interface (issues 29 and 33):
 //!
 //! * the walk: for each `SettingId` of planner A, planner B (both entry points), the GEO
-//!   tour and the LEO arc, a value outside its built-in limit (by its `limit_rule`) set in the C settings
+//!   tour, the LEO arc and the hybrid transfer, a value outside its built-in limit (by its `limit_rule`) set in the C settings
 //!   struct is refused `RECONFIG_ERR_LIMIT_EXCEEDED` naming it (`error.index` its code,
 //!   `reconfig_setting_name` its name, the exact value and limit, the rule), and a value outside
 //!   its accepted range (NaN for floats, numbers past either end, a flag or code no core value
@@ -26,6 +26,7 @@ mod common;
 use common::circular;
 use core::ffi::c_void;
 use reconfig_capi::geo_tour::*;
+use reconfig_capi::hybrid::*;
 use reconfig_capi::impulsive::*;
 use reconfig_capi::leo_tour::*;
 use reconfig_capi::names::*;
@@ -36,11 +37,12 @@ use reconfig_capi::types_a::*;
 use reconfig_capi::types_b::*;
 use reconfig_capi::types_b_form::*;
 use reconfig_capi::types_geo::*;
+use reconfig_capi::types_hybrid::*;
 use reconfig_capi::types_leo::*;
 use reconfig_core::contract::Rule;
 use reconfig_core::contract::{check_limit, Range};
 use reconfig_core::limits::Setting;
-use reconfig_core::{geo_tour, impulsive, leo_tour, pseudospectral};
+use reconfig_core::{geo_tour, hybrid, impulsive, leo_tour, pseudospectral};
 
 /// Caller memory of `size` bytes aligned to 8.
 fn memory(size: usize) -> Vec<u64> {
@@ -212,6 +214,36 @@ fn leo_problem() -> ReconfigLeoArcProblem {
     }
 }
 
+/// The paper's minimum-fuel transfer at kappa = 1.40, 4.38 days (`hybrid-min-fuel-k140-4p38d`):
+/// refusals come before any planning, so the walk never plans it.
+fn hybrid_problem() -> ReconfigHybridProblem {
+    ReconfigHybridProblem {
+        kappa: 1.40,
+        theta_rad: -2.0,
+        duration_days: 4.38,
+        thrust_n: 10.0,
+        specific_impulse_s: 3000.0,
+        chemical_specific_impulse_s: 300.0,
+        parking_radius_km: 6778.0,
+        arrival_r_lu: [0.823385182067, 0.0, -0.022277556273],
+        arrival_v_vu: [0.0, 0.134184170262, 0.0],
+        halo_period_tu: 2.746337,
+        costates: [
+            1.51293,
+            7.36403,
+            -0.122107,
+            -0.0191786,
+            0.014939,
+            5.13983e-06,
+            0.0596219,
+        ],
+        design_duration_days: 4.38,
+        design_thrust_n: 10.0,
+        objective: RECONFIG_HYBRID_OBJECTIVE_MIN_FUEL,
+        ..Default::default()
+    }
+}
+
 struct A;
 impl Table for A {
     table_ids!(pseudospectral::SettingId, pseudospectral::Settings);
@@ -332,6 +364,35 @@ impl Table for Leo {
         let mut out = ReconfigLeoArcSolution::default();
         let code = unsafe {
             reconfig_leo_arc_solve(ws.as_mut_ptr().cast(), &leo_problem(), settings, &mut out)
+        };
+        (code, out.error)
+    }
+}
+
+struct Hybrid;
+impl Table for Hybrid {
+    table_ids!(hybrid::SettingId, hybrid::Settings);
+    type C = ReconfigHybridSettings;
+    const PLANNER: i32 = RECONFIG_PLANNER_HYBRID;
+    const ENTRY: &'static str = "reconfig_hybrid_solve";
+    fn workspace() -> Vec<u64> {
+        let size = reconfig_hybrid_workspace_size();
+        let mut m = memory(size);
+        assert_eq!(
+            unsafe { reconfig_hybrid_init(m.as_mut_ptr().cast(), size) },
+            0
+        );
+        m
+    }
+    fn solve(ws: &mut [u64], settings: &ReconfigHybridSettings) -> (i32, ReconfigError) {
+        let mut out = ReconfigHybridSolution::default();
+        let code = unsafe {
+            reconfig_hybrid_solve(
+                ws.as_mut_ptr().cast(),
+                &hybrid_problem(),
+                settings,
+                &mut out,
+            )
         };
         (code, out.error)
     }
@@ -473,6 +534,7 @@ fn every_setting_of_every_planner_is_refused_by_name_value_and_limit() {
     assert_eq!(walk::<BForm>(), vec!["search_seed"]);
     assert_eq!(walk::<Geo>(), Vec::<&str>::new());
     assert_eq!(walk::<Leo>(), Vec::<&str>::new());
+    assert_eq!(walk::<Hybrid>(), Vec::<&str>::new());
 }
 
 #[test]
@@ -574,6 +636,7 @@ fn the_c_structs_and_the_fixture_keys_cover_every_setting() {
     mirror_covers::<B>();
     mirror_covers::<Geo>();
     mirror_covers::<Leo>();
+    mirror_covers::<Hybrid>();
     assert_eq!(
         fixture_keys::<pseudospectral::Settings>(),
         table_names::<A>()
@@ -581,6 +644,7 @@ fn the_c_structs_and_the_fixture_keys_cover_every_setting() {
     assert_eq!(fixture_keys::<impulsive::Settings>(), table_names::<B>());
     assert_eq!(fixture_keys::<geo_tour::Settings>(), table_names::<Geo>());
     assert_eq!(fixture_keys::<leo_tour::Settings>(), table_names::<Leo>());
+    assert_eq!(fixture_keys::<hybrid::Settings>(), table_names::<Hybrid>());
 }
 
 fn names_match<T: Table>() {
@@ -609,6 +673,7 @@ fn setting_names_come_from_the_tables() {
     names_match::<B>();
     names_match::<Geo>();
     names_match::<Leo>();
+    names_match::<Hybrid>();
     // Problem quantities: 128 + their code, under their own planner only.
     let (p, b, g, l) = (
         RECONFIG_PLANNER_PSEUDOSPECTRAL,
@@ -628,6 +693,14 @@ fn setting_names_come_from_the_tables() {
     assert_eq!(setting_name(l, 128 + 12).as_deref(), Some("impulses"));
     assert_eq!(setting_name(g, 128 + 12), None);
     assert_eq!(setting_name(l, 0).as_deref(), Some("mu_km3_s2"));
+    // The hybrid transfer: its settings by code; it bounds no problem quantity.
+    let h = RECONFIG_PLANNER_HYBRID;
+    assert_eq!(setting_name(h, 0).as_deref(), Some("max_iterations"));
+    assert_eq!(setting_name(h, 8).as_deref(), Some("work_budget"));
+    assert_eq!(setting_name(h, 10).as_deref(), Some("continuation_steps"));
+    for code in 128..128 + 14 {
+        assert_eq!(setting_name(h, code), None, "code {code}");
+    }
     // The LEO sequencing is not in the C interface: its planner code names nothing.
     assert_eq!(setting_name(4, 0), None);
     assert_eq!(setting_name(-1, 0), None);

@@ -34,4 +34,10 @@ typedef struct {
     ReconfigLeoArcSettings settings; /* the request's own settings */
 } LCase;
 
+typedef struct {
+    const char *name;
+    ReconfigHybridProblem problem;
+    ReconfigHybridSettings settings; /* the fixture's own settings */
+} HCase;
+
 #endif

@@ -67,4 +67,26 @@ static inline uint64_t leo_checksum(const ReconfigLeoArcSolution *l) {
     return mix(h, l->lowest_altitude_km);
 }
 
+/* Checksum over a hybrid transfer's numbers: kappa, theta, the time of flight, the costates,
+ * lambda0, the mass after the impulse, the residual and the walk's reach, then the check flight's
+ * final mass, end miss, Hamiltonian drift and every switch-time slot (0 when absent); the test
+ * computes the same over the Rust solution. */
+static inline uint64_t hybrid_checksum(const ReconfigHybridSolution *s) {
+    uint64_t h = UINT64_C(0xcbf29ce484222325);
+    h = mix(h, s->kappa);
+    h = mix(h, s->theta_rad);
+    h = mix(h, s->duration_tu);
+    for (int k = 0; k < RECONFIG_HYBRID_STATE_LEN; k++) h = mix(h, s->costates[k]);
+    h = mix(h, s->cost_multiplier);
+    h = mix(h, s->mass_after_impulse);
+    h = mix(h, s->residual);
+    h = mix(h, s->walked_reached);
+    h = mix(h, s->flown.final_mass);
+    h = mix(h, s->flown.end_miss);
+    h = mix(h, s->flown.hamiltonian_drift);
+    for (int k = 0; k < RECONFIG_HYBRID_MAX_SWITCH_TIMES; k++)
+        h = mix(h, s->flown.switch_times_tu[k]);
+    return h;
+}
+
 #endif

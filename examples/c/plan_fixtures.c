@@ -1,7 +1,7 @@
 /*
  * Plans every planner-A, planner-B (mean elements, and the other input forms through
- * reconfig_impulsive_solve_form), GEO-tour and LEO-arc fixture through the C interface and
- * prints,
+ * reconfig_impulsive_solve_form), GEO-tour, LEO-arc and hybrid-transfer fixture through the C
+ * interface and prints,
  * per fixture, the status, the cost (planner A: J) or total delta-v (planner B), their raw bits,
  * and a checksum over the bits of the whole returned trajectory or plan.
  *
@@ -18,7 +18,11 @@
  * A request outside the built-in limits (the flight service's) is refused, not solved: the
  * `+fixed-point` runs ask for nonlinear_correction = 0, and print the refusal with the name
  * reconfig_setting_name gives its error.index. The first LEO arc is also asked with
- * min_gap_s = -1 (outside its range [0, duration / 8]): refused, named the same way.
+ * min_gap_s = -1 (outside its range [0, duration / 8]): refused, named the same way. The first
+ * hybrid transfer is also asked with its arrival velocity moved off the halo orbit (1e-3 LU/TU
+ * on its y component): refused RECONFIG_HYBRID_ERR_NOT_ON_PERIODIC_ORBIT, the miss and the
+ * tolerance. The hybrid solve is stack-only (about 74 KB on the Cortex-M7): main's thread has
+ * plenty.
  */
 #include <inttypes.h>
 #include <stdio.h>
@@ -43,6 +47,9 @@ static ReconfigGeoSolution g_solution;
 #define LEO_WORKSPACE_BYTES (32u * 1024u)
 static uint64_t leo_workspace[LEO_WORKSPACE_BYTES / 8];
 static ReconfigLeoArcSolution l_solution;
+#define HYBRID_WORKSPACE_BYTES (8u * 1024u)
+static uint64_t hybrid_workspace[HYBRID_WORKSPACE_BYTES / 8];
+static ReconfigHybridSolution h_solution;
 
 /* A refusal: its code, field and index, the setting's name when the refusal names a setting
  * (reconfig_setting_name), and the bits of the value and the limit. */
@@ -202,23 +209,63 @@ static int plan_l(void) {
     return 0;
 }
 
+static void print_h(const char *name, int32_t status) {
+    if (status < 0) {
+        print_refusal('H', name, RECONFIG_PLANNER_HYBRID, status, &h_solution.error);
+        return;
+    }
+    /* The final mass is the check flight's (0 when it was not flown: has_flown 0). */
+    printf("H %s status=%" PRId32 " usable=%u iterations=%" PRIu32 " walked=%u m_f=%.9f"
+           " mass_bits=%016" PRIx64 " tf_bits=%016" PRIx64 " work_units=%" PRIu64
+           " checksum=%016" PRIx64 "\n",
+           name, status, (unsigned)h_solution.usable, h_solution.iterations,
+           (unsigned)h_solution.walked_shootings, h_solution.flown.final_mass,
+           bits(h_solution.flown.final_mass), bits(h_solution.duration_tu),
+           h_solution.work_units, hybrid_checksum(&h_solution));
+}
+
+static int plan_h(void) {
+    size_t n = sizeof H_CASES / sizeof H_CASES[0];
+    for (size_t c = 0; c < n; c++) {
+        int32_t status = reconfig_hybrid_solve(hybrid_workspace, &H_CASES[c].problem,
+                                               &H_CASES[c].settings, &h_solution);
+        print_h(H_CASES[c].name, status);
+    }
+    /* An arrival point off the halo orbit: refused before planning, the miss and the
+     * tolerance. */
+    ReconfigHybridProblem off = H_CASES[0].problem;
+    off.arrival_v_vu[1] += 1e-3;
+    char name[128];
+    snprintf(name, sizeof name, "%s+off-halo", H_CASES[0].name);
+    print_h(name, reconfig_hybrid_solve(hybrid_workspace, &off, &H_CASES[0].settings,
+                                        &h_solution));
+    return 0;
+}
+
 int main(void) {
     if (reconfig_pseudospectral_workspace_size() > sizeof a_workspace ||
         reconfig_impulsive_workspace_size() > sizeof b_workspace ||
         reconfig_geo_tour_workspace_size() > sizeof geo_workspace ||
         reconfig_leo_arc_workspace_size() > sizeof leo_workspace ||
+        reconfig_hybrid_workspace_size() > sizeof hybrid_workspace ||
         reconfig_pseudospectral_workspace_align() > 8 || reconfig_impulsive_workspace_align() > 8 ||
-        reconfig_geo_tour_workspace_align() > 8 || reconfig_leo_arc_workspace_align() > 8) {
-        fprintf(stderr, "workspace buffers too small: A needs %zu, B %zu, GEO %zu, LEO %zu bytes\n",
+        reconfig_geo_tour_workspace_align() > 8 || reconfig_leo_arc_workspace_align() > 8 ||
+        reconfig_hybrid_workspace_align() > 8) {
+        fprintf(stderr,
+                "workspace buffers too small: A needs %zu, B %zu, GEO %zu, LEO %zu, hybrid %zu "
+                "bytes\n",
                 reconfig_pseudospectral_workspace_size(), reconfig_impulsive_workspace_size(),
-                reconfig_geo_tour_workspace_size(), reconfig_leo_arc_workspace_size());
+                reconfig_geo_tour_workspace_size(), reconfig_leo_arc_workspace_size(),
+                reconfig_hybrid_workspace_size());
         return 2;
     }
     if (reconfig_pseudospectral_init(a_workspace, sizeof a_workspace) != 0) return 3;
     if (reconfig_impulsive_init(b_workspace, sizeof b_workspace) != 0) return 3;
     if (reconfig_geo_tour_init(geo_workspace, sizeof geo_workspace) != 0) return 3;
     if (reconfig_leo_arc_init(leo_workspace, sizeof leo_workspace) != 0) return 3;
-    if (plan_a() != 0 || plan_b() != 0 || plan_f() != 0 || plan_g() != 0 || plan_l() != 0)
+    if (reconfig_hybrid_init(hybrid_workspace, sizeof hybrid_workspace) != 0) return 3;
+    if (plan_a() != 0 || plan_b() != 0 || plan_f() != 0 || plan_g() != 0 || plan_l() != 0 ||
+        plan_h() != 0)
         return 4;
     return 0;
 }

@@ -11,7 +11,10 @@
 //! settings through `reconfig_geo_tour_solve`, and the LEO tour's arcs (the paper's single arc and
 //! the arcs of a sequencing fixture's on-board part) with their requests' settings through
 //! `reconfig_leo_arc_solve`, plus the first arc once more with `min_gap_s = -1`, refused before
-//! planning naming the setting, its value and the end of its range. The Rust side answers each through the one
+//! planning naming the setting, its value and the end of its range, and the hybrid transfer's
+//! fixtures with their own settings through `reconfig_hybrid_solve`, plus the first once more
+//! with its arrival velocity moved off the halo orbit, refused naming the miss and the
+//! tolerance. The Rust side answers each through the one
 //! request path, `wire::answer` with the built-in limits, as the C interface does: the
 //! `+fixed-point` runs ask for `nonlinear_correction = 0`, which the limits refuse, and both
 //! sides print the refusal (code, field, the setting's code and name, the bits of the value and
@@ -25,7 +28,7 @@ mod image_limits;
 
 use reconfig_core::limits::{LimitViolation, Limits};
 use reconfig_core::wire::Request;
-use reconfig_core::{geo_tour, impulsive, leo_tour, pseudospectral, wire};
+use reconfig_core::{geo_tour, hybrid, impulsive, leo_tour, pseudospectral, wire};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -342,6 +345,54 @@ fn l_case(name: &str, p: &leo_tour::ArcProblem, st: &leo_tour::Settings) -> Stri
     )
 }
 
+/// An `HCase` initializer: the request's problem and settings field by field (every field of
+/// `ReconfigHybridProblem` and `ReconfigHybridSettings` named).
+fn h_case(name: &str, p: &hybrid::Problem, st: &hybrid::Settings) -> String {
+    let objective = match p.objective {
+        hybrid::Objective::MinFuel => "RECONFIG_HYBRID_OBJECTIVE_MIN_FUEL",
+        hybrid::Objective::MinEnergy => "RECONFIG_HYBRID_OBJECTIVE_MIN_ENERGY",
+        hybrid::Objective::MinTime => "RECONFIG_HYBRID_OBJECTIVE_MIN_TIME",
+    };
+    format!(
+        "    {{\"{name}\", {{.kappa = {}, .theta_rad = {}, .duration_days = {}, .thrust_n = {}, \
+         .specific_impulse_s = {}, .chemical_specific_impulse_s = {}, .parking_radius_km = {}, \
+         .departure_offset = {}, .arrival_r_lu = {}, .arrival_v_vu = {}, .halo_period_tu = {}, \
+         .costates = {}, .cost_multiplier = {}, .design_duration_days = {}, \
+         .design_thrust_n = {}, .objective = {objective}, .free_kappa = {}, .free_theta = {}}}, \
+         {{.tolerance = {}, .hamiltonian_tol = {}, .relative_tol = {}, .absolute_tol = {}, \
+         .halo_closure_tol = {}, .flight_tol = {}, .work_budget = {}ULL, .max_iterations = {}, \
+         .max_halvings = {}, .check_segments = {}, .continuation_steps = {}}}}},\n",
+        hexf(p.kappa),
+        hexf(p.theta_rad),
+        hexf(p.duration_days),
+        hexf(p.thrust_n),
+        hexf(p.specific_impulse_s),
+        hexf(p.chemical_specific_impulse_s),
+        hexf(p.parking_radius_km),
+        doubles(&p.departure_offset),
+        doubles(&p.arrival_r_lu),
+        doubles(&p.arrival_v_vu),
+        hexf(p.halo_period_tu),
+        doubles(&p.costates),
+        hexf(p.cost_multiplier),
+        hexf(p.design_duration_days),
+        hexf(p.design_thrust_n),
+        u8::from(p.free_kappa),
+        u8::from(p.free_theta),
+        hexf(st.tolerance),
+        hexf(st.hamiltonian_tol),
+        hexf(st.relative_tol),
+        hexf(st.absolute_tol),
+        hexf(st.halo_closure_tol),
+        hexf(st.flight_tol),
+        st.work_budget,
+        st.max_iterations,
+        st.max_halvings,
+        st.check_segments,
+        st.continuation_steps,
+    )
+}
+
 const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
 const FNV_PRIME: u64 = 0x0000_0100_0000_01b3;
 
@@ -589,6 +640,73 @@ fn l_expected(name: &str, p: &leo_tour::ArcProblem, settings: &leo_tour::Setting
     })
 }
 
+/// The line the C example must print for a hybrid transfer, from the Rust API: the status,
+/// the Newton iterations, the walk's shootings, the check flight's final mass (0 when it was not
+/// flown) and its bits, the bits of the time of flight, the work units and a checksum over every
+/// number of the answer (as examples/c/checksum.h's `hybrid_checksum`, absent values 0 as C
+/// writes them). A refusal by the planner prints the C refusal (`convert_hybrid::error_to_c`):
+/// code, field, index, the setting's name when it names a setting, the value's and the limit's
+/// bits, as C's `print_refusal`.
+fn h_expected(name: &str, p: &hybrid::Problem, settings: &hybrid::Settings) -> String {
+    let request = wire::Request::Hybrid {
+        problem: *p,
+        settings: *settings,
+    };
+    answer_with(&request, |outcome| {
+        let s = match outcome {
+            wire::OutcomeRef::Hybrid(s) => s,
+            wire::OutcomeRef::LimitExceeded(v) => return refusal_line('H', name, &v),
+            wire::OutcomeRef::HybridRejected(e) => {
+                let c = reconfig_capi::convert_hybrid::error_to_c(&e);
+                let setting = match e {
+                    hybrid::PlanError::InvalidSetting(s) => s.setting.name(),
+                    _ => "-",
+                };
+                return format!(
+                    "H {name} status={} field={} index={} setting={setting} value_bits={:016x} \
+                     limit_bits={:016x}",
+                    c.code,
+                    c.field,
+                    c.index,
+                    c.value.to_bits(),
+                    c.limit.to_bits()
+                );
+            }
+            other => panic!("{name}: every hybrid fixture is planned ({other:?})"),
+        };
+        let flown = s.flown.unwrap_or_default();
+        let mut h = FNV_OFFSET;
+        for x in [s.kappa, s.theta_rad, s.duration_tu] {
+            h = mix(h, x);
+        }
+        h = s.costates.iter().fold(h, |h, v| mix(h, *v));
+        for x in [
+            s.cost_multiplier,
+            s.mass_after_impulse,
+            s.residual.unwrap_or(0.0),
+            s.info.walked.reached,
+            flown.final_mass,
+            flown.end_miss,
+            flown.hamiltonian_drift,
+        ] {
+            h = mix(h, x);
+        }
+        h = flown.switch_times_tu.iter().fold(h, |h, v| mix(h, *v));
+        let (status, _) = reconfig_capi::convert_hybrid::status_to_c(s.info.status);
+        format!(
+            "H {name} status={status} usable={} iterations={} walked={} m_f={:.9} \
+             mass_bits={:016x} tf_bits={:016x} work_units={} checksum={h:016x}",
+            u8::from(s.info.status.is_usable()),
+            s.info.iterations,
+            s.info.walked.shootings,
+            flown.final_mass,
+            flown.final_mass.to_bits(),
+            s.duration_tu.to_bits(),
+            s.info.work_units,
+        )
+    })
+}
+
 fn run(cmd: &mut Command, what: &str) -> String {
     let out = cmd
         .output()
@@ -621,6 +739,8 @@ fn prepared() -> &'static Prepared {
         let mut g_cases = String::new();
         let mut l_cases = String::new();
         let mut l_first = None;
+        let mut h_cases = String::new();
+        let mut h_first = None;
         let mut expected = Vec::new();
         for f in &fixtures {
             let request: Request = postcard::from_bytes(&f.request).unwrap();
@@ -661,8 +781,16 @@ fn prepared() -> &'static Prepared {
                     expected.push(l_expected(&f.name, p, st));
                     l_first.get_or_insert((f.name.clone(), *p));
                 }
-                // The LEO tour's order has no C interface, nor yet the hybrid transfer.
-                Request::LeoSequence { .. } | Request::Hybrid { .. } => {}
+                Request::Hybrid {
+                    problem: p,
+                    settings: st,
+                } => {
+                    h_cases.push_str(&h_case(&f.name, p, st));
+                    expected.push(h_expected(&f.name, p, st));
+                    h_first.get_or_insert((f.name.clone(), *p, *st));
+                }
+                // The LEO tour's order has no C interface.
+                Request::LeoSequence { .. } => {}
             }
         }
         // The first arc once more with `min_gap_s = -1` (the C programs' last line): refused
@@ -677,14 +805,24 @@ fn prepared() -> &'static Prepared {
             &first_arc,
             &bad,
         ));
-        // Planner A lines first, then planner B, its other forms, the GEO tour and the LEO arcs,
-        // as the programs print them (the sort is stable: fixture order within each).
+        // The first hybrid transfer once more with its arrival velocity off the halo orbit (the
+        // C programs' last line): refused by the planner's halo check, the miss and the
+        // tolerance.
+        let (h_name, h_problem, h_settings) =
+            h_first.expect("the hybrid fixtures are among the fixtures");
+        let mut off = h_problem;
+        off.arrival_v_vu[1] += 1e-3;
+        expected.push(h_expected(&format!("{h_name}+off-halo"), &off, &h_settings));
+        // Planner A lines first, then planner B, its other forms, the GEO tour, the LEO arcs and
+        // the hybrid transfer, as the programs print them (the sort is stable: fixture order
+        // within each).
         expected.sort_by_key(|line| match line.as_bytes().first() {
             Some(b'A') => 0,
             Some(b'B') => 1,
             Some(b'F') => 2,
             Some(b'G') => 3,
-            _ => 4,
+            Some(b'L') => 4,
+            _ => 5,
         });
         assert!(
             expected.iter().any(|l| l.starts_with("F ")),
@@ -720,6 +858,23 @@ fn prepared() -> &'static Prepared {
             ))),
             "the bad-gap run is refused by name, value and limit: {expected:#?}"
         );
+        // Every hybrid fixture (the paper's kappa = 1.40 rows and minimum time) is planned
+        // through C, solved and usable; the off-halo run is refused by the halo check.
+        let hybrid: Vec<&String> = expected
+            .iter()
+            .filter(|l| l.starts_with("H hybrid-") && !l.contains("+off-halo"))
+            .collect();
+        assert!(
+            hybrid.len() == 8 && hybrid.iter().all(|l| l.contains(" status=501 usable=1 ")),
+            "the 8 hybrid fixtures are solved through C: {hybrid:#?}"
+        );
+        assert!(
+            expected.iter().any(|l| l.contains(
+                "+off-halo status=-602 field=110 index=-1 \
+                 setting=- "
+            )),
+            "the off-halo run is refused by the halo check: {expected:#?}"
+        );
         // The built-in limits require the nonlinear correction: the `+fixed-point` runs are
         // refused (in C as by the flight service), naming the setting, its value and limit.
         let refused: Vec<&String> = expected
@@ -744,7 +899,8 @@ fn prepared() -> &'static Prepared {
                  static const BCase B_CASES[] = {{\n{b_cases}}};\n\
                  static const FCase F_CASES[] = {{\n{f_cases}}};\n\
                  static const GCase G_CASES[] = {{\n{g_cases}}};\n\
-                 static const LCase L_CASES[] = {{\n{l_cases}}};\n"
+                 static const LCase L_CASES[] = {{\n{l_cases}}};\n\
+                 static const HCase H_CASES[] = {{\n{h_cases}}};\n"
             ),
         )
         .unwrap();
@@ -825,11 +981,13 @@ fn first_tool(candidates: &[&'static str]) -> Option<&'static str> {
 /// The expected M7 line: the host line's fields that do not need `printf` (status, bits, work
 /// units, checksum).
 fn m7_fields(host_line: &str) -> String {
-    const KEPT: [&str; 13] = [
+    const KEPT: [&str; 15] = [
         "status=",
         "J_bits=",
         "min_sep_bits=",
         "dv_bits=",
+        "mass_bits=",
+        "tf_bits=",
         "work_units=",
         "checksum=",
         "end_form=",
@@ -937,7 +1095,7 @@ fn m7_c_image_is_bit_identical_to_the_rust_api_on_every_fixture() {
     );
     let mut got = Vec::new();
     for line in stdout.lines().filter(|l| {
-        ["A ", "B ", "F ", "G ", "L "]
+        ["A ", "B ", "F ", "G ", "L ", "H "]
             .iter()
             .any(|p| l.starts_with(p))
     }) {

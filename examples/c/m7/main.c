@@ -1,11 +1,12 @@
 /*
  * The C interface on the emulated Cortex-M7 (QEMU mps2-an500): a freestanding C program (no C
  * library) that plans every fixture of examples/c/fixture_data.h (planners A and B, the GEO
- * tour, the LEO arcs) through libreconfig_capi.a
+ * tour, the LEO arcs, the hybrid transfer) through libreconfig_capi.a
  * built for thumbv7em-none-eabihf, and prints per fixture the status, the bits of J / total
  * delta-v, the work units, the checksum of examples/c/plan_fixtures.c, and the stack the solve
  * call used (a request the built-in limits refuse prints the refusal, named, as
- * plan_fixtures.c does). Output and exit go through semihosting. Built and run by tests/tests/c_api.rs:
+ * plan_fixtures.c does). Output and exit go through semihosting. The hybrid solve is
+ * stack-only, about 74 KB: the 128 KiB stack of link.ld holds it. Built and run by tests/tests/c_api.rs:
  *
  *   cargo rustc -p reconfig-capi --release --target thumbv7em-none-eabihf --lib \
  *       --crate-type staticlib --no-default-features --features abort-proof
@@ -105,6 +106,8 @@ static uint64_t geo_workspace[65536 / 8];
 static ReconfigGeoSolution g_solution;
 static uint64_t leo_workspace[32768 / 8];
 static ReconfigLeoArcSolution l_solution;
+static uint64_t hybrid_workspace[8192 / 8];
+static ReconfigHybridSolution h_solution;
 
 static int plan_a(void) {
     ReconfigASettings settings;
@@ -275,11 +278,45 @@ static int plan_l(void) {
     return 1;
 }
 
+/* One hybrid transfer: `suffix` is appended to the case's name (the refusal run's). */
+static void solve_h(size_t c, const ReconfigHybridProblem *problem, const char *suffix) {
+    paint_stack();
+    uintptr_t sp = current_sp();
+    int32_t status = reconfig_hybrid_solve(hybrid_workspace, problem, &H_CASES[c].settings,
+                                           &h_solution);
+    uintptr_t used = sp - (uintptr_t)lowest_touched();
+    at = 0;
+    add("H "); add(H_CASES[c].name); add(suffix);
+    if (status < 0) {
+        add_refusal(RECONFIG_PLANNER_HYBRID, status, &h_solution.error);
+    } else {
+        add(" status="); add_i(status);
+        add(" mass_bits="); add_hex(bits(h_solution.flown.final_mass));
+        add(" tf_bits="); add_hex(bits(h_solution.duration_tu));
+        add(" work_units="); add_u(h_solution.work_units);
+        add(" checksum="); add_hex(hybrid_checksum(&h_solution));
+    }
+    add(" stack_bytes="); add_u(used);
+    add("\n");
+    put(line);
+}
+
+static int plan_h(void) {
+    for (size_t c = 0; c < sizeof H_CASES / sizeof H_CASES[0]; c++)
+        solve_h(c, &H_CASES[c].problem, "");
+    /* An arrival point off the halo orbit, as examples/c/plan_fixtures.c. */
+    ReconfigHybridProblem off = H_CASES[0].problem;
+    off.arrival_v_vu[1] += 1e-3;
+    solve_h(0, &off, "+off-halo");
+    return 1;
+}
+
 int main(void) {
     if (reconfig_pseudospectral_workspace_size() > sizeof a_workspace ||
         reconfig_impulsive_workspace_size() > sizeof b_workspace ||
         reconfig_geo_tour_workspace_size() > sizeof geo_workspace ||
-        reconfig_leo_arc_workspace_size() > sizeof leo_workspace) {
+        reconfig_leo_arc_workspace_size() > sizeof leo_workspace ||
+        reconfig_hybrid_workspace_size() > sizeof hybrid_workspace) {
         at = 0;
         add("workspace buffers too small: A needs ");
         add_u(reconfig_pseudospectral_workspace_size());
@@ -289,6 +326,8 @@ int main(void) {
         add_u(reconfig_geo_tour_workspace_size());
         add(", LEO needs ");
         add_u(reconfig_leo_arc_workspace_size());
+        add(", hybrid needs ");
+        add_u(reconfig_hybrid_workspace_size());
         add("\n");
         put(line);
         return 0;
@@ -297,14 +336,16 @@ int main(void) {
     if (reconfig_impulsive_init(b_workspace, sizeof b_workspace) != 0) return 0;
     if (reconfig_geo_tour_init(geo_workspace, sizeof geo_workspace) != 0) return 0;
     if (reconfig_leo_arc_init(leo_workspace, sizeof leo_workspace) != 0) return 0;
+    if (reconfig_hybrid_init(hybrid_workspace, sizeof hybrid_workspace) != 0) return 0;
     at = 0;
     add("workspace_bytes A="); add_u(reconfig_pseudospectral_workspace_size());
     add(" B="); add_u(reconfig_impulsive_workspace_size());
     add(" GEO="); add_u(reconfig_geo_tour_workspace_size());
     add(" LEO="); add_u(reconfig_leo_arc_workspace_size());
+    add(" HYBRID="); add_u(reconfig_hybrid_workspace_size());
     add("\n");
     put(line);
-    return plan_a() && plan_b() && plan_f() && plan_g() && plan_l();
+    return plan_a() && plan_b() && plan_f() && plan_g() && plan_l() && plan_h();
 }
 
 /* The abort-free proof (docs/c-api.md, "Abort-free"): the library's panic handler calls
