@@ -113,6 +113,20 @@ pub fn summarize(outcome: &Outcome) -> (String, String, String, String) {
             q.total_dv_mps.map_or("no order".into(), dv),
             format!("{}", q.info.arcs_planned),
         ),
+        Outcome::Hybrid(s) => figures(
+            format!("{:?}", s.info.status),
+            s.flown.map_or_else(
+                || "not flown".to_owned(),
+                |f| {
+                    format!(
+                        "m_f={:.6} t_f={:.4} d",
+                        f.final_mass,
+                        reconfig_core::hybrid::units::days(s.duration_tu)
+                    )
+                },
+            ),
+            format!("{}", s.info.iterations),
+        ),
         Outcome::BadRequest(e) => figures(format!("bad request: {e}"), dash(), dash()),
         Outcome::LimitExceeded(v) => figures(format!("limit exceeded: {v}"), dash(), dash()),
         Outcome::Unsupported(p) => figures(format!("unsupported planner {p:?}"), dash(), dash()),
