@@ -17,7 +17,7 @@ type WithStm = [f64; 210];
 pub const MAX_SWITCHES: u32 = 256;
 
 /// Whether `law` is the bang-bang law (the smoothed law at ε = 0).
-fn bang_bang(law: Throttle) -> bool {
+pub(super) fn bang_bang(law: Throttle) -> bool {
     matches!(law, Throttle::Smoothed { epsilon } if epsilon <= 0.0)
 }
 
@@ -301,6 +301,53 @@ mod tests {
         assert!(drift < 1e-10, "H drifts by {drift} (H = {h0})");
     }
 
+    /// Every column of `phi` against central differences of the flow from `y0` over
+    /// `duration`, extrapolated (Richardson: fourth order).
+    fn assert_stm_is_the_flows_derivative(
+        model: &Model,
+        law: Throttle,
+        y0: &Augmented,
+        duration: f64,
+        phi: &Jacobian,
+    ) {
+        let base = y0.to_array();
+        for col in 0..14 {
+            // Not smaller: the adaptive steps differ between the perturbed flows, a noise of
+            // the tolerance (1e-13) over the step that grows as the step shrinks (measured:
+            // up to 1e-6 of an entry at h = 1e-4; hence the 1e-5 below, while a wrong term
+            // or a column out of place is wrong at O(1)).
+            let h = 1e-4 * (1.0 + base[col].abs());
+            let at = |dx: f64| {
+                let mut z = base;
+                z[col] += dx;
+                let mut c = Counts::default();
+                propagate(
+                    model,
+                    law,
+                    &Augmented::from_array(&z),
+                    duration,
+                    &TIGHT,
+                    &mut c,
+                )
+                .unwrap()
+                .to_array()
+            };
+            // Central differences at h and h/2, extrapolated (Richardson): fourth order.
+            let (plus, minus) = (at(h), at(-h));
+            let (plus2, minus2) = (at(h / 2.0), at(-h / 2.0));
+            for row in 0..14 {
+                let coarse = (plus[row] - minus[row]) / (2.0 * h);
+                let fine = (plus2[row] - minus2[row]) / h;
+                let fd = (4.0 * fine - coarse) / 3.0;
+                assert!(
+                    (phi[(row, col)] - fd).abs() < 1e-5 * (1.0 + fd.abs()),
+                    "Φ[{row}][{col}] = {} against {fd}",
+                    phi[(row, col)]
+                );
+            }
+        }
+    }
+
     /// The bang-bang law (ε = 0): the arc coasts, switches the engine on where S crosses zero,
     /// and the state-transition matrix, carried across the switch by eq. 22's jump, is the
     /// flow's derivative; H is constant across the switch.
@@ -342,37 +389,7 @@ mod tests {
             (model.hamiltonian(law, &end) - h0).abs() < 1e-10,
             "H across the switch"
         );
-        let base = y0.to_array();
-        for col in 0..14 {
-            let h = 1e-4 * (1.0 + base[col].abs());
-            let at = |dx: f64| {
-                let mut z = base;
-                z[col] += dx;
-                let mut c = Counts::default();
-                propagate(
-                    &model,
-                    law,
-                    &Augmented::from_array(&z),
-                    duration,
-                    &TIGHT,
-                    &mut c,
-                )
-                .unwrap()
-                .to_array()
-            };
-            let (plus, minus) = (at(h), at(-h));
-            let (plus2, minus2) = (at(h / 2.0), at(-h / 2.0));
-            for row in 0..14 {
-                let coarse = (plus[row] - minus[row]) / (2.0 * h);
-                let fine = (plus2[row] - minus2[row]) / h;
-                let fd = (4.0 * fine - coarse) / 3.0;
-                assert!(
-                    (phi[(row, col)] - fd).abs() < 1e-5 * (1.0 + fd.abs()),
-                    "Φ[{row}][{col}] = {} against {fd}",
-                    phi[(row, col)]
-                );
-            }
-        }
+        assert_stm_is_the_flows_derivative(&model, law, &y0, duration, &phi);
     }
 
     /// The state-transition matrix is the flow's derivative: every column against central
@@ -392,41 +409,6 @@ mod tests {
         }
         // The throttle starts on its ramp (|S| < ε) and leaves it for full thrust on the way.
         assert!(model.switching(&y0).abs() < 0.3 && model.switching(&end) < -0.3);
-        let base = y0.to_array();
-        for col in 0..14 {
-            // Not smaller: the adaptive steps differ between the perturbed flows, a noise of
-            // the tolerance (1e-13) over the step that grows as the step shrinks (measured:
-            // up to 1e-6 of an entry at h = 1e-4; hence the 1e-5 below, while a wrong term
-            // or a column out of place is wrong at O(1)).
-            let h = 1e-4 * (1.0 + base[col].abs());
-            let at = |dx: f64| {
-                let mut z = base;
-                z[col] += dx;
-                let mut c = Counts::default();
-                propagate(
-                    &model,
-                    law,
-                    &Augmented::from_array(&z),
-                    duration,
-                    &TIGHT,
-                    &mut c,
-                )
-                .unwrap()
-                .to_array()
-            };
-            // Central differences at h and h/2, extrapolated (Richardson): fourth order.
-            let (plus, minus) = (at(h), at(-h));
-            let (plus2, minus2) = (at(h / 2.0), at(-h / 2.0));
-            for row in 0..14 {
-                let coarse = (plus[row] - minus[row]) / (2.0 * h);
-                let fine = (plus2[row] - minus2[row]) / h;
-                let fd = (4.0 * fine - coarse) / 3.0;
-                assert!(
-                    (phi[(row, col)] - fd).abs() < 1e-5 * (1.0 + fd.abs()),
-                    "Φ[{row}][{col}] = {} against {fd}",
-                    phi[(row, col)]
-                );
-            }
-        }
+        assert_stm_is_the_flows_derivative(&model, law, &y0, duration, &phi);
     }
 }

@@ -125,6 +125,16 @@ pub fn solve(
     Ok(())
 }
 
+/// The largest component of `y`'s position and velocity off `r_lu`, `v_vu`.
+fn state_miss(y: &Augmented, r_lu: &[f64; 3], v_vu: &[f64; 3]) -> f64 {
+    y.r_lu
+        .iter()
+        .zip(r_lu)
+        .chain(y.v_vu.iter().zip(v_vu))
+        .map(|(a, b)| libm::fabs(a - b))
+        .fold(0.0, f64::max)
+}
+
 /// Fly the arrival point ballistically over the halo period: it must come back to itself.
 fn check_halo(
     model: &Model,
@@ -150,13 +160,7 @@ fn check_halo(
         counts,
     )
     .map_err(|_| PlanError::HaloCheckUnfinished)?;
-    let miss = end
-        .r_lu
-        .iter()
-        .zip(start.r_lu)
-        .chain(end.v_vu.iter().zip(start.v_vu))
-        .map(|(a, b)| libm::fabs(a - b))
-        .fold(0.0, f64::max);
+    let miss = state_miss(&end, &start.r_lu, &start.v_vu);
     if miss.is_finite() && miss <= settings.halo_closure_tol {
         Ok(())
     } else {
@@ -195,13 +199,8 @@ fn fly_from(
     };
     let flight = fly(model, law(problem.objective), &y0, span, tol, counts, visit)?;
     let end = flight.end;
-    let miss = end
-        .r_lu
-        .iter()
-        .zip(problem.arrival_r_lu)
-        .chain(end.v_vu.iter().zip(problem.arrival_v_vu))
-        .map(|(a, b)| libm::fabs(a - b))
-        .fold(libm::fabs(end.lambda_m), f64::max);
+    let miss = state_miss(&end, &problem.arrival_r_lu, &problem.arrival_v_vu)
+        .max(libm::fabs(end.lambda_m));
     Ok((flight, miss))
 }
 

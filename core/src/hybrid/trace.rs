@@ -4,7 +4,7 @@
 //! the source of the host's reports and plots, so that both show one computation.
 
 use super::dynamics::{Augmented, Model, Throttle};
-use super::flow::propagate_observed;
+use super::flow::{bang_bang, propagate_observed};
 use super::integrate::{Counts, Stop, Tolerance};
 
 /// Switch times a flight keeps (the count goes on beyond them).
@@ -85,7 +85,7 @@ pub fn fly(
         thrust_arcs: 0,
         hamiltonian_drift: 0.0,
     };
-    let bang_bang = matches!(law, Throttle::Smoothed { epsilon } if epsilon <= 0.0);
+    let bang_bang = bang_bang(law);
     let mut thrusting = first.throttle > 0.5;
     if thrusting {
         flight.thrust_arcs = 1;

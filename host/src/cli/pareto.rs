@@ -5,7 +5,7 @@
 //! the planner where one step is too long); print each point (t_f, m_f, κ, status), stop at the
 //! first step that does not converge and say why, and draw the (t_f, m_f) curve.
 
-use crate::drivers::answer::{answer, buffers};
+use crate::drivers::hybrid::plan;
 use crate::fixture::hybrid::HybridFixture;
 use crate::fixture::{self, Fixture};
 use crate::plot::{chart, range};
@@ -15,7 +15,6 @@ use plotters::prelude::*;
 use reconfig_core::hybrid::units::days;
 use reconfig_core::hybrid::{Objective, Solution};
 use reconfig_core::limits::Limits;
-use reconfig_core::wire::OutcomeRef;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -66,16 +65,9 @@ pub struct Walked {
     pub stop: Option<String>,
 }
 
-/// The answer of `fixture`'s request.
+/// The answer of `fixture`'s request under the built-in limits.
 fn solve(fixture: &HybridFixture) -> Result<Solution> {
-    let mut buffers = buffers();
-    let [r] = &Fixture::Hybrid(fixture.clone()).requests()?[..] else {
-        bail!("a hybrid fixture stands for one request");
-    };
-    match answer(&r.request, &Limits::default(), &mut *buffers).outcome {
-        OutcomeRef::Hybrid(s) => Ok(*s),
-        other => Err(anyhow!("{}: {other:?}", fixture.name)),
-    }
+    plan(fixture, &Limits::default()).map(|s| *s)
 }
 
 /// The fixture moved to `value` of the walked parameter, started from `from` (its costates,
