@@ -32,6 +32,7 @@ pub mod departure;
 pub mod dynamics;
 pub mod flow;
 pub mod free;
+pub mod halo;
 pub mod integrate;
 pub mod jacobian;
 pub mod ladder;
@@ -50,7 +51,7 @@ pub mod units;
 mod walk;
 
 pub use dynamics::{Augmented, Model, Throttle};
-pub use planner::{fly_plan, solve, Hybrid, Workspace};
+pub use planner::{fly_plan, solve, transversality, Hybrid, Workspace};
 pub use problem::{Field, Objective, PlanError, Problem, MAX_COSTATE};
 pub use solution::{
     FlownPlan, SettingId, Settings, Solution, SolveInfo, SolveStatus, Stopped, Walked,

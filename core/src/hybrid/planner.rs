@@ -270,6 +270,25 @@ pub fn fly_plan(
     .map(|(f, _)| f)
 }
 
+/// The transversality conditions of a returned plan, `[κ, θ]` (SPEC-hybrid.md eq. 12): the
+/// derivatives of its cost in κ and θ with the impulse's other parameter held (the envelope
+/// of the fixed-parameter family, `∂Θ/∂κ + λ(t0)·∂x0/∂κ` and `λ(t0)·∂x0/∂θ`); both 0 where
+/// the plan is optimal in them. A ground tool finds the optimum in θ as the root of the
+/// second along a family of fixed-θ plans, where the shooting with θ free is too steep for
+/// Newton (docs/hybrid.md, "κ and θ free").
+pub fn transversality(problem: &Problem, solution: &Solution) -> [f64; 2] {
+    let departure = departure_of(problem);
+    let d = departure.state(solution.kappa, solution.theta_rad);
+    let dot = |a: &[f64; 7]| {
+        a.iter()
+            .zip(&solution.costates)
+            .map(|(x, l)| x * l)
+            .sum::<f64>()
+    };
+    let (_, cost_in_kappa, _) = departure.chemical_cost(solution.kappa);
+    [cost_in_kappa + dot(&d.d_kappa), dot(&d.d_theta)]
+}
+
 /// The status the shot and its check flight support.
 fn status(shot: &Shot, flown: &Result<FlownPlan, Stop>, settings: &Settings) -> SolveStatus {
     let stopped = |stop: &Stop| match stop {

@@ -8,7 +8,7 @@ use std::string::ToString;
 
 /// Table 3's first case, κ = 1.40 and θ = −2 fixed, 4.38 d: the minimum-fuel costates the
 /// ladder designs (`ladder` tests), to six significant digits.
-fn table_3_min_fuel() -> Problem {
+pub(super) fn table_3_min_fuel() -> Problem {
     Problem {
         objective: Objective::MinFuel,
         kappa: 1.4,
