@@ -63,6 +63,10 @@ pub struct Args {
     /// table's last row; `pareto::free_last`).
     #[arg(long)]
     pub free_last: bool,
+    /// Write the last point (the freed one with `--free-last`) as a fixture here: the design,
+    /// a request to plan, upload or walk from again (its name the file's stem).
+    #[arg(long)]
+    pub write_fixture: Option<PathBuf>,
 }
 
 /// One point of the walk.
@@ -492,6 +496,37 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     }
     if let Some(line) = &freed {
         println!("{line}");
+    }
+    if let Some(path) = &args.write_fixture {
+        let last = points
+            .last()
+            .ok_or_else(|| anyhow!("the walk has no point"))?;
+        let mut f = step_fixture(
+            &base,
+            args.walk,
+            last.value,
+            (last.value, &last.solution),
+            None,
+        )?;
+        f.name = path
+            .file_stem()
+            .map_or_else(|| base.name.clone(), |s| s.to_string_lossy().into_owned());
+        let note = format!(
+            "Designed by `reconfig pareto {} --walk {walked} --to={} --step {}{}` from {}:\n\
+             the walk's last point, {walked} = {} ({:?}, final mass {}).",
+            args.fixture.display(),
+            args.to,
+            args.step,
+            if args.free_last { " --free-last" } else { "" },
+            base.name,
+            last.value,
+            last.solution.info.status,
+            last.solution
+                .flown
+                .map_or_else(|| "—".to_owned(), |f| format!("{:.9}", f.final_mass))
+        );
+        std::fs::write(path, crate::fixture::hybrid::to_toml(&f, &note))?;
+        println!("wrote {}", path.display());
     }
     if let Some(out) = &args.output {
         draw(
