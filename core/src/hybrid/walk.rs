@@ -1,7 +1,8 @@
 //! Neighbouring re-convergence on board: where the shooting does not converge from the ground's
 //! design straight away (a navigation update of the departure, a changed time of flight, a
 //! derated engine), walk from the problem the design solved to the request, each step's
-//! shooting starting from the last converged one, the step doubled after a success and halved
+//! shooting starting from the last converged one extrapolated along the secant through the
+//! two last (the design counting as the first), the step doubled after a success and halved
 //! after a failure, within a bounded number of shootings and the work budget.
 
 use super::departure::Departure;
@@ -20,6 +21,9 @@ const MIN_STEP: f64 = 1.0 / 64.0;
 const WALK_MAX_ITERATIONS: u32 = 8;
 /// Halvings of a Newton step in a walk's shooting at most.
 const WALK_MAX_HALVINGS: u32 = 4;
+
+/// The straight shooting's share of the budget, 1 / this, where a walk may follow.
+const STRAIGHT_SHARE: u64 = 4;
 
 /// Whether the request is the problem its start was designed for (nothing to walk).
 fn is_its_design(problem: &Problem) -> bool {
@@ -80,23 +84,37 @@ pub(super) fn shoot_or_walk(
 ) -> (Shot, Walked) {
     let mut total = Counts::default();
     let mut iterations = 0_u32;
-    let attempt =
-        |p: &Problem, base: &shooting::Settings, total: &mut Counts, iterations: &mut u32| {
-            let left = budget.saturating_sub(u64::from(total.step_trials()));
-            let mut bounded = *base;
-            bounded.integration.max_steps = u32::try_from(left).unwrap_or(u32::MAX);
-            let shot = shoot(&model_of(p), departure, p, &bounded);
-            add(total, &shot.counts);
-            *iterations = iterations.saturating_add(shot.iterations);
-            shot
-        };
+    // The straight shooting's share of the budget when a walk may follow (a diverging Newton
+    // iteration must not spend what the walk needs); then the whole.
+    let cap = if settings.continuation_steps == 0 || is_its_design(problem) {
+        budget
+    } else {
+        budget / STRAIGHT_SHARE
+    };
+    let attempt = |p: &Problem,
+                   base: &shooting::Settings,
+                   cap: u64,
+                   total: &mut Counts,
+                   iterations: &mut u32| {
+        let left = budget
+            .saturating_sub(u64::from(total.step_trials()))
+            .min(cap);
+        let mut bounded = *base;
+        bounded.integration.max_steps = u32::try_from(left).unwrap_or(u32::MAX);
+        let shot = shoot(&model_of(p), departure, p, &bounded);
+        add(total, &shot.counts);
+        *iterations = iterations.saturating_add(shot.iterations);
+        shot
+    };
     let finish = |mut shot: Shot, total: Counts, iterations: u32, walked: Walked| {
         shot.counts = total;
         shot.iterations = iterations;
         (shot, walked)
     };
-    let first = attempt(problem, base, &mut total, &mut iterations);
-    let out_of_budget = matches!(first.status, Status::Integration(Stop::StepLimit { .. }));
+    let first = attempt(problem, base, cap, &mut total, &mut iterations);
+    // The straight shooting stopped by its share, not by the budget: the walk has the rest.
+    let out_of_budget = matches!(first.status, Status::Integration(Stop::StepLimit { .. }))
+        && (settings.continuation_steps == 0 || is_its_design(problem));
     if first.status == Status::Converged
         || out_of_budget
         || settings.continuation_steps == 0
@@ -127,19 +145,27 @@ pub(super) fn shoot_or_walk(
         ..*base
     };
     let mut from = *problem;
+    // The converged point before `from` and its fraction (none until the walk's first).
+    let mut before: Option<(f64, Problem)> = None;
     let mut step = 0.5;
     let mut last = first;
     for _ in 0..settings.continuation_steps {
         let s = (walked.reached + step).min(1.0);
+        let start = match &before {
+            Some((at, b)) => predicted(&from, b, walked.reached - at, s - walked.reached),
+            None => from,
+        };
         let shot = attempt(
-            &started_from_problem(&from, problem, s),
+            &started_from_problem(&start, problem, s),
             &walk_base,
+            budget,
             &mut total,
             &mut iterations,
         );
         walked.shootings = walked.shootings.saturating_add(1);
         match shot.status {
             Status::Converged => {
+                before = Some((walked.reached, from));
                 walked.reached = s;
                 from = started_from(*problem, &shot);
                 if s >= 1.0 {
@@ -163,6 +189,32 @@ pub(super) fn shoot_or_walk(
     // not the request's answer.
     last.status = Status::IterationLimit;
     finish(last, total, iterations, walked)
+}
+
+/// `from`'s start point extrapolated along the secant from `before`'s: `from` lies `behind`
+/// (a fraction of the way) after `before`, the next step `ahead` after `from`. The costates,
+/// a free κ or θ, and minimum time's λ0 and time of flight move; the rest is `from`'s.
+fn predicted(from: &Problem, before: &Problem, behind: f64, ahead: f64) -> Problem {
+    if behind.is_nan() || behind <= 0.0 {
+        return *from;
+    }
+    let ratio = ahead / behind;
+    let on = |x: f64, y: f64| x + ratio * (x - y);
+    let mut p = *from;
+    for (c, b) in p.costates.iter_mut().zip(before.costates) {
+        *c = on(*c, b);
+    }
+    if p.free_kappa {
+        p.kappa = on(from.kappa, before.kappa);
+    }
+    if p.free_theta {
+        p.theta_rad = on(from.theta_rad, before.theta_rad);
+    }
+    if p.objective == Objective::MinTime {
+        p.cost_multiplier = on(from.cost_multiplier, before.cost_multiplier);
+        p.duration_days = on(from.duration_days, before.duration_days);
+    }
+    p
 }
 
 /// The problem at fraction `s`, started from `from`'s start point (the design's, or the last

@@ -8,7 +8,7 @@
 use crate::campaign::dispersion::Dispersion;
 use crate::campaign::{progress_bar, Campaign, Row};
 use crate::table_record::Table;
-use anyhow::{Context, Result};
+use anyhow::{bail, Context, Result};
 use reconfig_core::limits::Limits;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -26,6 +26,10 @@ pub struct Args {
     /// (docs/hybrid.md shows it).
     #[arg(long)]
     pub record: bool,
+    /// Added to every family's seed: other draws of the same families (the record is taken
+    /// at 0; a change tuned on it is measured again at another shift).
+    #[arg(long, default_value_t = 0)]
+    pub seed_shift: u64,
 }
 
 /// One family: its name, its seed and its dispersions (`PATH=SIGMA`, or `PATH=LOW:HIGH`
@@ -126,6 +130,9 @@ fn row(name: &str, rows: &[Row]) -> Vec<String> {
 pub fn run(args: &Args) -> Result<ExitCode> {
     let text = std::fs::read_to_string(&args.fixture)
         .with_context(|| format!("cannot read {}", args.fixture.display()))?;
+    if args.record && args.seed_shift != 0 {
+        bail!("--record: the record is the families' own seeds (--seed-shift 0)");
+    }
     let name = args.fixture.display().to_string();
     let mut table = Table::new(
         &[
@@ -149,7 +156,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
             &name,
             &text,
             dispersions,
-            family.seed,
+            family.seed.saturating_add(args.seed_shift),
             args.cases,
             Limits::default(),
         )?;
