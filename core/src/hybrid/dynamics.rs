@@ -27,6 +27,19 @@ pub struct Augmented {
 }
 
 impl Augmented {
+    /// A position and velocity with unit mass and every costate zero: the start of a
+    /// ballistic flight (the halo orbit flown along itself).
+    pub const fn ballistic(r_lu: Vec3, v_vu: Vec3) -> Self {
+        Self {
+            r_lu,
+            v_vu,
+            m_mu: 1.0,
+            lambda_r: [0.0; 3],
+            lambda_v: [0.0; 3],
+            lambda_m: 0.0,
+        }
+    }
+
     /// As 14 numbers: `[r, v, m, lambda_r, lambda_v, lambda_m]`.
     pub fn to_array(&self) -> [f64; 14] {
         let (r, v, lr, lv) = (self.r_lu, self.v_vu, self.lambda_r, self.lambda_v);

@@ -6,7 +6,7 @@
 
 use super::dynamics::{Augmented, Throttle};
 use super::flow::propagate;
-use super::integrate::{Counts, Stop, Tolerance};
+use super::integrate::{Counts, Stop};
 use super::objective_shooting::model_of;
 use super::planner::fly_plan;
 use super::problem::Problem;
@@ -49,19 +49,8 @@ pub fn state_at_phase(
     };
     let backward = phase_tu < 0.0;
     let from = if backward { mirrored(&start) } else { start };
-    let y0 = Augmented {
-        r_lu: from.r_lu,
-        v_vu: from.v_vu,
-        m_mu: 1.0,
-        lambda_r: [0.0; 3],
-        lambda_v: [0.0; 3],
-        lambda_m: 0.0,
-    };
-    let tol = Tolerance {
-        relative: settings.relative_tol,
-        absolute: settings.absolute_tol,
-        max_steps: u32::try_from(settings.work_budget).unwrap_or(u32::MAX),
-    };
+    let y0 = Augmented::ballistic(from.r_lu, from.v_vu);
+    let tol = settings.tolerance(settings.work_budget);
     let mut counts = Counts::default();
     let end = propagate(
         &model_of(problem),
@@ -92,14 +81,7 @@ pub fn arrival_transversality(
     settings: &Settings,
 ) -> Result<f64, Stop> {
     let end = fly_plan(problem, solution, settings, 1, &mut |_| {})?.end;
-    let at = Augmented {
-        r_lu: problem.arrival_r_lu,
-        v_vu: problem.arrival_v_vu,
-        m_mu: 1.0,
-        lambda_r: [0.0; 3],
-        lambda_v: [0.0; 3],
-        lambda_m: 0.0,
-    };
+    let at = Augmented::ballistic(problem.arrival_r_lu, problem.arrival_v_vu);
     let rate = model_of(problem).derivative(Throttle::Coast, &at);
     let dot = |a: &Vec3, b: &Vec3| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
     Ok(-(dot(&end.lambda_r, &rate.r_lu) + dot(&end.lambda_v, &rate.v_vu)))

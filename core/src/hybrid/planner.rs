@@ -42,11 +42,6 @@ const fn shares(budget: u64) -> (u64, u64) {
     (budget / 16, (budget / 4).saturating_mul(3))
 }
 
-/// A step bound for an integration's counts, as the integrator takes it.
-fn steps(bound: u64) -> u32 {
-    u32::try_from(bound).unwrap_or(u32::MAX)
-}
-
 /// Plan `problem` into `out`.
 ///
 /// # Errors
@@ -62,11 +57,7 @@ pub fn solve(
     settings.check_ranges().map_err(PlanError::InvalidSetting)?;
     let model = model_of(problem);
     let (halo_share, shooting_share) = shares(settings.work_budget);
-    let tolerance = |max_steps: u64| Tolerance {
-        relative: settings.relative_tol,
-        absolute: settings.absolute_tol,
-        max_steps: steps(max_steps),
-    };
+    let tolerance = |max_steps: u64| settings.tolerance(max_steps);
     let mut halo_counts = Counts::default();
     check_halo(
         &model,
@@ -143,14 +134,7 @@ fn check_halo(
     tol: &Tolerance,
     counts: &mut Counts,
 ) -> Result<(), PlanError> {
-    let start = Augmented {
-        r_lu: problem.arrival_r_lu,
-        v_vu: problem.arrival_v_vu,
-        m_mu: 1.0,
-        lambda_r: [0.0; 3],
-        lambda_v: [0.0; 3],
-        lambda_m: 0.0,
-    };
+    let start = Augmented::ballistic(problem.arrival_r_lu, problem.arrival_v_vu);
     let end = propagate(
         model,
         Throttle::Coast,
@@ -248,11 +232,7 @@ pub fn fly_plan(
         kappa: solution.kappa,
         theta_rad: solution.theta_rad,
     };
-    let tol = Tolerance {
-        relative: settings.relative_tol,
-        absolute: settings.absolute_tol,
-        max_steps: steps(settings.work_budget),
-    };
+    let tol = settings.tolerance(settings.work_budget);
     let span = Span {
         duration_tu: solution.duration_tu,
         segments,

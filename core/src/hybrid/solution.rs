@@ -177,6 +177,18 @@ pub struct Solution {
     pub flown: Option<FlownPlan>,
 }
 
+impl Settings {
+    /// The integrator's tolerances of these settings with a bound of `max_steps` step trials
+    /// (beyond `u32::MAX`, `u32::MAX`: the integrator counts in `u32`).
+    pub fn tolerance(&self, max_steps: u64) -> super::integrate::Tolerance {
+        super::integrate::Tolerance {
+            relative: self.relative_tol,
+            absolute: self.absolute_tol,
+            max_steps: u32::try_from(max_steps).unwrap_or(u32::MAX),
+        }
+    }
+}
+
 impl Solution {
     /// The empty `Unsolved` answer.
     pub const fn new() -> Self {
