@@ -57,3 +57,4 @@ pub use solution::{
     FlownPlan, SettingId, Settings, Solution, SolveInfo, SolveStatus, Stopped, Walked,
     DEFAULT_WORK_BUDGET,
 };
+pub use walk::secant_start;

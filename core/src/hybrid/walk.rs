@@ -152,7 +152,7 @@ pub(super) fn shoot_or_walk(
     for _ in 0..settings.continuation_steps {
         let s = (walked.reached + step).min(1.0);
         let start = match &before {
-            Some((at, b)) => predicted(&from, b, walked.reached - at, s - walked.reached),
+            Some((at, b)) => secant_start(&from, b, walked.reached - at, s - walked.reached),
             None => from,
         };
         let shot = attempt(
@@ -191,11 +191,13 @@ pub(super) fn shoot_or_walk(
     finish(last, total, iterations, walked)
 }
 
-/// `from`'s start point extrapolated along the secant from `before`'s: `from` lies `behind`
-/// (a fraction of the way) after `before`, the next step `ahead` after `from`. The costates,
-/// a free κ or θ, and minimum time's λ0 and time of flight move; the rest is `from`'s.
-fn predicted(from: &Problem, before: &Problem, behind: f64, ahead: f64) -> Problem {
-    if behind.is_nan() || behind <= 0.0 {
+/// `from`'s start point extrapolated along the secant from `before`'s, the predictor of every
+/// continuation (this walk on board, `reconfig pareto` on the ground): `from` lies `behind`
+/// after `before` in the walked parameter, the next step `ahead` after `from` (either sign).
+/// The costates, a free κ or θ, and minimum time's λ0 and time of flight move; the rest is
+/// `from`'s. Without a distance between the two (`behind` 0 or not finite), `from` itself.
+pub fn secant_start(from: &Problem, before: &Problem, behind: f64, ahead: f64) -> Problem {
+    if behind.abs() <= 0.0 || !behind.is_finite() {
         return *from;
     }
     let ratio = ahead / behind;

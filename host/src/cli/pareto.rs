@@ -17,7 +17,7 @@ use anyhow::{anyhow, bail, Result};
 use plotters::prelude::*;
 use reconfig_core::hybrid::halo::{arrival_transversality, state_at_phase};
 use reconfig_core::hybrid::units::{days, time_tu};
-use reconfig_core::hybrid::{transversality, Objective, Solution};
+use reconfig_core::hybrid::{secant_start, transversality, Objective, Problem, Solution};
 use reconfig_core::limits::Limits;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -90,11 +90,27 @@ fn solve(fixture: &HybridFixture) -> Result<Solution> {
     plan(fixture, &Limits::default()).map(|s| *s)
 }
 
+/// `base`'s request started from `s` (its costates, κ, θ, λ0 and t_f), designed for where `s`
+/// converged.
+fn started_from(base: &HybridFixture, s: &Solution) -> Problem {
+    let mut p = base.problem;
+    p.costates = s.costates;
+    p.kappa = s.kappa;
+    p.theta_rad = s.theta_rad;
+    p.cost_multiplier = s.cost_multiplier;
+    p.design_duration_days = days(s.duration_tu);
+    if p.objective == Objective::MinTime {
+        p.duration_days = days(s.duration_tu);
+    }
+    p
+}
+
 /// The fixture moved to `value` of the walked parameter, started from `from` (its costates,
 /// κ, θ, λ0 and t_f), designed for where `from` converged. With `before`, the converged point
 /// one step back (its value and answer), the start is extrapolated along the secant through
-/// both (a predictor: the shooting then corrects from where the family is heading, which
-/// lets a step be many times longer where the costates are steep in the walked parameter).
+/// both (`hybrid::secant_start`, the planner's own walk's predictor: the shooting then corrects
+/// from where the family is heading, which lets a step be many times longer where the
+/// costates are steep in the walked parameter).
 fn step_fixture(
     base: &HybridFixture,
     walk: Walk,
@@ -104,29 +120,11 @@ fn step_fixture(
 ) -> Result<HybridFixture> {
     let (at, from) = from;
     let mut f = base.clone();
+    f.problem = started_from(base, from);
+    if let Some((back, b)) = before {
+        f.problem = secant_start(&f.problem, &started_from(base, b), at - back, value - at);
+    }
     let p = &mut f.problem;
-    p.costates = from.costates;
-    p.kappa = from.kappa;
-    p.theta_rad = from.theta_rad;
-    p.cost_multiplier = from.cost_multiplier;
-    p.design_duration_days = days(from.duration_tu);
-    if p.objective == Objective::MinTime {
-        p.duration_days = days(from.duration_tu);
-    }
-    if let Some((back, b)) = before.filter(|(back, _)| (at - back).abs() > 0.0) {
-        let ratio = (value - at) / (at - back);
-        let ahead = |x: f64, y: f64| x + ratio * (x - y);
-        for (c, old) in p.costates.iter_mut().zip(b.costates) {
-            *c = ahead(*c, old);
-        }
-        p.cost_multiplier = ahead(from.cost_multiplier, b.cost_multiplier);
-        if base.problem.free_kappa {
-            p.kappa = ahead(from.kappa, b.kappa);
-        }
-        if p.objective == Objective::MinTime {
-            p.duration_days = days(ahead(from.duration_tu, b.duration_tu));
-        }
-    }
     match walk {
         Walk::Tf => p.duration_days = value,
         Walk::Kappa => p.kappa = value,
@@ -143,10 +141,10 @@ fn step_fixture(
 ///
 /// # Errors
 /// The orbit's flight stopped (the settings' step bound).
-fn arrival_at(base: &HybridFixture, phase_days: f64) -> Result<reconfig_core::hybrid::Problem> {
+fn arrival_at(base: &HybridFixture, phase_days: f64) -> Result<Problem> {
     let s = state_at_phase(&base.problem, time_tu(phase_days), &base.settings)
         .map_err(|stop| anyhow!("the halo orbit's flight to {phase_days} d stopped: {stop:?}"))?;
-    Ok(reconfig_core::hybrid::Problem {
+    Ok(Problem {
         arrival_r_lu: s.r_lu,
         arrival_v_vu: s.v_vu,
         ..base.problem
