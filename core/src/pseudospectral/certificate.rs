@@ -30,10 +30,11 @@
 //! are the constraint gradients at the iterate, so they are the Lagrange multipliers; the
 //! stationarity residual measures how far from that fixed point the iterate is.
 
-use super::curvature::{check_lengths, project, Curvature, Envelope, MAX_ENVELOPES};
+use super::curvature::{check_lengths, Curvature, Envelope, MAX_ENVELOPES};
 use super::kernel::{dot, scale, Coefficients, MAX_BLOCKS};
 use super::lanczos::{self, LANCZOS_STEPS};
 use super::qp_state::{Mode, QpState};
+use super::symmetry::Symmetries;
 use super::transcription::{row_axpy, row_dot, RowId, Transcription};
 use crate::capacity::{MAX_ACTIVE, MAX_FREE_PER_AXIS};
 use crate::indexed::IndexedExt as _;
@@ -120,6 +121,12 @@ pub struct Certificate {
     /// `FLAT_PROBE_TOL_REL`) and came back to a flat point. Then the second-order necessary
     /// condition (eigenvalue `>= -CURVATURE_TOL`) certifies, with this flag saying so.
     pub flat_direction_probed: bool,
+    /// Exact continuous symmetries deflated in the second-order test: turns of a group of
+    /// spacecraft about the line its boundary states lie on (`symmetry.rs`; a collinear
+    /// reversal, a head-on pair). Every point of such a turn has the same cost and meets the
+    /// same constraints, so `min_reduced_eigenvalue` is a lower bound of the curvature on the
+    /// complement of their generators (the sufficient condition for a manifold of minima).
+    pub symmetry_directions: u8,
 }
 
 impl Certificate {
@@ -135,6 +142,7 @@ impl Certificate {
             multipliers_complete: false,
             multipliers: heapless::Vec::new(),
             flat_direction_probed: false,
+            symmetry_directions: 0,
         }
     }
 
@@ -200,6 +208,7 @@ pub(crate) fn evaluate(
     let size = (tr.blocks(), free);
     out.first_order_evaluated = true;
     out.flat_direction_probed = false;
+    out.symmetry_directions = 0;
     out.multipliers.clear();
     out.multipliers_complete = true;
     // Stationarity and complementarity.
@@ -253,11 +262,17 @@ pub(crate) fn evaluate(
     if !check_lengths(tr, qp, y, &mut lengths) {
         return 0;
     }
+    // The exact turn symmetries deflate the operator (`symmetry.rs`); `w` is free until the
+    // eigenvalue methods below take it.
+    let symmetries = Symmetries::find(tr, qp, y, w);
+    out.symmetry_directions = u8::try_from(symmetries.count()).unwrap_or(u8::MAX);
     let op = Curvature {
         tr,
         qp,
         lengths: &lengths,
         corrections: &corrections,
+        y,
+        symmetries: &symmetries,
     };
     // Lanczos first (a few products where the power method took up to 120). A positive
     // definite answer is final; the direction is then unused (no saddle to leave, nothing flat
@@ -265,7 +280,7 @@ pub(crate) fn evaluate(
     // saddle escape and the flat-direction probe step along, from the same start as always.
     // A Gram factor that cannot be solved with (never: see `QpState::gram_solve`) leaves the
     // second-order measure untaken.
-    if !start_vector(tr, qp, direction) {
+    if !start_vector(&op, direction) {
         *direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
         return 0;
     }
@@ -289,7 +304,7 @@ pub(crate) fn evaluate(
         }
     }
     let extra = lanczos.map_or(LANCZOS_STEPS, |estimate| estimate.steps);
-    if !start_vector(tr, qp, direction) {
+    if !start_vector(&op, direction) {
         *direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
         return extra;
     }
@@ -308,10 +323,11 @@ pub(crate) fn evaluate(
                 *a += sigma * b;
             }
         }
-        if !project(tr, qp, w) {
+        if !op.project(w) {
             *direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
             return extra;
         }
+        op.deflate(direction, w);
         let previous = largest;
         largest = dot(direction, w, size) - sigma;
         *direction = *w;
@@ -375,7 +391,8 @@ pub(super) fn envelope_corrections(
 /// pattern present (deterministic, bit-identical host / M7). False when the projection cannot
 /// be taken (`project`).
 #[must_use]
-fn start_vector(tr: &Transcription, qp: &QpState, direction: &mut Coefficients) -> bool {
+fn start_vector(op: &Curvature<'_>, direction: &mut Coefficients) -> bool {
+    let tr = op.tr;
     let free = tr.basis.free;
     *direction = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
     for (b, row) in direction.iter_mut().indexed().take(tr.blocks()) {
@@ -384,5 +401,5 @@ fn start_vector(tr: &Transcription, qp: &QpState, direction: &mut Coefficients) 
             *slot = libm::sin(0.7 * (k as f64) + 0.3);
         }
     }
-    project(tr, qp, direction)
+    op.project(direction)
 }

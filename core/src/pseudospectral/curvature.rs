@@ -7,6 +7,7 @@
 
 use super::kernel::Coefficients;
 use super::qp_state::QpState;
+use super::symmetry::Symmetries;
 use super::transcription::{
     block_dot, row_axpy, row_dot, spacecraft_blocks, Check, Pair, RowId, Transcription,
 };
@@ -316,9 +317,25 @@ pub(super) struct Curvature<'a> {
     /// `|r|` at each active row's check (`check_lengths`).
     pub lengths: &'a [f64; MAX_ACTIVE],
     pub corrections: &'a [Envelope],
+    /// The iterate, whose exact turn symmetries (`symmetries`) deflate the operator.
+    pub y: &'a Coefficients,
+    /// The turns about a line that are exact symmetries of the iterate (`symmetry.rs`).
+    pub symmetries: &'a Symmetries,
 }
 
 impl Curvature<'_> {
+    /// `x <- P x` (see `project`).
+    #[must_use]
+    pub(super) fn project(&self, x: &mut Coefficients) -> bool {
+        project(self.tr, self.qp, x)
+    }
+
+    /// `out -= sum (g . v) g / |g|^2` over the turn symmetries' generators: applied after the
+    /// projection, the operator is `P S P` deflated by them (`symmetry.rs`).
+    pub(super) fn deflate(&self, v: &Coefficients, out: &mut Coefficients) {
+        self.symmetries.deflate(self.tr, self.y, v, out);
+    }
+
     /// The dimension of any Krylov space of `P S P`, at most: `S` has rank at most two per
     /// active keep-out check (`J^T (I - n n^T) J`) plus one per envelope correction, so a
     /// Krylov space spans at most that rank plus its start. Past it a Lanczos step meets only
@@ -333,9 +350,11 @@ impl Curvature<'_> {
             // Not `count()`: its sum keeps an overflow check (a panic path) the abort-proof
             // C library must not link.
             .fold(0usize, |n, _| n.saturating_add(1));
+        // The deflation adds a term of rank one per turn symmetry.
         checks
             .saturating_mul(2)
             .saturating_add(self.corrections.len())
+            .saturating_add(self.symmetries.count())
             .saturating_add(1)
     }
 

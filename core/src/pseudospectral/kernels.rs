@@ -351,7 +351,7 @@ pub fn prepare(index: usize, ws: &mut Workspace, out: &mut Solution) -> Prepared
             | Kind::ElasticScans(_)
             | Kind::Refactor(_)
     ) {
-        let _ = follow_minima(ws, &settings, true);
+        let _ = follow_minima(ws, &settings, true, false);
         linearise(ws);
     }
     match c.kind {
@@ -420,7 +420,7 @@ pub fn run(index: usize, ws: &mut Workspace, out: &mut Solution, prepared: &Prep
             let _ = ws
                 .work
                 .spend(work_units::sqp_iteration(&ws.setup.transcription));
-            let _ = follow_minima(ws, &d, true);
+            let _ = follow_minima(ws, &d, true, false);
             linearise(ws);
             let tr = &ws.setup.transcription;
             ws.iterates.anderson.step(
@@ -435,7 +435,7 @@ pub fn run(index: usize, ws: &mut Workspace, out: &mut Solution, prepared: &Prep
         Kind::ConvergenceSearch(_) => {
             ws.work
                 .charge(work_units::convergence_search(&ws.setup.transcription));
-            black_box(follow_minima(ws, &d, false));
+            black_box(follow_minima(ws, &d, false, false));
             ws.work.used().saturating_sub(before)
         }
         Kind::QpScan(_) => {

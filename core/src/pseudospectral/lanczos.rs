@@ -20,7 +20,7 @@
 //! Deterministic: a fixed start, a fixed step bound (the Krylov dimension, at most
 //! `LANCZOS_STEPS`), a fixed Laguerre bound (`LAGUERRE_STEPS`).
 
-use super::curvature::{project, Curvature};
+use super::curvature::Curvature;
 use super::kernel::{dot, scale, Coefficients};
 
 /// Most Lanczos steps (each one product with `P S P`). Stops earlier when the Krylov space is
@@ -101,9 +101,10 @@ pub(super) fn largest(
         // u <- P S v - beta_{k-1} q_{k-1} (u held q_{k-1}, which lies in the null space).
         scale(u, -previous_beta, size);
         op.accumulate(v, u);
-        if !project(op.tr, op.qp, u) {
+        if !op.project(u) {
             return None;
         }
+        op.deflate(v, u);
         let a = dot(v, u, size);
         for (ur, vr) in u.iter_mut().zip(v.iter()).take(size.0) {
             for (x, y) in ur.iter_mut().zip(vr.iter()).take(size.1) {

@@ -102,6 +102,7 @@ mod qp_state;
 mod setup;
 mod solver;
 mod swerve;
+mod symmetry;
 #[cfg(test)]
 mod test_problems;
 mod transcription;

@@ -63,7 +63,8 @@ pub use messages::{Expiry, Outcome, OutcomeRef, Rejection, Request};
 ///    a ground design the built-in limits keep off; issue 31).
 /// 10: the hybrid transfer joins (`Request::Hybrid`, `Outcome::Hybrid`, `Outcome::HybridRejected`,
 ///    `PlannerKind::Hybrid` = 5, `limits::Setting::Hybrid`; issue 30).
-pub const PROTOCOL_VERSION: u16 = 10;
+/// 11: planner A's certificate gained `symmetry_directions` (issue 28).
+pub const PROTOCOL_VERSION: u16 = 11;
 /// First two bytes of a request frame.
 pub const REQUEST_MAGIC: [u8; 2] = *b"RQ";
 /// First two bytes of a response frame.
@@ -79,7 +80,7 @@ pub const CRC_BYTES: usize = 4;
 pub const REQUEST_MAX_BYTES: usize = 1024;
 /// Largest request body, in bytes.
 pub const REQUEST_BODY_MAX_BYTES: usize = REQUEST_MAX_BYTES - REQUEST_HEADER_BYTES - CRC_BYTES;
-/// Largest response frame, in bytes. A planner-A solution at capacity takes 17 346 body bytes
+/// Largest response frame, in bytes. A planner-A solution at capacity takes 17 558 body bytes
 /// (16 241 before its optimality certificate, which lists up to 56 multipliers).
 pub const RESPONSE_MAX_BYTES: usize = 18 * 1024;
 /// Largest response body, in bytes.

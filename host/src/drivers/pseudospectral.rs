@@ -162,6 +162,13 @@ pub fn report(
                     "{:.1e} (flat: probed both ways, no lower cost)",
                     c.min_reduced_eigenvalue
                 )
+            } else if c.second_order_evaluated && c.symmetry_directions > 0 {
+                format!(
+                    "{:.4} ({} exact turn symmetr{} deflated)",
+                    c.min_reduced_eigenvalue,
+                    c.symmetry_directions,
+                    if c.symmetry_directions == 1 { "y" } else { "ies" }
+                )
             } else if c.second_order_evaluated {
                 format!("{:.4}", c.min_reduced_eigenvalue)
             } else {

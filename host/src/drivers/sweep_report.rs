@@ -173,6 +173,7 @@ pub fn answer_json(
         "first_order_evaluated": s.certificate.first_order_evaluated,
         "second_order_evaluated": s.certificate.second_order_evaluated,
         "flat_direction_probed": s.certificate.flat_direction_probed,
+        "symmetry_directions": s.certificate.symmetry_directions,
         "nodes": positions,
     })
 }
