@@ -302,6 +302,24 @@ fn a_flat_three_way_swap_stays_certified() {
     assert!(out.certificate.min_reduced_eigenvalue.abs() <= 1e-6);
 }
 
+/// The certificate measured again at the workspace's returned iterate (its QP state), as
+/// `finish` measures it.
+fn certificate_again(ws: &mut Workspace, cost: f64) -> Certificate {
+    let mut certificate = Certificate::new();
+    let zero = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
+    let (mut direction, mut w) = (zero, zero);
+    let _ = super::super::certificate::evaluate(
+        &ws.setup.transcription,
+        &mut ws.iterates.qp,
+        &ws.iterates.iterate,
+        cost,
+        &mut direction,
+        &mut w,
+        &mut certificate,
+    );
+    certificate
+}
+
 /// `1 - lambda_max(P S P)` by a dense symmetric eigen-decomposition (cyclic Jacobi) of the
 /// operator the certificate applies at the workspace's iterate, built column by column from
 /// unit vectors: the test's independent answer for the Lanczos and power estimates.
@@ -432,18 +450,7 @@ fn the_certificate_eigenvalue_matches_a_dense_decomposition() {
             &mut out,
         )
         .unwrap();
-        let mut certificate = Certificate::new();
-        let zero = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
-        let (mut direction, mut w) = (zero, zero);
-        let _ = super::super::certificate::evaluate(
-            &ws.setup.transcription,
-            &mut ws.iterates.qp,
-            &ws.iterates.iterate,
-            out.cost,
-            &mut direction,
-            &mut w,
-            &mut certificate,
-        );
+        let certificate = certificate_again(&mut ws, out.cost);
         assert!(certificate.second_order_evaluated, "{name}");
         let dense = dense_reduced_min_eigenvalue(&mut ws);
         let got = certificate.min_reduced_eigenvalue;
@@ -498,18 +505,7 @@ fn a_collinear_reversal_is_certified_on_the_complement_of_its_turn() {
     assert!(!out.certificate.flat_direction_probed);
     // The certificate's figure is the dense decomposition's with the turn left out; with the
     // turn kept the same operator has the zero eigenvalue the turn gives.
-    let mut certificate = Certificate::new();
-    let zero = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
-    let (mut direction, mut w) = (zero, zero);
-    let _ = super::super::certificate::evaluate(
-        &ws.setup.transcription,
-        &mut ws.iterates.qp,
-        &ws.iterates.iterate,
-        out.cost,
-        &mut direction,
-        &mut w,
-        &mut certificate,
-    );
+    let certificate = certificate_again(&mut ws, out.cost);
     let left_out = dense_min_eigenvalue(&mut ws, true);
     let kept = dense_min_eigenvalue(&mut ws, false);
     assert!(

@@ -35,6 +35,7 @@ use super::kernel::{dot, Coefficients, MAX_BLOCKS};
 use super::qp_state::QpState;
 use super::transcription::{row_dot, RowId, Transcription};
 use crate::capacity::{MAX_FREE_PER_AXIS, MAX_NODES, MAX_SPACECRAFT};
+use crate::indexed::IndexedExt as _;
 use crate::vec3::{self, Vec3};
 
 /// Relative tolerance of "on the line" (a base cubic's node positions) and "a null direction of
@@ -55,7 +56,7 @@ pub(super) struct Symmetries {
 }
 
 impl Symmetries {
-    /// No symmetry left out.
+    /// No symmetry to deflate.
     pub(super) const NONE: Self = Self {
         axes: [[0.0; 3]; MAX_SPACECRAFT],
         members: [0; MAX_SPACECRAFT],
@@ -63,7 +64,7 @@ impl Symmetries {
         count: 0,
     };
 
-    /// How many turns are left out.
+    /// How many turns are deflated.
     pub(super) const fn count(&self) -> usize {
         self.count
     }
@@ -78,7 +79,7 @@ impl Symmetries {
     ) -> Self {
         let mut found = Self::NONE;
         let groups = groups(tr, qp);
-        for (s, &group) in groups.iter().enumerate().take(tr.spacecraft) {
+        for (s, &group) in groups.iter().indexed().take(tr.spacecraft) {
             // Each group once, from its lowest-numbered spacecraft.
             if group == 0 || group.trailing_zeros() as usize != s {
                 continue;
@@ -124,17 +125,7 @@ impl Symmetries {
             .take(self.count)
         {
             let along = generator_dot(tr, y, axis, group, v, false) / norm2;
-            for_each_coefficient(tr, group, |block0, f| {
-                let g = vec3::cross(&axis, &triple(y, block0, f));
-                for (axis_index, component) in g.iter().enumerate() {
-                    if let Some(slot) = out
-                        .get_mut(block0.saturating_add(axis_index))
-                        .and_then(|row| row.get_mut(f))
-                    {
-                        *slot -= along * component;
-                    }
-                }
-            });
+            add_generator(tr, y, axis, group, -along, out);
         }
     }
 }
@@ -143,8 +134,12 @@ impl Symmetries {
 /// checks, itself included).
 fn groups(tr: &Transcription, qp: &QpState) -> [u8; MAX_SPACECRAFT] {
     let mut group = [0u8; MAX_SPACECRAFT];
-    for (s, g) in group.iter_mut().enumerate().take(tr.spacecraft) {
-        *g = bit(s);
+    for (g, &bit) in group
+        .iter_mut()
+        .zip(SPACECRAFT_BITS.iter())
+        .take(tr.spacecraft)
+    {
+        *g = bit;
     }
     // Merging along each active pair until nothing changes: at most one pass per spacecraft.
     for _ in 0..MAX_SPACECRAFT {
@@ -221,24 +216,24 @@ fn common_line(tr: &Transcription, group: u8) -> Option<Vec3> {
     Some(direction)
 }
 
-/// Spacecraft `s`'s bit in a group mask (0 past the eighth: no such spacecraft).
-fn bit(s: usize) -> u8 {
-    u32::try_from(s)
-        .ok()
-        .and_then(|s| 1u8.checked_shl(s))
-        .unwrap_or(0)
-}
+/// Each spacecraft's bit in a group mask: one per spacecraft, by construction.
+const SPACECRAFT_BITS: [u8; MAX_SPACECRAFT] = [1, 2, 4, 8, 16, 32, 64, 128];
 
 /// The spacecraft of `group`.
 fn members(tr: &Transcription, group: u8) -> impl Iterator<Item = usize> {
-    (0..tr.spacecraft.min(MAX_SPACECRAFT)).filter(move |&s| group & bit(s) != 0)
+    SPACECRAFT_BITS
+        .iter()
+        .indexed()
+        .take(tr.spacecraft)
+        .filter(move |&(_, &bit)| group & bit != 0)
+        .map(|(s, _)| s)
 }
 
 /// Spacecraft `s`'s base cubic position at node `k`.
 fn position(tr: &Transcription, s: usize, k: usize) -> Option<Vec3> {
     let b = s.checked_mul(3)?;
     let mut p = [0.0; 3];
-    for (axis, slot) in p.iter_mut().enumerate() {
+    for (axis, slot) in p.iter_mut().indexed() {
         *slot = *tr.base_position.get(b.checked_add(axis)?)?.get(k)?;
     }
     Some(p)
@@ -247,7 +242,7 @@ fn position(tr: &Transcription, s: usize, k: usize) -> Option<Vec3> {
 /// Spacecraft block `block0`'s coefficient `f` as a vector over the three axes.
 fn triple(y: &Coefficients, block0: usize, f: usize) -> Vec3 {
     let mut v = [0.0; 3];
-    for (axis, slot) in v.iter_mut().enumerate() {
+    for (axis, slot) in v.iter_mut().indexed() {
         if let Some(&value) = block0
             .checked_add(axis)
             .and_then(|b| y.get(b))
@@ -291,6 +286,29 @@ fn generator_dot(
     sum
 }
 
+/// `out += scale g` with `g = axis x y` over `group` (each spacecraft's coefficient triples
+/// turned as vectors).
+fn add_generator(
+    tr: &Transcription,
+    y: &Coefficients,
+    axis: Vec3,
+    group: u8,
+    scale: f64,
+    out: &mut Coefficients,
+) {
+    for_each_coefficient(tr, group, |block0, f| {
+        let g = vec3::cross(&axis, &triple(y, block0, f));
+        for (axis_index, component) in g.iter().indexed() {
+            if let Some(slot) = out
+                .get_mut(block0.saturating_add(axis_index))
+                .and_then(|row| row.get_mut(f))
+            {
+                *slot += scale * component;
+            }
+        }
+    });
+}
+
 /// `|y|^2` over the live part.
 fn dot_all(tr: &Transcription, y: &Coefficients) -> f64 {
     dot(y, y, (tr.blocks(), tr.basis.free))
@@ -307,17 +325,7 @@ fn null_for_active_rows(
     g: &mut Coefficients,
 ) -> bool {
     *g = [[0.0; MAX_FREE_PER_AXIS]; MAX_BLOCKS];
-    for_each_coefficient(tr, group, |block0, f| {
-        let v = vec3::cross(&axis, &triple(y, block0, f));
-        for (axis_index, component) in v.iter().enumerate() {
-            if let Some(slot) = g
-                .get_mut(block0.saturating_add(axis_index))
-                .and_then(|row| row.get_mut(f))
-            {
-                *slot = *component;
-            }
-        }
-    });
+    add_generator(tr, y, axis, group, 1.0, g);
     let g_norm = libm::sqrt(norm2);
     let free = tr.basis.free;
     let blind = qp.active.iter().take(qp.count).all(|&id| {
