@@ -1,7 +1,8 @@
 //! Solve one problem of the generated families (`reconfig sweep`'s file,
 //! `fixtures/generated/planner-a-families.jsonl`) and print its status, cost, least separation
 //! and, for an `Infeasible` answer, the constraints it names:
-//! `cargo run --release -p reconfig-host --example one_family -- INDEX [WORK_BUDGET [QP_MAX_ITER]]`.
+//! `cargo run --release -p reconfig-host --example one_family -- INDEX [WORK_BUDGET [QP_MAX_ITER]]`
+//! (`PROBLEMS=FILE` for another file of the same form, e.g. `reconfig sweep --set tuning --write FILE`).
 use reconfig_core::pseudospectral::{self, Settings, Solution, Workspace};
 use reconfig_host::drivers::sweep_oracle;
 use std::path::Path;
@@ -9,7 +10,9 @@ use std::path::Path;
 fn main() -> anyhow::Result<()> {
     let mut args = std::env::args().skip(1);
     let index: usize = args.next().unwrap_or_else(|| "0".into()).parse()?;
-    let problems = sweep_oracle::load_problems(Path::new(sweep_oracle::PROBLEMS_DEFAULT))?;
+    // `PROBLEMS` names another file of the same form (`reconfig sweep --write`).
+    let path = std::env::var("PROBLEMS").unwrap_or_else(|_| sweep_oracle::PROBLEMS_DEFAULT.into());
+    let problems = sweep_oracle::load_problems(Path::new(&path))?;
     let (family, problem) = problems
         .get(index)
         .ok_or_else(|| anyhow::anyhow!("no problem {index}"))?;

@@ -4,6 +4,7 @@
 
 use reconfig_core::capacity::MAX_ACTIVE;
 use reconfig_core::pseudospectral::{Problem, Settings, SolveStatus, Spacecraft};
+use reconfig_host::families::sets::{self, Set};
 use reconfig_tests::solve_pseudospectral;
 
 /// Eight spacecraft, N = 24, each moving 20 LU per axis in T = 10 with Umax = 1: close to
@@ -65,4 +66,43 @@ fn a_working_set_beyond_the_factor_capacity_is_no_failure() {
         "{}",
         s.cost
     );
+}
+
+/// The tuning set's #1610 (`antipodal-cube`, six corners of a cube to the opposite ones, N = 16):
+/// the analytic guess sends all six through the centre at mid-horizon, and the first
+/// subproblem needs more rows than the factor holds. There the fallback does not converge
+/// (its rows stay short after 400 sweeps), and the solve ended `QpLimit` with no plan until
+/// 29 Nov. Its point is now an inexact step: the next subproblem, linearised where the
+/// spacecraft no longer meet, is solved with the factor, and the solve goes on to a certified
+/// answer (budget lifted) or a verified kept one (on-board budget).
+#[test]
+fn an_unconverged_fallback_is_a_step_not_an_end() {
+    let (kind, problem) = sets::problem(Set::Tuning, 9, 1610);
+    assert_eq!(kind, "antipodal-cube");
+    assert_eq!((problem.spacecraft.len(), problem.degree), (6, 16));
+    let lifted = Settings {
+        work_budget: 1_000_000_000,
+        ..Settings::default()
+    };
+    let s = solve_pseudospectral(&problem, &lifted).expect("accepted");
+    assert!(
+        usize::from(s.info.max_active) > MAX_ACTIVE,
+        "the first subproblem must exceed the factor: {}",
+        s.info.max_active
+    );
+    assert_eq!(s.info.status, SolveStatus::Solved, "{:?}", s.certificate);
+    // The certified minimum (measured 4.156749; 4.156737 with 20 fallback sweeps, the
+    // stationarity tolerance's spread); the on-board answer below is a costlier verified
+    // iterate of the same solve.
+    assert!((s.cost - 4.15674).abs() < 4e-5, "{}", s.cost);
+    assert!(s.min_separation_lu.unwrap() >= 2.0 - 1e-7);
+    let on_board = solve_pseudospectral(&problem, &Settings::default()).expect("accepted");
+    assert_eq!(
+        on_board.info.status,
+        SolveStatus::BudgetExhausted { verified: true },
+        "{:?}",
+        on_board.certificate
+    );
+    assert!(on_board.min_separation_lu.unwrap() >= 2.0 - 1e-6);
+    assert!(on_board.cost >= s.cost - 1e-9, "{}", on_board.cost);
 }

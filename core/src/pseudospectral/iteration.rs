@@ -271,7 +271,11 @@ impl Sqp {
             }
         }
         let failure = match outcome {
-            QpOutcome::Optimal | QpOutcome::Approximate => None,
+            // An unconverged fallback's point is taken as an inexact step: stopping there
+            // (`QpLimit`) left 30 of the tuning set's first subproblems with no answer at all;
+            // stepping on brought 22 of them to `Solved` with the budget lifted (the 29 Nov
+            // change, docs/planner-a.md).
+            QpOutcome::Optimal | QpOutcome::Approximate | QpOutcome::Unconverged => None,
             QpOutcome::Infeasible | QpOutcome::Elastic => Some(SolveStatus::Infeasible),
             QpOutcome::IterationLimit => Some(SolveStatus::QpLimit),
             QpOutcome::FactorFailure => Some(SolveStatus::NumericalFailure(Stage::QpFactor)),

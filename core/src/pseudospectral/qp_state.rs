@@ -17,6 +17,12 @@ pub(crate) enum QpOutcome {
     /// The capacity-free fallback ran out of sweeps with a feasible but not yet optimal point
     /// (every row met with the fallback's margin): usable as an iterate, not as a fixed point.
     Approximate,
+    /// The capacity-free fallback ran out of sweeps before every row was met. Its point is the
+    /// image `y = A^T l` of dual-feasible multipliers, short of some rows: the iteration takes
+    /// it as an inexact step (the next subproblem is linearised there, where the spacecraft no
+    /// longer meet in one point and the working set is smaller), never as a fixed point; the
+    /// answer's own checks decide its status as for any other iterate.
+    Unconverged,
     Infeasible,
     /// The l1-elastic QP (`solve` with a finite penalty) ended with a positive slack: no answer of this
     /// linearisation keeps every check and the control bound.
