@@ -272,9 +272,9 @@ impl Sqp {
         }
         let failure = match outcome {
             // An unconverged fallback's point is taken as an inexact step: stopping there
-            // (`QpLimit`) left 30 of the tuning set's first subproblems with no answer at all;
-            // stepping on brought 22 of them to `Solved` with the budget lifted (the 29 Nov
-            // change, docs/planner-a.md).
+            // (`QpLimit`) ended 30 of the tuning set's solves with no plan at the default budget
+            // (46 lifted), all in their first subproblem; stepping on took the set's lifted
+            // `Solved` from 1925 to 1948 (docs/planner-a.md, the fallback step).
             QpOutcome::Optimal | QpOutcome::Approximate | QpOutcome::Unconverged => None,
             QpOutcome::Infeasible | QpOutcome::Elastic => Some(SolveStatus::Infeasible),
             QpOutcome::IterationLimit => Some(SolveStatus::QpLimit),
