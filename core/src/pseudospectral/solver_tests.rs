@@ -25,10 +25,15 @@ fn paper_case(degree: u16, test_points: bool) -> Problem {
 }
 
 fn run(problem: &Problem, settings: &Settings) -> Solution {
+    run_keeping_workspace(problem, settings).1
+}
+
+/// `run`, with the workspace the solve left (its QP state, for re-evaluating the certificate).
+fn run_keeping_workspace(problem: &Problem, settings: &Settings) -> (Workspace, Solution) {
     let mut ws = Workspace::new();
     let mut out = Solution::new();
     solve(problem, settings, &mut ws, None, [0.0; 3], &mut out).unwrap();
-    out
+    (ws, out)
 }
 
 #[test]
@@ -439,17 +444,7 @@ fn the_certificate_eigenvalue_matches_a_dense_decomposition() {
         ("square swap", square),
     ];
     for (name, problem) in cases {
-        let mut ws = Workspace::new();
-        let mut out = Solution::new();
-        solve(
-            &problem,
-            &Settings::default(),
-            &mut ws,
-            None,
-            [0.0; 3],
-            &mut out,
-        )
-        .unwrap();
+        let (mut ws, out) = run_keeping_workspace(&problem, &Settings::default());
         let certificate = certificate_again(&mut ws, out.cost);
         assert!(certificate.second_order_evaluated, "{name}");
         let dense = dense_reduced_min_eigenvalue(&mut ws);
@@ -475,17 +470,7 @@ fn a_collinear_reversal_is_certified_on_the_complement_of_its_turn() {
     // sides of the pairs give flat directions besides the turn).
     let moves = [(-9.0, 9.5), (-4.0, 3.0), (2.0, -3.5), (10.0, -8.0)].map(|(a, b)| (at(a), at(b)));
     let problem = rest_to_rest(&moves, 16, true);
-    let mut ws = Workspace::new();
-    let mut out = Solution::new();
-    solve(
-        &problem,
-        &Settings::default(),
-        &mut ws,
-        None,
-        [0.0; 3],
-        &mut out,
-    )
-    .unwrap();
+    let (mut ws, out) = run_keeping_workspace(&problem, &Settings::default());
     assert_eq!(
         out.info.status,
         SolveStatus::Solved,
