@@ -17,6 +17,7 @@ use super::certificate;
 use super::kernel::{dot, u8_of, Coefficients, Live};
 use super::linearise::{self, follow_minima, refine_moving_checks};
 use super::newton;
+use super::newton_cycle::RecentCosts;
 use super::qp;
 use super::qp_state::QpOutcome;
 use super::settings::Settings;
@@ -155,6 +156,8 @@ struct Sqp {
     turns: u8,
     /// Plain steps that raised the cost this run (the moving checks moved under the answer).
     rises: u8,
+    /// The last accepted costs: a Newton answer that repeats one is a loop (`newton_cycle`).
+    recent: RecentCosts,
 }
 
 /// The convex-concave sequence of QPs from the current iterate, accelerated by the Newton step
@@ -176,6 +179,7 @@ pub(super) fn sqp(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -
         at_answer: false,
         turns: 0,
         rises: 0,
+        recent: RecentCosts::new(),
     };
     // Bounded by `sqp_max_iter`: every step leads on to `Linearise` or `Done`, never back to an
     // earlier step of the same subproblem, and each `Linearise` takes one subproblem.
@@ -339,6 +343,11 @@ impl Sqp {
         }
         ws.iterates.accepted = ws.iterates.trial;
         self.at_answer = true;
+        // A Newton answer that repeats an earlier cost closes a loop of Newton points: plain
+        // steps from here (as after `MAX_NEWTON_REJECTIONS` rejections, without paying them).
+        if self.recent.record(cost) && self.newton_used {
+            self.rejections = MAX_NEWTON_REJECTIONS;
+        }
         anytime::offer(ws, settings, cost);
         Step::CheckConvergence(Answer {
             cost,

@@ -91,6 +91,7 @@ mod lgl;
 mod linalg;
 mod linearise;
 mod newton;
+mod newton_cycle;
 mod output;
 mod packed;
 mod qp;
