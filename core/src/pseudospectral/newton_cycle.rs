@@ -51,10 +51,11 @@ impl RecentCosts {
         if let Some(slot) = self.costs.get_mut(self.next) {
             *slot = cost_fu;
         }
-        self.next = if self.next.saturating_add(1) >= REMEMBERED_COSTS {
+        let following = self.next.saturating_add(1);
+        self.next = if following >= REMEMBERED_COSTS {
             0
         } else {
-            self.next.saturating_add(1)
+            following
         };
         repeated
     }
