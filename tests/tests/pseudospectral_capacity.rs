@@ -3,7 +3,7 @@
 //! the capacity-free dual fallback, and the answer is verified like any other.
 
 use reconfig_core::capacity::MAX_ACTIVE;
-use reconfig_core::pseudospectral::{Problem, Settings, SolveStatus, Spacecraft};
+use reconfig_core::pseudospectral::{Problem, Settings, Solution, SolveStatus, Spacecraft};
 use reconfig_host::families::sets::{self, Set};
 use reconfig_tests::solve_pseudospectral;
 
@@ -32,22 +32,29 @@ fn near_bang_bang() -> Problem {
     }
 }
 
+/// Solve `problem` with `work_budget` units, and hold the premise of every case here: some
+/// subproblem's working set outgrew the factor.
+fn solve_beyond_the_factor(problem: &Problem, work_budget: u64) -> Box<Solution> {
+    let settings = Settings {
+        work_budget,
+        ..Settings::default()
+    };
+    let s = solve_pseudospectral(problem, &settings).expect("accepted");
+    assert!(
+        usize::from(s.info.max_active) > MAX_ACTIVE,
+        "the case must exceed the factor: {}",
+        s.info.max_active
+    );
+    s
+}
+
 #[test]
 fn a_working_set_beyond_the_factor_capacity_is_no_failure() {
     let problem = near_bang_bang();
     // The dual fallback's sweeps cost 42.1 M work units here, past the default budget (40 M:
     // about 382 M M7 instructions; it was 25 M, when this case ended `BudgetExhausted { verified:
     // false }` with 14.6 M units used, the rest reserved for the final checks). What is tested is the QP's capacity, so the budget is raised.
-    let settings = Settings {
-        work_budget: 60_000_000,
-        ..Settings::default()
-    };
-    let s = solve_pseudospectral(&problem, &settings).expect("accepted");
-    assert!(
-        usize::from(s.info.max_active) > MAX_ACTIVE,
-        "the case must exceed the factor: {}",
-        s.info.max_active
-    );
+    let s = solve_beyond_the_factor(&problem, 60_000_000);
     assert_ne!(s.info.status, SolveStatus::QpLimit);
     assert_eq!(s.info.status, SolveStatus::Solved, "{:?}", s.certificate);
     // Verified: control bound at every node, separation on the continuous trajectory.
@@ -80,16 +87,7 @@ fn an_unconverged_fallback_is_a_step_not_an_end() {
     let (kind, problem) = sets::problem(Set::Tuning, 9, 1610);
     assert_eq!(kind, "antipodal-cube");
     assert_eq!((problem.spacecraft.len(), problem.degree), (6, 16));
-    let lifted = Settings {
-        work_budget: 1_000_000_000,
-        ..Settings::default()
-    };
-    let s = solve_pseudospectral(&problem, &lifted).expect("accepted");
-    assert!(
-        usize::from(s.info.max_active) > MAX_ACTIVE,
-        "the first subproblem must exceed the factor: {}",
-        s.info.max_active
-    );
+    let s = solve_beyond_the_factor(&problem, 1_000_000_000);
     assert_eq!(s.info.status, SolveStatus::Solved, "{:?}", s.certificate);
     // The certified minimum (measured 4.156749; 4.156737 with 20 fallback sweeps, the
     // stationarity tolerance's spread); the on-board answer below is a costlier verified
