@@ -60,9 +60,9 @@ impl Meter {
         self.limit = self.budget.saturating_sub(units);
     }
 
-    /// Keep at least `units` for the final checks: the loops' share only shrinks (for a reserve
-    /// that grows with what the loops have built, such as planner A's working set, whose final
-    /// checks cost more the more rows it holds).
+    /// Keep at least `units` for the final checks: the loops' share only shrinks (for a stage
+    /// whose final checks cost more than the ones already kept, such as planner A's saddle
+    /// escape, which keeps its answer's checks and those of the return).
     pub fn raise_reserve(&mut self, units: u64) {
         self.limit = self.limit.min(self.budget.saturating_sub(units));
     }
@@ -78,12 +78,6 @@ impl Meter {
         }
         self.used = after;
         true
-    }
-
-    /// Whether the loops' share has room left, charging nothing: `false` (and the meter
-    /// exhausted) once a final check has used it up, so that no new stage starts.
-    pub fn has_room(&mut self) -> bool {
-        self.spend(0)
     }
 
     /// Charge `units` whatever the budget: the reserved final checks, or work whose size was

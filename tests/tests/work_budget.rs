@@ -53,8 +53,9 @@ fn planner_a_stops_at_its_budget_with_a_truthful_status() {
     let mut usable = 0;
     let mut unusable = 0;
     let mut complete = 0;
-    // Budgets from the floor to six times the units a full solve uses (the reserve for three
-    // final checks is a bound over any working set, so a full solve needs more than it uses).
+    // Budgets from the floor to six times the units a full solve uses (a saddle escape's reserve
+    // holds two answers' checks and certificates with every Lanczos step, so a full solve needs
+    // more than it uses).
     for percent in (0u64..=100).step_by(4) {
         let settings = pseudospectral::Settings {
             work_budget: floor + (6 * needed - floor) * percent / 100,

@@ -95,7 +95,9 @@ pub struct Multiplier {
 /// All fields are finite; a measure that could not be taken says so in its flag.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Certificate {
-    /// The first-order measures were taken (the last QP ended at its optimum).
+    /// The first-order measures were taken: the answer passed its checks (feasible) and the
+    /// last QP's state is its own (`solver::finish`). Otherwise nothing but `max_violation` is
+    /// measured, and the other measures are zero.
     pub first_order_evaluated: bool,
     /// `|grad L| / max(1, |y|)` in the cost metric.
     pub stationarity: f64,

@@ -10,7 +10,8 @@
 //! convergence test's separation search, a QP scan from an empty working set (no row active:
 //! every row scanned), the previous working set's rows at `MAX_ACTIVE`, whole QPs cut after
 //! `j` active-set steps, dual sweeps from zero, a verification round over every pair (none
-//! taken as clean), the final checks (`solver::finish`), the second-order step, the elastic
+//! taken as clean), the final checks (`solver::check_answer` and `solver::certify`, the two
+//! parts of `solver::finish`), the second-order step, the elastic
 //! QP's naming of the unmet constraints (every row named) and its two scans of the held rows
 //! (every row held), the turn of every pair's swerve direction, a saddle escape's step, a row
 //! dropped from a full working set (the re-factored Gram matrix), and whole solves. The problems are 8 spacecraft crossing through the centre of a circle (every pair
@@ -24,7 +25,7 @@ use super::qp_state::Mode;
 use super::settings::Settings;
 use super::setup::{initial_iterate, setup};
 use super::solution::{Solution, Unmet};
-use super::solver::{finish, guess_laws, step_along, verification_round};
+use super::solver::{certify, check_answer, guess_laws, step_along, verification_round};
 use super::transcription::{RowId, Transcription};
 use super::workspace::Workspace;
 use super::{newton, qp, qp_dual, qp_scan, work_units};
@@ -90,8 +91,10 @@ enum Kind {
     Dual(u16, u16),
     /// A verification round over every pair.
     Verify(u16),
-    /// `solver::finish` (verification, answer, certificate).
-    Finish(u16),
+    /// `solver::check_answer` (every pair's continuous minimum, the answer's node values).
+    AnswerChecks(u16),
+    /// `solver::certify` (the certificate with the last QP's state).
+    Certificate(u16),
     /// The second-order step (set-up and CG iterations).
     Newton(u16),
     /// `iteration::name_unmet` naming every row (its dearest path: every row described and
@@ -176,10 +179,13 @@ pub const CASES: &[Case] = &[
     case("verify-cap-w3", CAP, Kind::Verify(3)),
     case("verify-n10-w3", N10, Kind::Verify(3)),
     case("verify-small-w1", SMALL, Kind::Verify(1)),
-    case("finish-cap-w3", CAP, Kind::Finish(3)),
-    case("finish-cap-w8", CAP, Kind::Finish(8)),
-    case("finish-n10-w3", N10, Kind::Finish(3)),
-    case("finish-small-w1", SMALL, Kind::Finish(1)),
+    case("answer-checks-cap-w3", CAP, Kind::AnswerChecks(3)),
+    case("answer-checks-n10-w3", N10, Kind::AnswerChecks(3)),
+    case("answer-checks-small-w1", SMALL, Kind::AnswerChecks(1)),
+    case("certificate-cap-w3", CAP, Kind::Certificate(3)),
+    case("certificate-cap-w8", CAP, Kind::Certificate(8)),
+    case("certificate-n10-w3", N10, Kind::Certificate(3)),
+    case("certificate-small-w1", SMALL, Kind::Certificate(1)),
     case("newton-cap-w3", CAP, Kind::Newton(3)),
     case("newton-cap-w8", CAP, Kind::Newton(8)),
     case("newton-n10-w3", N10, Kind::Newton(3)),
@@ -299,7 +305,8 @@ fn warm_of(kind: Kind) -> Option<u16> {
         | Kind::Qp(w, _)
         | Kind::Dual(w, _)
         | Kind::Verify(w)
-        | Kind::Finish(w)
+        | Kind::AnswerChecks(w)
+        | Kind::Certificate(w)
         | Kind::Newton(w)
         | Kind::NameUnmet(w)
         | Kind::ElasticScans(w)
@@ -520,8 +527,13 @@ pub fn run(index: usize, ws: &mut Workspace, out: &mut Solution, prepared: &Prep
             black_box(verification_round(ws, &d, out, end, 0));
             ws.work.used().saturating_sub(before)
         }
-        Kind::Finish(_) => {
-            black_box(finish(ws, &d, out, SqpEnd::Converged));
+        Kind::AnswerChecks(_) => {
+            black_box(check_answer(ws, &d, out));
+            ws.work.used().saturating_sub(before)
+        }
+        Kind::Certificate(_) => {
+            certify(ws, out);
+            black_box(&out.certificate);
             ws.work.used().saturating_sub(before)
         }
         Kind::Newton(_) => {

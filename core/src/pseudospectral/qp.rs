@@ -110,8 +110,14 @@ pub(crate) fn solve(
         };
         let mut multiplier_p = if sign > 0.0 { 0.0 } else { cap_p };
         loop {
-            // The step may add a row: keep the final checks of the larger working set.
-            work.raise_reserve(work_units::reserve(tr, state.count.saturating_add(1)));
+            // The step may add a row: keep the final checks of a working set one row larger
+            // than this one. Set, not raised: the checks run on the last QP's working set, so
+            // rows dropped since give their reserve back to the loops.
+            work.reserve(work_units::reserve(
+                tr,
+                state.count.saturating_add(1),
+                state.final_checks,
+            ));
             if steps >= max_iter || !work.spend(work_units::qp_step(tr, state.count)) {
                 return QpOutcome::IterationLimit;
             }

@@ -7,6 +7,7 @@
 use super::kernel::{u8_of, Coefficients, MAX_BLOCKS};
 use super::packed::{self, cholesky, solve_lower, solve_lower_transposed};
 use super::transcription::{rows_dot, RowId, Transcription};
+use super::work_units::FinalChecks;
 use crate::capacity::{MAX_ACTIVE, MAX_CHECKS_PER_PAIR, MAX_FREE_PER_AXIS, MAX_NODES, MAX_PAIRS};
 use crate::indexed::IndexedExt as _;
 
@@ -70,6 +71,9 @@ pub(crate) struct QpState {
     pub(super) keep_out_flags: [[u8; MAX_CHECKS_PER_PAIR]; MAX_PAIRS],
     /// Rows held elastic (multiplier at the penalty's bound, not in the active set).
     pub(super) elastic_count: usize,
+    /// The final checks the solve's current stage keeps in reserve, raised by each QP step that
+    /// could grow the working set (set by `solver::run`, kept across `reset`).
+    pub(crate) final_checks: FinalChecks,
 }
 
 /// A row in the active set (keep-out flags; `row_bits` maps a control row's side onto it).
@@ -105,6 +109,7 @@ impl QpState {
             control_flags: [[0; MAX_NODES]; MAX_BLOCKS],
             keep_out_flags: [[0; MAX_CHECKS_PER_PAIR]; MAX_PAIRS],
             elastic_count: 0,
+            final_checks: FinalChecks::FirstRun,
         }
     }
 

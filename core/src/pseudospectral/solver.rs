@@ -17,7 +17,7 @@ use super::setup::{initial_iterate, setup};
 use super::solution::Solution;
 use super::status::SolveStatus;
 use super::validate;
-use super::work_units;
+use super::work_units::{self, FinalChecks};
 use super::workspace::Workspace;
 use crate::capacity::MAX_SPACECRAFT;
 use crate::indexed::IndexedExt as _;
@@ -120,8 +120,12 @@ fn run(
     if let Err(stage) = setup_result {
         return SolveStatus::NumericalFailure(stage);
     }
-    ws.work
-        .reserve(work_units::reserve(&ws.setup.transcription, 0));
+    ws.iterates.qp.final_checks = FinalChecks::FirstRun;
+    ws.work.reserve(work_units::reserve(
+        &ws.setup.transcription,
+        0,
+        FinalChecks::FirstRun,
+    ));
     initial_iterate(ws, warm, lift, out);
     ws.iterates.kept = Kept::START;
     let first = iterate_and_check(ws, settings, out);
@@ -132,7 +136,10 @@ fn run(
     loop {
         step = match step {
             Step::LookForSaddle { escapes } => {
-                if escapes < MAX_SADDLE_ESCAPES && answer.is_saddle(out) && ws.work.has_room() {
+                if escapes < MAX_SADDLE_ESCAPES
+                    && answer.is_saddle(out)
+                    && start_escape_or_probe(ws)
+                {
                     Step::EscapeSaddle { escapes }
                 } else {
                     Step::LookForFlat
@@ -143,7 +150,6 @@ fn run(
                 out.info.saddle_escapes = escapes;
                 let saddle_cost = out.cost;
                 ws.iterates.saved = ws.iterates.iterate;
-                ws.work.charge(work_units::step_along());
                 step_along(ws, 1.0);
                 answer = iterate_and_check(ws, settings, out);
                 if !answer.status.is_usable() || out.cost >= saddle_cost {
@@ -170,9 +176,8 @@ fn run(
                 }
             }
             Step::ProbeFlat { side, flat_cost } => {
-                if ws.work.has_room() {
+                if start_escape_or_probe(ws) {
                     ws.iterates.saved = ws.iterates.iterate;
-                    ws.work.charge(work_units::step_along());
                     step_along(ws, side);
                     answer = iterate_and_check(ws, settings, out);
                     let tolerance = certificate::FLAT_PROBE_TOL_REL * (1.0 + flat_cost);
@@ -227,6 +232,21 @@ fn run(
         };
     }
     answer.status
+}
+
+/// Start a saddle escape or a flat probe, if the loops' share has room for its step along the
+/// direction with the reserve raised to the stage's final checks (its answer's and the
+/// return's, `FinalChecks::EscapeAndReturn`). `false` (the meter then exhausted) when it has
+/// not: a point whose own checks overran the loops' share starts nothing.
+fn start_escape_or_probe(ws: &mut Workspace) -> bool {
+    let checks = FinalChecks::EscapeAndReturn;
+    ws.iterates.qp.final_checks = checks;
+    ws.work.raise_reserve(work_units::reserve(
+        &ws.setup.transcription,
+        ws.iterates.qp.count,
+        checks,
+    ));
+    ws.work.spend(work_units::step_along())
 }
 
 /// What the solve does after the first answer (`run` walks these; each step names the next).
@@ -451,61 +471,26 @@ pub(super) fn verification_round(
     true
 }
 
-/// Write the solution, check its feasibility, evaluate its certificate, and return its status.
-/// `ws.iterates.trial` receives the certificate's negative-curvature direction
-/// (`ws.iterates.accepted` is its scratch): workspace buffers idle at this point, so the
-/// certificate adds nothing to the stack. Never inlined: its frame (the certificate's envelope
-/// corrections, 6.4 KB at capacity) must not sit under the iteration's, which
-/// `iterate_and_check` calls beside it (inlined there, it added 8.2 KB to the M7's stack
-/// high-water).
-#[inline(never)]
+/// Write the solution, check its feasibility, evaluate its certificate where it can matter, and
+/// return its status. The certificate is taken only for a feasible answer at its own QP state
+/// (`SqpEnd::at_own_qp_state`): only such an answer can be certified, escaped from or probed
+/// (`Answer::is_saddle`, `Answer::is_flat`). Elsewhere it says it was not evaluated, and its
+/// power method (most of a finish's work) is not paid: the first run's reserve holds one
+/// certificate, not two (`work_units::FinalChecks`).
 pub(super) fn finish(
     ws: &mut Workspace,
     settings: &Settings,
     out: &mut Solution,
     end: SqpEnd,
 ) -> SolveStatus {
-    ws.work.charge(work_units::finish(
-        &ws.setup.transcription,
-        ws.iterates.qp.count,
-    ));
-    let verified = write_solution(ws, settings, out);
-    // Feasibility is checked on the returned trajectory itself, whatever the iteration says.
-    let control_excess = control_excess(out, ws.setup.transcription.max_control_fu);
-    // No pair, no keep-out to miss.
-    let separation_deficit = out
-        .min_separation_lu
-        .map_or(0.0, |s| ws.setup.transcription.keep_out_lu - s);
-    out.certificate.max_violation = control_excess.max(separation_deficit).max(0.0);
-    let feasible = verified
-        && control_excess <= CONTROL_TOL_REL * ws.setup.transcription.max_control_fu
-        && out.max_dynamics_error <= DYNAMICS_TOL_REL * (1.0 + state_scale(out));
-    out.certificate.first_order_evaluated = false;
-    out.certificate.second_order_evaluated = false;
-    if !matches!(end, SqpEnd::Failed(_)) {
-        unit_normals(ws);
-        let extra = certificate::evaluate(
-            &ws.setup.transcription,
-            &mut ws.iterates.qp,
-            &ws.iterates.iterate,
-            out.cost,
-            &mut ws.iterates.trial,
-            &mut ws.iterates.accepted,
-            &mut out.certificate,
-        );
-        ws.work.charge(work_units::extra_products(
-            &ws.setup.transcription,
-            ws.iterates.qp.count,
-            extra,
-        ));
-    }
-    // The certificate is measured on the returned iterate with the constraint gradients there,
-    // whatever the iteration says; it needs the QP state to be the iterate's own (the last QP's
-    // answer), which holds at a fixed point and at an iteration limit reached on an accepted
-    // answer. Measured on the dense lattice (issue 9): 10 of its Feasible answers met every
-    // tolerance of the certificate but had used their `sqp_max_iter` sliding along the
-    // keep-out by parts per million of J per step.
-    let certified = end.at_own_qp_state() && out.certificate.certifies_local_optimum();
+    let feasible = check_answer(ws, settings, out);
+    let certified = if feasible && end.at_own_qp_state() {
+        certify(ws, out);
+        out.certificate.certifies_local_optimum()
+    } else {
+        not_evaluated(&mut out.certificate);
+        false
+    };
     match end {
         _ if feasible && certified => SolveStatus::Solved,
         _ if feasible => SolveStatus::Feasible,
@@ -513,6 +498,71 @@ pub(super) fn finish(
         SqpEnd::MaxIterations { .. } => SolveStatus::MaxIterations,
         SqpEnd::Converged => SolveStatus::SeparationNotVerified,
     }
+}
+
+/// Write the solution and check its feasibility on the returned trajectory itself, whatever
+/// the iteration says: every pair's continuous separation, the control bound, the dynamics.
+/// Sets the certificate's `max_violation`; returns whether the answer is feasible.
+pub(super) fn check_answer(ws: &mut Workspace, settings: &Settings, out: &mut Solution) -> bool {
+    ws.work
+        .charge(work_units::answer_checks(&ws.setup.transcription));
+    let verified = write_solution(ws, settings, out);
+    let control_excess = control_excess(out, ws.setup.transcription.max_control_fu);
+    // No pair, no keep-out to miss.
+    let separation_deficit = out
+        .min_separation_lu
+        .map_or(0.0, |s| ws.setup.transcription.keep_out_lu - s);
+    out.certificate.max_violation = control_excess.max(separation_deficit).max(0.0);
+    verified
+        && control_excess <= CONTROL_TOL_REL * ws.setup.transcription.max_control_fu
+        && out.max_dynamics_error <= DYNAMICS_TOL_REL * (1.0 + state_scale(out))
+}
+
+/// Evaluate the certificate of the returned iterate with the constraint gradients there and the
+/// QP state of the last QP (the caller has checked it is the iterate's own). Measured on the
+/// dense lattice (issue 9): 10 `Feasible` answers met every tolerance of the certificate but
+/// had used their `sqp_max_iter` sliding along the keep-out by parts per million of J per step,
+/// so the state must be the answer's own, not merely near it.
+/// `ws.iterates.trial` receives the negative-curvature direction (`ws.iterates.accepted` is its
+/// scratch): workspace buffers idle at this point, so the certificate adds nothing to the
+/// stack. Never inlined: its frame (the envelope corrections, 6.4 KB at capacity) must not sit
+/// under the iteration's, which `iterate_and_check` calls beside it (inlined there, it added
+/// 8.2 KB to the M7's stack high-water).
+#[inline(never)]
+pub(super) fn certify(ws: &mut Workspace, out: &mut Solution) {
+    ws.work.charge(work_units::certificate(
+        &ws.setup.transcription,
+        ws.iterates.qp.count,
+    ));
+    unit_normals(ws);
+    let extra = certificate::evaluate(
+        &ws.setup.transcription,
+        &mut ws.iterates.qp,
+        &ws.iterates.iterate,
+        out.cost,
+        &mut ws.iterates.trial,
+        &mut ws.iterates.accepted,
+        &mut out.certificate,
+    );
+    ws.work.charge(work_units::extra_products(
+        &ws.setup.transcription,
+        ws.iterates.qp.count,
+        extra,
+    ));
+}
+
+/// A certificate not taken: its flags say so and its measures are zero (not a previous answer's);
+/// `max_violation`, an answer check's, is kept.
+fn not_evaluated(c: &mut certificate::Certificate) {
+    c.first_order_evaluated = false;
+    c.stationarity = 0.0;
+    c.complementarity = 0.0;
+    c.second_order_evaluated = false;
+    c.min_reduced_eigenvalue = 0.0;
+    c.multipliers_complete = false;
+    c.multipliers.clear();
+    c.flat_direction_probed = false;
+    c.symmetry_directions = 0;
 }
 
 #[cfg(test)]

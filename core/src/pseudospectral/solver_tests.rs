@@ -601,3 +601,56 @@ fn an_answer_usable_at_one_budget_is_usable_at_every_larger_one() {
     // Usable well before the budget that certifies the optimum.
     assert!(first_usable.is_some_and(|k| k <= 20), "{first_usable:?}");
 }
+
+#[test]
+fn an_answer_not_at_its_own_qp_state_is_checked_without_a_certificate() {
+    // A kept answer's checks (`answer_or_kept`: its QP state is not its own) take no
+    // certificate: it could certify nothing, and its power method was half the first run's
+    // reserve. The same point at its own state is certified again and pays the certificate.
+    let settings = Settings::default();
+    let (mut ws, mut out) = run_keeping_workspace(&paper_case(10, true), &settings);
+    assert_eq!(out.info.status, SolveStatus::Solved);
+    assert!(out.certificate.first_order_evaluated && out.certificate.second_order_evaluated);
+    let tr_checks = work_units::answer_checks(&ws.setup.transcription);
+    let before = ws.work.used();
+    let end = SqpEnd::MaxIterations { at_answer: false };
+    assert_eq!(
+        finish(&mut ws, &settings, &mut out, end),
+        SolveStatus::Feasible
+    );
+    assert_eq!(ws.work.used() - before, tr_checks);
+    let c = &out.certificate;
+    assert!(!c.first_order_evaluated && !c.second_order_evaluated);
+    // Its measures are zero, not the previous answer's.
+    assert_eq!((c.stationarity, c.complementarity), (0.0, 0.0));
+    assert_eq!(c.min_reduced_eigenvalue, 0.0);
+    assert!(c.multipliers.is_empty() && !c.multipliers_complete);
+    // Still checked: the separation and the violation are the answer's.
+    assert!(c.max_violation <= 1e-7 && out.min_separation_lu.unwrap() >= 2.0 - 1e-6);
+    let certificate = work_units::certificate(&ws.setup.transcription, ws.iterates.qp.count);
+    let before = ws.work.used();
+    assert_eq!(
+        finish(&mut ws, &settings, &mut out, SqpEnd::Converged),
+        SolveStatus::Solved
+    );
+    assert!(ws.work.used() - before >= tr_checks + certificate);
+    assert!(out.certificate.first_order_evaluated && !out.certificate.multipliers.is_empty());
+}
+
+#[test]
+fn the_first_run_keeps_one_certificate_and_an_escape_two() {
+    // The first run's reserve: one answer's checks and certificate with every Lanczos step, or
+    // two answers' checks where the first fails them (then neither takes a certificate). An
+    // escape or a probe keeps its answer's and the return's, both certified.
+    let (ws, _) = run_keeping_workspace(&paper_case(10, true), &Settings::default());
+    let tr = &ws.setup.transcription;
+    for working in [0, 3, 20, MAX_ACTIVE] {
+        let first = work_units::reserve(tr, working, FinalChecks::FirstRun);
+        let escape = work_units::reserve(tr, working, FinalChecks::EscapeAndReturn);
+        let one = work_units::answer_checks(tr)
+            + work_units::certificate(tr, working)
+            + work_units::extra_products(tr, working, super::super::lanczos::LANCZOS_STEPS);
+        assert_eq!(first, one.max(2 * work_units::answer_checks(tr)));
+        assert_eq!(escape, 2 * one);
+    }
+}

@@ -12,6 +12,7 @@
 use super::certificate::POWER_ITERATIONS;
 use super::curvature::MAX_ENVELOPES;
 use super::kernel::MAX_BLOCKS;
+use super::lanczos::LANCZOS_STEPS;
 use super::transcription::Transcription;
 use crate::capacity::{MAX_ACTIVE, MAX_CHECKS_PER_PAIR, MAX_FREE_PER_AXIS, MAX_NODES};
 use crate::work::units;
@@ -206,23 +207,44 @@ pub(super) fn verify_pair(tr: &Transcription) -> u64 {
         .saturating_add(400)
 }
 
-/// The final checks of a returned iterate (`solver::finish`): the continuous verification of
-/// every pair, the node values of the solution, and the certificate's power method with
-/// `working` rows in the working set (at most `MAX_ACTIVE` in the reserve).
-pub(super) fn finish(tr: &Transcription, working: usize) -> u64 {
+/// The checks of a returned iterate every answer gets (`solver::check_answer`): the continuous
+/// verification of every pair, the node values of the solution, and its fixed-size part
+/// ([`ANSWER_FIXED`]).
+pub(super) fn answer_checks(tr: &Transcription) -> u64 {
     let s = size(tr);
-    let working = working.min(MAX_ACTIVE);
-    // Per power step: the projection on the working set (row products and updates, two
-    // triangular solves), each active keep-out row's curvature (over the nodes), the envelope
-    // corrections (at most `MAX_ENVELOPES`, six blocks each way), the dense vector operations.
-    let power_step = projected_curvature(&s, working);
     units(&[s.pairs])
         .saturating_mul(pair_minimum(&s))
         .saturating_add(units(&[12, s.blocks, s.nodes, s.free]))
-        .saturating_add(power_step.saturating_mul(units(&[POWER_ITERATIONS])))
+        .saturating_add(ANSWER_FIXED)
 }
 
-/// `products` projected curvature products past the power steps `finish` charges: the
+/// The answer checks' part that does not scale with the sizes (the solution's fixed-size
+/// arrays): about 28 k M7 instructions, measured `answer-checks-small-w1` (41 k instructions at
+/// N = 4 where the sized part is 1,360 units; 30 per unit before this term, which the power
+/// method's slack hid while both were charged as one).
+const ANSWER_FIXED: u64 = 3_500;
+
+/// The certificate of a feasible answer at its own QP state (`solver::certify`), with
+/// `working` rows in the working set (at most `MAX_ACTIVE` in the reserve): the power method's
+/// steps, charged before it runs; the Lanczos steps that precede it are charged after
+/// ([`extra_products`]). Per power step: the projection on the working set (row products and
+/// updates, two triangular solves), each active keep-out row's curvature (over the nodes), the
+/// envelope corrections (at most `MAX_ENVELOPES`, six blocks each way), the dense vector
+/// operations.
+pub(super) fn certificate(tr: &Transcription, working: usize) -> u64 {
+    let s = size(tr);
+    projected_curvature(&s, working.min(MAX_ACTIVE)).saturating_mul(units(&[POWER_ITERATIONS]))
+}
+
+/// The dearest final checks of one answer with `working` rows: the answer's checks and its
+/// certificate with every Lanczos step taken before the power method.
+fn finish_bound(tr: &Transcription, working: usize) -> u64 {
+    answer_checks(tr)
+        .saturating_add(certificate(tr, working))
+        .saturating_add(extra_products(tr, working, LANCZOS_STEPS))
+}
+
+/// `products` projected curvature products past the power steps [`certificate`] charges: the
 /// certificate's Lanczos steps when the power method ran after them (a reduced Hessian not
 /// positive definite), with `working` rows in the working set.
 pub(super) fn extra_products(tr: &Transcription, working: usize, products: usize) -> u64 {
@@ -342,14 +364,30 @@ pub(super) fn step_along() -> u64 {
     units(&[2, VECTOR])
 }
 
-/// What a solve keeps back for its final checks with `working` rows in the largest working set
-/// built so far: an escape's check and the saddle's again after the escape falls back to it
-/// (`solver::run`). A saddle's own check that overruns the loops' share starts no escape, so
-/// two checks at most follow the loops' share. The final checks run on a working set some QP
-/// built within the loops' share, so the QP raises the reserve before each step that could
-/// grow it (`Meter::raise_reserve`): the reserve is sized by the working set the solve really
-/// has, not by the capacity (at `MAX_ACTIVE` rows the certificate's power method alone was a
-/// third of the default budget).
-pub(super) fn reserve(tr: &Transcription, working: usize) -> u64 {
-    finish(tr, working).saturating_mul(2)
+/// How many answers' final checks a stage of a solve keeps in reserve (`reserve`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum FinalChecks {
+    /// The first run: its answer's checks and certificate, or, where the answer fails its checks
+    /// (no certificate then: it could certify nothing), those checks and the kept answer's
+    /// (`solver::answer_or_kept`, whose certificate is not taken either: its QP state is not its
+    /// own).
+    FirstRun,
+    /// A saddle escape or a flat probe: its answer's checks and certificate, and those of the
+    /// return to the point it left (`solver::run`).
+    EscapeAndReturn,
+}
+
+/// What a solve keeps back for the final checks of its stage `checks` with `working` rows in
+/// the working set. The final checks run on the last QP's working set, built within the loops'
+/// share, so the QP sets the reserve before each step for one row more than it holds
+/// (`Meter::reserve`): the reserve is sized by the working set the solve has, not by the
+/// capacity (at `MAX_ACTIVE` rows the certificate's power method alone was a third of the
+/// default budget) nor by the largest set it once built. A certificate's Lanczos steps are in
+/// the bound.
+pub(super) fn reserve(tr: &Transcription, working: usize, checks: FinalChecks) -> u64 {
+    let one = finish_bound(tr, working);
+    match checks {
+        FinalChecks::FirstRun => one.max(answer_checks(tr).saturating_mul(2)),
+        FinalChecks::EscapeAndReturn => one.saturating_mul(2),
+    }
 }
