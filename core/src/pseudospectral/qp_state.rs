@@ -71,8 +71,8 @@ pub(crate) struct QpState {
     pub(super) keep_out_flags: [[u8; MAX_CHECKS_PER_PAIR]; MAX_PAIRS],
     /// Rows held elastic (multiplier at the penalty's bound, not in the active set).
     pub(super) elastic_count: usize,
-    /// The final checks the solve's current stage keeps in reserve, raised by each QP step that
-    /// could grow the working set (set by `solver::run`, kept across `reset`).
+    /// The final checks the solve's current stage keeps in reserve, which each QP step sets for
+    /// its working set plus one row (the stage is set by `solver::run`, kept across `reset`).
     pub(crate) final_checks: FinalChecks,
 }
 
