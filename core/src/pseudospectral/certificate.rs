@@ -148,6 +148,20 @@ impl Certificate {
         }
     }
 
+    /// Not taken for this answer (`solver::finish`): the flags say so and every measure is
+    /// `new()`'s (not a previous answer's), but `max_violation`, an answer check's, is kept.
+    pub(crate) fn not_evaluated(&mut self) {
+        self.first_order_evaluated = false;
+        self.stationarity = 0.0;
+        self.complementarity = 0.0;
+        self.second_order_evaluated = false;
+        self.min_reduced_eigenvalue = 0.0;
+        self.multipliers_complete = false;
+        self.multipliers.clear();
+        self.flat_direction_probed = false;
+        self.symmetry_directions = 0;
+    }
+
     /// First- and second-order conditions hold within the tolerances above.
     pub fn certifies_local_optimum(&self) -> bool {
         self.first_order_evaluated

@@ -488,7 +488,7 @@ pub(super) fn finish(
         certify(ws, out);
         out.certificate.certifies_local_optimum()
     } else {
-        not_evaluated(&mut out.certificate);
+        out.certificate.not_evaluated();
         false
     };
     match end {
@@ -549,20 +549,6 @@ pub(super) fn certify(ws: &mut Workspace, out: &mut Solution) {
         ws.iterates.qp.count,
         extra,
     ));
-}
-
-/// A certificate not taken: its flags say so and its measures are zero (not a previous answer's);
-/// `max_violation`, an answer check's, is kept.
-fn not_evaluated(c: &mut certificate::Certificate) {
-    c.first_order_evaluated = false;
-    c.stationarity = 0.0;
-    c.complementarity = 0.0;
-    c.second_order_evaluated = false;
-    c.min_reduced_eigenvalue = 0.0;
-    c.multipliers_complete = false;
-    c.multipliers.clear();
-    c.flat_direction_probed = false;
-    c.symmetry_directions = 0;
 }
 
 #[cfg(test)]
