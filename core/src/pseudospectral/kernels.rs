@@ -14,7 +14,7 @@
 //! parts of `solver::finish`), the second-order step, the elastic
 //! QP's naming of the unmet constraints (every row named) and its two scans of the held rows
 //! (every row held), the turn of every pair's swerve direction, a saddle escape's step, a row
-//! dropped from a full working set (the re-factored Gram matrix), and whole solves. The problems are 8 spacecraft crossing through the centre of a circle (every pair
+//! dropped from a full working set (deleted from the Gram factor), and whole solves. The problems are 8 spacecraft crossing through the centre of a circle (every pair
 //! meets, so no check is pruned), at the capacity N = 24 and at N = 10, and 2 spacecraft at the
 //! least degree N = 4 (where the fixed-size clears weigh most).
 
@@ -107,9 +107,9 @@ enum Kind {
     TurnSwerves(u16),
     /// `solver::step_along` (a saddle escape's or a flat probe's step).
     StepAlong(u16),
-    /// A row dropped from a working set of `MAX_ACTIVE` rows (`QpState::drop_row`: the Gram
-    /// matrix of the rest re-factored).
-    Refactor(u16),
+    /// The first row dropped from a working set of `MAX_ACTIVE` rows (`QpState::drop_row`: the
+    /// row deleted from the Gram factor, every row below it moved and updated).
+    DropRow(u16),
     /// A whole solve with this budget (0: the default).
     Solve(u64),
 }
@@ -200,9 +200,9 @@ pub const CASES: &[Case] = &[
     case("turn-swerves-small-w1", SMALL, Kind::TurnSwerves(1)),
     case("step-along-cap-w3", CAP, Kind::StepAlong(3)),
     case("step-along-small-w1", SMALL, Kind::StepAlong(1)),
-    case("refactor-cap-w3", CAP, Kind::Refactor(3)),
-    case("refactor-n10-w3", N10, Kind::Refactor(3)),
-    case("refactor-small-w1", SMALL, Kind::Refactor(1)),
+    case("drop-row-cap-w3", CAP, Kind::DropRow(3)),
+    case("drop-row-n10-w3", N10, Kind::DropRow(3)),
+    case("drop-row-small-w1", SMALL, Kind::DropRow(1)),
     case("solve-cap-1m", CAP, Kind::Solve(1_000_000)),
     case("solve-n10-default", N10, Kind::Solve(0)),
     case("solve-small-default", SMALL, Kind::Solve(0)),
@@ -312,7 +312,7 @@ fn warm_of(kind: Kind) -> Option<u16> {
         | Kind::ElasticScans(w)
         | Kind::TurnSwerves(w)
         | Kind::StepAlong(w)
-        | Kind::Refactor(w) => Some(w),
+        | Kind::DropRow(w) => Some(w),
     }
 }
 
@@ -356,7 +356,7 @@ pub fn prepare(index: usize, ws: &mut Workspace, out: &mut Solution) -> Prepared
             | Kind::Dual(..)
             | Kind::NameUnmet(_)
             | Kind::ElasticScans(_)
-            | Kind::Refactor(_)
+            | Kind::DropRow(_)
     ) {
         let _ = follow_minima(ws, &settings, true, false);
         linearise(ws);
@@ -368,7 +368,7 @@ pub fn prepare(index: usize, ws: &mut Workspace, out: &mut Solution) -> Prepared
             let qp = &mut ws.iterates.qp;
             for_each_row(tr, |id| qp.mark_elastic(id, true));
         }
-        Kind::Refactor(_) => {
+        Kind::DropRow(_) => {
             // Up to `MAX_ACTIVE` independent working rows, keep-out rows first (six blocks
             // each), in factor mode: a row whose factor fails is left out.
             let tr = &ws.setup.transcription;
@@ -565,10 +565,11 @@ pub fn run(index: usize, ws: &mut Workspace, out: &mut Solution, prepared: &Prep
             black_box(&ws.iterates.iterate);
             work_units::step_along()
         }
-        Kind::Refactor(_) => {
+        Kind::DropRow(_) => {
             let k = ws.iterates.qp.count;
-            black_box(ws.iterates.qp.drop_row(&ws.setup.transcription, 0));
-            work_units::refactor(&ws.setup.transcription, k.saturating_sub(1))
+            let mut scratch = [0.0; MAX_ACTIVE];
+            black_box(ws.iterates.qp.drop_row(0, &mut scratch));
+            work_units::drop_row(k)
         }
         Kind::Solve(budget) => {
             let p = problem(c.shape);

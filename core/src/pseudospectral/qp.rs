@@ -251,10 +251,10 @@ pub(crate) fn solve(
                 return QpOutcome::Infeasible;
             };
             let leaving_id = state.active.get(leaving).copied();
-            // The drop re-factors the Gram matrix of the rows left: charged as it runs (the
-            // next step's `spend` is bounded by it).
-            work.charge(work_units::refactor(tr, k.saturating_sub(1)));
-            if !state.drop_row(tr, leaving) {
+            // The drop deletes the row from the Gram factor: charged as it runs (the next
+            // step's `spend` is bounded by it). `r` is free until the next step computes it.
+            work.charge(work_units::drop_row(k));
+            if !state.drop_row(leaving, &mut r) {
                 return QpOutcome::FactorFailure;
             }
             if let (true, Some(id)) = (to_bound, leaving_id) {
