@@ -446,12 +446,21 @@ pub fn run(index: usize, ws: &mut Workspace, out: &mut Solution, prepared: &Prep
             ws.work.used().saturating_sub(before)
         }
         Kind::QpScan(_) => {
-            let _ = ws.work.spend(work_units::qp_scan(&ws.setup.transcription));
+            // At the start of a QP: no pair's bound known, every pair evaluated.
             ws.iterates.qp.reset();
+            let checks = ws
+                .iterates
+                .qp
+                .scan_bounds
+                .checks_to_scan(&ws.setup.transcription, d.qp_tol_feas);
+            let _ = ws
+                .work
+                .spend(work_units::qp_scan(&ws.setup.transcription, checks));
             black_box(qp_scan::most_violated(
                 &ws.setup.transcription,
-                &ws.iterates.qp,
+                &mut ws.iterates.qp,
                 &ws.iterates.iterate,
+                d.qp_tol_feas,
             ));
             ws.work.used().saturating_sub(before)
         }

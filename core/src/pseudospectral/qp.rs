@@ -75,10 +75,12 @@ pub(crate) fn solve(
                 } else {
                     0
                 };
-                if !work.spend(work_units::qp_scan(tr).saturating_add(elastic)) {
+                // Charged for the pairs it evaluates (`qp_scan::ScanBounds`).
+                let checks = state.scan_bounds.checks_to_scan(tr, tol);
+                if !work.spend(work_units::qp_scan(tr, checks).saturating_add(elastic)) {
                     return QpOutcome::IterationLimit;
                 }
-                qp_scan::most_violated(tr, state, y)
+                qp_scan::most_violated(tr, state, y, tol)
             }
         };
         // The entering row and the sign of its multiplier's change: +1 a violated row from
@@ -202,6 +204,7 @@ pub(crate) fn solve(
             let signed_step = sign * step;
             if full_step.is_some() {
                 kernel::axpy(y, signed_step, &state.direction, (blocks, free));
+                state.scan_bounds.moved_by(signed_step * libm::sqrt(z2));
             }
             for (m, rj) in state.multiplier.iter_mut().zip(r.iter()).take(k) {
                 *m -= signed_step * rj;

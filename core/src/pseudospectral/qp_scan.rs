@@ -12,11 +12,89 @@ use super::transcription::{block_dot, row_dot, NodeDots, RowId, Transcription};
 use crate::capacity::{MAX_ACTIVE, MAX_CHECKS_PER_PAIR, MAX_NODES, MAX_PAIRS};
 use crate::indexed::IndexedExt as _;
 
-/// The most violated constraint at `y` neither active nor elastic, as (row, slack / |row|).
+/// Lower bounds on the normalised slacks of each pair's candidate keep-out rows within one QP
+/// (its rows fixed), so that the scan can skip a pair that cannot hold a violated row.
+///
+/// Why it holds: a row's normalised slack `(a . y - b) / |a|` changes by at most `|dy|` when
+/// `y` moves by `dy` (Cauchy-Schwarz; the scan's norm is the row's own Euclidean norm,
+/// `the_scan_norm_is_the_rows_norm`). So after a pair's rows were all evaluated with least
+/// slack `s` and `y` has moved a distance `D` since (the sum of the steps' lengths), every one
+/// of them still has slack at least `s - D`. A pair whose bound is above `tol` holds no row
+/// violated by more than `tol`, and only such rows can enter: skipping it changes no choice of
+/// the scan (the most violated row is among the pairs evaluated whenever any row is violated),
+/// so the QP's answers are the same bits, for less work. A row that becomes a candidate
+/// again (dropped from the active set, released from an elastic bound) forgets its pair's
+/// bound (`QpState::set_flag`); the bounds start unknown at every QP.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ScanBounds {
+    /// The distance `y` has moved in this QP so far (sum of the steps' lengths).
+    moved: f64,
+    /// Per pair: the least normalised slack of its candidate rows when last evaluated, plus
+    /// `moved` at that time; read only where `known`.
+    pairs: [f64; MAX_PAIRS],
+    /// Per pair: whether `pairs` holds its bound. (A flag, not a `-inf` bound: all zeros is
+    /// "nothing known", so the workspace holding this stays zero-initialised, in `.bss`.)
+    known: [bool; MAX_PAIRS],
+}
+
+impl ScanBounds {
+    /// Nothing known: every pair is evaluated.
+    pub(crate) const fn unknown() -> Self {
+        Self {
+            moved: 0.0,
+            pairs: [0.0; MAX_PAIRS],
+            known: [false; MAX_PAIRS],
+        }
+    }
+
+    /// `y` moved by a step of this length. A length that is not finite forgets every bound.
+    pub(super) fn moved_by(&mut self, length: f64) {
+        let moved = self.moved + libm::fabs(length);
+        if moved.is_finite() {
+            self.moved = moved;
+        } else {
+            *self = Self::unknown();
+        }
+    }
+
+    /// Forget the bound of the row's pair (a control row has none).
+    pub(super) fn forget_row(&mut self, id: RowId) {
+        if let RowId::KeepOut { pair, .. } = id {
+            if let Some(known) = self.known.get_mut(usize::from(pair)) {
+                *known = false;
+            }
+        }
+    }
+
+    /// Whether pair `pair`'s candidate rows are all met with more than `tol` to spare.
+    fn skips(&self, pair: usize, tol: f64) -> bool {
+        self.pairs
+            .get(pair)
+            .zip(self.known.get(pair))
+            .is_some_and(|(&bound, &known)| known && bound - self.moved > tol)
+    }
+
+    /// Keep-out checks the next scan evaluates (of the pairs it does not skip): what it is
+    /// charged for (`work_units::qp_scan`).
+    pub(super) fn checks_to_scan(&self, tr: &Transcription, tol: f64) -> usize {
+        tr.check_count
+            .iter()
+            .take(tr.pair_count)
+            .indexed()
+            .filter(|&(pair, _)| !self.skips(pair, tol))
+            .fold(0usize, |total, (_, &count)| total.saturating_add(count))
+    }
+}
+
+/// The most violated constraint at `y` neither active nor elastic, as (row, slack / |row|),
+/// skipping the pairs `state.scan_bounds` shows met with more than `tol` to spare (and
+/// recording the bounds of the pairs it evaluates). The row it returns is the same as with no
+/// pair skipped whenever one is violated by more than `tol` (`ScanBounds`).
 pub(super) fn most_violated(
     tr: &Transcription,
-    state: &QpState,
+    state: &mut QpState,
     y: &Coefficients,
+    tol: f64,
 ) -> Option<(RowId, f64)> {
     let free = tr.basis.free;
     let mut best: Option<(RowId, f64)> = None;
@@ -69,11 +147,29 @@ pub(super) fn most_violated(
     // Pairs within the transcription's count, each with its checks and their active flags (a
     // check without a row or a relative position is no candidate: never, both are built with
     // the check).
-    let check_rows = tr.checks.iter().zip(state.keep_out_flags.iter());
-    for (pair, (checks, active_flags)) in check_rows.take(tr.pair_count).indexed() {
+    let moved = state.scan_bounds.moved;
+    let bounds = state
+        .scan_bounds
+        .pairs
+        .iter_mut()
+        .zip(state.scan_bounds.known.iter_mut());
+    let check_rows = tr
+        .checks
+        .iter()
+        .zip(state.keep_out_flags.iter())
+        .zip(bounds);
+    for (pair, ((checks, active_flags), (bound, known))) in check_rows.take(tr.pair_count).indexed()
+    {
+        if *known && *bound - moved > tol {
+            continue;
+        }
+        // Unknown until every candidate row of the pair is evaluated below.
+        *known = false;
         let (Some(geometry), Some(&count)) = (tr.pair(pair), tr.check_count.get(pair)) else {
             continue;
         };
+        let mut least = f64::INFINITY;
+        let mut complete = true;
         let (mi, mj) = geometry.masses;
         let mass_factor = libm::sqrt(1.0 / (mi * mi) + 1.0 / (mj * mj));
         for (c, (check, &flags)) in checks.iter().zip(active_flags.iter()).take(count).indexed() {
@@ -81,13 +177,16 @@ pub(super) fn most_violated(
                 continue;
             }
             let Some((_, row_norm)) = tr.check_row(check.source) else {
+                complete = false;
                 continue;
             };
             let norm = row_norm * mass_factor;
             if norm <= 0.0 {
+                complete = false;
                 continue;
             }
             let Some(relative) = tr.relative_with(&geometry, check.source, y, &dots) else {
+                complete = false;
                 continue;
             };
             let mut along = 0.0;
@@ -95,6 +194,11 @@ pub(super) fn most_violated(
                 along += n * r;
             }
             let slack = (along - geometry.keep_out) / norm;
+            if !slack.is_finite() {
+                complete = false;
+            } else if slack < least {
+                least = slack;
+            }
             consider(
                 RowId::KeepOut {
                     pair: pair as u8,
@@ -102,6 +206,10 @@ pub(super) fn most_violated(
                 },
                 slack,
             );
+        }
+        if complete {
+            *bound = least + moved;
+            *known = true;
         }
     }
     best
@@ -249,3 +357,7 @@ pub(super) fn for_each_elastic(
         }
     }
 }
+
+#[cfg(test)]
+#[path = "qp_scan_tests.rs"]
+mod tests;

@@ -6,6 +6,7 @@
 
 use super::kernel::{u8_of, Coefficients, MAX_BLOCKS};
 use super::packed::{self, cholesky, solve_lower, solve_lower_transposed};
+use super::qp_scan::ScanBounds;
 use super::transcription::{rows_dot, RowId, Transcription};
 use super::work_units::FinalChecks;
 use crate::capacity::{MAX_ACTIVE, MAX_CHECKS_PER_PAIR, MAX_FREE_PER_AXIS, MAX_NODES, MAX_PAIRS};
@@ -74,6 +75,9 @@ pub(crate) struct QpState {
     /// The final checks the solve's current stage keeps in reserve, which each QP step sets for
     /// its working set plus one row (the stage is set by `solver::run`, kept across `reset`).
     pub(crate) final_checks: FinalChecks,
+    /// Lower bounds on each pair's candidate keep-out slacks, which let the scan skip the pairs
+    /// that cannot hold a violated row (`qp_scan::ScanBounds`; forgotten by `reset`).
+    pub(super) scan_bounds: ScanBounds,
 }
 
 /// A row in the active set (keep-out flags; `row_bits` maps a control row's side onto it).
@@ -110,6 +114,7 @@ impl QpState {
             keep_out_flags: [[0; MAX_CHECKS_PER_PAIR]; MAX_PAIRS],
             elastic_count: 0,
             final_checks: FinalChecks::FirstRun,
+            scan_bounds: ScanBounds::unknown(),
         }
     }
 
@@ -166,6 +171,11 @@ impl QpState {
         if let Some(slot) = slot {
             *slot = if on { *slot | bit } else { *slot & !bit };
         }
+        // A row that leaves the active set or an elastic bound is a candidate again: its
+        // pair's bound, taken without it, no longer covers the pair.
+        if !on {
+            self.scan_bounds.forget_row(id);
+        }
     }
 
     /// Whether a row is in the active set (a row outside the flag tables never enters it).
@@ -187,6 +197,7 @@ impl QpState {
             *flags &= !ROW_ELASTIC;
         }
         self.elastic_count = 0;
+        self.scan_bounds = ScanBounds::unknown();
     }
 
     /// Hold a row elastic or release it, keeping `elastic_count`.
@@ -211,6 +222,7 @@ impl QpState {
         self.control_flags = [[0; MAX_NODES]; MAX_BLOCKS];
         self.keep_out_flags = [[0; MAX_CHECKS_PER_PAIR]; MAX_PAIRS];
         self.elastic_count = 0;
+        self.scan_bounds = ScanBounds::unknown();
     }
 
     pub(crate) fn mark(&mut self, id: RowId, on: bool) {

@@ -130,16 +130,22 @@ pub(super) fn convergence_search(tr: &Transcription) -> u64 {
     )
 }
 
-/// The QP's search for the most violated row, at its dearest path (no row active, pruned or
-/// elastic: every row evaluated): every control row (blocks x nodes, a dot product over
-/// `free`), the node table (cleared at capacity), and every keep-out row (its relative
-/// position from the node table and its normal, about 300 M7 instructions whatever `free`).
-pub(super) fn qp_scan(tr: &Transcription) -> u64 {
+/// The QP's search for the most violated row evaluating `checks` keep-out checks (those of the
+/// pairs it does not skip, `qp_scan::ScanBounds`), at its dearest path (no row active, pruned
+/// or elastic: every row of those pairs evaluated): every control row (blocks x nodes, a dot
+/// product over `free`), the node table (cleared at capacity), every pair's bound test, and
+/// each keep-out row evaluated (its relative position from the node table and its normal,
+/// about 300 M7 instructions whatever `free`).
+pub(super) fn qp_scan(tr: &Transcription, checks: usize) -> u64 {
     let s = size(tr);
     units(&[s.blocks, s.nodes, s.free.saturating_add(2)])
-        .saturating_add(units(&[SCAN_CHECK, s.checks]))
+        .saturating_add(units(&[SCAN_CHECK, checks.min(s.checks)]))
+        .saturating_add(units(&[SCAN_PAIR, s.pairs]))
         .saturating_add(units(&[MAX_BLOCKS, MAX_NODES]))
 }
+
+/// A pair's bound test in the scan (`ScanBounds`: a comparison and a store).
+const SCAN_PAIR: usize = 4;
 
 /// A keep-out row's evaluation in the scan: about 300 M7 instructions whatever `free` (fitted
 /// to `qp-scan-cap-w0`, `qp-scan-n10-w3` and `qp-scan-small-w1`).
