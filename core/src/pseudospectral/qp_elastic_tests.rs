@@ -6,25 +6,14 @@
 use super::kernel::{Coefficients, MAX_BLOCKS};
 use super::qp;
 use super::qp_state::QpOutcome;
+use super::test_problems::first_subproblem;
 use super::transcription::{row_dot, RowId, Transcription};
-use super::{Problem, Settings, Solution, Workspace};
+use super::{Problem, Workspace};
 use crate::capacity::MAX_FREE_PER_AXIS;
 use crate::work::Meter;
 
 fn rest_to_rest(moves: &[([f64; 3], [f64; 3])], keep_out: f64, degree: u16) -> Problem {
     super::test_problems::rest_to_rest(moves, keep_out, degree, true)
-}
-
-/// `ws` holding the rows of a solve's last linearisation: one subproblem, no verification
-/// round (for an infeasible problem, the first subproblem's rows, which ended it).
-fn first_subproblem(problem: &Problem, ws: &mut Workspace) {
-    let settings = Settings {
-        sqp_max_iter: 1,
-        verify_max_rounds: 0,
-        ..Settings::default()
-    };
-    let mut out = Solution::new();
-    super::solve(problem, &settings, ws, &mut out).expect("accepted");
 }
 
 fn solve(ws: &mut Workspace, penalty: f64) -> (QpOutcome, Coefficients) {

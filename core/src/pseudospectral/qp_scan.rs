@@ -71,7 +71,7 @@ impl ScanBounds {
         self.pairs
             .get(pair)
             .zip(self.known.get(pair))
-            .is_some_and(|(&bound, &known)| known && bound - self.moved > tol)
+            .is_some_and(|(&bound, &known)| rules_out(bound, known, self.moved, tol))
     }
 
     /// Keep-out checks the next scan evaluates (of the pairs it does not skip): what it is
@@ -84,6 +84,11 @@ impl ScanBounds {
             .filter(|&(pair, _)| !self.skips(pair, tol))
             .fold(0usize, |total, (_, &count)| total.saturating_add(count))
     }
+}
+
+/// A pair's bound shows every candidate row met with more than `tol` to spare.
+fn rules_out(bound: f64, known: bool, moved: f64, tol: f64) -> bool {
+    known && bound - moved > tol
 }
 
 /// The most violated constraint at `y` neither active nor elastic, as (row, slack / |row|),
@@ -160,7 +165,7 @@ pub(super) fn most_violated(
         .zip(bounds);
     for (pair, ((checks, active_flags), (bound, known))) in check_rows.take(tr.pair_count).indexed()
     {
-        if *known && *bound - moved > tol {
+        if rules_out(*bound, *known, moved, tol) {
             continue;
         }
         // Unknown until every candidate row of the pair is evaluated below.

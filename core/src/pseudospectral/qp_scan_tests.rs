@@ -6,8 +6,9 @@ use crate::capacity::MAX_FREE_PER_AXIS;
 use crate::pseudospectral::kernel::{dot, Coefficients, MAX_BLOCKS};
 use crate::pseudospectral::qp;
 use crate::pseudospectral::qp_state::QpOutcome;
+use crate::pseudospectral::test_problems::first_subproblem;
 use crate::pseudospectral::transcription::{row_axpy, row_dot, RowId};
-use crate::pseudospectral::{Problem, Settings, Solution, Workspace};
+use crate::pseudospectral::{Problem, Settings, Workspace};
 use crate::work::Meter;
 
 /// Two spacecraft crossing at the centre and two far away on parallel lanes (the far pairs
@@ -28,17 +29,6 @@ fn crossing_and_lanes() -> Problem {
         spacecraft.mass_mu = mass;
     }
     problem
-}
-
-/// `ws` holding the rows of the first subproblem.
-fn first_subproblem(problem: &Problem, ws: &mut Workspace) {
-    let settings = Settings {
-        sqp_max_iter: 1,
-        verify_max_rounds: 0,
-        ..Settings::default()
-    };
-    let mut out = Solution::new();
-    crate::pseudospectral::solve(problem, &settings, ws, &mut out).expect("accepted");
 }
 
 #[test]

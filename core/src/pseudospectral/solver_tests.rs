@@ -444,16 +444,22 @@ fn the_certificate_eigenvalue_matches_a_dense_decomposition() {
         ("square swap", square),
     ];
     for (name, problem) in cases {
-        let (mut ws, out) = run_keeping_workspace(&problem, &Settings::default());
-        let certificate = certificate_again(&mut ws, out.cost);
-        assert!(certificate.second_order_evaluated, "{name}");
-        let dense = dense_reduced_min_eigenvalue(&mut ws);
-        let got = certificate.min_reduced_eigenvalue;
-        assert!(
-            (got - dense).abs() <= 1e-9 * (1.0 + dense.abs()),
-            "{name}: certificate {got}, dense {dense}"
-        );
+        assert_certificate_matches_dense(name, &problem);
     }
+}
+
+/// At the problem's returned iterate, the certificate's smallest reduced-Hessian eigenvalue
+/// equals a dense eigen-decomposition of the same operator to 1e-9.
+fn assert_certificate_matches_dense(name: impl core::fmt::Display, problem: &Problem) {
+    let (mut ws, out) = run_keeping_workspace(problem, &Settings::default());
+    let certificate = certificate_again(&mut ws, out.cost);
+    assert!(certificate.second_order_evaluated, "{name}");
+    let dense = dense_reduced_min_eigenvalue(&mut ws);
+    let got = certificate.min_reduced_eigenvalue;
+    assert!(
+        (got - dense).abs() <= 1e-9 * (1.0 + dense.abs()),
+        "{name}: certificate {got}, dense {dense}"
+    );
 }
 
 #[test]
@@ -469,15 +475,7 @@ fn the_certificate_eigenvalue_holds_when_the_problem_moves_by_rounding() {
             spacecraft.initial_state[0] += sign * shift;
             spacecraft.final_state[0] -= sign * shift;
         }
-        let (mut ws, out) = run_keeping_workspace(&problem, &Settings::default());
-        let certificate = certificate_again(&mut ws, out.cost);
-        assert!(certificate.second_order_evaluated, "shift {shift}");
-        let dense = dense_reduced_min_eigenvalue(&mut ws);
-        let got = certificate.min_reduced_eigenvalue;
-        assert!(
-            (got - dense).abs() <= 1e-9 * (1.0 + dense.abs()),
-            "shift {shift}: certificate {got}, dense {dense}"
-        );
+        assert_certificate_matches_dense(format_args!("shift {shift}"), &problem);
     }
 }
 

@@ -1,7 +1,7 @@
 //! Problems the unit tests share.
-#![allow(clippy::unwrap_used)]
+#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use super::{Problem, Spacecraft};
+use super::{Problem, Settings, Solution, Spacecraft, Workspace};
 
 /// Rest-to-rest moves `(from, to)` in LU, T = 10, Umax = 1, unit masses, keep-out `keep_out_lu`
 /// (the paper's settings with d = 2).
@@ -29,4 +29,16 @@ pub(super) fn rest_to_rest(
         test_points,
         spacecraft,
     }
+}
+
+/// `ws` holding the rows of a solve's last linearisation: one subproblem, no verification
+/// round (for an infeasible problem, the first subproblem's rows, which ended it).
+pub(super) fn first_subproblem(problem: &Problem, ws: &mut Workspace) {
+    let settings = Settings {
+        sqp_max_iter: 1,
+        verify_max_rounds: 0,
+        ..Settings::default()
+    };
+    let mut out = Solution::new();
+    super::solve(problem, &settings, ws, &mut out).expect("accepted");
 }
